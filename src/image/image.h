@@ -1,0 +1,32 @@
+#pragma once
+// An 8-bit RGBA picture, rows stored top to bottom (the renderer flips OpenGL's bottom-up
+// readback once, so every consumer sees the usual image orientation).
+
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+namespace coinroll::image {
+
+struct Image {
+  int width = 0;   // pixels
+  int height = 0;  // pixels
+  std::vector<std::uint8_t> rgba;  // width * height * 4 bytes, row 0 is the top
+
+  Image() = default;
+  Image(int w, int h) : width(w), height(h), rgba(static_cast<std::size_t>(w) * h * 4, 0) {}
+
+  std::uint8_t* pixel(int x, int y) { return rgba.data() + (static_cast<std::size_t>(y) * width + x) * 4; }
+  const std::uint8_t* pixel(int x, int y) const {
+    return rgba.data() + (static_cast<std::size_t>(y) * width + x) * 4;
+  }
+};
+
+// Writes `image` as PNG to `path` atomically (temporary file, then rename). Throws
+// std::runtime_error naming the path on failure; nothing is left under `path` then.
+void writePng(const Image& image, const std::filesystem::path& path);
+
+// Reads an 8-bit PNG as RGBA. Throws std::runtime_error naming the path on failure.
+Image readPng(const std::filesystem::path& path);
+
+}  // namespace coinroll::image

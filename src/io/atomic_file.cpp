@@ -1,0 +1,69 @@
+#include "io/atomic_file.h"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cstring>
+#include <stdexcept>
+#include <system_error>
+
+namespace coinroll::io {
+
+namespace {
+
+std::filesystem::path directoryOf(const std::filesystem::path& file) {
+  const std::filesystem::path parent = file.parent_path();
+  return parent.empty() ? std::filesystem::path(".") : parent;
+}
+
+}  // namespace
+
+AtomicOutputFile::AtomicOutputFile(std::filesystem::path destination)
+    : destination_(std::move(destination)) {
+  const std::filesystem::path directory = directoryOf(destination_);
+  std::error_code ec;
+  if (!std::filesystem::is_directory(directory, ec)) {
+    throw std::runtime_error(destination_.string() + ": cannot write: directory '" + directory.string() +
+                             "' does not exist");
+  }
+  // Creating the file now (O_EXCL, so the name is ours alone) proves the directory is writable
+  // before any work starts; mode 0666 lets the umask decide permissions as for any output.
+  static std::atomic<unsigned> counter{0};
+  for (int attempt = 0;; ++attempt) {
+    // Built with append: GCC 12 flags `"." + std::string` with a false -Wrestrict (GCC bug 105651).
+    std::string name = ".";
+    name.append(destination_.filename().string()).append(".partial-").append(std::to_string(::getpid()));
+    name.append("-").append(std::to_string(counter++));
+    temporary_ = directory / name;
+    const int fd = ::open(temporary_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (fd >= 0) {
+      ::close(fd);
+      break;
+    }
+    if (errno != EEXIST || attempt > 100) {
+      throw std::runtime_error(destination_.string() + ": cannot write in '" + directory.string() +
+                               "': " + std::strerror(errno));
+    }
+  }
+}
+
+AtomicOutputFile::~AtomicOutputFile() {
+  if (!committed_) {
+    std::error_code ignored;
+    std::filesystem::remove(temporary_, ignored);
+  }
+}
+
+void AtomicOutputFile::commit() {
+  std::error_code ec;
+  std::filesystem::rename(temporary_, destination_, ec);
+  if (ec) {
+    throw std::runtime_error(destination_.string() + ": cannot move the finished output into place: " +
+                             ec.message());
+  }
+  committed_ = true;
+}
+
+}  // namespace coinroll::io

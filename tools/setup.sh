@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# Installs every Debian package coinroll needs to build, test, render and chart.
+# Idempotent: skips apt entirely when everything is already installed.
+set -euo pipefail
+
+packages=(
+  cmake g++ pkg-config make
+  libeigen3-dev nlohmann-json3-dev libcli11-dev libfmt-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+  libosmesa6-dev libglm-dev libstb-dev
+  libavcodec-dev libavformat-dev libavutil-dev libswscale-dev
+  ffmpeg
+  libboost-dev libsundials-dev
+  python3 python3-matplotlib python3-numpy python3-scipy python3-sympy
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+
+echo "setup: installing ${missing[*]}" >&2
+sudo_cmd=()
+[ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
+export DEBIAN_FRONTEND=noninteractive
+"${sudo_cmd[@]}" apt-get update -qq
+"${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null

@@ -1,0 +1,29 @@
+#pragma once
+// What stays fixed during a run: mass, radius, gravity and the two principal moments of an
+// axisymmetric coin. Kept apart from CoinState so every physics function reads
+// (const CoinModel&, state) and nothing is cached behind the caller's back.
+
+namespace coinroll::physics {
+
+struct CoinModel {
+  double M = 0;    // kg, mass
+  double a = 0;    // m, radius (centre to rim, where the coin touches the floor)
+  double g = 0;    // m/s^2, gravitational acceleration
+  double I_X = 0;  // kg m^2, moment about a diameter (I_X = I_Y by symmetry)
+  double I_Z = 0;  // kg m^2, moment about the symmetry axis
+};
+
+// Thin uniform disk: I_X = M a^2 / 4, I_Z = M a^2 / 2 (seed eq. 12).
+CoinModel diskModel(double M, double a, double g);
+
+// Annulus of outer radius a and hole radius b (seed section 6):
+// I_X = M (a^2 + b^2) / 4, I_Z = M (a^2 + b^2) / 2. b = a is a thin hoop.
+CoinModel ringModel(double M, double a, double b, double g);
+
+// Natural time unit sqrt(a / g), s: the seed's dimensionless time.
+double naturalTime(const CoinModel& model);
+
+// Natural angular-velocity unit sqrt(g / a), rad/s.
+double naturalRate(const CoinModel& model);
+
+}  // namespace coinroll::physics

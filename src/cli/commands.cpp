@@ -1,0 +1,118 @@
+#include "cli/commands.h"
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <fstream>
+#include <iostream>
+#include <numbers>
+#include <variant>
+
+#include "cli/exit_codes.h"
+#include "integrate/solver_config.h"
+#include "io/atomic_file.h"
+#include "physics/observables.h"
+#include "physics/steady.h"
+#include "pipeline/simulation.h"
+#include "pipeline/trajectory_csv.h"
+#include "scene/scene_loader.h"
+
+namespace coinroll::cli {
+
+namespace {
+
+constexpr double kDegreesPerRadian = 180 / std::numbers::pi;
+
+scene::SceneConfig loadScene(const SceneSource& source) {
+  const scene::ParseOptions options{.solverMethods = integrate::methodNames()};
+  if (source.file) return scene::loadScene(*source.file, source.overrides, options);
+  nlohmann::json document = scene::builtInDefaultScene();
+  for (const std::string& assignment : source.overrides) scene::applyOverride(document, assignment);
+  return scene::parseScene(document, "built-in default scene", options);
+}
+
+void reportStop(const pipeline::CsvRunResult& result) {
+  if (result.stoppedBy) {
+    std::cerr << "coinroll: stopped early: " << pipeline::describeStop(*result.stoppedBy) << '\n';
+  }
+}
+
+}  // namespace
+
+void runSimulate(const SimulateOptions& options) {
+  if (!(options.sampleDt > 0) || !std::isfinite(options.sampleDt)) {
+    throw UsageError(fmt::format("--sample-dt: must be a finite number > 0 s, got {}", options.sampleDt));
+  }
+  const scene::SceneConfig scene = loadScene(options.scene);
+  const pipeline::Simulation simulation = pipeline::buildSimulation(scene);
+
+  pipeline::CsvRunResult result;
+  if (options.csvPath == "-") {
+    result = pipeline::writeTrajectoryCsv(simulation, options.sampleDt, std::cout);
+    std::cout.flush();
+  } else {
+    io::AtomicOutputFile file(options.csvPath);
+    {
+      std::ofstream out(file.temporaryPath());
+      result = pipeline::writeTrajectoryCsv(simulation, options.sampleDt, out);
+      out.close();
+      if (!out) throw std::runtime_error(options.csvPath + ": writing the CSV failed");
+    }
+    file.commit();
+  }
+  reportStop(result);
+  std::cerr << fmt::format("coinroll: {} rows, {} steps ({} rejected), {} right-hand-side evaluations\n", result.rows,
+                           result.stats.acceptedSteps, result.stats.rejectedSteps, result.stats.rhsEvaluations);
+}
+
+void runSteady(const SteadyOptions& options) {
+  SceneSource source = options.scene;
+  if (options.kind) {
+    nlohmann::json initial = {{"steady", *options.kind}};
+    if (options.thetaDegrees) initial["theta"] = *options.thetaDegrees;
+    if (options.omega_Z) initial["omega_Z"] = *options.omega_Z;
+    if (options.branch) initial["branch"] = *options.branch;
+    source.overrides.push_back("initial=" + initial.dump());
+  } else if (options.thetaDegrees || options.omega_Z || options.branch) {
+    throw UsageError("--theta, --omega-Z and --branch describe a steady state: give --kind too");
+  }
+  const scene::SceneConfig scene = loadScene(source);
+  if (!std::holds_alternative<scene::SteadyInitial>(scene.initial)) {
+    throw UsageError("steady: give --kind straight|circle|spin-in-place, or a scene whose initial names a steady state");
+  }
+  const pipeline::Simulation sim = pipeline::buildSimulation(scene);
+  const physics::CoinModel& m = sim.model;
+  const physics::CoinState& s = sim.initial;
+  const double rateUnit = physics::naturalRate(m);
+  const double K = physics::wobbleStiffness(m, s.theta, s.omega_Y, s.omega_Z);
+  const physics::CircleRadii radii = physics::circleRadii(m, s);
+
+  fmt::print("coin: M = {} kg, a = {} m, g = {} m/s^2, I_X = {:.6g} kg m^2, I_Z = {:.6g} kg m^2\n", m.M, m.a, m.g,
+             m.I_X, m.I_Z);
+  fmt::print("natural rate sqrt(g/a) = {:.6g} rad/s; critical spin for straight rolling omega_c = {:.6g} rad/s "
+             "({:.6f} sqrt(g/a))\n\n", rateUnit, physics::criticalSpin(m), physics::criticalSpin(m) / rateUnit);
+  fmt::print("initial conditions (scene units):\n");
+  fmt::print("  \"initial\": {{\"theta\": {:.12g}, \"phi\": {:.12g}, \"psi\": {:.12g}, \"omega_X\": {:.12g}, "
+             "\"omega_Y\": {:.12g}, \"omega_Z\": {:.12g}, \"x\": {:.12g}, \"z\": {:.12g}}}\n",
+             s.theta * kDegreesPerRadian, s.phi * kDegreesPerRadian, s.psi * kDegreesPerRadian, s.omega_X, s.omega_Y,
+             s.omega_Z, s.x, s.z);
+  fmt::print("  in units of sqrt(g/a): omega_Y = {:.9g}, omega_Z = {:.9g}\n", s.omega_Y / rateUnit, s.omega_Z / rateUnit);
+  fmt::print("  phi-dot = {:.9g} rad/s, psi-dot = {:.9g} rad/s\n", physics::precessionRate(s), physics::spinRate(s));
+  fmt::print("  circle radius: centre of mass R_G = {:.9g} m, contact point R_C = {:.9g} m\n", radii.centreOfMass,
+             radii.contact);
+  const physics::Reaction r = physics::reaction(m, s);
+  fmt::print("  floor reaction: N = {:.6g} N, F = {:.6g} N (needs mu >= {:.4g})\n\n", r.N, r.F, r.N > 0 ? r.F / r.N : INFINITY);
+  fmt::print("stability (docs/derivations.md eq. 3.6): K = {:.9g} 1/s^2 ({:.9g} in units g/a)\n", K, K / (rateUnit * rateUnit));
+  if (K > 0) {
+    fmt::print("verdict: STABLE: a small tilt perturbation wobbles at {:.9g} rad/s (period {:.9g} s)\n", std::sqrt(K),
+               2 * std::numbers::pi / std::sqrt(K));
+  } else if (K < 0) {
+    fmt::print("verdict: UNSTABLE: a small tilt perturbation grows like exp({:.9g} t / s) (e-folding time {:.9g} s)\n",
+               std::sqrt(-K), 1 / std::sqrt(-K));
+  } else {
+    fmt::print("verdict: MARGINAL (K = 0)\n");
+  }
+}
+
+}  // namespace coinroll::cli

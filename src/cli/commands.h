@@ -1,0 +1,32 @@
+#pragma once
+// One function per subcommand; each returns normally on success and throws scene::SceneError or
+// cli::UsageError for bad input (exit 2) and anything else for failures (exit 1).
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace coinroll::cli {
+
+struct SceneSource {
+  std::optional<std::string> file;     // absent = the built-in default scene
+  std::vector<std::string> overrides;  // --set KEY.PATH=VALUE, applied in order
+};
+
+struct SimulateOptions {
+  SceneSource scene;
+  std::string csvPath;    // "-" = stdout
+  double sampleDt = 0.01; // s
+};
+void runSimulate(const SimulateOptions& options);
+
+struct SteadyOptions {
+  SceneSource scene;
+  std::optional<std::string> kind;  // "straight" | "circle" | "spin-in-place"; default: the scene's steady initial
+  std::optional<double> thetaDegrees;
+  std::optional<double> omega_Z;    // rad/s
+  std::optional<std::string> branch;  // "+" | "-"
+};
+void runSteady(const SteadyOptions& options);
+
+}  // namespace coinroll::cli

@@ -1,0 +1,81 @@
+// coinroll: command-line entry point. Parses arguments, runs one command, maps errors to the exit
+// codes of INTERFACE.md. All logic lives in the libraries; this file only wires them.
+
+#include <CLI/CLI.hpp>
+
+#include <exception>
+#include <iostream>
+
+#include "cli/commands.h"
+#include "cli/exit_codes.h"
+#include "scene/scene_loader.h"
+
+namespace {
+
+using namespace coinroll::cli;
+
+void addSceneOptions(CLI::App& command, SceneSource& scene, bool fileRequired) {
+  CLI::Option* file = command.add_option("scene", scene.file, "Scene file (JSON, see README 'Scene format')");
+  if (fileRequired) file->required();
+  command.add_option("--set", scene.overrides,
+                     "Override one scene field, KEY.PATH=VALUE (e.g. --set initial.theta=12 --set solver.rtol=1e-9); "
+                     "repeatable")
+      ->type_name("KEY=VALUE");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"coinroll: a coin rolling without slipping on a table, simulated, rendered headless to MP4 and PNG."};
+  app.require_subcommand(1);
+  app.footer(
+      "Examples:\n"
+      "  coinroll simulate examples/steady_circle.json --csv circle.csv\n"
+      "  coinroll simulate scene.json --csv - --sample-dt 0.001 --set initial.theta=12 | head\n"
+      "  coinroll steady --kind circle --theta 20 --omega-Z 10\n"
+      "  coinroll steady --kind straight --omega-Z 5 --set coin.shape=\\\"ring\\\"\n"
+      "Exit codes: 0 success, 2 bad command line or scene (nothing written), 1 other failure.\n"
+      "Run 'coinroll COMMAND --help' for a command's options.");
+
+  SimulateOptions simulate;
+  CLI::App* simulateCommand = app.add_subcommand(
+      "simulate", "Integrate a scene and write the trajectory CSV (t, angles, rates, positions, energy, N, F)");
+  addSceneOptions(*simulateCommand, simulate.scene, true);
+  simulateCommand->add_option("--csv", simulate.csvPath, "Output CSV path, or - for stdout")->required();
+  simulateCommand->add_option("--sample-dt", simulate.sampleDt, "Time between rows, s (rows at t = k S)")
+      ->capture_default_str();
+
+  SteadyOptions steady;
+  CLI::App* steadyCommand = app.add_subcommand(
+      "steady", "Steady motions (straight, circle, spin in place) of a coin: initial conditions and stability K");
+  addSceneOptions(*steadyCommand, steady.scene, false);
+  steadyCommand->add_option("--kind", steady.kind, "straight | circle | spin-in-place")
+      ->check(CLI::IsMember({"straight", "circle", "spin-in-place"}));
+  steadyCommand->add_option("--theta", steady.thetaDegrees, "Tilt from vertical, degrees (circle, spin-in-place)");
+  steadyCommand->add_option("--omega-Z", steady.omega_Z, "Spin about the coin normal, rad/s (straight, circle)");
+  steadyCommand->add_option("--branch", steady.branch, "Circle root: + (f+, default) or - (f-)")
+      ->check(CLI::IsMember({"+", "-"}));
+  steadyCommand->footer("Without a scene file the built-in default coin is used.");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? kExitSuccess : kExitBadInput;
+  }
+
+  try {
+    if (*simulateCommand) runSimulate(simulate);
+    if (*steadyCommand) runSteady(steady);
+    return kExitSuccess;
+  } catch (const coinroll::scene::SceneError& e) {
+    std::cerr << "coinroll: error: " << e.what() << '\n';
+    return kExitBadInput;
+  } catch (const UsageError& e) {
+    std::cerr << "coinroll: error: " << e.what() << '\n';
+    return kExitBadInput;
+  } catch (const std::exception& e) {
+    std::cerr << "coinroll: error: " << e.what() << '\n';
+    return kExitFailure;
+  }
+}

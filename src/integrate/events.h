@@ -1,0 +1,26 @@
+#pragma once
+// Scalar events g(t, y) = 0, located on the dense output of the step where g changes sign.
+
+#include <functional>
+#include <string>
+
+#include "integrate/solver_config.h"
+
+namespace coinroll::integrate {
+
+template <int N>
+struct Event {
+  std::string name;                                    // e.g. "lift-off"
+  std::function<double(double t, const Vec<N>& y)> g;  // the event is a root of g
+  int direction = 0;     // 0 any crossing, +1 only g rising through 0, -1 only falling
+  bool terminal = true;  // stop the run at the root
+};
+
+template <int N>
+struct EventHit {
+  std::string name;
+  double t = 0;  // s
+  Vec<N> y;
+};
+
+}  // namespace coinroll::integrate

@@ -1,0 +1,42 @@
+#pragma once
+// Choice of method and its tolerances, independent of any particular right-hand side.
+
+#include <Eigen/Core>
+
+#include <limits>
+#include <optional>
+#include <span>
+#include <string_view>
+
+namespace coinroll::integrate {
+
+template <int N>
+using Vec = Eigen::Matrix<double, N, 1>;
+
+enum class Method {
+  Euler,   // explicit Euler, fixed step: the first-order baseline that fails
+  Rk4,     // classic Runge-Kutta, fixed step, order 4
+  Dopri5,  // Dormand-Prince 5(4), adaptive, 4th-order dense output
+};
+
+std::optional<Method> methodFromName(std::string_view name);
+std::string_view nameOf(Method method);
+std::span<const std::string_view> methodNames();  // in the order of the enum
+bool isAdaptive(Method method);
+
+struct SolverConfig {
+  Method method = Method::Dopri5;
+  double rtol = 1e-10;  // relative tolerance per step (adaptive methods)
+  double atol = 1e-12;  // absolute tolerance per step, in the state's units (adaptive methods)
+  double dt = 1e-3;     // s, step of the fixed-step methods
+  double maxStep = std::numeric_limits<double>::infinity();  // s, cap on adaptive steps
+  long maxSteps = 50'000'000;  // a run needing more steps throws, naming t, h and the state
+};
+
+struct Stats {
+  long rhsEvaluations = 0;
+  long acceptedSteps = 0;
+  long rejectedSteps = 0;
+};
+
+}  // namespace coinroll::integrate

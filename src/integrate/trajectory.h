@@ -1,0 +1,206 @@
+#pragma once
+// The streaming driver: integrates forward on demand and answers "state at t" from the dense
+// output of the step containing t, so samples land exactly on t_k = k S (no stepping to sample
+// times, no restarts), and locates events on the same dense output.
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+#include "integrate/event_location.h"
+#include "integrate/events.h"
+#include "integrate/solver_config.h"
+#include "integrate/steppers.h"
+
+namespace coinroll::integrate {
+
+template <int N, class Rhs>
+class Trajectory {
+ public:
+  Trajectory(Rhs f, double t0, const Vec<N>& y0, const SolverConfig& config, std::vector<Event<N>> events = {})
+      : f_(std::move(f)), config_(config), events_(std::move(events)), t_(t0), y_(y0) {
+    validate();
+    f0_ = evaluate(t_, y_);
+    for (const Event<N>& e : events_) gAtStart_.push_back(e.g(t_, y_));
+    h_ = isAdaptive(config_.method) ? initialStep() : config_.dt;
+    interval_ = hermiteInterval<N>(t_, 0.0, y_, f0_, y_, f0_);
+  }
+
+  // State at t >= every earlier query. std::nullopt once a terminal event has stopped the run
+  // before t; stoppedBy() then names it.
+  std::optional<Vec<N>> stateAt(double t) {
+    if (t < lastQuery_) {
+      throw std::logic_error(fmt::format("Trajectory::stateAt: queries must not go back in time ({} after {})", t, lastQuery_));
+    }
+    lastQuery_ = t;
+    while (t > t_ && !stoppedBy_) advance();
+    if (stoppedBy_ && t > stoppedBy_->t) return std::nullopt;
+    if (t == t_) return y_;
+    return interval_.at(t);
+  }
+
+  const std::optional<EventHit<N>>& stoppedBy() const { return stoppedBy_; }
+  const std::vector<EventHit<N>>& nonTerminalHits() const { return nonTerminalHits_; }
+  const Stats& stats() const { return stats_; }
+  double time() const { return t_; }  // s, end of the last accepted step
+
+ private:
+  Vec<N> evaluate(double t, const Vec<N>& y) {
+    ++stats_.rhsEvaluations;
+    return f_(t, y);
+  }
+
+  void validate() const {
+    const bool adaptive = isAdaptive(config_.method);
+    if (adaptive && !(config_.rtol > 0 && config_.atol >= 0)) {
+      throw std::invalid_argument(fmt::format("solver: rtol must be > 0 and atol >= 0, got {} and {}", config_.rtol, config_.atol));
+    }
+    if (!adaptive && !(config_.dt > 0 && std::isfinite(config_.dt))) {
+      throw std::invalid_argument(fmt::format("solver.dt: must be a finite step > 0 s, got {}", config_.dt));
+    }
+    if (!y_.allFinite()) throw std::invalid_argument("initial state has a non-finite component");
+  }
+
+  // Hairer-Norsett-Wanner's weighted RMS norm of a local error.
+  double errorNorm(const Vec<N>& error, const Vec<N>& y0, const Vec<N>& y1) const {
+    const Vec<N> scale = (config_.atol + config_.rtol * y0.cwiseAbs().cwiseMax(y1.cwiseAbs()).array()).matrix();
+    return std::sqrt((error.cwiseQuotient(scale)).squaredNorm() / N);
+  }
+
+  // HNW's starting step: make the first step's Euler error about 1 % of the tolerance.
+  double initialStep() {
+    const Vec<N> scale = (config_.atol + config_.rtol * y_.cwiseAbs().array()).matrix();
+    const double d0 = std::sqrt(y_.cwiseQuotient(scale).squaredNorm() / N);
+    const double d1 = std::sqrt(f0_.cwiseQuotient(scale).squaredNorm() / N);
+    double h0 = (d0 < 1e-5 || d1 < 1e-5) ? 1e-6 : 0.01 * d0 / d1;
+    h0 = std::min(h0, config_.maxStep);
+    const Vec<N> f1 = evaluate(t_ + h0, Vec<N>(y_ + h0 * f0_));
+    const double d2 = std::sqrt((f1 - f0_).cwiseQuotient(scale).squaredNorm() / N) / h0;
+    const double d = std::max(d1, d2);
+    const double h1 = d <= 1e-15 ? std::max(1e-6, h0 * 1e-3) : std::pow(0.01 / d, 1.0 / 5);
+    return std::min({100 * h0, h1, config_.maxStep});
+  }
+
+  void advance() {
+    const double tStart = t_;
+    const Vec<N> yStart = y_;
+    if (config_.method == Method::Dopri5) {
+      adaptiveStep();
+    } else {
+      // Fixed steps sit on the grid t0 + k dt so step points do not drift with round-off.
+      const double tNext = gridOrigin_ + static_cast<double>(stats_.acceptedSteps + 1) * config_.dt;
+      const double h = tNext - t_;
+      const Vec<N> y1 = config_.method == Method::Rk4 ? rk4Step<N>(f_, t_, y_, f0_, h) : eulerStep<N>(f_, t_, y_, f0_, h);
+      stats_.rhsEvaluations += config_.method == Method::Rk4 ? 3 : 0;
+      const Vec<N> f1 = evaluate(tNext, y1);
+      interval_ = hermiteInterval<N>(t_, h, y_, f0_, y1, f1);
+      if (config_.method == Method::Euler) {  // the chord: Euler's slope at t1 is not its own
+        interval_.r3.setZero();
+        interval_.r4.setZero();
+      }
+      accept(tNext, y1, f1);
+    }
+    checkEvents(tStart, yStart);
+  }
+
+  void adaptiveStep() {
+    // PI step-size control of HNW II.4 (DOPRI5's beta = 0.04, safety 0.9, factor in [0.2, 10]).
+    constexpr double kBeta = 0.04, kSafety = 0.9, kMinFactor = 0.2, kMaxFactor = 10.0;
+    constexpr double kExponent = 0.2 - kBeta * 0.75;
+    bool lastRejected = false;
+    while (true) {
+      double h = std::min(h_, config_.maxStep);
+      if (!(h > 1e-14 * std::max(1.0, std::abs(t_)))) {
+        throw std::runtime_error(fmt::format("integration stalled: step size {} at t = {} s, state ({})", h, t_, describe(y_)));
+      }
+      const Dopri5Result<N> r = dopri5Step<N>(f_, t_, y_, f0_, h);
+      stats_.rhsEvaluations += 6;
+      const double err = errorNorm(r.error, y_, r.y1);
+      if (!std::isfinite(err)) {
+        ++stats_.rejectedSteps;
+        h_ = h * kMinFactor;
+        lastRejected = true;
+        continue;
+      }
+      const double fac11 = std::pow(err, kExponent);
+      if (err <= 1.0) {
+        double factor = fac11 / std::pow(previousError_, kBeta) / kSafety;
+        factor = std::clamp(factor, 1 / kMaxFactor, 1 / kMinFactor);
+        double hNew = h / factor;
+        if (lastRejected) hNew = std::min(hNew, h);  // HNW: no growth right after a rejection
+        previousError_ = std::max(err, 1e-4);
+        interval_ = dopri5Interval<N>(t_, h, y_, f0_, r);
+        h_ = hNew;
+        accept(t_ + h, r.y1, r.f1);
+        return;
+      }
+      ++stats_.rejectedSteps;
+      lastRejected = true;
+      h_ = h / std::min(1 / kMinFactor, fac11 / kSafety);
+    }
+  }
+
+  void accept(double t1, const Vec<N>& y1, const Vec<N>& f1) {
+    if (!y1.allFinite()) {
+      throw std::runtime_error(fmt::format("integration produced a non-finite state at t = {} s (from {})", t1, describe(y_)));
+    }
+    t_ = t1;
+    y_ = y1;
+    f0_ = f1;
+    if (++stats_.acceptedSteps > config_.maxSteps) {
+      throw std::runtime_error(fmt::format("integration needs more than {} steps: stopped at t = {} s, h = {} s, state ({})",
+                                           config_.maxSteps, t_, interval_.h, describe(y_)));
+    }
+  }
+
+  void checkEvents(double tStart, const Vec<N>& yStart) {
+    (void)yStart;
+    std::optional<EventHit<N>> earliestTerminal;
+    for (std::size_t i = 0; i < events_.size(); ++i) {
+      const Event<N>& e = events_[i];
+      const double gStart = gAtStart_[i];
+      const double gEnd = e.g(t_, y_);
+      gAtStart_[i] = gEnd;
+      const bool rising = gStart < 0 && gEnd >= 0, falling = gStart > 0 && gEnd <= 0;
+      if (!((e.direction >= 0 && rising) || (e.direction <= 0 && falling))) continue;
+      const double tRoot = locateRoot(
+          [&](double t) { return e.g(t, interval_.at(t)); }, tStart, gStart, t_, gEnd);
+      EventHit<N> hit{e.name, tRoot, interval_.at(tRoot)};
+      if (!e.terminal) {
+        nonTerminalHits_.push_back(hit);
+      } else if (!earliestTerminal || tRoot < earliestTerminal->t) {
+        earliestTerminal = hit;
+      }
+    }
+    if (earliestTerminal) stoppedBy_ = earliestTerminal;
+  }
+
+  static std::string describe(const Vec<N>& y) {
+    std::ostringstream text;
+    text << y.transpose();
+    return text.str();
+  }
+
+  Rhs f_;
+  SolverConfig config_;
+  std::vector<Event<N>> events_;
+  std::vector<double> gAtStart_;  // each event's g at the start of the current step
+  double t_;                      // s, end of the last accepted step
+  Vec<N> y_, f0_;                 // state and slope at t_
+  double gridOrigin_ = t_;        // s, origin of the fixed-step grid
+  double h_ = 0;                  // s, next step to try
+  double previousError_ = 1e-4;   // PI controller memory
+  double lastQuery_ = -std::numeric_limits<double>::infinity();
+  DenseInterval<N> interval_;
+  Stats stats_;
+  std::optional<EventHit<N>> stoppedBy_;
+  std::vector<EventHit<N>> nonTerminalHits_;
+};
+
+}  // namespace coinroll::integrate

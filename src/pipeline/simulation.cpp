@@ -1,0 +1,121 @@
+#include "pipeline/simulation.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <variant>
+
+#include "physics/observables.h"
+#include "physics/steady.h"
+#include "physics/validity.h"
+#include "scene/scene_loader.h"
+
+namespace coinroll::pipeline {
+
+namespace {
+
+physics::CoinModel modelFrom(const scene::CoinSpec& coin, double g) {
+  switch (coin.shape) {
+    case scene::Shape::Disk: return physics::diskModel(coin.mass, coin.radius, g);
+    case scene::Shape::Ring: return physics::ringModel(coin.mass, coin.radius, coin.innerRadius, g);
+    case scene::Shape::Custom:
+      return {.M = coin.mass, .a = coin.radius, .g = g, .I_X = coin.I_X.value(), .I_Z = coin.I_Z.value()};
+  }
+  throw std::logic_error("unhandled coin shape");
+}
+
+physics::CoinState steadyState(const physics::CoinModel& model, const scene::SteadyInitial& steady) {
+  physics::CoinState s;
+  try {
+    switch (steady.kind) {
+      case scene::SteadyKind::Straight: s = physics::straightRolling(steady.omega_Z); break;
+      case scene::SteadyKind::Circle: s = physics::steadyCircle(model, steady.theta, steady.omega_Z, steady.branch); break;
+      case scene::SteadyKind::SpinInPlace: s = physics::spinInPlace(model, steady.theta); break;
+    }
+  } catch (const std::invalid_argument& e) {
+    throw scene::SceneError(std::string("initial.steady: ") + e.what());
+  }
+  s.phi = steady.phi;
+  s.psi = steady.psi;
+  s.x = steady.x;
+  s.z = steady.z;
+  return s;
+}
+
+physics::CoinState initialFrom(const physics::CoinModel& model, const scene::InitialSpec& initial) {
+  if (const auto* steady = std::get_if<scene::SteadyInitial>(&initial)) return steadyState(model, *steady);
+  const auto& e = std::get<scene::ExplicitInitial>(initial);
+  return {e.theta, e.phi, e.psi, e.omega_X, e.omega_Y, e.omega_Z, e.x, e.z};
+}
+
+// Events fire on crossings, so a start already outside the model would go unnoticed: refuse it.
+void requireValidStart(const Simulation& sim) {
+  const physics::Reaction r = physics::reaction(sim.model, sim.initial);
+  if (physics::liftOffMargin(sim.model, sim.initial) <= 0) {
+    throw scene::SceneError(fmt::format(
+        "initial: the floor would have to pull the coin down (normal force N = {:.4g} N <= 0): the coin lifts off at "
+        "once; lower the spin or the tilt", r.N));
+  }
+  if (sim.friction && physics::slipMargin(sim.model, sim.initial, *sim.friction) < 0) {
+    throw scene::SceneError(fmt::format(
+        "initial: the contact needs friction F = {:.4g} N > mu N = {:.4g} N: the coin slips at once; raise friction or "
+        "lower the rates", r.F, *sim.friction * r.N));
+  }
+}
+
+}  // namespace
+
+Simulation buildSimulation(const scene::SceneConfig& scene) {
+  Simulation sim;
+  sim.model = modelFrom(scene.coin, scene.gravity);
+  sim.initial = initialFrom(sim.model, scene.initial);
+  const std::optional<integrate::Method> method = integrate::methodFromName(scene.solver.method);
+  if (!method) throw scene::SceneError("solver.method: unknown method '" + scene.solver.method + "'");
+  sim.solver.method = *method;
+  sim.solver.rtol = scene.solver.rtol;
+  sim.solver.atol = scene.solver.atol;
+  sim.solver.dt = scene.solver.dt;
+  sim.friction = scene.friction;
+  sim.duration = scene.duration;
+  requireValidStart(sim);
+  return sim;
+}
+
+std::vector<integrate::Event<physics::kStateSize>> validityEvents(const physics::CoinModel& model,
+                                                                  std::optional<double> friction) {
+  using physics::StateVec;
+  std::vector<integrate::Event<physics::kStateSize>> events;
+  events.push_back({.name = "coin-flat",
+                    .g = [](double, const StateVec& y) { return physics::flatMargin(physics::toState(y)); },
+                    .direction = -1});
+  events.push_back({.name = "lift-off",
+                    .g = [model](double, const StateVec& y) { return physics::liftOffMargin(model, physics::toState(y)); },
+                    .direction = -1});
+  if (friction) {
+    const double mu = *friction;
+    events.push_back({.name = "slip",
+                      .g = [model, mu](double, const StateVec& y) {
+                        return physics::slipMargin(model, physics::toState(y), mu);
+                      },
+                      .direction = -1});
+  }
+  return events;
+}
+
+CoinTrajectory startTrajectory(const Simulation& simulation) {
+  return CoinTrajectory(CoinRhs{&simulation.model}, 0.0, physics::toVector(simulation.initial), simulation.solver,
+                        validityEvents(simulation.model, simulation.friction));
+}
+
+std::string describeStop(const integrate::EventHit<physics::kStateSize>& hit) {
+  const char* meaning = hit.name == "coin-flat" ? "the coin is nearly flat; the Euler-angle equations end here"
+                        : hit.name == "lift-off" ? "the normal force reached zero; the coin would leave the floor"
+                        : hit.name == "slip"     ? "friction reached mu N; the contact would start slipping"
+                                                 : "event";
+  return fmt::format("{} at t = {:.9f} s (theta = {:.4f} deg): {}", hit.name, hit.t,
+                     hit.y[physics::kTheta] * 180 / std::numbers::pi, meaning);
+}
+
+}  // namespace coinroll::pipeline

@@ -1,0 +1,29 @@
+#pragma once
+// The trajectory CSV of INTERFACE.md: fixed header, rows at t = k S from the dense output.
+
+#include <optional>
+#include <ostream>
+
+#include "integrate/events.h"
+#include "physics/coin_state.h"
+#include "pipeline/simulation.h"
+
+namespace coinroll::pipeline {
+
+inline constexpr const char* kCsvHeader =
+    "t,theta,phi,psi,omega_X,omega_Y,omega_Z,x,y,z,contact_x,contact_z,energy,normal_force,friction_force";
+
+// Number of rows for a duration and sample step: k = 0 .. floor(duration / S). The quotient is
+// nudged by a relative 1e-9 so 5.0 / 0.01 counts 501 rows despite 5.0 / 0.01 = 499.99999...
+long sampleCount(double duration, double sampleDt);
+
+struct CsvRunResult {
+  long rows = 0;
+  std::optional<integrate::EventHit<physics::kStateSize>> stoppedBy;
+  integrate::Stats stats;
+};
+
+// Integrates `simulation` and writes the header and one row per sample time to `out`.
+CsvRunResult writeTrajectoryCsv(const Simulation& simulation, double sampleDt, std::ostream& out);
+
+}  // namespace coinroll::pipeline

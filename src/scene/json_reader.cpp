@@ -1,0 +1,95 @@
+#include "scene/json_reader.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "scene/scene_loader.h"
+
+namespace coinroll::scene {
+
+std::string describeJson(const nlohmann::json& value) {
+  switch (value.type()) {
+    case nlohmann::json::value_t::string: return "string " + value.dump();
+    case nlohmann::json::value_t::boolean: return "boolean " + value.dump();
+    case nlohmann::json::value_t::null: return "null";
+    case nlohmann::json::value_t::object: return "an object";
+    case nlohmann::json::value_t::array: return "an array";
+    default: return value.dump();
+  }
+}
+
+JsonReader::JsonReader(const nlohmann::json& object, std::string path, std::string_view source,
+                       std::initializer_list<std::string_view> allowedKeys)
+    : object_(object), path_(std::move(path)), source_(source) {
+  if (!object_.is_object()) {
+    throw SceneError(fmt::format("{}: {}: must be an object, got {}", source_, path_.empty() ? "(top level)" : path_,
+                                 describeJson(object_)));
+  }
+  for (const auto& [key, value] : object_.items()) {
+    bool known = false;
+    for (std::string_view allowed : allowedKeys) known = known || allowed == key;
+    if (!known) fail(key, fmt::format("unknown key; allowed here: {}", fmt::join(allowedKeys, ", ")));
+  }
+}
+
+bool JsonReader::has(std::string_view key) const { return object_.contains(key); }
+
+std::string JsonReader::where(std::string_view key) const {
+  return path_.empty() ? fmt::format("{}: {}", source_, key) : fmt::format("{}: {}.{}", source_, path_, key);
+}
+
+void JsonReader::fail(std::string_view key, const std::string& rule) const {
+  throw SceneError(fmt::format("{}: {}", where(key), rule));
+}
+
+std::optional<double> JsonReader::optionalNumber(std::string_view key) const {
+  const nlohmann::json* value = child(key);
+  if (value == nullptr) return std::nullopt;
+  if (!value->is_number()) fail(key, "must be a number, got " + describeJson(*value));
+  const double number = value->get<double>();
+  if (!std::isfinite(number)) fail(key, fmt::format("must be a finite number, got {}", number));
+  return number;
+}
+
+double JsonReader::requiredNumber(std::string_view key) const {
+  const std::optional<double> value = optionalNumber(key);
+  if (!value) fail(key, "required (a number)");
+  return *value;
+}
+
+int JsonReader::integer(std::string_view key, int fallback) const {
+  const nlohmann::json* value = child(key);
+  if (value == nullptr) return fallback;
+  if (!value->is_number_integer()) {
+    if (value->is_number_float()) {
+      const double d = value->get<double>();
+      if (std::isfinite(d) && d == std::floor(d) && std::abs(d) < 1e9) return static_cast<int>(d);
+    }
+    fail(key, "must be an integer, got " + describeJson(*value));
+  }
+  const auto number = value->get<long long>();
+  if (number < -1'000'000'000 || number > 1'000'000'000) fail(key, fmt::format("out of range, got {}", number));
+  return static_cast<int>(number);
+}
+
+bool JsonReader::boolean(std::string_view key, bool fallback) const {
+  const nlohmann::json* value = child(key);
+  if (value == nullptr) return fallback;
+  if (!value->is_boolean()) fail(key, "must be true or false, got " + describeJson(*value));
+  return value->get<bool>();
+}
+
+std::optional<std::string> JsonReader::optionalString(std::string_view key) const {
+  const nlohmann::json* value = child(key);
+  if (value == nullptr) return std::nullopt;
+  if (!value->is_string()) fail(key, "must be a string, got " + describeJson(*value));
+  return value->get<std::string>();
+}
+
+const nlohmann::json* JsonReader::child(std::string_view key) const {
+  const auto it = object_.find(key);
+  return it == object_.end() ? nullptr : &*it;
+}
+
+}  // namespace coinroll::scene

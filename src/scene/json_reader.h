@@ -1,0 +1,44 @@
+#pragma once
+// Typed, path-aware access to one JSON object: every read names "<source>: <path>.<key>" in its
+// error, and unknown keys are refused, so a typo never passes silently.
+
+#include <nlohmann/json.hpp>
+
+#include <initializer_list>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace coinroll::scene {
+
+class JsonReader {
+ public:
+  // Throws SceneError if `object` is not a JSON object or has a key outside `allowedKeys`.
+  JsonReader(const nlohmann::json& object, std::string path, std::string_view source,
+             std::initializer_list<std::string_view> allowedKeys);
+
+  bool has(std::string_view key) const;
+
+  std::optional<double> optionalNumber(std::string_view key) const;  // finite, else SceneError
+  double number(std::string_view key, double fallback) const { return optionalNumber(key).value_or(fallback); }
+  double requiredNumber(std::string_view key) const;
+  int integer(std::string_view key, int fallback) const;
+  bool boolean(std::string_view key, bool fallback) const;
+  std::optional<std::string> optionalString(std::string_view key) const;
+  const nlohmann::json* child(std::string_view key) const;  // nullptr when absent
+
+  // "<source>: <path>.<key>" for messages.
+  std::string where(std::string_view key) const;
+  [[noreturn]] void fail(std::string_view key, const std::string& rule) const;
+
+ private:
+  const nlohmann::json& object_;
+  std::string path_;
+  std::string source_;
+};
+
+// "string \"long\"", "number -1", "object", ... for "got ..." in messages.
+std::string describeJson(const nlohmann::json& value);
+
+}  // namespace coinroll::scene

@@ -1,0 +1,84 @@
+#pragma once
+// A scene as the program uses it: validated, defaults filled in, SI units and radians
+// (the file's degrees are converted once, in scene_loader.cpp). Field names follow the JSON keys
+// of INTERFACE.md; README "Scene format" lists each with unit and default.
+
+#include <array>
+#include <optional>
+#include <string>
+#include <variant>
+
+namespace coinroll::scene {
+
+enum class Shape { Disk, Ring, Custom };
+
+struct CoinSpec {
+  Shape shape = Shape::Disk;
+  double radius = 0;       // m, required, > 0
+  double mass = 0;         // kg, required, > 0
+  double innerRadius = 0;  // m, ring only: hole radius b in [0, radius]; default radius (thin hoop)
+  double thickness = 0;    // m, rendering only, > 0; default 0.06 * radius
+  std::optional<double> I_X, I_Z;  // kg m^2, custom only (required there)
+};
+
+struct ExplicitInitial {
+  double theta = 0, phi = 0, psi = 0;              // rad (degrees in the file)
+  double omega_X = 0, omega_Y = 0, omega_Z = 0;    // rad/s
+  double x = 0, z = 0;                             // m
+};
+
+enum class SteadyKind { Straight, Circle, SpinInPlace };
+
+struct SteadyInitial {
+  SteadyKind kind = SteadyKind::Straight;
+  double theta = 0;    // rad; circle and spin-in-place
+  double omega_Z = 0;  // rad/s; straight and circle
+  int branch = +1;     // circle: +1 for the f+ root, -1 for f-
+  double phi = 0, psi = 0, x = 0, z = 0;  // rad, rad, m, m
+};
+
+using InitialSpec = std::variant<ExplicitInitial, SteadyInitial>;
+
+struct SolverSpec {
+  std::string method = "dopri5";
+  double rtol = 1e-10;  // adaptive methods
+  double atol = 1e-12;  // adaptive methods
+  double dt = 1e-3;     // s, fixed-step methods
+};
+
+struct CameraSpec {
+  std::string mode = "fixed";  // fixed | orbit | follow
+  std::optional<std::array<double, 3>> eye, target;  // m; absent = framed from the motion
+  double fovDegrees = 35;        // vertical field of view
+  double orbitPeriod = 10;       // s of simulated time per revolution (orbit)
+  double elevationDegrees = 30;  // camera elevation above the floor for automatic framing
+};
+
+struct VideoSpec {
+  int crf = 18;                    // x264 constant rate factor, 0..51
+  std::string preset = "veryfast"; // x264 preset
+  int threads = 2;                 // encoder threads, fixed so the bytes are reproducible
+};
+
+struct RenderSpec {
+  int width = 1280, height = 720;  // pixels, even
+  int fps = 30;                    // frames per second of video
+  int msaa = 4;                    // samples per pixel: 1, 2, 4 or 8
+  double timeScale = 1.0;          // video seconds per simulated second
+  CameraSpec camera;
+  bool trace = true, hud = true;
+  VideoSpec video;
+};
+
+struct SceneConfig {
+  std::string name = "coinroll";
+  CoinSpec coin;
+  double gravity = 9.81;            // m/s^2
+  std::optional<double> friction;   // static friction coefficient mu; absent = no slip monitor
+  InitialSpec initial;
+  double duration = 0;              // s, required
+  SolverSpec solver;
+  RenderSpec render;
+};
+
+}  // namespace coinroll::scene

@@ -1,0 +1,314 @@
+#include "scene/scene_loader.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+
+#include "scene/json_reader.h"
+
+namespace coinroll::scene {
+
+namespace {
+
+constexpr double kRadiansPerDegree = std::numbers::pi / 180;
+constexpr std::array<std::string_view, 10> kX264Presets = {"ultrafast", "superfast", "veryfast", "faster", "fast",
+                                                           "medium",    "slow",      "slower",   "veryslow", "placebo"};
+
+double positive(const JsonReader& r, std::string_view key, std::optional<double> value) {
+  if (value && !(*value > 0)) r.fail(key, fmt::format("must be > 0, got {}", *value));
+  return value.value_or(0);
+}
+
+double tiltDegrees(const JsonReader& r, std::string_view key, double fallback) {
+  const double degrees = r.number(key, fallback);
+  if (!(std::abs(degrees) < 90)) {
+    r.fail(key, fmt::format("must be in (-90, 90) degrees (the seed's equations are singular when the coin lies flat), "
+                            "got {}", degrees));
+  }
+  return degrees * kRadiansPerDegree;
+}
+
+CoinSpec parseCoin(const JsonReader& top) {
+  const nlohmann::json* node = top.child("coin");
+  if (node == nullptr) top.fail("coin", "required (an object with shape, radius, mass)");
+  const JsonReader r(*node, "coin", "", {"shape", "radius", "mass", "inner_radius", "thickness", "I_X", "I_Z"});
+  CoinSpec coin;
+  const std::string shape = r.optionalString("shape").value_or("disk");
+  if (shape == "disk") coin.shape = Shape::Disk;
+  else if (shape == "ring") coin.shape = Shape::Ring;
+  else if (shape == "custom") coin.shape = Shape::Custom;
+  else r.fail("shape", fmt::format("must be \"disk\", \"ring\" or \"custom\", got \"{}\"", shape));
+
+  coin.radius = r.requiredNumber("radius");
+  positive(r, "radius", coin.radius);
+  coin.mass = r.requiredNumber("mass");
+  positive(r, "mass", coin.mass);
+  coin.thickness = r.number("thickness", 0.06 * coin.radius);
+  positive(r, "thickness", coin.thickness);
+
+  if (r.has("inner_radius") && coin.shape != Shape::Ring) r.fail("inner_radius", "only allowed with shape \"ring\"");
+  coin.innerRadius = r.number("inner_radius", coin.radius);
+  if (coin.shape == Shape::Ring && !(coin.innerRadius >= 0 && coin.innerRadius <= coin.radius)) {
+    r.fail("inner_radius", fmt::format("must be in [0, radius = {}] m, got {}", coin.radius, coin.innerRadius));
+  }
+
+  if (coin.shape != Shape::Custom) {
+    for (std::string_view key : {"I_X", "I_Z"}) {
+      if (r.has(key)) r.fail(key, fmt::format("only allowed with shape \"custom\" ({} fixes the inertia)", shape));
+    }
+    return coin;
+  }
+  coin.I_X = r.optionalNumber("I_X");
+  coin.I_Z = r.optionalNumber("I_Z");
+  if (!coin.I_X) r.fail("I_X", "required for shape \"custom\" (moment about a diameter, kg m^2)");
+  if (!coin.I_Z) r.fail("I_Z", "required for shape \"custom\" (moment about the symmetry axis, kg m^2)");
+  positive(r, "I_X", coin.I_X);
+  positive(r, "I_Z", coin.I_Z);
+  // Perpendicular-axis bound: I_Z = sum m (X^2 + Y^2) <= 2 I_X = sum m (X^2 + Y^2 + 2 Z^2);
+  // equality is the flat lamina. The relative slack only forgives round-off in the input.
+  if (*coin.I_Z > 2 * *coin.I_X * (1 + 1e-12)) {
+    r.fail("I_Z", fmt::format("must be <= 2 I_X = {} (perpendicular-axis theorem for any axisymmetric body), got {}",
+                              2 * *coin.I_X, *coin.I_Z));
+  }
+  return coin;
+}
+
+InitialSpec parseInitial(const JsonReader& top) {
+  const nlohmann::json* node = top.child("initial");
+  if (node == nullptr) {
+    top.fail("initial", "required: give angles and rates, or a steady state like {\"steady\": \"circle\", \"theta\": 20, "
+                        "\"omega_Z\": 10}");
+  }
+  if (node->is_object() && node->contains("steady")) {
+    const JsonReader r(*node, "initial", "", {"steady", "theta", "omega_Z", "branch", "phi", "psi", "x", "z"});
+    SteadyInitial s;
+    const std::string kind = r.optionalString("steady").value();
+    if (kind == "straight") s.kind = SteadyKind::Straight;
+    else if (kind == "circle") s.kind = SteadyKind::Circle;
+    else if (kind == "spin-in-place") s.kind = SteadyKind::SpinInPlace;
+    else r.fail("steady", fmt::format("must be \"straight\", \"circle\" or \"spin-in-place\", got \"{}\"", kind));
+    const bool needsTheta = s.kind != SteadyKind::Straight, needsSpin = s.kind != SteadyKind::SpinInPlace;
+    if (needsTheta && !r.has("theta")) r.fail("theta", fmt::format("required for steady \"{}\" (degrees)", kind));
+    if (!needsTheta && r.has("theta")) r.fail("theta", "not allowed for steady \"straight\" (it rolls upright)");
+    if (needsSpin && !r.has("omega_Z")) r.fail("omega_Z", fmt::format("required for steady \"{}\" (rad/s)", kind));
+    if (!needsSpin && r.has("omega_Z")) r.fail("omega_Z", "not allowed for steady \"spin-in-place\" (omega_Z = 0 there)");
+    if (r.has("branch") && s.kind != SteadyKind::Circle) r.fail("branch", "only allowed for steady \"circle\"");
+    s.theta = tiltDegrees(r, "theta", 0);
+    s.omega_Z = r.number("omega_Z", 0);
+    const std::string branch = r.optionalString("branch").value_or("+");
+    if (branch != "+" && branch != "-") r.fail("branch", fmt::format("must be \"+\" or \"-\", got \"{}\"", branch));
+    s.branch = branch == "+" ? 1 : -1;
+    s.phi = r.number("phi", 0) * kRadiansPerDegree;
+    s.psi = r.number("psi", 0) * kRadiansPerDegree;
+    s.x = r.number("x", 0);
+    s.z = r.number("z", 0);
+    return s;
+  }
+  const JsonReader r(*node, "initial", "", {"theta", "phi", "psi", "omega_X", "omega_Y", "omega_Z", "x", "z"});
+  ExplicitInitial e;
+  e.theta = tiltDegrees(r, "theta", 0);
+  e.phi = r.number("phi", 0) * kRadiansPerDegree;
+  e.psi = r.number("psi", 0) * kRadiansPerDegree;
+  e.omega_X = r.number("omega_X", 0);
+  e.omega_Y = r.number("omega_Y", 0);
+  e.omega_Z = r.number("omega_Z", 0);
+  e.x = r.number("x", 0);
+  e.z = r.number("z", 0);
+  return e;
+}
+
+SolverSpec parseSolver(const JsonReader& top, const ParseOptions& options) {
+  SolverSpec solver;
+  const nlohmann::json* node = top.child("solver");
+  if (node == nullptr) return solver;
+  const JsonReader r(*node, "solver", "", {"method", "rtol", "atol", "dt"});
+  solver.method = r.optionalString("method").value_or(solver.method);
+  if (std::find(options.solverMethods.begin(), options.solverMethods.end(), solver.method) == options.solverMethods.end()) {
+    r.fail("method", fmt::format("unknown method \"{}\"; available: {}", solver.method, fmt::join(options.solverMethods, ", ")));
+  }
+  solver.rtol = r.number("rtol", solver.rtol);
+  if (!(solver.rtol > 0 && solver.rtol < 1)) r.fail("rtol", fmt::format("must be in (0, 1), got {}", solver.rtol));
+  solver.atol = r.number("atol", solver.atol);
+  if (!(solver.atol >= 0)) r.fail("atol", fmt::format("must be >= 0, got {}", solver.atol));
+  solver.dt = r.number("dt", solver.dt);
+  positive(r, "dt", solver.dt);
+  return solver;
+}
+
+std::array<double, 3> parsePoint(const JsonReader& r, std::string_view key) {
+  const nlohmann::json* node = r.child(key);
+  if (!node->is_array() || node->size() != 3 || !std::all_of(node->begin(), node->end(), [](const auto& v) {
+        return v.is_number() && std::isfinite(v.template get<double>());
+      })) {
+    r.fail(key, "must be an array of three finite numbers [x, y, z] in m, got " + describeJson(*node));
+  }
+  return {(*node)[0].get<double>(), (*node)[1].get<double>(), (*node)[2].get<double>()};
+}
+
+CameraSpec parseCamera(const JsonReader& render) {
+  CameraSpec camera;
+  const nlohmann::json* node = render.child("camera");
+  if (node == nullptr) return camera;
+  const JsonReader r(*node, "render.camera", "", {"mode", "eye", "target", "fov", "orbit_period", "elevation"});
+  camera.mode = r.optionalString("mode").value_or(camera.mode);
+  if (camera.mode != "fixed" && camera.mode != "orbit" && camera.mode != "follow") {
+    r.fail("mode", fmt::format("must be \"fixed\", \"orbit\" or \"follow\", got \"{}\"", camera.mode));
+  }
+  if (r.has("eye")) camera.eye = parsePoint(r, "eye");
+  if (r.has("target")) camera.target = parsePoint(r, "target");
+  camera.fovDegrees = r.number("fov", camera.fovDegrees);
+  if (!(camera.fovDegrees > 1 && camera.fovDegrees < 170)) r.fail("fov", fmt::format("must be in (1, 170) degrees, got {}", camera.fovDegrees));
+  camera.orbitPeriod = r.number("orbit_period", camera.orbitPeriod);
+  positive(r, "orbit_period", camera.orbitPeriod);
+  camera.elevationDegrees = r.number("elevation", camera.elevationDegrees);
+  if (!(camera.elevationDegrees > 0 && camera.elevationDegrees < 90)) {
+    r.fail("elevation", fmt::format("must be in (0, 90) degrees, got {}", camera.elevationDegrees));
+  }
+  return camera;
+}
+
+RenderSpec parseRender(const JsonReader& top) {
+  RenderSpec render;
+  const nlohmann::json* node = top.child("render");
+  if (node == nullptr) return render;
+  const JsonReader r(*node, "render", "", {"width", "height", "fps", "msaa", "time_scale", "camera", "trace", "hud", "video"});
+  for (auto [key, field] : {std::pair{"width", &render.width}, std::pair{"height", &render.height}}) {
+    *field = r.integer(key, *field);
+    if (*field < 16 || *field > 7680 || *field % 2 != 0) {
+      r.fail(key, fmt::format("must be an even number of pixels in [16, 7680] (H.264 yuv420p needs even sizes), got {}", *field));
+    }
+  }
+  render.fps = r.integer("fps", render.fps);
+  if (render.fps < 1 || render.fps > 240) r.fail("fps", fmt::format("must be in [1, 240], got {}", render.fps));
+  render.msaa = r.integer("msaa", render.msaa);
+  if (render.msaa != 1 && render.msaa != 2 && render.msaa != 4 && render.msaa != 8) {
+    r.fail("msaa", fmt::format("must be 1, 2, 4 or 8 samples, got {}", render.msaa));
+  }
+  render.timeScale = r.number("time_scale", render.timeScale);
+  positive(r, "time_scale", render.timeScale);
+  render.camera = parseCamera(r);
+  render.trace = r.boolean("trace", render.trace);
+  render.hud = r.boolean("hud", render.hud);
+  if (const nlohmann::json* video = r.child("video")) {
+    const JsonReader v(*video, "render.video", "", {"crf", "preset", "threads"});
+    render.video.crf = v.integer("crf", render.video.crf);
+    if (render.video.crf < 0 || render.video.crf > 51) v.fail("crf", fmt::format("must be in [0, 51], got {}", render.video.crf));
+    render.video.preset = v.optionalString("preset").value_or(render.video.preset);
+    if (std::find(kX264Presets.begin(), kX264Presets.end(), render.video.preset) == kX264Presets.end()) {
+      v.fail("preset", fmt::format("must be one of {}, got \"{}\"", fmt::join(kX264Presets, ", "), render.video.preset));
+    }
+    render.video.threads = v.integer("threads", render.video.threads);
+    if (render.video.threads < 1 || render.video.threads > 16) {
+      v.fail("threads", fmt::format("must be in [1, 16], got {}", render.video.threads));
+    }
+  }
+  return render;
+}
+
+// 1-based line and column of a byte offset in `text`.
+std::pair<std::size_t, std::size_t> lineAndColumn(const std::string& text, std::size_t byte) {
+  std::size_t line = 1, column = 1;
+  for (std::size_t i = 0; i < std::min(byte, text.size()); ++i) {
+    if (text[i] == '\n') ++line, column = 1;
+    else ++column;
+  }
+  return {line, column};
+}
+
+}  // namespace
+
+SceneConfig parseScene(const nlohmann::json& document, std::string_view sourceName, const ParseOptions& options) {
+  try {
+    const JsonReader top(document, "", sourceName,
+                         {"name", "coin", "gravity", "friction", "initial", "duration", "solver", "effects", "render"});
+    SceneConfig scene;
+    scene.name = top.optionalString("name").value_or(scene.name);
+    scene.coin = parseCoin(top);
+    scene.gravity = top.number("gravity", scene.gravity);
+    positive(top, "gravity", scene.gravity);
+    scene.friction = top.optionalNumber("friction");
+    if (scene.friction && !(*scene.friction >= 0)) top.fail("friction", fmt::format("must be >= 0, got {}", *scene.friction));
+    scene.initial = parseInitial(top);
+    scene.duration = top.requiredNumber("duration");
+    positive(top, "duration", scene.duration);
+    scene.solver = parseSolver(top, options);
+    if (const nlohmann::json* effects = top.child("effects"); effects != nullptr && !(effects->is_array() && effects->empty())) {
+      top.fail("effects", "this version has only the ideal rolling model of the seed: leave effects empty or absent, got " +
+                              describeJson(*effects));
+    }
+    scene.render = parseRender(top);
+    return scene;
+  } catch (const SceneError& e) {
+    // Readers of nested objects do not know the source name; add it once here.
+    const std::string message = e.what();
+    if (message.rfind(std::string(sourceName) + ":", 0) == 0) throw;
+    throw SceneError(fmt::format("{}: {}", sourceName, message.substr(message.find_first_not_of(": "))));
+  }
+}
+
+SceneConfig loadScene(const std::filesystem::path& file, std::span<const std::string> overrides,
+                      const ParseOptions& options) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw SceneError(fmt::format("{}: cannot open the scene file (does it exist?)", file.string()));
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  const std::string text = buffer.str();
+  nlohmann::json document;
+  try {
+    document = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    // nlohmann reports the byte just past the offending token; its own text says what was expected.
+    const auto [line, column] = lineAndColumn(text, e.byte == 0 ? 0 : e.byte - 1);
+    std::string reason = e.what();
+    if (const auto colon = reason.rfind(": "); colon != std::string::npos) reason = reason.substr(colon + 2);
+    throw SceneError(fmt::format("{}: invalid JSON at line {}, column {}: {}", file.string(), line, column, reason));
+  }
+  for (const std::string& assignment : overrides) applyOverride(document, assignment);
+  return parseScene(document, file.string(), options);
+}
+
+void applyOverride(nlohmann::json& document, std::string_view assignment) {
+  const auto equals = assignment.find('=');
+  const std::string_view path = assignment.substr(0, equals);
+  if (equals == std::string_view::npos || path.empty() || path.front() == '.' || path.back() == '.' ||
+      path.find("..") != std::string_view::npos) {
+    throw SceneError(fmt::format("--set {}: expected KEY.PATH=VALUE, e.g. --set initial.theta=12", assignment));
+  }
+  const std::string text(assignment.substr(equals + 1));
+  nlohmann::json value = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
+  if (value.is_discarded()) value = text;
+
+  nlohmann::json* node = &document;
+  std::string_view rest = path;
+  while (true) {
+    const auto dot = rest.find('.');
+    const std::string key(rest.substr(0, dot));
+    if (!node->is_object()) {
+      throw SceneError(fmt::format("--set {}: '{}' is not inside an object", assignment, key));
+    }
+    if (dot == std::string_view::npos) {
+      (*node)[key] = std::move(value);
+      return;
+    }
+    node = &(*node)[key];
+    if (node->is_null()) *node = nlohmann::json::object();
+    rest = rest.substr(dot + 1);
+  }
+}
+
+nlohmann::json builtInDefaultScene() {
+  return {
+      {"name", "coinroll"},
+      {"coin", {{"shape", "disk"}, {"radius", 0.0375}, {"mass", 0.4}}},
+      {"initial", {{"theta", 15}, {"omega_Y", 2.0}, {"omega_Z", 16}}},
+      {"duration", 6},
+      {"render", {{"time_scale", 0.5}}},
+  };
+}
+
+}  // namespace coinroll::scene

@@ -1,0 +1,41 @@
+#pragma once
+// JSON scene files to SceneConfig. Every error is a SceneError whose message names the source,
+// the key path, the rule and the offending value ("scene.json: coin.radius: must be > 0, got -1").
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+#include "scene/scene_config.h"
+
+namespace coinroll::scene {
+
+class SceneError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct ParseOptions {
+  std::span<const std::string_view> solverMethods;  // allowed solver.method names
+};
+
+// Validates `document` and fills defaults; `sourceName` prefixes every message.
+SceneConfig parseScene(const nlohmann::json& document, std::string_view sourceName, const ParseOptions& options);
+
+// Reads `file`, applies `overrides` ("key.path=value") in order, then parses. A JSON syntax
+// error is reported with its line and column.
+SceneConfig loadScene(const std::filesystem::path& file, std::span<const std::string> overrides,
+                      const ParseOptions& options);
+
+// "initial.theta=12": the value is read as JSON when it parses as JSON, else taken as a string;
+// missing objects along the path are created.
+void applyOverride(nlohmann::json& document, std::string_view assignment);
+
+// The scene `coinroll render` uses without a file: a coin that rolls, wobbles and leaves a trace.
+nlohmann::json builtInDefaultScene();
+
+}  // namespace coinroll::scene

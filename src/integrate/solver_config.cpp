@@ -6,7 +6,7 @@ namespace coinroll::integrate {
 
 namespace {
 
-constexpr std::array<std::string_view, 3> kMethodNames = {"euler", "rk4", "dopri5"};
+constexpr std::array<std::string_view, 4> kMethodNames = {"euler", "rk4", "dopri5", "dop853"};
 
 }  // namespace
 
@@ -21,6 +21,6 @@ std::string_view nameOf(Method method) { return kMethodNames.at(static_cast<std:
 
 std::span<const std::string_view> methodNames() { return kMethodNames; }
 
-bool isAdaptive(Method method) { return method == Method::Dopri5; }
+bool isAdaptive(Method method) { return method == Method::Dopri5 || method == Method::Dop853; }
 
 }  // namespace coinroll::integrate

@@ -17,6 +17,7 @@ enum class Method {
   Euler,   // explicit Euler, fixed step: the first-order baseline that fails
   Rk4,     // classic Runge-Kutta, fixed step, order 4
   Dopri5,  // Dormand-Prince 5(4), adaptive, 4th-order dense output
+  Dop853,  // Dormand-Prince 8(5,3), adaptive, 7th-order dense output
 };
 
 std::optional<Method> methodFromName(std::string_view name);
@@ -25,7 +26,7 @@ std::span<const std::string_view> methodNames();  // in the order of the enum
 bool isAdaptive(Method method);
 
 struct SolverConfig {
-  Method method = Method::Dopri5;
+  Method method = Method::Dop853;
   double rtol = 1e-10;  // relative tolerance per step (adaptive methods)
   double atol = 1e-12;  // absolute tolerance per step, in the state's units (adaptive methods)
   double dt = 1e-3;     // s, step of the fixed-step methods

@@ -3,19 +3,20 @@
 // dense output of one step. No allocation: every vector is fixed-size.
 
 #include <cassert>
+#include <cmath>
 
 #include "integrate/solver_config.h"
 
 namespace coinroll::integrate {
 
-// The solution inside one step [t0, t0 + h] in Hairer's nested form
-//   y(t0 + s h) = r1 + s (r2 + (1 - s) (r3 + s (r4 + (1 - s) r5))),   0 <= s <= 1.
+// The solution inside one step [t0, t0 + h] in Hairer's nested form, with s = (t - t0) / h:
+//   y = r1 + s (r2 + (1 - s) (r3 + s (r4 + (1 - s) (r5 + s (r6 + (1 - s) (r7 + s r8)))))).
 // r1..r4 alone are the cubic Hermite interpolant of the end values and slopes; DOPRI5's r5 lifts
-// it to order 4. Explicit Euler uses the chord (r3 = r4 = r5 = 0).
+// it to order 4, DOP853's r5..r8 to order 7. Explicit Euler uses the chord (r3 = ... = 0).
 template <int N>
 struct DenseInterval {
   double t0 = 0, h = 0;  // s
-  Vec<N> r1, r2, r3, r4, r5;
+  Vec<N> r1, r2, r3, r4, r5, r6, r7, r8;
 
   double tEnd() const { return t0 + h; }
 
@@ -23,7 +24,8 @@ struct DenseInterval {
     // Dense output is only valid inside its own step (round-off at the ends allowed).
     assert(t >= t0 - 1e-12 * (1 + std::abs(t0)) && t <= t0 + h + 1e-12 * (1 + std::abs(t0 + h)));
     const double s = (t - t0) / h, s1 = 1 - s;
-    return r1 + s * (r2 + s1 * (r3 + s * (r4 + s1 * r5)));
+    const Vec<N> high = r5 + s * (r6 + s1 * (r7 + s * r8));
+    return r1 + s * (r2 + s1 * (r3 + s * (r4 + s1 * high)));
   }
 };
 
@@ -39,6 +41,9 @@ DenseInterval<N> hermiteInterval(double t0, double h, const Vec<N>& y0, const Ve
   d.r3 = h * f0 - d.r2;
   d.r4 = d.r2 - h * f1 - d.r3;
   d.r5.setZero();
+  d.r6.setZero();
+  d.r7.setZero();
+  d.r8.setZero();
   return d;
 }
 

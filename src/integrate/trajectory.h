@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "integrate/dop853.h"
 #include "integrate/event_location.h"
 #include "integrate/events.h"
 #include "integrate/solver_config.h"
@@ -83,14 +84,15 @@ class Trajectory {
     const Vec<N> f1 = evaluate(t_ + h0, Vec<N>(y_ + h0 * f0_));
     const double d2 = std::sqrt((f1 - f0_).cwiseQuotient(scale).squaredNorm() / N) / h0;
     const double d = std::max(d1, d2);
-    const double h1 = d <= 1e-15 ? std::max(1e-6, h0 * 1e-3) : std::pow(0.01 / d, 1.0 / 5);
+    const double order = config_.method == Method::Dop853 ? 8 : 5;
+    const double h1 = d <= 1e-15 ? std::max(1e-6, h0 * 1e-3) : std::pow(0.01 / d, 1.0 / order);
     return std::min({100 * h0, h1, config_.maxStep});
   }
 
   void advance() {
     const double tStart = t_;
     const Vec<N> yStart = y_;
-    if (config_.method == Method::Dopri5) {
+    if (isAdaptive(config_.method)) {
       adaptiveStep();
     } else {
       // Fixed steps sit on the grid t0 + k dt so step points do not drift with round-off.
@@ -109,41 +111,71 @@ class Trajectory {
     checkEvents(tStart, yStart);
   }
 
+  // Step-size controller constants of HNW's codes: DOPRI5 uses a PI controller (beta = 0.04),
+  // DOP853 the plain I controller; both with safety factor 0.9 and bounded growth per step.
+  struct Controller {
+    double beta, exponent, minFactor, maxFactor;
+  };
+  static constexpr Controller kDopri5Controller{0.04, 0.2 - 0.04 * 0.75, 0.2, 10.0};
+  static constexpr Controller kDop853Controller{0.0, 1.0 / 8, 0.333, 6.0};
+  static constexpr double kSafety = 0.9;
+
   void adaptiveStep() {
-    // PI step-size control of HNW II.4 (DOPRI5's beta = 0.04, safety 0.9, factor in [0.2, 10]).
-    constexpr double kBeta = 0.04, kSafety = 0.9, kMinFactor = 0.2, kMaxFactor = 10.0;
-    constexpr double kExponent = 0.2 - kBeta * 0.75;
+    const bool dop853 = config_.method == Method::Dop853;
+    const Controller& c = dop853 ? kDop853Controller : kDopri5Controller;
     bool lastRejected = false;
     while (true) {
-      double h = std::min(h_, config_.maxStep);
+      const double h = std::min(h_, config_.maxStep);
       if (!(h > 1e-14 * std::max(1.0, std::abs(t_)))) {
-        throw std::runtime_error(fmt::format("integration stalled: step size {} at t = {} s, state ({})", h, t_, describe(y_)));
+        throw std::runtime_error(fmt::format("integration stalled: step size {} s at t = {} s, state ({})", h, t_, describe(y_)));
       }
-      const Dopri5Result<N> r = dopri5Step<N>(f_, t_, y_, f0_, h);
-      stats_.rhsEvaluations += 6;
-      const double err = errorNorm(r.error, y_, r.y1);
-      if (!std::isfinite(err)) {
-        ++stats_.rejectedSteps;
-        h_ = h * kMinFactor;
-        lastRejected = true;
-        continue;
-      }
-      const double fac11 = std::pow(err, kExponent);
-      if (err <= 1.0) {
-        double factor = fac11 / std::pow(previousError_, kBeta) / kSafety;
-        factor = std::clamp(factor, 1 / kMaxFactor, 1 / kMinFactor);
-        double hNew = h / factor;
-        if (lastRejected) hNew = std::min(hNew, h);  // HNW: no growth right after a rejection
-        previousError_ = std::max(err, 1e-4);
-        interval_ = dopri5Interval<N>(t_, h, y_, f0_, r);
-        h_ = hNew;
-        accept(t_ + h, r.y1, r.f1);
-        return;
+      double err;
+      if (dop853) {
+        const Dop853Result<N> r = dop853Step<N>(f_, t_, y_, f0_, h);
+        stats_.rhsEvaluations += 12;
+        err = dop853ErrorNorm(r, h);
+        if (err <= 1.0 && std::isfinite(err)) {
+          interval_ = dop853Interval<N>(f_, t_, h, y_, f0_, r);
+          stats_.rhsEvaluations += 3;
+          finishAcceptedStep(c, err, h, lastRejected, r.y1, r.f1);
+          return;
+        }
+      } else {
+        const Dopri5Result<N> r = dopri5Step<N>(f_, t_, y_, f0_, h);
+        stats_.rhsEvaluations += 6;
+        err = errorNorm(r.error, y_, r.y1);
+        if (err <= 1.0 && std::isfinite(err)) {
+          interval_ = dopri5Interval<N>(t_, h, y_, f0_, r);
+          finishAcceptedStep(c, err, h, lastRejected, r.y1, r.f1);
+          return;
+        }
       }
       ++stats_.rejectedSteps;
       lastRejected = true;
-      h_ = h / std::min(1 / kMinFactor, fac11 / kSafety);
+      h_ = std::isfinite(err) ? h / std::min(1 / c.minFactor, std::pow(err, c.exponent) / kSafety) : h * c.minFactor;
     }
+  }
+
+  void finishAcceptedStep(const Controller& c, double err, double h, bool lastRejected, const Vec<N>& y1,
+                          const Vec<N>& f1) {
+    double factor = std::pow(err, c.exponent) / std::pow(previousError_, c.beta) / kSafety;
+    factor = std::clamp(factor, 1 / c.maxFactor, 1 / c.minFactor);
+    double hNew = h / factor;
+    if (lastRejected) hNew = std::min(hNew, h);  // HNW: no growth right after a rejection
+    previousError_ = std::max(err, 1e-4);
+    h_ = hNew;
+    accept(t_ + h, y1, f1);
+  }
+
+  // DOP853's combined norm: the 5th-order estimate, damped where the 3rd-order one says the
+  // 5th is pessimistic (HNW II.10, "err = |h| err5^2 / sqrt(err5^2 + 0.01 err3^2)").
+  double dop853ErrorNorm(const Dop853Result<N>& r, double h) const {
+    const Vec<N> scale = (config_.atol + config_.rtol * y_.cwiseAbs().cwiseMax(r.y1.cwiseAbs()).array()).matrix();
+    const double err5 = r.error5.cwiseQuotient(scale).squaredNorm();
+    const double err3 = r.error3.cwiseQuotient(scale).squaredNorm();
+    double denominator = err5 + 0.01 * err3;
+    if (denominator <= 0) denominator = 1;
+    return std::abs(h) * err5 / std::sqrt(N * denominator);
   }
 
   void accept(double t1, const Vec<N>& y1, const Vec<N>& f1) {

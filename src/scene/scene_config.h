@@ -40,7 +40,7 @@ struct SteadyInitial {
 using InitialSpec = std::variant<ExplicitInitial, SteadyInitial>;
 
 struct SolverSpec {
-  std::string method = "dopri5";
+  std::string method = "dop853";
   double rtol = 1e-10;  // adaptive methods
   double atol = 1e-12;  // adaptive methods
   double dt = 1e-3;     // s, fixed-step methods

@@ -1,0 +1,189 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "integrate/dop853.h"
+#include "integrate/steppers.h"
+#include "integrate/trajectory.h"
+#include "tolerance.h"
+
+namespace coinroll::integrate {
+namespace {
+
+using coinroll::testing::isBelow;
+using coinroll::testing::isNear;
+using V1 = Vec<1>;
+using V2 = Vec<2>;
+
+// y' = -2 t y^2, y(0) = 1: exact y = 1 / (1 + t^2). Nonlinear and non-autonomous.
+struct Riccati {
+  V1 operator()(double t, const V1& y) const { return V1(-2 * t * y[0] * y[0]); }
+  static double exact(double t) { return 1 / (1 + t * t); }
+};
+
+// Fixed-step global error at t = 2 with n steps of the named method.
+double globalError(Method method, int n) {
+  Riccati f;
+  const double h = 2.0 / n;
+  V1 y(1.0);
+  for (int i = 0; i < n; ++i) {
+    const double t = i * h;
+    const V1 f0 = f(t, y);
+    switch (method) {
+      case Method::Euler: y = eulerStep<1>(f, t, y, f0, h); break;
+      case Method::Rk4: y = rk4Step<1>(f, t, y, f0, h); break;
+      case Method::Dopri5: y = dopri5Step<1>(f, t, y, f0, h).y1; break;
+      case Method::Dop853: y = dop853Step<1>(f, t, y, f0, h).y1; break;
+    }
+  }
+  return std::abs(y[0] - Riccati::exact(2.0));
+}
+
+double observedOrder(Method method, int n) {
+  return std::log2(globalError(method, n) / globalError(method, 2 * n));
+}
+
+constexpr double kOrderTolerance = 0.3;  // asymptotic slopes on a smooth problem
+
+TEST(FixedStep, EulerConvergesAtOrderOne) { EXPECT_TRUE(isNear(observedOrder(Method::Euler, 400), 1, kOrderTolerance)); }
+TEST(FixedStep, Rk4ConvergesAtOrderFour) { EXPECT_TRUE(isNear(observedOrder(Method::Rk4, 80), 4, kOrderTolerance)); }
+TEST(FixedStep, Dopri5ConvergesAtOrderFive) { EXPECT_TRUE(isNear(observedOrder(Method::Dopri5, 160), 5, kOrderTolerance)); }
+
+TEST(FixedStep, Dop853ConvergesAtOrderEight) {
+  // The Riccati problem is solved to round-off by DOP853 within 20 steps; five periods of an
+  // oscillator keep the error measurable.
+  auto oscillator = [](double, const V2& y) { return V2(y[1], -y[0]); };
+  auto errorWith = [&](int n) {
+    const double T = 10 * std::numbers::pi, h = T / n;
+    V2 y(0, 1);
+    for (int i = 0; i < n; ++i) y = dop853Step<2>(oscillator, i * h, y, oscillator(i * h, y), h).y1;
+    return std::abs(y[0] - std::sin(T));
+  };
+  EXPECT_TRUE(isNear(std::log2(errorWith(50) / errorWith(100)), 8, kOrderTolerance));
+}
+
+TEST(ButcherTables, Dop853WeightsSatisfyTheFirstOrderConditions) {
+  using namespace dop853;
+  EXPECT_TRUE(isNear(b1 + b6 + b7 + b8 + b9 + b10 + b11 + b12, 1.0, 1e-15));
+  EXPECT_TRUE(isNear(b6 * c6 + b7 * c7 + b8 * c8 + b9 * c9 + b10 * c10 + b11 * c11 + b12, 0.5, 1e-15));
+  EXPECT_TRUE(isNear(b6 * c6 * c6 + b7 * c7 * c7 + b8 * c8 * c8 + b9 * c9 * c9 + b10 * c10 * c10 + b11 * c11 * c11 + b12,
+                     1.0 / 3, 1e-15));
+  // Row sums equal the nodes.
+  EXPECT_TRUE(isNear(a121 + a124 + a125 + a126 + a127 + a128 + a129 + a1210 + a1211, 1.0, 1e-14));
+  EXPECT_TRUE(isNear(a91 + a94 + a95 + a96 + a97 + a98, c9, 1e-14));
+}
+
+TEST(ButcherTables, Dopri5WeightsSatisfyTheFirstOrderConditions) {
+  using namespace dopri5;
+  EXPECT_TRUE(isNear(b1 + b3 + b4 + b5 + b6, 1.0, 1e-15));
+  EXPECT_TRUE(isNear(b3 * c3 + b4 * c4 + b5 * c5 + b6, 0.5, 1e-15));
+  EXPECT_TRUE(isNear(e1 + e3 + e4 + e5 + e6 + e7, 0.0, 1e-16));  // both weight sets sum to 1
+}
+
+// Interpolation error at the middle of one step started on the exact solution.
+double midpointError(Method method, double h) {
+  Riccati f;
+  const double t0 = 0.3;
+  const V1 y0(Riccati::exact(t0));
+  const V1 k1 = f(t0, y0);
+  DenseInterval<1> d;
+  if (method == Method::Dopri5) d = dopri5Interval<1>(t0, h, y0, k1, dopri5Step<1>(f, t0, y0, k1, h));
+  else d = dop853Interval<1>(f, t0, h, y0, k1, dop853Step<1>(f, t0, y0, k1, h));
+  return std::abs(d.at(t0 + 0.5 * h)[0] - Riccati::exact(t0 + 0.5 * h));
+}
+
+TEST(DenseOutput, Dopri5InterpolantHasOrderFour) {
+  // Local interpolation error O(h^5).
+  EXPECT_TRUE(isNear(std::log2(midpointError(Method::Dopri5, 0.05) / midpointError(Method::Dopri5, 0.025)), 5, kOrderTolerance));
+}
+
+TEST(DenseOutput, Dop853InterpolantHasOrderSeven) {
+  // Local interpolation error O(h^8).
+  EXPECT_TRUE(isNear(std::log2(midpointError(Method::Dop853, 0.1) / midpointError(Method::Dop853, 0.05)), 8, 0.5));
+}
+
+struct Oscillator {
+  V2 operator()(double, const V2& y) const { return V2(y[1], -y[0]); }
+};
+
+TEST(Trajectory, SamplesFromDenseOutputMatchTheExactSolution) {
+  for (Method method : {Method::Dopri5, Method::Dop853}) {
+    Trajectory trajectory(Oscillator{}, 0.0, V2(0, 1), SolverConfig{.method = method, .rtol = 1e-12, .atol = 1e-14});
+    double worst = 0;
+    for (int k = 0; k <= 10'000; ++k) {
+      const double t = 1e-3 * k;
+      worst = std::max(worst, std::abs((*trajectory.stateAt(t))[0] - std::sin(t)));
+    }
+    EXPECT_TRUE(isBelow(worst, 1e-9)) << nameOf(method);
+    // Samples must not force steps: far fewer steps than samples.
+    EXPECT_LT(trajectory.stats().acceptedSteps, 2000) << nameOf(method);
+  }
+}
+
+TEST(Trajectory, GlobalErrorFollowsTheTolerance) {
+  for (Method method : {Method::Dopri5, Method::Dop853}) {
+    for (double rtol : {1e-6, 1e-9, 1e-12}) {
+      Trajectory trajectory(Oscillator{}, 0.0, V2(0, 1), SolverConfig{.method = method, .rtol = rtol, .atol = rtol});
+      const double t = 20 * std::numbers::pi;  // ten periods
+      const double error = std::abs((*trajectory.stateAt(t))[0] - std::sin(t));
+      EXPECT_TRUE(isBelow(error, 200 * rtol)) << nameOf(method) << " rtol " << rtol;
+    }
+  }
+}
+
+TEST(Trajectory, FixedStepMethodsLandOnTheirGrid) {
+  Trajectory trajectory(Oscillator{}, 0.0, V2(0, 1), SolverConfig{.method = Method::Rk4, .dt = 0.01});
+  trajectory.stateAt(1.0);
+  EXPECT_EQ(trajectory.stats().acceptedSteps, 100);
+  EXPECT_EQ(trajectory.stats().rhsEvaluations, 1 + 4 * 100);
+}
+
+TEST(Events, FallingZeroIsLocatedToTenNanoseconds) {
+  for (Method method : {Method::Rk4, Method::Dopri5, Method::Dop853}) {
+    // y = cos t first falls through 0 at pi/2.
+    std::vector<Event<2>> events{{.name = "zero", .g = [](double, const V2& y) { return y[0]; }, .direction = -1}};
+    Trajectory trajectory(Oscillator{}, 0.0, V2(1, 0),
+                          SolverConfig{.method = method, .rtol = 1e-13, .atol = 1e-15, .dt = 1e-3}, events);
+    EXPECT_FALSE(trajectory.stateAt(3.0).has_value());
+    ASSERT_TRUE(trajectory.stoppedBy().has_value());
+    EXPECT_EQ(trajectory.stoppedBy()->name, "zero");
+    EXPECT_TRUE(isNear(trajectory.stoppedBy()->t, std::numbers::pi / 2, 1e-10)) << nameOf(method);
+  }
+}
+
+TEST(Events, DirectionFilterSkipsTheOtherCrossing) {
+  std::vector<Event<2>> events{{.name = "rising", .g = [](double, const V2& y) { return y[0]; }, .direction = +1}};
+  Trajectory trajectory(Oscillator{}, 0.0, V2(1, 0), SolverConfig{.rtol = 1e-13, .atol = 1e-15}, events);
+  trajectory.stateAt(10.0);
+  ASSERT_TRUE(trajectory.stoppedBy().has_value());
+  EXPECT_TRUE(isNear(trajectory.stoppedBy()->t, 1.5 * std::numbers::pi, 1e-10));
+}
+
+TEST(Events, NonTerminalEventsAreRecordedAndTheRunGoesOn) {
+  std::vector<Event<2>> events{
+      {.name = "maximum", .g = [](double, const V2& y) { return y[1]; }, .direction = -1, .terminal = false}};
+  Trajectory trajectory(Oscillator{}, 0.0, V2(0, 1), SolverConfig{.rtol = 1e-13, .atol = 1e-15}, events);
+  ASSERT_TRUE(trajectory.stateAt(20.0).has_value());
+  // y = sin t has maxima (y' = cos t falling through 0) at pi/2 + 2 pi k.
+  ASSERT_EQ(trajectory.nonTerminalHits().size(), 3u);  // pi/2, 5 pi/2, 9 pi/2 < 20 < 13 pi/2
+  for (std::size_t k = 0; k < 3; ++k) {
+    EXPECT_TRUE(isNear(trajectory.nonTerminalHits()[k].t, std::numbers::pi / 2 + 2 * std::numbers::pi * k, 1e-10));
+  }
+}
+
+TEST(Trajectory, BlowUpIsReportedNotReturned) {
+  // y' = y^2 from y = 1 blows up at t = 1.
+  auto blowUp = [](double, const V1& y) { return V1(y[0] * y[0]); };
+  Trajectory trajectory(blowUp, 0.0, V1(1.0), SolverConfig{.method = Method::Dop853, .rtol = 1e-10, .atol = 1e-12});
+  EXPECT_THROW(trajectory.stateAt(2.0), std::runtime_error);
+}
+
+TEST(Trajectory, QueriesBackInTimeAreRefused) {
+  Trajectory trajectory(Oscillator{}, 0.0, V2(0, 1), SolverConfig{});
+  trajectory.stateAt(1.0);
+  EXPECT_THROW(trajectory.stateAt(0.5), std::logic_error);
+}
+
+}  // namespace
+}  // namespace coinroll::integrate

@@ -267,6 +267,11 @@ SceneConfig loadScene(const std::filesystem::path& file, std::span<const std::st
     std::string reason = e.what();
     if (const auto colon = reason.rfind(": "); colon != std::string::npos) reason = reason.substr(colon + 2);
     throw SceneError(fmt::format("{}: invalid JSON at line {}, column {}: {}", file.string(), line, column, reason));
+  } catch (const nlohmann::json::exception& e) {
+    // E.g. a number beyond double range ("1e400"): not finite, so never a valid value.
+    std::string reason = e.what();
+    if (const auto bracket = reason.find("] "); bracket != std::string::npos) reason = reason.substr(bracket + 2);
+    throw SceneError(fmt::format("{}: invalid JSON: {} (numbers must be finite doubles)", file.string(), reason));
   }
   for (const std::string& assignment : overrides) applyOverride(document, assignment);
   return parseScene(document, file.string(), options);

@@ -1,0 +1,149 @@
+// The built program from outside, as scripts use it: exit codes, messages naming the key,
+// and no output file after bad input (INTERFACE.md).
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct RunResult {
+  int exitCode = -1;
+  std::string output;  // stdout and stderr together
+};
+
+RunResult run(const std::string& arguments) {
+  const std::string command = std::string(COINROLL_BINARY_DIR) + "/coinroll " + arguments + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  RunResult result;
+  std::array<char, 4096> buffer{};
+  while (std::fgets(buffer.data(), buffer.size(), pipe) != nullptr) result.output += buffer.data();
+  const int status = pclose(pipe);
+  result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+class CliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("coinroll_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  fs::path writeScene(const std::string& json) const {
+    const fs::path path = dir_ / "scene.json";
+    std::ofstream(path) << json;
+    return path;
+  }
+  fs::path dir_;
+};
+
+const std::string kCoin = R"("coin": {"shape": "disk", "radius": 0.0375, "mass": 0.4})";
+const std::string kValid = "{" + kCoin + R"(, "initial": {"theta": 10, "omega_Z": 12}, "duration": 0.5})";
+
+struct BadScene {
+  const char* key;  // the message must name it
+  std::string json;
+};
+
+TEST_F(CliTest, EveryBadSceneGetsExitTwoANamedKeyAndNoFile) {
+  const BadScene cases[] = {
+      {"line 3", "{\n  \"coin\": {\"radius\": 0.0375,\n  , \"mass\": 0.4}}"},
+      {"colour", "{" + kCoin + R"(, "initial": {"theta": 10}, "duration": 1, "colour": "red"})"},
+      {"duration", "{" + kCoin + R"(, "initial": {"theta": 10}, "duration": "long"})"},
+      {"initial", "{" + kCoin + R"(, "duration": 1})"},
+      {"coin.radius", R"({"coin": {"radius": -1, "mass": 0.4}, "initial": {}, "duration": 1})"},
+      {"coin.mass", R"({"coin": {"radius": 0.03, "mass": 0}, "initial": {}, "duration": 1})"},
+      {"theta", "{" + kCoin + R"(, "initial": {"theta": 95}, "duration": 1})"},
+      {"I_X", R"({"coin": {"shape": "custom", "radius": 0.03, "mass": 0.4}, "initial": {}, "duration": 1})"},
+      {"I_Z", R"({"coin": {"shape": "custom", "radius": 0.03, "mass": 0.4, "I_X": 1e-5, "I_Z": 3e-5}, "initial": {}, "duration": 1})"},
+      {"duration", "{" + kCoin + R"(, "initial": {}, "duration": -3})"},
+      {"solver.dt", "{" + kCoin + R"(, "initial": {}, "duration": 1, "solver": {"method": "rk4", "dt": -0.1}})"},
+      {"method", "{" + kCoin + R"(, "initial": {}, "duration": 1, "solver": {"method": "magic"}})"},
+      {"1e400", "{" + kCoin + R"(, "initial": {}, "duration": 1, "gravity": 1e400})"},
+      {"shape", R"({"coin": {"shape": "triangle", "radius": 0.03, "mass": 0.4}, "initial": {}, "duration": 1})"},
+  };
+  for (const BadScene& c : cases) {
+    const fs::path csv = dir_ / "out.csv";
+    const RunResult r = run("simulate " + writeScene(c.json).string() + " --csv " + csv.string());
+    EXPECT_EQ(r.exitCode, 2) << c.key << ": " << r.output;
+    EXPECT_NE(r.output.find(c.key), std::string::npos) << "message should name '" << c.key << "': " << r.output;
+    EXPECT_FALSE(fs::exists(csv)) << c.key;
+  }
+}
+
+TEST_F(CliTest, BadCommandLinesGetExitTwo) {
+  const fs::path scene = writeScene(kValid), csv = dir_ / "out.csv";
+  EXPECT_EQ(run("simulate " + scene.string() + " --csv " + csv.string() + " --sample-dt 0").exitCode, 2);
+  EXPECT_EQ(run("simulate " + (dir_ / "missing.json").string() + " --csv " + csv.string()).exitCode, 2);
+  EXPECT_EQ(run("simulate " + scene.string() + " --csv " + csv.string() + " --set initial.theta=100").exitCode, 2);
+  EXPECT_EQ(run("simulate " + scene.string()).exitCode, 2);  // --csv is required
+  EXPECT_EQ(run("frobnicate").exitCode, 2);
+  EXPECT_FALSE(fs::exists(csv));
+}
+
+TEST_F(CliTest, UnwritableOutputFailsWithoutLeavingFiles) {
+  const RunResult r = run("simulate " + writeScene(kValid).string() + " --csv " + (dir_ / "no/such/dir/out.csv").string());
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_NE(r.output.find("out.csv"), std::string::npos) << r.output;
+}
+
+TEST_F(CliTest, SimulateWritesTheContractHeaderAndRowsAtMultiplesOfTheSampleStep) {
+  const fs::path csv = dir_ / "out.csv";
+  const RunResult r = run("simulate " + writeScene(kValid).string() + " --csv " + csv.string() + " --sample-dt 0.05");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  std::ifstream in(csv);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "t,theta,phi,psi,omega_X,omega_Y,omega_Z,x,y,z,contact_x,contact_z,energy,normal_force,friction_force");
+  int rows = 0;
+  while (std::getline(in, line)) {
+    EXPECT_NEAR(std::stod(line.substr(0, line.find(','))), 0.05 * rows, 1e-12);
+    ++rows;
+  }
+  EXPECT_EQ(rows, 11);  // t = 0, 0.05, ..., 0.5
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir_), fs::directory_iterator{}), 2);  // scene + csv, no temp
+}
+
+TEST_F(CliTest, SetOverridesAFieldAndStdoutGetsTheCsv) {
+  const RunResult r = run("simulate " + writeScene(kValid).string() + " --csv - --set duration=0.02 --set initial.theta=0");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("\n0.02,0,"), std::string::npos) << r.output;  // upright stays upright
+}
+
+TEST_F(CliTest, CoinFallingFlatStopsWithANamedEvent) {
+  // Below the critical spin from a large tilt the coin falls: the run must end with the
+  // coin-flat event, not NaNs.
+  const fs::path csv = dir_ / "out.csv";
+  const RunResult r = run("simulate " + writeScene("{" + kCoin + R"(, "initial": {"theta": 60}, "duration": 5})").string() +
+                          " --csv " + csv.string());
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("coin-flat"), std::string::npos) << r.output;
+  std::ifstream in(csv);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(text.find("nan"), std::string::npos);
+}
+
+TEST_F(CliTest, SteadyReportsKAndAVerdict) {
+  const RunResult stable = run("steady --kind straight --omega-Z 20");
+  EXPECT_EQ(stable.exitCode, 0) << stable.output;
+  EXPECT_NE(stable.output.find("STABLE"), std::string::npos);
+  const RunResult unstable = run("steady --kind straight --omega-Z 5");
+  EXPECT_NE(unstable.output.find("UNSTABLE"), std::string::npos) << unstable.output;
+  EXPECT_EQ(run("steady --theta 20").exitCode, 2);
+}
+
+TEST_F(CliTest, HelpTeachesAndExitsZero) {
+  const RunResult r = run("--help");
+  EXPECT_EQ(r.exitCode, 0);
+  EXPECT_NE(r.output.find("simulate"), std::string::npos);
+  EXPECT_NE(r.output.find("Examples"), std::string::npos);
+}
+
+}  // namespace

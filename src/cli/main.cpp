@@ -30,6 +30,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.footer(
       "Examples:\n"
+      "  coinroll simulate --csv default.csv            (the built-in default scene)\n"
       "  coinroll simulate examples/steady_circle.json --csv circle.csv\n"
       "  coinroll simulate scene.json --csv - --sample-dt 0.001 --set initial.theta=12 | head\n"
       "  coinroll steady --kind circle --theta 20 --omega-Z 10\n"
@@ -40,7 +41,7 @@ int main(int argc, char** argv) {
   SimulateOptions simulate;
   CLI::App* simulateCommand = app.add_subcommand(
       "simulate", "Integrate a scene and write the trajectory CSV (t, angles, rates, positions, energy, N, F)");
-  addSceneOptions(*simulateCommand, simulate.scene, true);
+  addSceneOptions(*simulateCommand, simulate.scene, false);  // no file: the built-in default scene
   simulateCommand->add_option("--csv", simulate.csvPath, "Output CSV path, or - for stdout")->required();
   simulateCommand->add_option("--sample-dt", simulate.sampleDt, "Time between rows, s (rows at t = k S)")
       ->capture_default_str();

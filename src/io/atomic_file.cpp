@@ -28,6 +28,10 @@ AtomicOutputFile::AtomicOutputFile(std::filesystem::path destination)
     throw std::runtime_error(destination_.string() + ": cannot write: directory '" + directory.string() +
                              "' does not exist");
   }
+  // Renaming onto /dev/null or a FIFO would replace the special file itself.
+  if (std::filesystem::exists(destination_, ec) && !std::filesystem::is_regular_file(destination_, ec)) {
+    throw std::runtime_error(destination_.string() + ": cannot write: exists and is not a regular file");
+  }
   // Creating the file now (O_EXCL, so the name is ours alone) proves the directory is writable
   // before any work starts; mode 0666 lets the umask decide permissions as for any output.
   static std::atomic<unsigned> counter{0};

@@ -91,7 +91,6 @@ class Trajectory {
 
   void advance() {
     const double tStart = t_;
-    const Vec<N> yStart = y_;
     if (isAdaptive(config_.method)) {
       adaptiveStep();
     } else {
@@ -108,7 +107,7 @@ class Trajectory {
       }
       accept(tNext, y1, f1);
     }
-    checkEvents(tStart, yStart);
+    checkEvents(tStart);
   }
 
   // Step-size controller constants of HNW's codes: DOPRI5 uses a PI controller (beta = 0.04),
@@ -191,8 +190,7 @@ class Trajectory {
     }
   }
 
-  void checkEvents(double tStart, const Vec<N>& yStart) {
-    (void)yStart;
+  void checkEvents(double tStart) {
     std::optional<EventHit<N>> earliestTerminal;
     for (std::size_t i = 0; i < events_.size(); ++i) {
       const Event<N>& e = events_[i];

@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <numbers>
@@ -15,6 +16,7 @@
 #include "physics/observables.h"
 #include "physics/steady.h"
 #include "pipeline/simulation.h"
+#include "pipeline/still.h"
 #include "pipeline/trajectory_csv.h"
 #include "scene/scene_loader.h"
 
@@ -113,6 +115,26 @@ void runSteady(const SteadyOptions& options) {
   } else {
     fmt::print("verdict: MARGINAL (K = 0)\n");
   }
+}
+
+void runStill(const StillOptions& options) {
+  const std::filesystem::path output(options.output);
+  if (output.extension() != ".png") {
+    throw UsageError(fmt::format("-o: a still is written as PNG; give a name ending in .png, got \"{}\"", options.output));
+  }
+  const scene::SceneConfig scene = loadScene(options.scene);
+  pipeline::StillResult result;
+  try {
+    result = pipeline::renderStill(scene, {.time = options.time, .ghosts = options.strobe, .output = output});
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+  if (result.stopDescription) {
+    std::cerr << fmt::format("coinroll: the run stopped early, so the still shows t = {:.6f} s: {}\n", result.shownTime,
+                             *result.stopDescription);
+  }
+  std::cerr << fmt::format("coinroll: wrote {} ({}x{}, t = {} s)\n", options.output, scene.render.width, scene.render.height,
+                           result.shownTime);
 }
 
 }  // namespace coinroll::cli

@@ -29,4 +29,12 @@ struct SteadyOptions {
 };
 void runSteady(const SteadyOptions& options);
 
+struct StillOptions {
+  SceneSource scene;
+  double time = 0;       // s of simulated time
+  std::string output;    // PNG path
+  int strobe = 0;        // earlier copies of the coin overlaid, evenly spaced over [0, time)
+};
+void runStill(const StillOptions& options);
+
 }  // namespace coinroll::cli

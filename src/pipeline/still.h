@@ -1,0 +1,27 @@
+#pragma once
+// `coinroll still`: one PNG of a scene at one simulated time, optionally stroboscopic.
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "scene/scene_config.h"
+
+namespace coinroll::pipeline {
+
+struct StillRequest {
+  double time = 0;                 // s of simulated time, in [0, duration]
+  int ghosts = 0;                  // > 0: this many earlier poses, evenly spaced over [0, time)
+  std::filesystem::path output;    // .png, written atomically
+};
+
+struct StillResult {
+  double shownTime = 0;  // s; earlier than asked when a validity event ended the run first
+  std::optional<std::string> stopDescription;
+};
+
+// Throws std::invalid_argument naming the option for a bad request, scene::SceneError for a bad
+// scene, std::runtime_error for rendering or writing failures (nothing left under `output`).
+StillResult renderStill(const scene::SceneConfig& scene, const StillRequest& request);
+
+}  // namespace coinroll::pipeline

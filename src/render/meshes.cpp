@@ -1,0 +1,119 @@
+#include "render/meshes.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+#include <stb_easy_font.h>
+
+namespace coinroll::render {
+
+namespace {
+
+// push_back rather than insert(end, {...}): GCC 12 misreports the latter (-Wstringop-overflow).
+template <class Vertex>
+void append(std::vector<Vertex>& out, std::initializer_list<Vertex> vertices) {
+  for (const Vertex& v : vertices) out.push_back(v);
+}
+
+void addQuad(std::vector<CoinVertex>& out, const CoinVertex& a, const CoinVertex& b, const CoinVertex& c,
+             const CoinVertex& d) {
+  // a-b-c-d counter-clockwise seen from the side the normals face.
+  append(out, {a, b, c, a, c, d});
+}
+
+}  // namespace
+
+std::vector<CoinVertex> coinTriangles(const CoinShape& shape, int segments) {
+  std::vector<CoinVertex> triangles;
+  triangles.reserve(static_cast<std::size_t>(segments) * 24);
+  const float halfThickness = 0.5f * shape.thickness;
+  const float outer = shape.radius, inner = shape.innerRadius;
+  const float front = static_cast<float>(CoinPart::FrontFace), back = static_cast<float>(CoinPart::BackFace);
+  const float outerRim = static_cast<float>(CoinPart::OuterRim), innerRim = static_cast<float>(CoinPart::InnerRim);
+  for (int i = 0; i < segments; ++i) {
+    const double angle0 = 2 * std::numbers::pi * i / segments, angle1 = 2 * std::numbers::pi * (i + 1) / segments;
+    const glm::vec2 u0(std::cos(angle0), std::sin(angle0)), u1(std::cos(angle1), std::sin(angle1));
+    const glm::vec3 up(0, 0, 1), down(0, 0, -1);
+    if (inner > 0) {
+      addQuad(triangles, {glm::vec3(inner * u0, halfThickness), up, front}, {glm::vec3(outer * u0, halfThickness), up, front},
+              {glm::vec3(outer * u1, halfThickness), up, front}, {glm::vec3(inner * u1, halfThickness), up, front});
+      addQuad(triangles, {glm::vec3(inner * u1, -halfThickness), down, back},
+              {glm::vec3(outer * u1, -halfThickness), down, back}, {glm::vec3(outer * u0, -halfThickness), down, back},
+              {glm::vec3(inner * u0, -halfThickness), down, back});
+      const glm::vec3 n0(-u0, 0), n1(-u1, 0);
+      addQuad(triangles, {glm::vec3(inner * u1, -halfThickness), n1, innerRim}, {glm::vec3(inner * u0, -halfThickness), n0, innerRim},
+              {glm::vec3(inner * u0, halfThickness), n0, innerRim}, {glm::vec3(inner * u1, halfThickness), n1, innerRim});
+    } else {
+      const glm::vec3 centreFront(0, 0, halfThickness), centreBack(0, 0, -halfThickness);
+      append<CoinVertex>(triangles, {{centreFront, up, front},
+                                         {glm::vec3(outer * u0, halfThickness), up, front},
+                                         {glm::vec3(outer * u1, halfThickness), up, front}});
+      append<CoinVertex>(triangles, {{centreBack, down, back},
+                                         {glm::vec3(outer * u1, -halfThickness), down, back},
+                                         {glm::vec3(outer * u0, -halfThickness), down, back}});
+    }
+    const glm::vec3 n0(u0, 0), n1(u1, 0);
+    addQuad(triangles, {glm::vec3(outer * u0, -halfThickness), n0, outerRim}, {glm::vec3(outer * u1, -halfThickness), n1, outerRim},
+            {glm::vec3(outer * u1, halfThickness), n1, outerRim}, {glm::vec3(outer * u0, halfThickness), n0, outerRim});
+  }
+  return triangles;
+}
+
+std::vector<RibbonVertex> ribbonStrip(const std::vector<glm::vec2>& points, float width) {
+  std::vector<glm::vec2> distinct;
+  std::vector<std::size_t> index;
+  distinct.reserve(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (distinct.empty() || glm::length(points[i] - distinct.back()) > 1e-7f) {
+      distinct.push_back(points[i]);
+      index.push_back(i);
+    }
+  }
+  std::vector<RibbonVertex> strip;
+  if (distinct.size() < 2) return strip;
+  strip.reserve(2 * distinct.size());
+  const float last = static_cast<float>(std::max<std::size_t>(points.size() - 1, 1));
+  for (std::size_t i = 0; i < distinct.size(); ++i) {
+    // Central differences inside, one-sided at the ends: the ribbon bends smoothly at each point.
+    const glm::vec2 before = distinct[i == 0 ? 0 : i - 1], after = distinct[std::min(i + 1, distinct.size() - 1)];
+    const glm::vec2 tangent = glm::normalize(after - before);
+    const glm::vec2 side = 0.5f * width * glm::vec2(-tangent.y, tangent.x);
+    const float age = 1.0f - static_cast<float>(index[i]) / last;
+    strip.push_back({distinct[i] + side, age});
+    strip.push_back({distinct[i] - side, age});
+  }
+  return strip;
+}
+
+std::vector<TextVertex> hudTriangles(const std::vector<std::string>& lines, float scale) {
+  std::vector<TextVertex> triangles;
+  if (lines.empty()) return triangles;
+  constexpr float kMargin = 6, kPadding = 4, kLineHeight = 10;
+  float textWidth = 0;
+  for (const std::string& line : lines) textWidth = std::max(textWidth, static_cast<float>(stb_easy_font_width(const_cast<char*>(line.c_str()))));
+  const glm::vec2 panelMin(kMargin), panelMax = glm::vec2(kMargin) + scale * glm::vec2(textWidth + 2 * kPadding,
+                                                                                       kLineHeight * lines.size() + 2 * kPadding - 3);
+  const glm::vec4 panel(0.08f, 0.09f, 0.11f, 0.62f), ink(0.97f, 0.97f, 0.95f, 1.0f);
+  append<TextVertex>(triangles, {{panelMin, panel}, {{panelMax.x, panelMin.y}, panel}, {panelMax, panel},
+                                     {panelMin, panel}, {panelMax, panel}, {{panelMin.x, panelMax.y}, panel}});
+  // stb_easy_font writes quads of four 16-byte vertices (x, y, z floats, RGBA bytes).
+  std::vector<char> buffer(64 * 1024);
+  for (std::size_t row = 0; row < lines.size(); ++row) {
+    const int quads = stb_easy_font_print(0, 0, const_cast<char*>(lines[row].c_str()), nullptr, buffer.data(),
+                                          static_cast<int>(buffer.size()));
+    const glm::vec2 origin = panelMin + scale * glm::vec2(kPadding, kPadding + kLineHeight * static_cast<float>(row));
+    for (int q = 0; q < quads; ++q) {
+      std::array<glm::vec2, 4> corner;
+      for (int k = 0; k < 4; ++k) {
+        const float* xy = reinterpret_cast<const float*>(buffer.data() + (4 * q + k) * 16);
+        corner[k] = origin + scale * glm::vec2(xy[0], xy[1]);
+      }
+      append<TextVertex>(triangles, {{corner[0], ink}, {corner[1], ink}, {corner[2], ink},
+                                         {corner[0], ink}, {corner[2], ink}, {corner[3], ink}});
+    }
+  }
+  return triangles;
+}
+
+}  // namespace coinroll::render

@@ -1,0 +1,47 @@
+#pragma once
+// CPU-side geometry, built without a GL context (so tests can check it): the coin as a closed
+// cylinder (an annulus when it has a hole), the trace ribbon and the overlay text.
+
+#include <glm/glm.hpp>
+#include <string>
+#include <vector>
+
+namespace coinroll::render {
+
+// Which surface a coin vertex belongs to; the coin shader paints each differently.
+enum class CoinPart : int { FrontFace = 0, BackFace = 1, OuterRim = 2, InnerRim = 3 };
+
+struct CoinVertex {
+  glm::vec3 position;  // m, body frame: the coin plane is body XY, its normal body Z
+  glm::vec3 normal;
+  float part;          // a CoinPart, as float for the vertex attribute
+};
+
+struct CoinShape {
+  float radius = 0.0375f;     // m
+  float innerRadius = 0.0f;   // m, 0 for a solid disk
+  float thickness = 0.00225f; // m
+};
+
+// Triangles (three vertices each) of the coin with `segments` facets around the rim.
+std::vector<CoinVertex> coinTriangles(const CoinShape& shape, int segments);
+
+struct RibbonVertex {
+  glm::vec2 position;  // m, on the floor (x, z)
+  float age;           // 0 at the newest point, 1 at the oldest
+};
+
+// A triangle strip of the given width along `points` (oldest first). Consecutive duplicates
+// are skipped; fewer than two distinct points give an empty strip.
+std::vector<RibbonVertex> ribbonStrip(const std::vector<glm::vec2>& points, float width);
+
+struct TextVertex {
+  glm::vec2 position;  // pixels, origin top-left
+  glm::vec4 colour;    // straight alpha
+};
+
+// Triangles of a translucent panel holding `lines` of stb_easy_font text at `scale` pixels per
+// font unit, anchored at the top-left corner with a margin.
+std::vector<TextVertex> hudTriangles(const std::vector<std::string>& lines, float scale);
+
+}  // namespace coinroll::render

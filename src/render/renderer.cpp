@@ -1,0 +1,315 @@
+#include "render/renderer.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <glm/gtc/matrix_transform.hpp>
+#include <numbers>
+#include <stdexcept>
+
+#include "render/camera.h"
+#include "render/gl_handles.h"
+#include "render/osmesa_context.h"
+#include "render/shader_program.h"
+
+namespace coinroll::render {
+
+namespace {
+
+constexpr int kCoinSegments = 128;
+// Key light, pointing from the scene towards the light: high and slightly behind the default
+// camera's left shoulder, so the shadow falls forward-right and the face catches a highlight.
+const glm::vec3 kLightDirection = glm::normalize(glm::vec3(-0.35f, 1.0f, 0.45f));
+// Sky colour behind the floor, sRGB; the floor fades into it with distance.
+const glm::vec3 kBackgroundSrgb(0.86f, 0.89f, 0.93f);
+const glm::vec4 kShadowColour(0.0f, 0.0f, 0.0f, 0.38f);
+const glm::vec4 kContactColour(0.85f, 0.1f, 0.08f, 1.0f);
+
+void validate(const RenderSettings& s) {
+  if (s.width < 16 || s.width > 8192) throw std::invalid_argument(fmt::format("render.width: must be 16..8192 pixels, got {}", s.width));
+  if (s.height < 16 || s.height > 8192) throw std::invalid_argument(fmt::format("render.height: must be 16..8192 pixels, got {}", s.height));
+  if (s.msaa != 1 && s.msaa != 2 && s.msaa != 4 && s.msaa != 8) {
+    throw std::invalid_argument(fmt::format("render.msaa: must be 1, 2, 4 or 8 samples, got {}", s.msaa));
+  }
+  if (!(s.coin.radius > 0) || !(s.coin.thickness > 0) || !(s.coin.innerRadius >= 0 && s.coin.innerRadius < s.coin.radius)) {
+    throw std::invalid_argument(fmt::format("coin: radius {} m, inner radius {} m and thickness {} m cannot be drawn",
+                                            s.coin.radius, s.coin.innerRadius, s.coin.thickness));
+  }
+}
+
+glm::mat4 modelMatrix(const CoinPose& pose) { return glm::translate(glm::mat4(1.0f), pose.centre) * glm::mat4_cast(pose.attitude); }
+
+// Projects points onto the floor (y = lift) along the light direction: a planar shadow, exact for
+// a flat receiver and far cheaper than a shadow map on a software rasteriser.
+glm::mat4 floorShadowProjection(float lift) {
+  const glm::vec3 l = kLightDirection;
+  glm::mat4 m(1.0f);
+  m[1] = glm::vec4(-l.x / l.y, 0.0f, -l.z / l.y, 0.0f);  // column y: x' = x - (l.x/l.y)(y - lift), ...
+  m[3] = glm::vec4(l.x / l.y * lift, lift, l.z / l.y * lift, 1.0f);
+  return m;
+}
+
+template <class Vertex>
+void upload(GLuint buffer, const std::vector<Vertex>& vertices, GLenum usage) {
+  glBindBuffer(GL_ARRAY_BUFFER, buffer);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(Vertex)), vertices.data(), usage);
+}
+
+void floatAttribute(GLuint index, int components, std::size_t stride, std::size_t offset) {
+  glEnableVertexAttribArray(index);
+  glVertexAttribPointer(index, components, GL_FLOAT, GL_FALSE, static_cast<GLsizei>(stride),
+                        reinterpret_cast<const void*>(offset));
+}
+
+}  // namespace
+
+struct Renderer::Gl {
+  OsMesaContext context;  // first member: created first, destroyed after every GL object below
+  Framebuffer drawTarget, resolveTarget;
+  Renderbuffer drawColour, drawDepthStencil, resolveColour;
+  ShaderProgram coinProgram{"coin.vert", "coin.frag"};
+  ShaderProgram floorProgram{"floor.vert", "floor.frag"};
+  ShaderProgram flatProgram{"flat.vert", "flat.frag"};
+  ShaderProgram traceProgram{"trace.vert", "trace.frag"};
+  ShaderProgram hudProgram{"hud.vert", "hud.frag"};
+  VertexArray coinArray = makeVertexArray(), floorArray = makeVertexArray(), markerArray = makeVertexArray(),
+              traceArray = makeVertexArray(), hudArray = makeVertexArray();
+  Buffer coinBuffer = makeBuffer(), floorBuffer = makeBuffer(), markerBuffer = makeBuffer(), traceBuffer = makeBuffer(),
+         hudBuffer = makeBuffer();
+  GLsizei coinVertices = 0, markerVertices = 0;
+};
+
+Renderer::Renderer(const RenderSettings& settings) : settings_(settings) {
+  validate(settings_);
+  gl_ = std::make_unique<Gl>();
+  Gl& gl = *gl_;
+  const int w = settings_.width, h = settings_.height;
+
+  GLint maxSamples = 0;
+  glGetIntegerv(GL_MAX_SAMPLES, &maxSamples);
+  if (settings_.msaa > maxSamples) {
+    throw std::invalid_argument(fmt::format("render.msaa: this OpenGL allows at most {} samples, got {}", maxSamples, settings_.msaa));
+  }
+  const bool multisampled = settings_.msaa > 1;
+  gl.drawTarget = makeFramebuffer();
+  gl.drawColour = makeRenderbuffer();
+  gl.drawDepthStencil = makeRenderbuffer();
+  glBindFramebuffer(GL_FRAMEBUFFER, gl.drawTarget.get());
+  glBindRenderbuffer(GL_RENDERBUFFER, gl.drawColour.get());
+  glRenderbufferStorageMultisample(GL_RENDERBUFFER, multisampled ? settings_.msaa : 0, GL_RGBA8, w, h);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, gl.drawColour.get());
+  glBindRenderbuffer(GL_RENDERBUFFER, gl.drawDepthStencil.get());
+  glRenderbufferStorageMultisample(GL_RENDERBUFFER, multisampled ? settings_.msaa : 0, GL_DEPTH24_STENCIL8, w, h);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, gl.drawDepthStencil.get());
+  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+    throw std::runtime_error(fmt::format("OpenGL: cannot create a {}x{} framebuffer with {} samples", w, h, settings_.msaa));
+  }
+  if (multisampled) {
+    gl.resolveTarget = makeFramebuffer();
+    gl.resolveColour = makeRenderbuffer();
+    glBindFramebuffer(GL_FRAMEBUFFER, gl.resolveTarget.get());
+    glBindRenderbuffer(GL_RENDERBUFFER, gl.resolveColour.get());
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, w, h);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, gl.resolveColour.get());
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+      throw std::runtime_error(fmt::format("OpenGL: cannot create a {}x{} resolve framebuffer", w, h));
+    }
+  }
+
+  const std::vector<CoinVertex> coin = coinTriangles(settings_.coin, kCoinSegments);
+  gl.coinVertices = static_cast<GLsizei>(coin.size());
+  glBindVertexArray(gl.coinArray.get());
+  upload(gl.coinBuffer.get(), coin, GL_STATIC_DRAW);
+  floatAttribute(0, 3, sizeof(CoinVertex), offsetof(CoinVertex, position));
+  floatAttribute(1, 3, sizeof(CoinVertex), offsetof(CoinVertex, normal));
+  floatAttribute(2, 1, sizeof(CoinVertex), offsetof(CoinVertex, part));
+
+  // The floor is one square around the camera target; the shader scales it (uniform "extent").
+  // Counter-clockwise seen from above (+y), so back-face culling keeps it.
+  const std::vector<glm::vec2> floorCorners = {{-1, -1}, {1, 1}, {1, -1}, {-1, -1}, {-1, 1}, {1, 1}};
+  glBindVertexArray(gl.floorArray.get());
+  upload(gl.floorBuffer.get(), floorCorners, GL_STATIC_DRAW);
+  floatAttribute(0, 2, sizeof(glm::vec2), 0);
+
+  // The contact marker: a unit disc in the floor plane, scaled per frame.
+  std::vector<glm::vec3> marker;
+  for (int i = 0; i < 32; ++i) {
+    const double a0 = 2 * std::numbers::pi * i / 32, a1 = 2 * std::numbers::pi * (i + 1) / 32;
+    marker.insert(marker.end(), {glm::vec3(0), glm::vec3(std::cos(a1), 0, std::sin(a1)), glm::vec3(std::cos(a0), 0, std::sin(a0))});
+  }
+  gl.markerVertices = static_cast<GLsizei>(marker.size());
+  glBindVertexArray(gl.markerArray.get());
+  upload(gl.markerBuffer.get(), marker, GL_STATIC_DRAW);
+  floatAttribute(0, 3, sizeof(glm::vec3), 0);
+
+  glBindVertexArray(gl.traceArray.get());
+  glBindBuffer(GL_ARRAY_BUFFER, gl.traceBuffer.get());
+  floatAttribute(0, 2, sizeof(RibbonVertex), offsetof(RibbonVertex, position));
+  floatAttribute(1, 1, sizeof(RibbonVertex), offsetof(RibbonVertex, age));
+
+  glBindVertexArray(gl.hudArray.get());
+  glBindBuffer(GL_ARRAY_BUFFER, gl.hudBuffer.get());
+  floatAttribute(0, 2, sizeof(TextVertex), offsetof(TextVertex, position));
+  floatAttribute(1, 4, sizeof(TextVertex), offsetof(TextVertex, colour));
+  glBindVertexArray(0);
+}
+
+Renderer::~Renderer() = default;
+
+image::Image Renderer::draw(const FrameSnapshot& snapshot) {
+  image::Image out;
+  draw(snapshot, out);
+  return out;
+}
+
+void Renderer::draw(const FrameSnapshot& snapshot, image::Image& out) {
+  Gl& gl = *gl_;
+  gl.context.makeCurrent();
+  const int w = settings_.width, h = settings_.height;
+  const CameraMatrices camera = cameraMatrices(snapshot.camera, w, h);
+  const glm::mat4 viewProjection = camera.projection * camera.view;
+  const float cameraDistance = glm::length(snapshot.camera.eye - snapshot.camera.target);
+  const float coinRadius = settings_.coin.radius;
+
+  glBindFramebuffer(GL_FRAMEBUFFER, gl.drawTarget.get());
+  glViewport(0, 0, w, h);
+  glClearColor(kBackgroundSrgb.r, kBackgroundSrgb.g, kBackgroundSrgb.b, 1.0f);
+  glClearStencil(0);
+  glClearDepth(1.0);
+  glDepthMask(GL_TRUE);
+  glStencilMask(0xFF);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glEnable(GL_CULL_FACE);
+  // Keep the destination alpha at 1 so the PNG is opaque whatever was blended over it.
+  glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
+  glDisable(GL_BLEND);
+
+  // Floor (writes depth so the coin's lower edge meets it correctly).
+  gl.floorProgram.use();
+  gl.floorProgram.set("viewProjection", viewProjection);
+  gl.floorProgram.set("centre", glm::vec2(snapshot.camera.target.x, snapshot.camera.target.z));
+  gl.floorProgram.set("extent", 150.0f * cameraDistance);
+  gl.floorProgram.set("eye", snapshot.camera.eye);
+  gl.floorProgram.set("fogStart", 2.5f * cameraDistance);
+  gl.floorProgram.set("fogEnd", 12.0f * cameraDistance);
+  gl.floorProgram.set("backgroundSrgb", kBackgroundSrgb);
+  gl.floorProgram.set("lightDirection", kLightDirection);
+  glBindVertexArray(gl.floorArray.get());
+  glDrawArrays(GL_TRIANGLES, 0, 6);
+
+  // Decals on the floor: nothing but the coins can hide them, and those are drawn afterwards.
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);
+  glEnable(GL_BLEND);
+  if (settings_.showShadow) {
+    // The stencil lets each floor pixel be darkened once, however many shadow triangles overlap.
+    glEnable(GL_STENCIL_TEST);
+    glStencilFunc(GL_EQUAL, 0, 0xFF);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
+    gl.flatProgram.use();
+    gl.flatProgram.set("viewProjection", viewProjection);
+    gl.flatProgram.set("colour", kShadowColour);
+    glBindVertexArray(gl.coinArray.get());
+    const glm::mat4 shadow = floorShadowProjection(0.0f);
+    gl.flatProgram.set("model", shadow * modelMatrix(snapshot.coin));
+    glDrawArrays(GL_TRIANGLES, 0, gl.coinVertices);
+    gl.flatProgram.set("colour", glm::vec4(glm::vec3(kShadowColour), 0.5f * kShadowColour.a));
+    glStencilFunc(GL_EQUAL, 0, 0xFF);
+    for (const CoinPose& ghost : snapshot.ghosts) {
+      gl.flatProgram.set("model", shadow * modelMatrix(ghost));
+      glDrawArrays(GL_TRIANGLES, 0, gl.coinVertices);
+    }
+    glDisable(GL_STENCIL_TEST);
+  }
+  if (const std::vector<RibbonVertex> ribbon = ribbonStrip(snapshot.trace, snapshot.traceWidth); !ribbon.empty()) {
+    gl.traceProgram.use();
+    gl.traceProgram.set("viewProjection", viewProjection);
+    glBindVertexArray(gl.traceArray.get());
+    upload(gl.traceBuffer.get(), ribbon, GL_STREAM_DRAW);
+    glDrawArrays(GL_TRIANGLE_STRIP, 0, static_cast<GLsizei>(ribbon.size()));
+  }
+  if (snapshot.showContact && !snapshot.trace.empty()) {
+    gl.flatProgram.use();
+    gl.flatProgram.set("viewProjection", viewProjection);
+    gl.flatProgram.set("colour", kContactColour);
+    const glm::vec2 contact = snapshot.trace.back();
+    const float markerRadius = std::max(0.08f * coinRadius, 1.6f * snapshot.traceWidth);
+    gl.flatProgram.set("model", glm::scale(glm::translate(glm::mat4(1.0f), glm::vec3(contact.x, 0.0f, contact.y)),
+                                           glm::vec3(markerRadius)));
+    glBindVertexArray(gl.markerArray.get());
+    glDrawArrays(GL_TRIANGLES, 0, gl.markerVertices);
+  }
+
+  // Coins: the current one opaque, then the ghosts from far to near so nearer ones blend last.
+  glEnable(GL_DEPTH_TEST);
+  glEnable(GL_CULL_FACE);
+  gl.coinProgram.use();
+  gl.coinProgram.set("viewProjection", viewProjection);
+  gl.coinProgram.set("eye", snapshot.camera.eye);
+  gl.coinProgram.set("lightDirection", kLightDirection);
+  gl.coinProgram.set("radius", coinRadius);
+  gl.coinProgram.set("innerRadius", settings_.coin.innerRadius);
+  glBindVertexArray(gl.coinArray.get());
+  auto drawCoin = [&](const CoinPose& pose, float opacity) {
+    const glm::mat4 model = modelMatrix(pose);
+    gl.coinProgram.set("model", model);
+    gl.coinProgram.set("normalMatrix", glm::mat3_cast(pose.attitude));
+    gl.coinProgram.set("opacity", opacity);
+    glDrawArrays(GL_TRIANGLES, 0, gl.coinVertices);
+  };
+  glDisable(GL_BLEND);
+  drawCoin(snapshot.coin, 1.0f);
+  if (!snapshot.ghosts.empty()) {
+    std::vector<const CoinPose*> farToNear;
+    for (const CoinPose& ghost : snapshot.ghosts) farToNear.push_back(&ghost);
+    std::stable_sort(farToNear.begin(), farToNear.end(), [&](const CoinPose* a, const CoinPose* b) {
+      return glm::length(a->centre - snapshot.camera.eye) > glm::length(b->centre - snapshot.camera.eye);
+    });
+    glEnable(GL_BLEND);
+    for (const CoinPose* ghost : farToNear) drawCoin(*ghost, 0.45f);
+  }
+
+  if (const std::vector<TextVertex> hud = hudTriangles(snapshot.hudLines, std::max(1.0f, std::floor(h / 300.0f)));
+      !hud.empty()) {
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    glEnable(GL_BLEND);
+    gl.hudProgram.use();
+    gl.hudProgram.set("viewportSize", glm::vec2(w, h));
+    glBindVertexArray(gl.hudArray.get());
+    upload(gl.hudBuffer.get(), hud, GL_STREAM_DRAW);
+    glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(hud.size()));
+  }
+  glBindVertexArray(0);
+
+  if (settings_.msaa > 1) {
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, gl.drawTarget.get());
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, gl.resolveTarget.get());
+    glBlitFramebuffer(0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, gl.resolveTarget.get());
+  } else {
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, gl.drawTarget.get());
+  }
+  if (out.width != w || out.height != h) out = image::Image(w, h);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, out.rgba.data());
+  // OpenGL's rows run bottom-up; Image's run top-down.
+  const std::size_t rowBytes = static_cast<std::size_t>(w) * 4;
+  std::vector<std::uint8_t> row(rowBytes);
+  for (int y = 0; y < h / 2; ++y) {
+    std::uint8_t* top = out.rgba.data() + static_cast<std::size_t>(y) * rowBytes;
+    std::uint8_t* bottom = out.rgba.data() + static_cast<std::size_t>(h - 1 - y) * rowBytes;
+    std::memcpy(row.data(), top, rowBytes);
+    std::memcpy(top, bottom, rowBytes);
+    std::memcpy(bottom, row.data(), rowBytes);
+  }
+  if (const GLenum error = glGetError(); error != GL_NO_ERROR) {
+    throw std::runtime_error(fmt::format("OpenGL error 0x{:04x} while drawing a frame", error));
+  }
+}
+
+}  // namespace coinroll::render

@@ -1,0 +1,43 @@
+#pragma once
+// GLSL programs built from the files in shaders/ (one file per stage). Sources come from
+// $COINROLL_SHADER_DIR when set, else the source tree's shaders/ when present (edit and rerun,
+// no rebuild), else the copies embedded at build time, so the binary works from anywhere.
+
+#include <glm/glm.hpp>
+#include <string>
+#include <string_view>
+
+#include "render/gl_handles.h"
+
+namespace coinroll::render {
+
+// The text of shaders/<name> and where it came from (for error messages).
+struct ShaderSource {
+  std::string text;
+  std::string origin;  // a path, or "embedded:<name>"
+};
+
+// Throws std::runtime_error if the file is named but unreadable, or `name` is unknown.
+ShaderSource loadShaderSource(std::string_view name);
+
+class ShaderProgram {
+ public:
+  // Compiles shaders/<vertexName> and shaders/<fragmentName> and links them. Compile and link
+  // errors throw std::runtime_error with the file and line of each message ("coin.frag:12: ...").
+  ShaderProgram(std::string_view vertexName, std::string_view fragmentName);
+
+  void use() const { glUseProgram(program_.get()); }
+  void set(const char* uniform, float value) const;
+  void set(const char* uniform, int value) const;
+  void set(const char* uniform, const glm::vec2& value) const;
+  void set(const char* uniform, const glm::vec3& value) const;
+  void set(const char* uniform, const glm::vec4& value) const;
+  void set(const char* uniform, const glm::mat3& value) const;
+  void set(const char* uniform, const glm::mat4& value) const;
+
+ private:
+  GLint location(const char* uniform) const;
+  Program program_;
+};
+
+}  // namespace coinroll::render

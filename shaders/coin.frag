@@ -50,7 +50,7 @@ vec3 toSrgb(vec3 linear) {
 
 void main() {
   vec3 brass = vec3(0.80, 0.56, 0.20);
-  vec3 silver = vec3(0.62, 0.63, 0.66);
+  vec3 silver = vec3(0.48, 0.50, 0.55);
   vec3 albedo;
   if (surface == kFrontFace) albedo = faceColour(brass, vec3(0.03, 0.07, 0.32));
   else if (surface == kBackFace) albedo = faceColour(silver, vec3(0.36, 0.03, 0.03));

@@ -6,6 +6,6 @@ out vec4 fragColour;
 
 void main() {
   vec3 recent = vec3(0.93, 0.33, 0.08);
-  vec3 old = vec3(0.13, 0.25, 0.62);
+  vec3 old = vec3(0.30, 0.52, 0.95);
   fragColour = vec4(mix(recent, old, vertexAge), mix(0.95, 0.25, vertexAge));
 }

@@ -24,7 +24,7 @@ constexpr int kCoinSegments = 128;
 const glm::vec3 kLightDirection = glm::normalize(glm::vec3(-0.35f, 1.0f, 0.45f));
 // Sky colour behind the floor, sRGB; the floor fades into it with distance.
 const glm::vec3 kBackgroundSrgb(0.86f, 0.89f, 0.93f);
-const glm::vec4 kShadowColour(0.0f, 0.0f, 0.0f, 0.38f);
+const glm::vec4 kShadowColour(0.0f, 0.0f, 0.0f, 0.45f);
 const glm::vec4 kContactColour(0.85f, 0.1f, 0.08f, 1.0f);
 
 void validate(const RenderSettings& s) {

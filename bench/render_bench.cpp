@@ -1,0 +1,171 @@
+// Frames per second of the renderer against a minimal probe built here and run in the same
+// process: floor, 128-segment coin, 10,000-point trace, MSAA resolve and readback, flat colour,
+// nothing else. The ratio (ours / probe) is comparable across machines; absolute fps are not.
+// Run: build/bench/render_bench [frames]
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <functional>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <numbers>
+#include <vector>
+
+#include "render/camera.h"
+#include "render/gl_handles.h"
+#include "render/meshes.h"
+#include "render/osmesa_context.h"
+#include "render/renderer.h"
+
+namespace {
+
+using namespace coinroll::render;
+
+std::vector<glm::vec2> circleTrace(int points) {
+  std::vector<glm::vec2> trace;
+  for (int i = 0; i < points; ++i) {
+    const double a = 8 * std::numbers::pi * i / points;
+    trace.emplace_back(0.08 * std::cos(a) + 0.0005 * i / 100.0, 0.08 * std::sin(a));
+  }
+  return trace;
+}
+
+FrameSnapshot benchSnapshot(double time) {
+  FrameSnapshot s;
+  s.camera = {{0.12f, 0.17f, 0.36f}, {0.0f, 0.02f, 0.0f}, 35.0f};
+  s.trace = circleTrace(10000);
+  s.traceWidth = 0.0015f;
+  const float theta = 0.35f, phi = static_cast<float>(time), psi = static_cast<float>(5 * time);
+  s.coin.attitude = glm::angleAxis(phi, glm::vec3(0, 1, 0)) * glm::angleAxis(theta, glm::vec3(1, 0, 0)) *
+                    glm::angleAxis(psi, glm::vec3(0, 0, 1));
+  s.coin.centre = glm::vec3(0.08f * std::cos(phi), 0.0375f * std::cos(theta), 0.08f * std::sin(phi));
+  s.hudLines = {"t        1.000 s", "tilt     20.00 deg", "spin     15.00 rad/s", "E      0.22160 J"};
+  return s;
+}
+
+// The probe: the same geometry drawn with one flat-colour program into a multisampled
+// framebuffer, resolved and read back, as a plain OpenGL program would.
+class Probe {
+ public:
+  Probe(int width, int height, int samples) : width_(width), height_(height), pixels_(std::size_t(width) * height * 4) {
+    const char* vertexSource =
+        "#version 330 core\nlayout(location=0) in vec3 p; uniform mat4 m; void main(){ gl_Position = m * vec4(p, 1.0); }\n";
+    const char* fragmentSource = "#version 330 core\nuniform vec4 c; out vec4 o; void main(){ o = c; }\n";
+    const Shader vs(glCreateShader(GL_VERTEX_SHADER)), fs(glCreateShader(GL_FRAGMENT_SHADER));
+    glShaderSource(vs.get(), 1, &vertexSource, nullptr);
+    glShaderSource(fs.get(), 1, &fragmentSource, nullptr);
+    glCompileShader(vs.get());
+    glCompileShader(fs.get());
+    program_ = Program(glCreateProgram());
+    glAttachShader(program_.get(), vs.get());
+    glAttachShader(program_.get(), fs.get());
+    glLinkProgram(program_.get());
+
+    std::vector<glm::vec3> vertices = {{-5, 0, -5}, {5, 0, 5}, {5, 0, -5}, {-5, 0, -5}, {-5, 0, 5}, {5, 0, 5}};
+    for (const CoinVertex& v : coinTriangles({0.0375f, 0.0f, 0.00225f}, 128)) vertices.push_back(v.position);
+    coinFirst_ = 6;
+    coinCount_ = static_cast<GLsizei>(vertices.size()) - 6;
+    traceFirst_ = static_cast<GLsizei>(vertices.size());
+    for (const RibbonVertex& v : ribbonStrip(circleTrace(10000), 0.0015f)) vertices.emplace_back(v.position.x, 0.0f, v.position.y);
+    traceCount_ = static_cast<GLsizei>(vertices.size()) - traceFirst_;
+    glBindVertexArray(array_.get());
+    glBindBuffer(GL_ARRAY_BUFFER, buffer_.get());
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(glm::vec3)), vertices.data(), GL_STATIC_DRAW);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(glm::vec3), nullptr);
+
+    glBindFramebuffer(GL_FRAMEBUFFER, msaa_.get());
+    glBindRenderbuffer(GL_RENDERBUFFER, msaaColour_.get());
+    glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_RGBA8, width, height);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, msaaColour_.get());
+    glBindRenderbuffer(GL_RENDERBUFFER, msaaDepth_.get());
+    glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_DEPTH24_STENCIL8, width, height);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, msaaDepth_.get());
+    glBindFramebuffer(GL_FRAMEBUFFER, resolve_.get());
+    glBindRenderbuffer(GL_RENDERBUFFER, resolveColour_.get());
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width, height);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, resolveColour_.get());
+  }
+
+  void draw(const FrameSnapshot& s) {
+    const CameraMatrices m = cameraMatrices(s.camera, width_, height_);
+    const glm::mat4 viewProjection = m.projection * m.view;
+    glBindFramebuffer(GL_FRAMEBUFFER, msaa_.get());
+    glViewport(0, 0, width_, height_);
+    glClearColor(0.8f, 0.8f, 0.8f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glEnable(GL_DEPTH_TEST);
+    glUseProgram(program_.get());
+    glBindVertexArray(array_.get());
+    const GLint mLocation = glGetUniformLocation(program_.get(), "m"), cLocation = glGetUniformLocation(program_.get(), "c");
+    glUniformMatrix4fv(mLocation, 1, GL_FALSE, glm::value_ptr(viewProjection));
+    glUniform4f(cLocation, 0.5f, 0.5f, 0.5f, 1.0f);
+    glDrawArrays(GL_TRIANGLES, 0, 6);
+    glUniform4f(cLocation, 0.9f, 0.4f, 0.1f, 1.0f);
+    glDrawArrays(GL_TRIANGLE_STRIP, traceFirst_, traceCount_);
+    const glm::mat4 model = glm::translate(glm::mat4(1.0f), s.coin.centre) * glm::mat4_cast(s.coin.attitude);
+    glUniformMatrix4fv(mLocation, 1, GL_FALSE, glm::value_ptr(viewProjection * model));
+    glUniform4f(cLocation, 0.8f, 0.6f, 0.2f, 1.0f);
+    glDrawArrays(GL_TRIANGLES, coinFirst_, coinCount_);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, msaa_.get());
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, resolve_.get());
+    glBlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, resolve_.get());
+    glReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, pixels_.data());
+  }
+
+ private:
+  int width_, height_;
+  std::vector<std::uint8_t> pixels_;
+  Program program_;
+  VertexArray array_ = makeVertexArray();
+  Buffer buffer_ = makeBuffer();
+  Framebuffer msaa_ = makeFramebuffer(), resolve_ = makeFramebuffer();
+  Renderbuffer msaaColour_ = makeRenderbuffer(), msaaDepth_ = makeRenderbuffer(), resolveColour_ = makeRenderbuffer();
+  GLsizei coinFirst_ = 0, coinCount_ = 0, traceFirst_ = 0, traceCount_ = 0;
+};
+
+// Best of three runs of `frames` frames, in frames per second.
+double framesPerSecond(int frames, const std::function<void(int)>& drawFrame) {
+  for (int i = 0; i < 3; ++i) drawFrame(i);  // warm up: shader variants compile on first use
+  double best = 0;
+  for (int run = 0; run < 3; ++run) {
+    const auto start = std::chrono::steady_clock::now();
+    for (int i = 0; i < frames; ++i) drawFrame(i);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    best = std::max(best, frames / seconds);
+  }
+  return best;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int frames = argc > 1 ? std::atoi(argv[1]) : 40;
+  const char* threads = std::getenv("LP_NUM_THREADS");
+  fmt::print("render_bench: {} frames per run, best of 3; llvmpipe threads: {}\n\n", frames, threads ? threads : "default");
+  fmt::print("{:>10} {:>6} {:>12} {:>12} {:>14}\n", "size", "msaa", "probe fps", "ours fps", "ours / probe");
+  for (auto [width, height] : {std::pair{1280, 720}, std::pair{1920, 1080}}) {
+    double probeFps = 0;
+    {
+      OsMesaContext context;
+      Probe probe(width, height, 4);
+      probeFps = framesPerSecond(frames, [&](int i) { probe.draw(benchSnapshot(i / 30.0)); });
+    }
+    for (int msaa : {4, 2, 1}) {
+      RenderSettings settings;
+      settings.width = width;
+      settings.height = height;
+      settings.msaa = msaa;
+      Renderer renderer(settings);
+      coinroll::image::Image frame;
+      const double ours = framesPerSecond(frames, [&](int i) { renderer.draw(benchSnapshot(i / 30.0), frame); });
+      fmt::print("{:>10} {:>6} {:>12.1f} {:>12.1f} {:>14.2f}\n", fmt::format("{}x{}", width, height), msaa, probeFps, ours,
+                 ours / probeFps);
+    }
+  }
+  return 0;
+}

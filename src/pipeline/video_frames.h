@@ -1,0 +1,46 @@
+#pragma once
+// The frame loop of `coinroll render`: frame k shows simulated time t_k = k * time_scale / fps,
+// read from the integrator's dense output (one streaming pass, no re-integration, no stepping
+// at the frame rate), drawn by the renderer and pushed to a sink. Memory does not grow with the
+// clip's length beyond the trace, which is capped (traceInterval).
+
+#include <atomic>
+#include <functional>
+#include <optional>
+#include <string>
+
+#include "scene/scene_config.h"
+#include "video/frame_sink.h"
+
+namespace coinroll::pipeline {
+
+// Frames in a clip of `simulatedSeconds` at `fps` and `timeScale`: k = 0 .. floor(video length * fps).
+long frameCount(double simulatedSeconds, double timeScale, int fps);
+
+struct FrameProgress {
+  long frame = 0;  // frames done
+  long total = 0;
+};
+
+struct VideoRunOptions {
+  std::function<void(const FrameProgress&)> onFrame;  // called after each frame; may be empty
+  const std::atomic<bool>* cancel = nullptr;          // when set and true, the loop stops (Cancelled)
+};
+
+struct VideoRunResult {
+  long frames = 0;
+  double simulatedSeconds = 0;  // s shown; less than the duration when a validity event ended the run
+  std::optional<std::string> stopDescription;
+};
+
+class Cancelled : public std::runtime_error {
+ public:
+  Cancelled() : std::runtime_error("interrupted") {}
+};
+
+// Renders every frame of `scene` into `sink` and finishes it. Throws scene::SceneError for
+// scenes only physics can judge, std::invalid_argument for render settings the renderer refuses,
+// Cancelled when asked to stop; the sink is then left unfinished (it removes its output).
+VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& sink, const VideoRunOptions& options = {});
+
+}  // namespace coinroll::pipeline

@@ -132,7 +132,8 @@ image::Image decodeFrame(const std::filesystem::path& path, std::int64_t index) 
       if (decoded++ != index) continue;
 
       ScalerPtr scaler(sws_getContext(frame->width, frame->height, static_cast<AVPixelFormat>(frame->format),
-                                      frame->width, frame->height, AV_PIX_FMT_RGBA, SWS_BICUBIC | SWS_ACCURATE_RND,
+                                      frame->width, frame->height, AV_PIX_FMT_RGBA,
+                                      SWS_BICUBIC | SWS_ACCURATE_RND | SWS_FULL_CHR_H_INT,
                                       nullptr, nullptr, nullptr));
       if (!scaler) throw std::runtime_error(path.string() + ": cannot convert its pixel format to RGBA");
       const int* matrix = sws_getCoefficients(frame->colorspace);

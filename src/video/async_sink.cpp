@@ -55,7 +55,7 @@ void AsyncSink::push(const image::Image& frame) { push(image::Image(frame)); }
 void AsyncSink::push(image::Image&& frame) {
   {
     std::unique_lock lock(mutex_);
-    if (finished_ || closing_) throw std::logic_error("AsyncSink: push() after finish()");
+    if (closing_) throw std::logic_error("AsyncSink: push() after finish()");
     queueChanged_.wait(lock, [this] { return workerError_ || queue_.size() < capacity_; });
     rethrowWorkerError();
     queue_.push_back(std::move(frame));
@@ -66,7 +66,7 @@ void AsyncSink::push(image::Image&& frame) {
 void AsyncSink::finish() {
   {
     std::lock_guard lock(mutex_);
-    if (finished_ || closing_) throw std::logic_error("AsyncSink: finish() called twice");
+    if (closing_) throw std::logic_error("AsyncSink: finish() called twice");
     closing_ = true;
   }
   queueChanged_.notify_all();
@@ -77,7 +77,6 @@ void AsyncSink::finish() {
     rethrowWorkerError();
   }
   inner_->finish();
-  finished_ = true;
 }
 
 }  // namespace coinroll::video

@@ -18,7 +18,7 @@ bool hasMp4Extension(const std::filesystem::path& path) {
 }  // namespace
 
 std::unique_ptr<FrameSink> makeSinkForPath(const std::filesystem::path& path, const Mp4Options& options) {
-  if (looksLikeSequencePattern(path.string())) return std::make_unique<PngSequenceSink>(path);
+  if (looksLikeSequencePattern(path.filename().string())) return std::make_unique<PngSequenceSink>(path);
   if (hasMp4Extension(path)) return std::make_unique<Mp4Sink>(path, options);
   throw std::invalid_argument(path.string() +
                               ": unknown output kind: expected a video ending in .mp4 (out.mp4) or a PNG "

@@ -9,7 +9,7 @@
 
 namespace coinroll::video {
 
-// A path with a % conversion ("out/frame_%05d.png") gives a PngSequenceSink; a path ending in
+// A path whose file name has a % conversion ("out/frame_%05d.png") gives a PngSequenceSink; a path ending in
 // ".mp4" (any case) gives an Mp4Sink configured by `options` (the PNG sequence ignores them).
 // Anything else throws std::invalid_argument naming the path and the two accepted forms; the
 // sinks' constructors throw for a bad pattern, bad options or a missing directory.

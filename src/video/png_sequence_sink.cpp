@@ -24,10 +24,10 @@ bool endsWithPng(const std::string& name) {
 
 }  // namespace
 
-bool looksLikeSequencePattern(const std::string& path) {
-  for (std::size_t i = 0; i < path.size(); ++i) {
-    if (path[i] != '%') continue;
-    if (i + 1 < path.size() && path[i + 1] == '%') {
+bool looksLikeSequencePattern(const std::string& fileName) {
+  for (std::size_t i = 0; i < fileName.size(); ++i) {
+    if (fileName[i] != '%') continue;
+    if (i + 1 < fileName.size() && fileName[i + 1] == '%') {
       ++i;
       continue;
     }
@@ -39,9 +39,6 @@ bool looksLikeSequencePattern(const std::string& path) {
 PngSequenceSink::PngSequenceSink(std::filesystem::path pattern) {
   const std::string whole = pattern.string();
   const std::string fileName = pattern.filename().string();
-  if (looksLikeSequencePattern(pattern.parent_path().string())) {
-    throw badPattern(whole, "the number must be in the file name, not the directory");
-  }
   bool haveConversion = false;
   std::string* literal = &prefix_;
   for (std::size_t i = 0; i < fileName.size(); ++i) {

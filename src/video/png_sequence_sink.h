@@ -10,7 +10,8 @@
 namespace coinroll::video {
 
 // `pattern` is a path whose file name holds exactly one printf-style integer conversion, %d or
-// %0Nd (N = minimum digits, zero-padded), and ends in ".png"; "%%" is a literal percent sign.
+// %0Nd (N = minimum digits, zero-padded), and ends in ".png"; "%%" is a literal percent sign
+// there. The directory part is taken literally, '%' included.
 // Frames are numbered from 0: "out/frame_%05d.png" gives out/frame_00000.png, frame_00001.png, ...
 //
 // Each frame is written atomically under its final name as it arrives (image::writePng), and the
@@ -41,7 +42,7 @@ class PngSequenceSink final : public FrameSink {
   bool finished_ = false;
 };
 
-// True if `path` contains a '%' other than a "%%" escape, i.e. it is meant as a sequence pattern.
-bool looksLikeSequencePattern(const std::string& path);
+// True if `fileName` contains a '%' other than a "%%" escape, i.e. it is meant as a sequence pattern.
+bool looksLikeSequencePattern(const std::string& fileName);
 
 }  // namespace coinroll::video

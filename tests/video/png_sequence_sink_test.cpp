@@ -30,6 +30,13 @@ TEST(PngSequenceSink, PlainPercentDAndEscapedPercentAreHonoured) {
   EXPECT_EQ(sink.pathOfFrame(12), directory / "100%_12.png");
 }
 
+TEST(PngSequenceSink, PercentInTheDirectoryIsLiteral) {
+  ScratchDirectory directory;
+  fs::create_directory(directory / "50%d");
+  PngSequenceSink sink(directory / "50%d" / "f_%03d.png");
+  EXPECT_EQ(sink.pathOfFrame(7), directory / "50%d" / "f_007.png");
+}
+
 TEST(PngSequenceSink, DestroyedWithoutFinishRemovesItsFrames) {
   ScratchDirectory directory;
   {

@@ -51,7 +51,8 @@ void validate(const Mp4Options& options) {
         "'" + options.preset + "'"));
   }
   if (options.threads < 1 || options.threads > kMaxThreads) {
-    throw std::invalid_argument(mp4OptionError("threads", "must be in 1..16", std::to_string(options.threads)));
+    throw std::invalid_argument(
+        mp4OptionError("threads", "must be in 1.." + std::to_string(kMaxThreads), std::to_string(options.threads)));
   }
 }
 

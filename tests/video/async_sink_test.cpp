@@ -3,9 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <fstream>
+#include <iterator>
 #include <stdexcept>
+#include <vector>
 
 #include "synthetic_frames.h"
+#include "video/mp4_sink.h"
 #include "video/png_sequence_sink.h"
 
 using coinroll::image::Image;
@@ -84,4 +88,28 @@ TEST(AsyncSink, DestroyedWithoutFinishLeavesNoOutput) {
     for (int i = 0; i < 6; ++i) sink.push(movingSquareFrame(32, 18, i));
   }
   EXPECT_EQ(directory.fileCount(), 0);
+}
+
+TEST(AsyncSink, Mp4ThroughTheWorkerIsByteIdenticalToDirect) {
+  ScratchDirectory directory;
+  coinroll::video::Mp4Options options;
+  options.width = 160;
+  options.height = 90;
+  {
+    coinroll::video::Mp4Sink direct(directory / "direct.mp4", options);
+    AsyncSink async(std::make_unique<coinroll::video::Mp4Sink>(directory / "async.mp4", options));
+    for (int i = 0; i < 15; ++i) {
+      direct.push(movingSquareFrame(160, 90, i));
+      async.push(movingSquareFrame(160, 90, i));
+    }
+    direct.finish();
+    async.finish();
+  }
+  auto bytes = [](const std::filesystem::path& path) {
+    std::ifstream file(path, std::ios::binary);
+    return std::vector<char>(std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>());
+  };
+  const std::vector<char> direct = bytes(directory / "direct.mp4");
+  ASSERT_FALSE(direct.empty());
+  EXPECT_TRUE(direct == bytes(directory / "async.mp4"));
 }

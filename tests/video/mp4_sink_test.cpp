@@ -171,3 +171,9 @@ TEST(Mp4Sink, FinishWithoutFramesThrowsAndLeavesNoFile) {
   }
   EXPECT_EQ(directory.fileCount(), 0);
 }
+
+TEST(ReadVideoInfo, MissingFileIsReportedByPath) {
+  ScratchDirectory directory;
+  const fs::path path = directory / "absent.mp4";
+  EXPECT_NE(messageOf([&] { coinroll::video::readVideoInfo(path); }).find(path.string()), std::string::npos);
+}

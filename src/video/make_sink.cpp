@@ -1,0 +1,28 @@
+#include "video/make_sink.h"
+
+#include <cctype>
+#include <stdexcept>
+
+#include "video/png_sequence_sink.h"
+
+namespace coinroll::video {
+
+namespace {
+
+bool hasMp4Extension(const std::filesystem::path& path) {
+  std::string extension = path.extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return extension == ".mp4";
+}
+
+}  // namespace
+
+std::unique_ptr<FrameSink> makeSinkForPath(const std::filesystem::path& path, const Mp4Options& options) {
+  if (looksLikeSequencePattern(path.filename().string())) return std::make_unique<PngSequenceSink>(path);
+  if (hasMp4Extension(path)) return std::make_unique<Mp4Sink>(path, options);
+  throw std::invalid_argument(path.string() +
+                              ": unknown output kind: expected a video ending in .mp4 (out.mp4) or a PNG "
+                              "sequence pattern with one %d or %0Nd conversion (out_%05d.png)");
+}
+
+}  // namespace coinroll::video

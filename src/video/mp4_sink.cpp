@@ -1,0 +1,194 @@
+#include "video/mp4_sink.h"
+
+#include <algorithm>
+#include <array>
+#include <stdexcept>
+#include <string_view>
+
+#include "io/atomic_file.h"
+#include "video/ffmpeg_handles.h"
+#include "video/rgba_to_yuv.h"
+
+extern "C" {
+#include <libavutil/opt.h>
+}
+
+namespace coinroll::video {
+
+using namespace detail;
+
+namespace {
+
+// x264's own list (x264_preset_names); checked here so a typo is reported by name before any file
+// is created, instead of as libx264's generic "Invalid argument" from avcodec_open2.
+constexpr std::array<std::string_view, 10> kX264Presets = {"ultrafast", "superfast", "veryfast", "faster", "fast",
+                                                           "medium",    "slow",      "slower",   "veryslow", "placebo"};
+constexpr int kMaxThreads = 16;
+
+std::string mp4OptionError(const std::string& field, const std::string& rule, const std::string& value) {
+  return "Mp4Options." + field + ": " + rule + ", got " + value;
+}
+
+}  // namespace
+
+void validate(const Mp4Options& options) {
+  auto requireEvenPositive = [](const char* field, int value) {
+    if (value <= 0 || value % 2 != 0) {
+      throw std::invalid_argument(mp4OptionError(field, "must be even and > 0 (yuv420p halves it)",
+                                                 std::to_string(value)));
+    }
+  };
+  requireEvenPositive("width", options.width);
+  requireEvenPositive("height", options.height);
+  if (options.fps <= 0) throw std::invalid_argument(mp4OptionError("fps", "must be > 0", std::to_string(options.fps)));
+  if (options.crf < 0 || options.crf > 51) {
+    throw std::invalid_argument(mp4OptionError("crf", "must be in 0..51", std::to_string(options.crf)));
+  }
+  if (std::find(kX264Presets.begin(), kX264Presets.end(), options.preset) == kX264Presets.end()) {
+    throw std::invalid_argument(mp4OptionError(
+        "preset", "must be an x264 preset (ultrafast, superfast, veryfast, faster, fast, medium, slow, slower, "
+                  "veryslow, placebo)",
+        "'" + options.preset + "'"));
+  }
+  if (options.threads < 1 || options.threads > kMaxThreads) {
+    throw std::invalid_argument(
+        mp4OptionError("threads", "must be in 1.." + std::to_string(kMaxThreads), std::to_string(options.threads)));
+  }
+}
+
+struct Mp4Sink::Encoder {
+  // Declared first so it is destroyed last, after the muxer has closed the temporary file.
+  io::AtomicOutputFile file;
+  std::string context;  // "<destination>: " prefix for error messages
+  OutputFormatPtr format;
+  CodecContextPtr codec;
+  AVStream* stream = nullptr;  // owned by `format`
+  FramePtr frame;
+  PacketPtr packet;
+  ScalerPtr scaler;
+
+  Encoder(const std::filesystem::path& destination, const Mp4Options& options);
+
+  // Sends `yuv` (or nullptr to drain) to the encoder and muxes every packet it returns.
+  void encode(const AVFrame* yuv);
+};
+
+Mp4Sink::Encoder::Encoder(const std::filesystem::path& destination, const Mp4Options& options)
+    : file(destination), context(destination.string() + ": ") {
+  const std::string temporary = file.temporaryPath().string();
+
+  // The muxer is named, not guessed: the temporary name does not end in .mp4.
+  AVFormatContext* rawFormat = nullptr;
+  checkAv(avformat_alloc_output_context2(&rawFormat, nullptr, "mp4", temporary.c_str()),
+          context + "creating the MP4 muxer");
+  format.reset(rawFormat);
+  // No encoder version string and no creation time: the same frames give the same bytes.
+  format->flags |= AVFMT_FLAG_BITEXACT;
+
+  const AVCodec* x264 = avcodec_find_encoder_by_name("libx264");
+  if (x264 == nullptr) throw std::runtime_error(context + "this FFmpeg build has no libx264 encoder");
+  codec.reset(checkAllocated(avcodec_alloc_context3(x264), context + "allocating the H.264 encoder"));
+  codec->width = options.width;
+  codec->height = options.height;
+  codec->pix_fmt = AV_PIX_FMT_YUV420P;
+  codec->time_base = AVRational{1, options.fps};
+  codec->framerate = AVRational{options.fps, 1};
+  codec->thread_count = options.threads;
+  codec->color_primaries = AVCOL_PRI_BT709;
+  codec->color_trc = AVCOL_TRC_BT709;
+  codec->colorspace = AVCOL_SPC_BT709;
+  codec->color_range = AVCOL_RANGE_MPEG;
+  codec->flags |= AV_CODEC_FLAG_BITEXACT;
+  if ((format->oformat->flags & AVFMT_GLOBALHEADER) != 0) codec->flags |= AV_CODEC_FLAG_GLOBAL_HEADER;
+  checkAv(av_opt_set(codec->priv_data, "preset", options.preset.c_str(), 0), context + "setting x264 preset");
+  checkAv(av_opt_set_double(codec->priv_data, "crf", options.crf, 0), context + "setting x264 crf");
+  checkAv(avcodec_open2(codec.get(), x264, nullptr), context + "opening the libx264 encoder");
+
+  stream = checkAllocated(avformat_new_stream(format.get(), nullptr), context + "adding the video stream");
+  checkAv(avcodec_parameters_from_context(stream->codecpar, codec.get()),
+          context + "copying encoder parameters to the stream");
+  stream->time_base = codec->time_base;  // a hint; the muxer may choose a finer one
+  stream->avg_frame_rate = codec->framerate;
+
+  checkAv(avio_open(&format->pb, temporary.c_str(), AVIO_FLAG_WRITE), context + "opening " + temporary);
+  // faststart rewrites the file at the trailer so moov precedes mdat.
+  AVDictionary* rawOptions = nullptr;
+  const int setResult = av_dict_set(&rawOptions, "movflags", "+faststart", 0);
+  DictionaryPtr muxerOptions(rawOptions);
+  checkAv(setResult, context + "setting movflags");
+  // avformat_write_header replaces the dictionary with the options it did not use.
+  rawOptions = muxerOptions.release();
+  const int headerResult = avformat_write_header(format.get(), &rawOptions);
+  muxerOptions.reset(rawOptions);
+  checkAv(headerResult, context + "writing the MP4 header");
+  if (av_dict_count(muxerOptions.get()) != 0) {
+    throw std::runtime_error(context + "the MP4 muxer ignored option '" +
+                             av_dict_get(muxerOptions.get(), "", nullptr, AV_DICT_IGNORE_SUFFIX)->key + "'");
+  }
+
+  frame.reset(checkAllocated(av_frame_alloc(), context + "allocating a frame"));
+  frame->format = AV_PIX_FMT_YUV420P;
+  frame->width = options.width;
+  frame->height = options.height;
+  frame->color_primaries = codec->color_primaries;
+  frame->color_trc = codec->color_trc;
+  frame->colorspace = codec->colorspace;
+  frame->color_range = codec->color_range;
+  checkAv(av_frame_get_buffer(frame.get(), 0), context + "allocating frame buffers");
+  packet.reset(checkAllocated(av_packet_alloc(), context + "allocating a packet"));
+  scaler = makeRgbaToYuvScaler(options.width, options.height, kRgbaToYuvScalerFlags);
+}
+
+void Mp4Sink::Encoder::encode(const AVFrame* yuv) {
+  checkAv(avcodec_send_frame(codec.get(), yuv), context + (yuv ? "sending a frame to libx264" : "flushing libx264"));
+  for (;;) {
+    const int received = avcodec_receive_packet(codec.get(), packet.get());
+    if (received == AVERROR(EAGAIN) || received == AVERROR_EOF) return;
+    checkAv(received, context + "receiving a packet from libx264");
+    // Every frame lasts one tick of 1/fps; without this the last frame has no duration and the
+    // file is one frame short.
+    packet->duration = 1;
+    av_packet_rescale_ts(packet.get(), codec->time_base, stream->time_base);
+    packet->stream_index = stream->index;
+    checkAv(av_interleaved_write_frame(format.get(), packet.get()), context + "writing a packet");
+  }
+}
+
+Mp4Sink::Mp4Sink(std::filesystem::path destination, const Mp4Options& options)
+    : destination_(std::move(destination)), options_(options) {
+  validate(options_);
+  encoder_ = std::make_unique<Encoder>(destination_, options_);
+}
+
+Mp4Sink::~Mp4Sink() = default;
+
+void Mp4Sink::push(const image::Image& frame) {
+  if (finished_) throw std::logic_error(destination_.string() + ": push() after finish()");
+  if (frame.width != options_.width || frame.height != options_.height ||
+      frame.rgba.size() != static_cast<std::size_t>(frame.width) * frame.height * 4) {
+    throw std::invalid_argument(destination_.string() + ": frame " + std::to_string(framesPushed_) + " is " +
+                                std::to_string(frame.width) + "x" + std::to_string(frame.height) +
+                                ", the video is " + std::to_string(options_.width) + "x" +
+                                std::to_string(options_.height));
+  }
+  Encoder& encoder = *encoder_;
+  // The encoder may still hold a reference to the previous frame's buffers.
+  checkAv(av_frame_make_writable(encoder.frame.get()), encoder.context + "making the frame writable");
+  convertRgbaToYuv(*encoder.scaler, frame, *encoder.frame);
+  encoder.frame->pts = framesPushed_;
+  encoder.encode(encoder.frame.get());
+  ++framesPushed_;
+}
+
+void Mp4Sink::finish() {
+  if (finished_) throw std::logic_error(destination_.string() + ": finish() called twice");
+  if (framesPushed_ == 0) throw std::runtime_error(destination_.string() + ": no frames to write");
+  Encoder& encoder = *encoder_;
+  encoder.encode(nullptr);
+  checkAv(av_write_trailer(encoder.format.get()), encoder.context + "writing the MP4 trailer");
+  checkAv(avio_closep(&encoder.format->pb), encoder.context + "closing the file");
+  encoder.file.commit();
+  finished_ = true;
+}
+
+}  // namespace coinroll::video

@@ -1,0 +1,57 @@
+#pragma once
+// H.264 (libx264) in an MP4 container, through libavformat/libavcodec/libswscale.
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "video/frame_sink.h"
+
+namespace coinroll::video {
+
+struct Mp4Options {
+  int width = 1280;                // pixels, even (4:2:0 chroma is subsampled by 2 each way)
+  int height = 720;                // pixels, even
+  int fps = 30;                    // frames per second, > 0; timestamps are frame index / fps
+  int crf = 18;                    // x264 constant rate factor, 0 (lossless) .. 51; lower is better
+  std::string preset = "veryfast"; // an x264 preset name, ultrafast .. placebo
+  // Encoder threads, 1..16. Fixed, never "auto": x264's output depends on its thread count, so a
+  // count taken from the machine would make the same render differ between machines.
+  int threads = 2;
+};
+
+// Throws std::invalid_argument naming the field, the rule and the value if `options` is unusable.
+void validate(const Mp4Options& options);
+
+// Writes <destination> (any name; the container is MP4 regardless of the extension).
+// Properties of the file: constant frame rate (time base 1/fps, pts = frame index), yuv420p with
+// BT.709 primaries, transfer and matrix, limited ("TV") range, all tagged; moov before mdat
+// (faststart, so players can start before the download ends); byte-identical for identical
+// frames and options on the same FFmpeg/x264 build (bit-exact flags, no dates or version tags).
+// The file is written under a temporary name beside the destination and renamed in finish().
+class Mp4Sink final : public FrameSink {
+ public:
+  // Throws std::invalid_argument for bad options, std::runtime_error naming the destination if
+  // its directory does not exist or the encoder cannot be set up.
+  Mp4Sink(std::filesystem::path destination, const Mp4Options& options);
+  ~Mp4Sink() override;
+
+  // The frame must be options.width x options.height (std::invalid_argument otherwise).
+  void push(const image::Image& frame) override;
+  // Drains the encoder, writes the trailer (moving moov to the front) and renames the file into
+  // place. Throws std::runtime_error if no frame was pushed.
+  void finish() override;
+
+  std::int64_t framesPushed() const { return framesPushed_; }
+
+ private:
+  struct Encoder;  // the FFmpeg state; keeps libav headers out of this header
+  std::filesystem::path destination_;
+  Mp4Options options_;
+  std::unique_ptr<Encoder> encoder_;
+  std::int64_t framesPushed_ = 0;
+  bool finished_ = false;
+};
+
+}  // namespace coinroll::video

@@ -1,0 +1,109 @@
+#include "video/png_sequence_sink.h"
+
+#include <cctype>
+#include <stdexcept>
+#include <system_error>
+
+namespace coinroll::video {
+
+namespace {
+
+constexpr int kMaxDigits = 10;  // an int has at most 10 decimal digits
+
+std::invalid_argument badPattern(const std::string& pattern, const std::string& rule) {
+  return std::invalid_argument(pattern + ": bad PNG sequence pattern: " + rule +
+                               " (expected one %d or %0Nd conversion and a .png ending, e.g. frame_%05d.png)");
+}
+
+bool endsWithPng(const std::string& name) {
+  if (name.size() < 4) return false;
+  std::string ending = name.substr(name.size() - 4);
+  for (char& c : ending) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ending == ".png";
+}
+
+}  // namespace
+
+bool looksLikeSequencePattern(const std::string& fileName) {
+  for (std::size_t i = 0; i < fileName.size(); ++i) {
+    if (fileName[i] != '%') continue;
+    if (i + 1 < fileName.size() && fileName[i + 1] == '%') {
+      ++i;
+      continue;
+    }
+    return true;
+  }
+  return false;
+}
+
+PngSequenceSink::PngSequenceSink(std::filesystem::path pattern) {
+  const std::string whole = pattern.string();
+  const std::string fileName = pattern.filename().string();
+  bool haveConversion = false;
+  std::string* literal = &prefix_;
+  for (std::size_t i = 0; i < fileName.size(); ++i) {
+    if (fileName[i] != '%') {
+      literal->push_back(fileName[i]);
+      continue;
+    }
+    if (i + 1 < fileName.size() && fileName[i + 1] == '%') {
+      literal->push_back('%');
+      ++i;
+      continue;
+    }
+    if (haveConversion) throw badPattern(whole, "more than one % conversion");
+    // Parse [0[digits]]d; width without the zero flag would pad with spaces, which we refuse.
+    std::size_t j = i + 1;
+    if (j < fileName.size() && fileName[j] == '0') {
+      ++j;
+      std::size_t widthStart = j;
+      while (j < fileName.size() && std::isdigit(static_cast<unsigned char>(fileName[j]))) ++j;
+      if (j == widthStart || j - widthStart > 2) throw badPattern(whole, "the zero flag needs a width of 1..10");
+      minimumDigits_ = std::stoi(fileName.substr(widthStart, j - widthStart));
+      if (minimumDigits_ < 1 || minimumDigits_ > kMaxDigits) {
+        throw badPattern(whole, "the zero flag needs a width of 1..10");
+      }
+    }
+    if (j >= fileName.size() || fileName[j] != 'd') throw badPattern(whole, "only %d and %0Nd are supported");
+    haveConversion = true;
+    literal = &suffix_;
+    i = j;
+  }
+  if (!haveConversion) throw badPattern(whole, "no % conversion");
+  if (!endsWithPng(fileName)) throw badPattern(whole, "the file name must end in .png");
+
+  directory_ = pattern.parent_path();
+  std::error_code ec;
+  if (!std::filesystem::is_directory(directory_.empty() ? "." : directory_, ec)) {
+    throw std::runtime_error(whole + ": cannot write: directory '" + directory_.string() + "' does not exist");
+  }
+}
+
+PngSequenceSink::~PngSequenceSink() {
+  if (finished_) return;
+  for (const std::filesystem::path& path : written_) {
+    std::error_code ignored;
+    std::filesystem::remove(path, ignored);
+  }
+}
+
+std::filesystem::path PngSequenceSink::pathOfFrame(int index) const {
+  std::string number = std::to_string(index);
+  if (static_cast<int>(number.size()) < minimumDigits_) number.insert(0, minimumDigits_ - number.size(), '0');
+  return directory_ / (prefix_ + number + suffix_);
+}
+
+void PngSequenceSink::push(const image::Image& frame) {
+  if (finished_) throw std::logic_error(pathOfFrame(0).string() + ": push() after finish()");
+  const std::filesystem::path path = pathOfFrame(static_cast<int>(written_.size()));
+  // Listed only once written: writePng leaves nothing under `path` when it fails.
+  image::writePng(frame, path);
+  written_.push_back(path);
+}
+
+void PngSequenceSink::finish() {
+  if (finished_) throw std::logic_error(pathOfFrame(0).string() + ": finish() called twice");
+  finished_ = true;
+}
+
+}  // namespace coinroll::video

@@ -1,0 +1,20 @@
+#pragma once
+// Internal to src/video (and bench/): the RGBA -> yuv420p conversion the MP4 encoder uses, in
+// one place so the benchmark measures exactly what the sink does.
+
+#include "image/image.h"
+#include "video/ffmpeg_handles.h"
+
+namespace coinroll::video::detail {
+
+// Chosen by bench/video_bench.cpp (see the comment at the definition for the numbers).
+extern const int kRgbaToYuvScalerFlags;
+
+// A scaler from width x height RGBA (full range, as rendered) to yuv420p with BT.709 matrix and
+// limited range, the tags Mp4Sink writes. `flags` are SWS_* flags. Throws std::runtime_error.
+ScalerPtr makeRgbaToYuvScaler(int width, int height, int flags);
+
+// Converts `rgba` into the planes of `yuv` (allocated, yuv420p, same size as `rgba`).
+void convertRgbaToYuv(SwsContext& scaler, const image::Image& rgba, AVFrame& yuv);
+
+}  // namespace coinroll::video::detail

@@ -1,0 +1,36 @@
+#pragma once
+// Reading back what a sink wrote: stream facts for checks, and decoded frames for comparisons.
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "image/image.h"
+
+namespace coinroll::video {
+
+struct VideoInfo {
+  std::string codecName;        // FFmpeg's codec name, e.g. "h264"
+  std::string pixelFormat;      // e.g. "yuv420p"
+  int width = 0;                // pixels
+  int height = 0;               // pixels
+  std::int64_t frameCount = 0;  // packets of the video stream (one per frame for H.264 in MP4)
+  double durationSeconds = 0;   // s, of the video stream
+  double fps = 0;               // frames per second (average frame rate)
+  std::string colorPrimaries;   // FFmpeg names: "bt709", or "unknown" when untagged
+  std::string colorTransfer;    // e.g. "bt709"
+  std::string colorSpace;       // the YUV matrix, e.g. "bt709"
+  std::string colorRange;       // "tv" (limited) or "pc" (full)
+  bool moovBeforeMdat = false;  // MP4 top-level boxes: the index precedes the media data
+};
+
+// Opens `path` with libavformat and describes its first video stream. Throws std::runtime_error
+// naming the path if it cannot be opened or has no video stream.
+VideoInfo readVideoInfo(const std::filesystem::path& path);
+
+// Decodes frame `index` (0-based, in presentation order) of the first video stream to RGBA,
+// converting with the matrix and range the stream is tagged with (BT.601 when untagged, as
+// FFmpeg assumes). Throws std::runtime_error naming the path if the file has fewer frames.
+image::Image decodeFrame(const std::filesystem::path& path, std::int64_t index);
+
+}  // namespace coinroll::video

@@ -1,0 +1,36 @@
+#include "video/make_sink.h"
+
+#include <gtest/gtest.h>
+
+#include "synthetic_frames.h"
+#include "video/png_sequence_sink.h"
+
+using coinroll::video::makeSinkForPath;
+using coinroll::video::Mp4Options;
+using namespace coinroll::video::testing;
+
+TEST(MakeSinkForPath, ChoosesBySuffixOrPattern) {
+  ScratchDirectory directory;
+  EXPECT_NE(dynamic_cast<coinroll::video::Mp4Sink*>(makeSinkForPath(directory / "a.mp4", Mp4Options{}).get()),
+            nullptr);
+  EXPECT_NE(dynamic_cast<coinroll::video::Mp4Sink*>(makeSinkForPath(directory / "A.MP4", Mp4Options{}).get()),
+            nullptr);
+  EXPECT_NE(dynamic_cast<coinroll::video::PngSequenceSink*>(
+                makeSinkForPath(directory / "f_%04d.png", Mp4Options{}).get()),
+            nullptr);
+  EXPECT_EQ(directory.fileCount(), 0);
+}
+
+TEST(MakeSinkForPath, UnknownKindNamesThePathAndBothForms) {
+  ScratchDirectory directory;
+  const std::filesystem::path path = directory / "clip.avi";
+  try {
+    makeSinkForPath(path, Mp4Options{});
+    FAIL() << "accepted " << path;
+  } catch (const std::invalid_argument& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find(path.string()), std::string::npos) << message;
+    EXPECT_NE(message.find(".mp4"), std::string::npos) << message;
+    EXPECT_NE(message.find("%05d"), std::string::npos) << message;
+  }
+}

@@ -1,0 +1,179 @@
+#include "video/mp4_sink.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <functional>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "synthetic_frames.h"
+#include "tolerance.h"
+#include "video/video_probe.h"
+
+namespace fs = std::filesystem;
+using coinroll::image::Image;
+using coinroll::video::Mp4Options;
+using coinroll::video::Mp4Sink;
+using namespace coinroll::video::testing;
+using coinroll::testing::isBelow;
+using coinroll::testing::isNear;
+
+namespace {
+
+constexpr int kWidth = 320, kHeight = 180, kFps = 30, kFrames = 60;
+
+Mp4Options smallOptions() {
+  Mp4Options options;
+  options.width = kWidth;
+  options.height = kHeight;
+  options.fps = kFps;
+  options.crf = 18;
+  options.preset = "veryfast";
+  return options;
+}
+
+void encodeMovingSquare(const fs::path& path, int frames, const Mp4Options& options = smallOptions()) {
+  Mp4Sink sink(path, options);
+  for (int i = 0; i < frames; ++i) sink.push(movingSquareFrame(options.width, options.height, i));
+  sink.finish();
+}
+
+std::vector<char> fileBytes(const fs::path& path) {
+  std::ifstream file(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
+}
+
+std::string messageOf(const std::function<void()>& action) {
+  try {
+    action();
+  } catch (const std::exception& error) {
+    return error.what();
+  }
+  return "(no exception)";
+}
+
+}  // namespace
+
+TEST(Mp4Sink, WritesConstantRateH264WithBt709TagsAndMoovFirst) {
+  ScratchDirectory directory;
+  const fs::path path = directory / "clip.mp4";
+  encodeMovingSquare(path, kFrames);
+
+  const coinroll::video::VideoInfo info = coinroll::video::readVideoInfo(path);
+  EXPECT_EQ(info.codecName, "h264");
+  EXPECT_EQ(info.pixelFormat, "yuv420p");
+  EXPECT_EQ(info.width, kWidth);
+  EXPECT_EQ(info.height, kHeight);
+  EXPECT_EQ(info.frameCount, kFrames);
+  EXPECT_NEAR(info.durationSeconds, 2.0, 1.0 / kFps);
+  EXPECT_DOUBLE_EQ(info.fps, kFps);
+  EXPECT_EQ(info.colorPrimaries, "bt709");
+  EXPECT_EQ(info.colorTransfer, "bt709");
+  EXPECT_EQ(info.colorSpace, "bt709");
+  EXPECT_EQ(info.colorRange, "tv");
+  EXPECT_TRUE(info.moovBeforeMdat);
+  EXPECT_EQ(directory.fileCount(), 1) << "a temporary file was left beside the video";
+}
+
+TEST(Mp4Sink, SameFramesGiveByteIdenticalFiles) {
+  ScratchDirectory directory;
+  encodeMovingSquare(directory / "first.mp4", 20);
+  encodeMovingSquare(directory / "second.mp4", 20);
+  const std::vector<char> first = fileBytes(directory / "first.mp4");
+  ASSERT_FALSE(first.empty());
+  EXPECT_TRUE(first == fileBytes(directory / "second.mp4"));
+}
+
+TEST(Mp4Sink, DecodedFramesMatchTheSourceAtCrf18) {
+  // 4.5 levels RMS = PSNR 35 dB: crf 18 is "visually lossless", while a wrong matrix, range or
+  // channel order costs tens of levels.
+  constexpr double kMaxRmsErrorLevels = 4.5;
+  ScratchDirectory directory;
+  const fs::path path = directory / "clip.mp4";
+  encodeMovingSquare(path, 30);
+  for (const int index : {0, 17, 29}) {
+    const Image decoded = coinroll::video::decodeFrame(path, index);
+    EXPECT_TRUE(isBelow(rmsErrorRgb(movingSquareFrame(kWidth, kHeight, index), decoded), kMaxRmsErrorLevels))
+        << "frame " << index;
+  }
+}
+
+// Pure colours catch what a smooth gradient can hide: swapped channels, the BT.601 matrix
+// where BT.709 is tagged, or full-range values tagged as limited range.
+TEST(Mp4Sink, PrimaryColoursDecodeToThemselves) {
+  constexpr int kTolerance = 2;  // 8-bit levels: rounding to YUV and back; BT.601 for BT.709 is off by ~25
+  struct Colour { std::uint8_t r, g, b; };
+  const Colour colours[] = {{255, 0, 0}, {0, 255, 0}, {0, 0, 255}, {255, 255, 255}, {0, 0, 0}, {128, 128, 128}};
+  ScratchDirectory directory;
+  const fs::path path = directory / "colours.mp4";
+  Mp4Options options = smallOptions();
+  options.crf = 0;  // lossless, so only the colour conversion is being tested
+  {
+    Mp4Sink sink(path, options);
+    for (const Colour& c : colours) sink.push(solidFrame(kWidth, kHeight, c.r, c.g, c.b));
+    sink.finish();
+  }
+  for (int i = 0; i < static_cast<int>(std::size(colours)); ++i) {
+    const Image decoded = coinroll::video::decodeFrame(path, i);
+    const std::uint8_t* p = decoded.pixel(kWidth / 2, kHeight / 2);
+    EXPECT_TRUE(isNear(p[0], colours[i].r, kTolerance)) << "red of colour " << i;
+    EXPECT_TRUE(isNear(p[1], colours[i].g, kTolerance)) << "green of colour " << i;
+    EXPECT_TRUE(isNear(p[2], colours[i].b, kTolerance)) << "blue of colour " << i;
+  }
+}
+
+TEST(Mp4Sink, DestroyedWithoutFinishLeavesNoFile) {
+  ScratchDirectory directory;
+  {
+    Mp4Sink sink(directory / "clip.mp4", smallOptions());
+    for (int i = 0; i < 5; ++i) sink.push(movingSquareFrame(kWidth, kHeight, i));
+  }
+  EXPECT_EQ(directory.fileCount(), 0);
+}
+
+TEST(Mp4Sink, BadOptionsAreRefusedNamingTheField) {
+  ScratchDirectory directory;
+  const fs::path path = directory / "clip.mp4";
+  auto messageFor = [&](auto change) {
+    Mp4Options options = smallOptions();
+    change(options);
+    return messageOf([&] { Mp4Sink sink(path, options); });
+  };
+  EXPECT_NE(messageFor([](Mp4Options& o) { o.width = 321; }).find("width"), std::string::npos);
+  EXPECT_NE(messageFor([](Mp4Options& o) { o.height = 0; }).find("height"), std::string::npos);
+  EXPECT_NE(messageFor([](Mp4Options& o) { o.fps = 0; }).find("fps"), std::string::npos);
+  EXPECT_NE(messageFor([](Mp4Options& o) { o.crf = 52; }).find("crf"), std::string::npos);
+  EXPECT_NE(messageFor([](Mp4Options& o) { o.threads = 0; }).find("threads"), std::string::npos);
+  EXPECT_NE(messageFor([](Mp4Options& o) { o.preset = "speedy"; }).find("'speedy'"), std::string::npos);
+  EXPECT_NE(messageFor([](Mp4Options& o) { o.crf = -1; }).find("crf"), std::string::npos);
+  EXPECT_EQ(directory.fileCount(), 0);
+}
+
+TEST(Mp4Sink, MissingDirectoryIsReportedByPath) {
+  ScratchDirectory directory;
+  const fs::path path = directory / "no_such_directory" / "clip.mp4";
+  EXPECT_NE(messageOf([&] { Mp4Sink sink(path, smallOptions()); }).find(path.string()), std::string::npos);
+}
+
+TEST(Mp4Sink, FrameOfTheWrongSizeIsRefused) {
+  ScratchDirectory directory;
+  Mp4Sink sink(directory / "clip.mp4", smallOptions());
+  EXPECT_THROW(sink.push(movingSquareFrame(kWidth * 2, kHeight, 0)), std::invalid_argument);
+}
+
+TEST(Mp4Sink, FinishWithoutFramesThrowsAndLeavesNoFile) {
+  ScratchDirectory directory;
+  {
+    Mp4Sink sink(directory / "clip.mp4", smallOptions());
+    EXPECT_THROW(sink.finish(), std::runtime_error);
+  }
+  EXPECT_EQ(directory.fileCount(), 0);
+}
+
+TEST(ReadVideoInfo, MissingFileIsReportedByPath) {
+  ScratchDirectory directory;
+  const fs::path path = directory / "absent.mp4";
+  EXPECT_NE(messageOf([&] { coinroll::video::readVideoInfo(path); }).find(path.string()), std::string::npos);
+}

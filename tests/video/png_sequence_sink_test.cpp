@@ -1,0 +1,67 @@
+#include "video/png_sequence_sink.h"
+
+#include <gtest/gtest.h>
+
+#include "synthetic_frames.h"
+
+namespace fs = std::filesystem;
+using coinroll::video::PngSequenceSink;
+using namespace coinroll::video::testing;
+
+TEST(PngSequenceSink, WritesNumberedFilesFromZeroWithTheFramesPixels) {
+  ScratchDirectory directory;
+  constexpr int kFrames = 3;
+  {
+    PngSequenceSink sink(directory / "frame_%05d.png");
+    for (int i = 0; i < kFrames; ++i) sink.push(movingSquareFrame(32, 18, i));
+    sink.finish();
+  }
+  EXPECT_EQ(directory.fileCount(), kFrames);
+  for (int i = 0; i < kFrames; ++i) {
+    const fs::path path = directory / ("frame_0000" + std::to_string(i) + ".png");
+    ASSERT_TRUE(fs::exists(path)) << path;
+    EXPECT_EQ(coinroll::image::readPng(path).rgba, movingSquareFrame(32, 18, i).rgba) << path;
+  }
+}
+
+TEST(PngSequenceSink, PlainPercentDAndEscapedPercentAreHonoured) {
+  ScratchDirectory directory;
+  PngSequenceSink sink(directory / "100%%_%d.png");
+  EXPECT_EQ(sink.pathOfFrame(12), directory / "100%_12.png");
+}
+
+TEST(PngSequenceSink, PercentInTheDirectoryIsLiteral) {
+  ScratchDirectory directory;
+  fs::create_directory(directory / "50%d");
+  PngSequenceSink sink(directory / "50%d" / "f_%03d.png");
+  EXPECT_EQ(sink.pathOfFrame(7), directory / "50%d" / "f_007.png");
+}
+
+TEST(PngSequenceSink, DestroyedWithoutFinishRemovesItsFrames) {
+  ScratchDirectory directory;
+  {
+    PngSequenceSink sink(directory / "frame_%03d.png");
+    for (int i = 0; i < 4; ++i) sink.push(movingSquareFrame(32, 18, i));
+  }
+  EXPECT_EQ(directory.fileCount(), 0);
+}
+
+TEST(PngSequenceSink, MalformedPatternsAreRefusedNamingThePattern) {
+  ScratchDirectory directory;
+  for (const char* pattern : {"frame.png", "a_%d_%d.png", "frame_%s.png", "frame_%5d.png", "frame_%05d.jpg",
+                              "frame_%0d.png", "frame_%d"}) {
+    const fs::path path = directory / pattern;
+    try {
+      PngSequenceSink sink(path);
+      ADD_FAILURE() << "accepted " << pattern;
+    } catch (const std::invalid_argument& error) {
+      EXPECT_NE(std::string(error.what()).find(path.string()), std::string::npos) << error.what();
+    }
+  }
+}
+
+TEST(PngSequenceSink, MissingDirectoryIsReportedByPath) {
+  ScratchDirectory directory;
+  const fs::path pattern = directory / "missing" / "frame_%05d.png";
+  EXPECT_THROW(PngSequenceSink sink(pattern), std::runtime_error);
+}

@@ -3,7 +3,13 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include <unistd.h>
+
+#include <atomic>
+#include <cctype>
+#include <chrono>
 #include <cmath>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -17,6 +23,10 @@
 #include "physics/steady.h"
 #include "pipeline/simulation.h"
 #include "pipeline/still.h"
+#include "pipeline/video_frames.h"
+#include "video/async_sink.h"
+#include "video/make_sink.h"
+#include "cli/progress.h"
 #include "pipeline/trajectory_csv.h"
 #include "scene/scene_loader.h"
 
@@ -38,6 +48,40 @@ void reportStop(const pipeline::CsvRunResult& result) {
   if (result.stoppedBy) {
     std::cerr << "coinroll: stopped early: " << pipeline::describeStop(*result.stoppedBy) << '\n';
   }
+}
+
+// Set by SIGINT/SIGTERM; the frame loop polls it and unwinds, so the sink removes its partial file.
+std::atomic<bool> interruptRequested{false};
+
+extern "C" void requestInterrupt(int) { interruptRequested.store(true); }
+
+// Restores the default handlers when the render ends, so a later Ctrl-C behaves as usual.
+class InterruptGuard {
+ public:
+  InterruptGuard() {
+    interruptRequested.store(false);
+    previousInt_ = std::signal(SIGINT, requestInterrupt);
+    previousTerm_ = std::signal(SIGTERM, requestInterrupt);
+  }
+  ~InterruptGuard() {
+    std::signal(SIGINT, previousInt_);
+    std::signal(SIGTERM, previousTerm_);
+  }
+  InterruptGuard(const InterruptGuard&) = delete;
+  InterruptGuard& operator=(const InterruptGuard&) = delete;
+
+ private:
+  void (*previousInt_)(int) = SIG_DFL;
+  void (*previousTerm_)(int) = SIG_DFL;
+};
+
+// "My scene: v2" -> "My_scene__v2": a scene name made safe as a file name.
+std::string fileNameFrom(const std::string& sceneName) {
+  std::string name = sceneName.empty() ? "coinroll" : sceneName;
+  for (char& c : name) {
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_' && c != '.') c = '_';
+  }
+  return name;
 }
 
 }  // namespace
@@ -135,6 +179,54 @@ void runStill(const StillOptions& options) {
   }
   std::cerr << fmt::format("coinroll: wrote {} ({}x{}, t = {} s)\n", options.output, scene.render.width, scene.render.height,
                            result.shownTime);
+}
+
+void runRender(const RenderOptions& options) {
+  const scene::SceneConfig scene = loadScene(options.scene);
+  const std::filesystem::path output = options.output ? std::filesystem::path(*options.output)
+                                                      : std::filesystem::path(fileNameFrom(scene.name) + ".mp4");
+  const video::Mp4Options encoding{.width = scene.render.width,
+                                   .height = scene.render.height,
+                                   .fps = scene.render.fps,
+                                   .crf = scene.render.video.crf,
+                                   .preset = scene.render.video.preset,
+                                   .threads = scene.render.video.threads};
+  std::unique_ptr<video::FrameSink> sink;
+  try {
+    sink = std::make_unique<video::AsyncSink>(video::makeSinkForPath(output, encoding));
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+  const InterruptGuard interrupts;
+  ProgressLine progress(!options.quiet && isatty(STDERR_FILENO) == 1);
+  const auto start = std::chrono::steady_clock::now();
+  pipeline::VideoRunResult result;
+  try {
+    result = pipeline::renderVideo(scene, *sink,
+                                   {.onFrame = [&](const pipeline::FrameProgress& p) { progress.update(p.frame, p.total); },
+                                    .cancel = &interruptRequested});
+  } catch (const pipeline::Cancelled&) {
+    progress.finish();
+    sink.reset();  // removes the partial output before we report
+    throw std::runtime_error(fmt::format("interrupted; nothing was written to {}", output.string()));
+  } catch (const std::invalid_argument& e) {
+    progress.finish();
+    throw UsageError(e.what());
+  } catch (...) {
+    progress.finish();
+    throw;
+  }
+  progress.finish();
+  if (result.stopDescription) {
+    std::cerr << fmt::format("coinroll: the run stopped early, the clip ends at t = {:.6f} s: {}\n", result.simulatedSeconds,
+                             *result.stopDescription);
+  }
+  if (!options.quiet) {
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::cerr << fmt::format("coinroll: wrote {} ({} frames, {}x{} at {} fps, {:.2f} s of video) in {:.1f} s\n",
+                             output.string(), result.frames, scene.render.width, scene.render.height, scene.render.fps,
+                             static_cast<double>(result.frames) / scene.render.fps, seconds);
+  }
 }
 
 }  // namespace coinroll::cli

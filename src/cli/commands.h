@@ -37,4 +37,11 @@ struct StillOptions {
 };
 void runStill(const StillOptions& options);
 
+struct RenderOptions {
+  SceneSource scene;
+  std::optional<std::string> output;  // .mp4 or a %d pattern of .png; default <scene name>.mp4
+  bool quiet = false;                 // no progress line, no summary
+};
+void runRender(const RenderOptions& options);
+
 }  // namespace coinroll::cli

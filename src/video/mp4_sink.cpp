@@ -10,6 +10,7 @@
 #include "video/rgba_to_yuv.h"
 
 extern "C" {
+#include <libavutil/log.h>
 #include <libavutil/opt.h>
 }
 
@@ -157,6 +158,9 @@ void Mp4Sink::Encoder::encode(const AVFrame* yuv) {
 Mp4Sink::Mp4Sink(std::filesystem::path destination, const Mp4Options& options)
     : destination_(std::move(destination)), options_(options) {
   validate(options_);
+  // x264 and the muxer report settings and statistics at "info" level; a command-line tool
+  // prints its own summary, and every failure reaches the caller as an exception.
+  av_log_set_level(AV_LOG_ERROR);
   encoder_ = std::make_unique<Encoder>(destination_, options_);
 }
 

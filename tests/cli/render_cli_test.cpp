@@ -1,0 +1,159 @@
+// `coinroll render` and `coinroll still` from outside: the MP4 read back with libavformat,
+// byte-identical reruns, PNG determinism across llvmpipe thread counts, clean failures and
+// Ctrl-C leaving nothing under the output name.
+
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <thread>
+
+#include "video/video_probe.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct RunResult {
+  int exitCode = -1;
+  std::string output;
+};
+
+RunResult run(const std::string& arguments, const std::string& environment = "") {
+  const std::string command = environment + " " + std::string(COINROLL_BINARY_DIR) + "/coinroll " + arguments + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  RunResult result;
+  std::array<char, 4096> buffer{};
+  while (std::fgets(buffer.data(), buffer.size(), pipe) != nullptr) result.output += buffer.data();
+  const int status = pclose(pipe);
+  result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+std::string bytesOf(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+
+class RenderCliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("coinroll_render_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    scene_ = dir_ / "scene.json";
+    std::ofstream(scene_) << R"({"name": "toy", "coin": {"radius": 0.0375, "mass": 0.4},
+      "initial": {"theta": 20, "omega_Y": 3.0, "omega_Z": 14.0}, "duration": 1.0,
+      "render": {"width": 160, "height": 90, "fps": 30, "msaa": 4}})";
+  }
+  // Everything in the directory but the scene: what a command left behind.
+  std::vector<std::string> leftovers() const {
+    std::vector<std::string> names;
+    for (const auto& entry : fs::directory_iterator(dir_)) {
+      if (entry.path() != scene_) names.push_back(entry.path().filename().string());
+    }
+    return names;
+  }
+  fs::path dir_, scene_;
+};
+
+TEST_F(RenderCliTest, Mp4ReadsBackWithTheAskedFramesSizeAndTags) {
+  const fs::path out = dir_ / "clip.mp4";
+  const RunResult r = run("render " + scene_.string() + " -o " + out.string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const coinroll::video::VideoInfo info = coinroll::video::readVideoInfo(out);
+  EXPECT_EQ(info.codecName, "h264");
+  EXPECT_EQ(info.pixelFormat, "yuv420p");
+  EXPECT_EQ(info.width, 160);
+  EXPECT_EQ(info.height, 90);
+  EXPECT_EQ(info.frameCount, 31);  // t = 0, 1/30, ..., 1 s
+  EXPECT_NEAR(info.durationSeconds, 31.0 / 30, 1e-9);
+  EXPECT_EQ(info.colorSpace, "bt709");
+  EXPECT_TRUE(info.moovBeforeMdat);
+
+  const fs::path again = dir_ / "again.mp4";
+  ASSERT_EQ(run("render " + scene_.string() + " -o " + again.string()).exitCode, 0);
+  EXPECT_EQ(bytesOf(out), bytesOf(again)) << "a rerun gave different MP4 bytes";
+}
+
+TEST_F(RenderCliTest, DefaultOutputIsNamedAfterTheScene) {
+  const RunResult r = run("render " + scene_.string() + " -q --set duration=0.1", "cd " + dir_.string() + " &&");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_TRUE(fs::exists(dir_ / "toy.mp4"));
+  EXPECT_TRUE(r.output.empty()) << "--quiet printed: " << r.output;
+}
+
+TEST_F(RenderCliTest, PngSequenceHasOneFilePerFrame) {
+  const RunResult r = run("render " + scene_.string() + " -o " + (dir_ / "f_%03d.png").string() + " --set duration=0.2");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  for (int k = 0; k <= 6; ++k) EXPECT_TRUE(fs::exists(dir_ / ("f_00" + std::to_string(k) + ".png"))) << k;
+  EXPECT_FALSE(fs::exists(dir_ / "f_007.png"));
+}
+
+TEST_F(RenderCliTest, BadRequestsExitTwoAndLeaveNothing) {
+  struct Case {
+    std::string arguments, mustMention;
+  };
+  const Case cases[] = {
+      {"-o " + (dir_ / "bad.mp4").string() + " --set render.width=-5", "render.width"},
+      {"-o " + (dir_ / "bad.mp4").string() + " --set render.msaa=3", "render.msaa"},
+      {"-o " + (dir_ / "bad.mp4").string() + " --set render.video.preset=\\\"warp\\\"", "preset"},
+      {"-o " + (dir_ / "bad.avi").string(), ".mp4"},
+      {"-o " + (dir_ / "missing_dir/bad.mp4").string(), "missing_dir"},
+  };
+  for (const Case& c : cases) {
+    const RunResult r = run("render " + scene_.string() + " " + c.arguments);
+    EXPECT_NE(r.exitCode, 0) << c.arguments;
+    EXPECT_NE(r.output.find(c.mustMention), std::string::npos) << c.arguments << ": " << r.output;
+    EXPECT_TRUE(leftovers().empty()) << c.arguments << " left " << leftovers().front();
+  }
+  const RunResult still = run("still " + scene_.string() + " --time 7 -o " + (dir_ / "late.png").string());
+  EXPECT_EQ(still.exitCode, 2);
+  EXPECT_NE(still.output.find("--time"), std::string::npos) << still.output;
+  EXPECT_TRUE(leftovers().empty());
+}
+
+TEST_F(RenderCliTest, InterruptLeavesNoFileAndExitsOne) {
+  const fs::path out = dir_ / "long.mp4";
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    const std::string binary = std::string(COINROLL_BINARY_DIR) + "/coinroll";
+    std::freopen("/dev/null", "w", stderr);
+    execl(binary.c_str(), binary.c_str(), "render", scene_.c_str(), "-o", out.c_str(), "--set", "duration=60", "--set",
+          "render.width=320", "--set", "render.height=180", static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  // Wait until the encoder has started writing its temporary file, then press Ctrl-C.
+  for (int i = 0; i < 200 && leftovers().empty(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  ASSERT_FALSE(leftovers().empty()) << "the render never started writing";
+  kill(child, SIGINT);
+  int status = 0;
+  waitpid(child, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status)) << "killed by the signal instead of stopping cleanly";
+  EXPECT_EQ(WEXITSTATUS(status), 1);
+  EXPECT_TRUE(leftovers().empty()) << "left " << leftovers().front();
+}
+
+TEST_F(RenderCliTest, StillIsByteIdenticalAcrossRerunsAndLlvmpipeThreadCounts) {
+  const fs::path a = dir_ / "a.png", b = dir_ / "b.png", c = dir_ / "c.png";
+  ASSERT_EQ(run("still " + scene_.string() + " --time 0.5 -o " + a.string()).exitCode, 0);
+  ASSERT_EQ(run("still " + scene_.string() + " --time 0.5 -o " + b.string(), "LP_NUM_THREADS=1").exitCode, 0);
+  ASSERT_EQ(run("still " + scene_.string() + " --time 0.5 -o " + c.string(), "LP_NUM_THREADS=4").exitCode, 0);
+  EXPECT_EQ(bytesOf(a), bytesOf(b)) << "LP_NUM_THREADS=1 changed the picture";
+  EXPECT_EQ(bytesOf(a), bytesOf(c)) << "LP_NUM_THREADS=4 changed the picture";
+  const fs::path strobe = dir_ / "strobe.png";
+  ASSERT_EQ(run("still " + scene_.string() + " --time 1 --strobe 8 -o " + strobe.string()).exitCode, 0);
+  EXPECT_NE(bytesOf(strobe), bytesOf(a));
+}
+
+}  // namespace

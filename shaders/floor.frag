@@ -38,7 +38,7 @@ void main() {
   vec2 xz = worldPosition.xz;
   vec3 albedo = vec3(0.26, 0.27, 0.29);
   albedo = mix(albedo, vec3(0.36, 0.37, 0.39), gridLines(xz, 0.01, 0.0005));
-  albedo = mix(albedo, vec3(0.55, 0.57, 0.60), gridLines(xz, 0.10, 0.0012));
+  albedo = mix(albedo, vec3(0.46, 0.48, 0.51), gridLines(xz, 0.10, 0.0012));
   vec3 linear = albedo * (0.45 + 0.6 * max(lightDirection.y, 0.0));
   float fog = smoothstep(fogStart, fogEnd, length(worldPosition - eye));
   linear = mix(linear, toLinear(backgroundSrgb), fog);

@@ -114,7 +114,7 @@ CameraRig::CameraRig(const scene::CameraSpec& spec, const MotionSurvey& survey, 
     const double azimuth = radians(kDefaultAzimuthDegrees) + 2 * std::numbers::pi * i / azimuths;
     distance_ = std::max(distance_, fittingDistance(lower, upper, target_, viewDirection(azimuth, elevation), tanHalfX, tanHalfY));
   }
-  distance_ = std::max(distance_, 5.0 * model.a / tanHalfY);  // a coin spinning in place still gets some floor around it
+  distance_ = std::max(distance_, 2.5 * model.a / tanHalfY);  // a coin spinning in place still gets some floor around it
   followDistance_ = 4.0 * model.a / std::min(tanHalfX, tanHalfY);
 }
 

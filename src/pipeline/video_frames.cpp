@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "physics/observables.h"
 #include "pipeline/framing.h"
 #include "pipeline/simulation.h"
 #include "render/renderer.h"
@@ -13,6 +14,26 @@ namespace coinroll::pipeline {
 long frameCount(double simulatedSeconds, double timeScale, int fps) {
   // The relative nudge makes 2 s at 30 fps give 61 frames despite 2 * 30 = 59.99999... in binary.
   return static_cast<long>(std::floor(simulatedSeconds / timeScale * fps * (1 + 1e-12) + 1e-9)) + 1;
+}
+
+std::vector<double> frameTimes(const scene::SceneConfig& scene, const Simulation& simulation, double endTime) {
+  std::vector<double> times;
+  const double perFrame = scene.render.timeScale / scene.render.fps;
+  if (!scene.render.remapSpinRate) {
+    const long total = frameCount(endTime, scene.render.timeScale, scene.render.fps);
+    for (long k = 0; k < total; ++k) times.push_back(std::min(static_cast<double>(k) * perFrame, endTime));
+    return times;
+  }
+  CoinTrajectory trajectory = startTrajectory(simulation);
+  // The sum of steps drifts by round-off; a relative 1e-12 keeps the frame at the very end.
+  for (double t = 0; t <= endTime * (1 + 1e-12);) {
+    times.push_back(std::min(t, endTime));
+    const std::optional<physics::StateVec> y = trajectory.stateAt(t);
+    if (!y) break;
+    const double spin = std::abs(physics::spinRate(physics::toState(*y)));
+    t += perFrame * std::min(1.0, *scene.render.remapSpinRate / spin);
+  }
+  return times;
 }
 
 VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& sink, const VideoRunOptions& options) {
@@ -25,11 +46,9 @@ VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& si
   VideoRunResult result;
   result.simulatedSeconds = survey.endTime;
   if (survey.stoppedBy) result.stopDescription = describeStop(*survey.stoppedBy);
-  const long total = frameCount(survey.endTime, scene.render.timeScale, scene.render.fps);
-  const double simulatedPerFrame = scene.render.timeScale / scene.render.fps;
+  const std::vector<double> times = frameTimes(scene, simulation, survey.endTime);
+  const long total = static_cast<long>(times.size());
   const double traceDt = traceInterval(scene.duration);
-  std::vector<std::string> extraHud;
-  if (scene.render.timeScale != 1.0) extraHud.push_back(fmt::format("slow  x{:.3g}", 1 / scene.render.timeScale));
 
   CoinTrajectory trajectory = startTrajectory(simulation);
   render::FrameSnapshot snapshot;
@@ -38,7 +57,7 @@ VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& si
   long nextTracePoint = 0;
   for (long k = 0; k < total; ++k) {
     if (options.cancel != nullptr && options.cancel->load()) throw Cancelled();
-    const double t = std::min(static_cast<double>(k) * simulatedPerFrame, survey.endTime);
+    const double t = times[static_cast<std::size_t>(k)];
     if (scene.render.trace) {
       // Trace points strictly before t; the current contact point is appended per frame below.
       if (!snapshot.trace.empty()) snapshot.trace.pop_back();
@@ -59,7 +78,14 @@ VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& si
     snapshot.coin = coinPose(model, state);
     snapshot.camera = rig.at(t, state);
     snapshot.traceWidth = traceWidthFor(snapshot.camera, scene.render.height, model.a);
-    if (scene.render.hud) snapshot.hudLines = hudLines(model, state, t, extraHud);
+    if (scene.render.hud) {
+      // Playback speed of this frame: simulated seconds per video second, from the frame times.
+      const double step = k + 1 < total ? times[static_cast<std::size_t>(k) + 1] - t : scene.render.timeScale / scene.render.fps;
+      const double slowdown = 1 / (step * scene.render.fps);
+      std::vector<std::string> extra;
+      if (std::abs(slowdown - 1) > 1e-9) extra.push_back(fmt::format("slow  x{:.3g}", slowdown));
+      snapshot.hudLines = hudLines(model, state, t, extra);
+    }
     renderer.draw(snapshot, frame);
     sink.push(frame);
     result.frames = k + 1;

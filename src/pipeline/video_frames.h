@@ -8,7 +8,9 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
+#include "pipeline/simulation.h"
 #include "scene/scene_config.h"
 #include "video/frame_sink.h"
 
@@ -16,6 +18,11 @@ namespace coinroll::pipeline {
 
 // Frames in a clip of `simulatedSeconds` at `fps` and `timeScale`: k = 0 .. floor(video length * fps).
 long frameCount(double simulatedSeconds, double timeScale, int fps);
+
+// Simulated time of every frame up to `endTime`. Without a remap, t_k = k time_scale / fps.
+// With render.time_remap.spin_rate S, each frame advances by (time_scale / fps) min(1, S / |psi-dot(t_k)|):
+// the picture slows down while the coin spins faster than S.
+std::vector<double> frameTimes(const scene::SceneConfig& scene, const Simulation& simulation, double endTime);
 
 struct FrameProgress {
   long frame = 0;  // frames done

@@ -65,6 +65,9 @@ struct RenderSpec {
   int fps = 30;                    // frames per second of video
   int msaa = 4;                    // samples per pixel: 1, 2, 4 or 8
   double timeScale = 1.0;          // video seconds per simulated second
+  // When set, playback slows further whenever |psi-dot| exceeds this rate (rad/s), so the spin
+  // seen on screen never exceeds it times time_scale (an Euler's disk stays readable).
+  std::optional<double> remapSpinRate;
   CameraSpec camera;
   bool trace = true, hud = true;
   VideoSpec video;

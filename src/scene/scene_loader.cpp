@@ -176,7 +176,7 @@ RenderSpec parseRender(const JsonReader& top) {
   RenderSpec render;
   const nlohmann::json* node = top.child("render");
   if (node == nullptr) return render;
-  const JsonReader r(*node, "render", "", {"width", "height", "fps", "msaa", "time_scale", "camera", "trace", "hud", "video"});
+  const JsonReader r(*node, "render", "", {"width", "height", "fps", "msaa", "time_scale", "time_remap", "camera", "trace", "hud", "video"});
   for (auto [key, field] : {std::pair{"width", &render.width}, std::pair{"height", &render.height}}) {
     *field = r.integer(key, *field);
     if (*field < 16 || *field > 7680 || *field % 2 != 0) {
@@ -191,6 +191,12 @@ RenderSpec parseRender(const JsonReader& top) {
   }
   render.timeScale = r.number("time_scale", render.timeScale);
   positive(r, "time_scale", render.timeScale);
+  if (const nlohmann::json* remap = r.child("time_remap")) {
+    const JsonReader m(*remap, "render.time_remap", "", {"spin_rate"});
+    const double spinRate = m.number("spin_rate", 0);
+    if (!(spinRate > 0)) m.fail("spin_rate", fmt::format("must be a spin rate > 0 rad/s, got {}", spinRate));
+    render.remapSpinRate = spinRate;
+  }
   render.camera = parseCamera(r);
   render.trace = r.boolean("trace", render.trace);
   render.hud = r.boolean("hud", render.hud);

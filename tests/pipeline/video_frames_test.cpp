@@ -6,6 +6,7 @@
 
 #include <atomic>
 
+#include "physics/observables.h"
 #include "pipeline/framing.h"
 #include "pipeline/video_frames.h"
 #include "scene/scene_loader.h"
@@ -38,6 +39,28 @@ TEST(FrameCount, CoversTheClipIncludingBothEnds) {
   EXPECT_EQ(pipeline::frameCount(5.0, 1.0, 30), 151);  // 5 * 30 = 149.99999... in binary
   EXPECT_EQ(pipeline::frameCount(1.0, 0.5, 24), 49);   // slowed down twice: 2 s of video
   EXPECT_EQ(pipeline::frameCount(0.01, 1.0, 30), 1);
+}
+
+TEST(FrameTimes, RemapHoldsTheOnScreenSpinRateAtTheLimit) {
+  scene::SceneConfig scene = toyScene(1.0, 0.5);
+  const pipeline::Simulation simulation = pipeline::buildSimulation(scene);
+  const std::vector<double> constant = pipeline::frameTimes(scene, simulation, 1.0);
+  ASSERT_EQ(constant.size(), 21u);
+  scene.render.remapSpinRate = 1000;  // far above the coin's ~15 rad/s: no effect
+  const std::vector<double> unchanged = pipeline::frameTimes(scene, simulation, 1.0);
+  ASSERT_EQ(unchanged.size(), constant.size());
+  for (std::size_t k = 0; k < constant.size(); ++k) EXPECT_NEAR(unchanged[k], constant[k], 1e-14);
+
+  scene.render.remapSpinRate = 5;  // the coin spins at about 15 rad/s: about three times slower
+  const std::vector<double> remapped = pipeline::frameTimes(scene, simulation, 1.0);
+  EXPECT_GT(remapped.size(), 2.5 * constant.size());
+  pipeline::CoinTrajectory trajectory = pipeline::startTrajectory(simulation);
+  for (std::size_t k = 0; k + 1 < remapped.size(); ++k) {
+    const double spin = std::abs(physics::spinRate(physics::toState(*trajectory.stateAt(remapped[k]))));
+    ASSERT_GT(spin, 5);
+    // Simulated radians of spin per video second = |psi-dot| dt fps = S time_scale.
+    EXPECT_NEAR(spin * (remapped[k + 1] - remapped[k]) * scene.render.fps, 5 * 0.5, 1e-12) << "frame " << k;
+  }
 }
 
 TEST(RenderVideo, PushesOneDistinctFramePerFrameTimeAndFinishesOnce) {

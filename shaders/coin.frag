@@ -1,6 +1,7 @@
 #version 330 core
-// A brass obverse with a blue enamel bar and dot, a silver reverse with red ones (so spin and a
-// flip both read at a glance), a knurled rim. Blinn-Phong in linear light, sRGB out.
+// A brass obverse with blue enamel, a silver reverse with red (so spin and a flip both read at a
+// glance), both carrying the pattern of assets/coin_face.png, and a knurled rim. Blinn-Phong in
+// linear light, sRGB out.
 in vec3 worldPosition;
 in vec3 worldNormal;
 in vec3 bodyPosition;
@@ -9,8 +10,8 @@ flat in int surface;
 uniform vec3 eye;
 uniform vec3 lightDirection;
 uniform float radius;
-uniform float innerRadius;
 uniform float opacity;
+uniform sampler2D face;
 
 out vec4 fragColour;
 
@@ -24,16 +25,11 @@ float inside(float distanceOutside) {
   return 1.0 - smoothstep(-width, width, distanceOutside);
 }
 
+// assets/coin_face.png: red is the metal's relief shading, green where the enamel goes.
 vec3 faceColour(vec3 metal, vec3 enamel) {
   vec2 p = bodyPosition.xy / radius;
-  float r = length(p);
-  float bore = innerRadius / radius;
-  // A raised bead just inside the rim and a bar from the centre (or the hole) along body +X.
-  float bead = inside(abs(r - 0.89) - 0.025);
-  float bar = inside(max(abs(p.y) - 0.075, max(max(bore + 0.04, 0.12) - p.x, p.x - 0.78)));
-  float dot_ = inside(length(p - vec2(-0.3, 0.48)) - 0.11);
-  vec3 colour = mix(metal, metal * 0.72, bead);
-  return mix(colour, enamel, max(bar, dot_));
+  vec2 pattern = texture(face, vec2(0.5 + 0.5 * p.x, 0.5 - 0.5 * p.y)).rg;
+  return mix(metal * pattern.r, enamel, pattern.g);
 }
 
 vec3 rimColour(vec3 metal) {

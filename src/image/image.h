@@ -4,6 +4,8 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <span>
+#include <string_view>
 #include <vector>
 
 namespace coinroll::image {
@@ -28,5 +30,9 @@ void writePng(const Image& image, const std::filesystem::path& path);
 
 // Reads an 8-bit PNG as RGBA. Throws std::runtime_error naming the path on failure.
 Image readPng(const std::filesystem::path& path);
+
+// Decodes PNG bytes held in memory (e.g. an asset embedded in the binary) as RGBA. Throws
+// std::runtime_error naming `name` on failure.
+Image decodePng(std::span<const std::uint8_t> bytes, std::string_view name);
 
 }  // namespace coinroll::image

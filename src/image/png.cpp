@@ -36,4 +36,14 @@ Image readPng(const std::filesystem::path& path) {
   return image;
 }
 
+Image decodePng(std::span<const std::uint8_t> bytes, std::string_view name) {
+  int width = 0, height = 0, channels = 0;
+  stbi_uc* data = stbi_load_from_memory(bytes.data(), static_cast<int>(bytes.size()), &width, &height, &channels, 4);
+  if (data == nullptr) throw std::runtime_error(std::string(name) + ": cannot decode PNG: " + stbi_failure_reason());
+  Image image(width, height);
+  std::copy(data, data + image.rgba.size(), image.rgba.begin());
+  stbi_image_free(data);
+  return image;
+}
+
 }  // namespace coinroll::image

@@ -46,6 +46,9 @@ struct FramebufferDeleter {
 struct RenderbufferDeleter {
   void operator()(GLuint name) const { glDeleteRenderbuffers(1, &name); }
 };
+struct TextureDeleter {
+  void operator()(GLuint name) const { glDeleteTextures(1, &name); }
+};
 struct ShaderDeleter {
   void operator()(GLuint name) const { glDeleteShader(name); }
 };
@@ -57,6 +60,7 @@ using Buffer = GlHandle<BufferDeleter>;
 using VertexArray = GlHandle<VertexArrayDeleter>;
 using Framebuffer = GlHandle<FramebufferDeleter>;
 using Renderbuffer = GlHandle<RenderbufferDeleter>;
+using Texture = GlHandle<TextureDeleter>;
 using Shader = GlHandle<ShaderDeleter>;
 using Program = GlHandle<ProgramDeleter>;
 
@@ -74,6 +78,11 @@ inline Framebuffer makeFramebuffer() {
   GLuint name = 0;
   glGenFramebuffers(1, &name);
   return Framebuffer(name);
+}
+inline Texture makeTexture() {
+  GLuint name = 0;
+  glGenTextures(1, &name);
+  return Texture(name);
 }
 inline Renderbuffer makeRenderbuffer() {
   GLuint name = 0;

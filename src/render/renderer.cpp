@@ -9,6 +9,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "render/assets.h"
 #include "render/camera.h"
 #include "render/gl_handles.h"
 #include "render/osmesa_context.h"
@@ -78,6 +79,7 @@ struct Renderer::Gl {
               traceArray = makeVertexArray(), hudArray = makeVertexArray();
   Buffer coinBuffer = makeBuffer(), floorBuffer = makeBuffer(), markerBuffer = makeBuffer(), traceBuffer = makeBuffer(),
          hudBuffer = makeBuffer();
+  Texture coinFace = makeTexture();
   GLsizei coinVertices = 0, markerVertices = 0;
 };
 
@@ -117,6 +119,18 @@ Renderer::Renderer(const RenderSettings& settings) : settings_(settings) {
       throw std::runtime_error(fmt::format("OpenGL: cannot create a {}x{} resolve framebuffer", w, h));
     }
   }
+
+  // The face pattern (assets/coin_face.png): row 0 of the image is body +Y, so the shader maps
+  // t = (1 - Y / a) / 2 and the pixels go up unflipped. Mipmaps keep a distant coin from shimmering.
+  const image::Image face = loadAssetImage("coin_face.png");
+  glBindTexture(GL_TEXTURE_2D, gl.coinFace.get());
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, face.width, face.height, 0, GL_RGBA, GL_UNSIGNED_BYTE, face.rgba.data());
+  glGenerateMipmap(GL_TEXTURE_2D);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
 
   const std::vector<CoinVertex> coin = coinTriangles(settings_.coin, kCoinSegments);
   gl.coinVertices = static_cast<GLsizei>(coin.size());
@@ -252,7 +266,9 @@ void Renderer::draw(const FrameSnapshot& snapshot, image::Image& out) {
   gl.coinProgram.set("eye", snapshot.camera.eye);
   gl.coinProgram.set("lightDirection", kLightDirection);
   gl.coinProgram.set("radius", coinRadius);
-  gl.coinProgram.set("innerRadius", settings_.coin.innerRadius);
+  gl.coinProgram.set("face", 0);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, gl.coinFace.get());
   glBindVertexArray(gl.coinArray.get());
   auto drawCoin = [&](const CoinPose& pose, float opacity) {
     const glm::mat4 model = modelMatrix(pose);

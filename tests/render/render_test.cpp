@@ -12,7 +12,9 @@
 #include <numbers>
 #include <optional>
 
+#include "render/assets.h"
 #include "render/camera.h"
+#include "render/embedded_assets.h"
 #include "render/image_compare.h"
 #include "render/meshes.h"
 #include "render/renderer.h"
@@ -314,6 +316,16 @@ TEST(RenderErrors, ShaderCompileErrorsGiveFileAndLine) {
   fs::remove_all(dir);
   EXPECT_NE(message.find("coin.frag:"), std::string::npos) << message;
   EXPECT_NE(message.find("error"), std::string::npos) << message;
+}
+
+TEST(Assets, EmbeddedCopyIsTheSourceFile) {
+  // The binary must draw the same coin when run away from the source tree.
+  const std::optional<std::span<const std::uint8_t>> embedded = embeddedAsset("coin_face.png");
+  ASSERT_TRUE(embedded.has_value());
+  const Image fromFile = coinroll::image::readPng(fs::path(COINROLL_SOURCE_DIR) / "assets/coin_face.png");
+  EXPECT_EQ(coinroll::image::decodePng(*embedded, "embedded").rgba, fromFile.rgba);
+  EXPECT_EQ(loadAssetImage("coin_face.png").rgba, fromFile.rgba);
+  EXPECT_FALSE(embeddedAsset("no_such_asset.png").has_value());
 }
 
 TEST(CoinMesh, IsClosedWithOutwardNormals) {

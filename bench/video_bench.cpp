@@ -92,7 +92,9 @@ double ffmpegSameFramesSeconds(const std::vector<Image>& frames, int threads) {
   FILE* pipe = popen(command.c_str(), "w");
   if (pipe == nullptr) return NAN;
   bool written = true;
-  for (const Image& frame : frames) written = written && std::fwrite(frame.rgba.data(), frame.rgba.size(), 1, pipe) == 1;
+  for (const Image& frame : frames) {
+    written = written && std::fwrite(frame.rgba.data(), frame.rgba.size(), 1, pipe) == 1;
+  }
   const int status = pclose(pipe);
   return written && status == 0 ? secondsSince(start) : NAN;
 }
@@ -139,7 +141,7 @@ double roundTripPsnr(const Image& original, const AVFrame& yuv) {
   detail::ScalerPtr back(sws_getContext(kWidth, kHeight, AV_PIX_FMT_YUV420P, kWidth, kHeight, AV_PIX_FMT_RGBA,
                                         kAccurate, nullptr, nullptr, nullptr));
   const int* bt709 = sws_getCoefficients(SWS_CS_ITU709);
-  sws_setColorspaceDetails(back.get(), bt709, 0, bt709, 1, 0, 1 << 16, 1 << 16);
+  detail::setScalerColorDetails(*back, bt709, false, bt709, true, "benchmark yuv420p to RGBA");
   Image decoded(kWidth, kHeight);
   std::uint8_t* const planes[] = {decoded.rgba.data()};
   const int strides[] = {kWidth * 4};
@@ -186,16 +188,18 @@ void compareScalerFlags(const Image& source) {
     double lumaMax = 0;
     for (int y = 0; y < kHeight; ++y) {
       for (int x = 0; x < kWidth; ++x) {
-        const double difference = yuv->data[0][y * yuv->linesize[0] + x] - reference.y[static_cast<std::size_t>(y) * kWidth + x];
+        const double difference =
+            yuv->data[0][y * yuv->linesize[0] + x] - reference.y[static_cast<std::size_t>(y) * kWidth + x];
         lumaMax = std::max(lumaMax, std::abs(difference));
       }
     }
     const double lumaRms = rmsError(reference.y, yuv->data[0], kWidth, kHeight, yuv->linesize[0]);
-    const double chromaRms = std::hypot(rmsError(reference.cb, yuv->data[1], kWidth / 2, kHeight / 2, yuv->linesize[1]),
-                                        rmsError(reference.cr, yuv->data[2], kWidth / 2, kHeight / 2, yuv->linesize[2])) /
-                             std::sqrt(2.0);
+    const double cbRms = rmsError(reference.cb, yuv->data[1], kWidth / 2, kHeight / 2, yuv->linesize[1]);
+    const double crRms = rmsError(reference.cr, yuv->data[2], kWidth / 2, kHeight / 2, yuv->linesize[2]);
+    const double chromaRms = std::sqrt((cbRms * cbRms + crRms * crRms) / 2);
     std::printf("%-44s %9.2f %8.3f %8.2f %8.3f %8.2f dB%s\n", candidate.name, milliseconds, lumaRms, lumaMax,
-                chromaRms, roundTripPsnr(source, *yuv), candidate.flags == detail::kRgbaToYuvScalerFlags ? "  <- used" : "");
+                chromaRms, roundTripPsnr(source, *yuv),
+                candidate.flags == detail::kRgbaToYuvScalerFlags ? "  <- used" : "");
   }
 }
 

@@ -43,7 +43,7 @@ class AsyncSink final : public FrameSink {
   std::exception_ptr workerError_;
   bool closing_ = false;    // no more frames will come; the worker drains the queue and exits
   bool abandoned_ = false;  // destroyed unfinished; the worker exits at once
-  std::thread worker_;  // last, so it starts after everything it uses exists
+  std::thread worker_;  // started by the constructor, joined by finish() or the destructor
 };
 
 }  // namespace coinroll::video

@@ -73,4 +73,16 @@ T* checkAllocated(T* object, const std::string& what) {
   return object;
 }
 
+// Sets the YUV matrix (sws_getCoefficients) and ranges (true = full 0..255, false = limited) of a
+// conversion, keeping brightness, contrast and saturation neutral. Throws std::runtime_error
+// "<what>: ..." if swscale refuses (it returns -1, not an AVERROR code, so there is no text).
+inline void setScalerColorDetails(SwsContext& scaler, const int* sourceMatrix, bool isSourceFullRange,
+                                  const int* destinationMatrix, bool isDestinationFullRange, const std::string& what) {
+  constexpr int kUnity = 1 << 16;  // 1.0 in swscale's 16.16 fixed point
+  if (sws_setColorspaceDetails(&scaler, sourceMatrix, isSourceFullRange ? 1 : 0, destinationMatrix,
+                               isDestinationFullRange ? 1 : 0, 0, kUnity, kUnity) < 0) {
+    throw std::runtime_error(what + ": swscale does not support these colour details for this conversion");
+  }
+}
+
 }  // namespace coinroll::video::detail

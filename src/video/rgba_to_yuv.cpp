@@ -26,13 +26,11 @@ ScalerPtr makeRgbaToYuvScaler(int width, int height, int flags) {
                              std::to_string(height));
   }
   // swscale defaults to the BT.601 matrix; the stream is tagged BT.709, so convert with BT.709.
-  // Source range 1: rendered RGBA uses all of 0..255. Destination range 0: limited (16..235 luma),
-  // what players assume for H.264 and what the stream says. Brightness 0, contrast and
-  // saturation 1.0 in swscale's 16.16 fixed point.
+  // Source full range: rendered RGBA uses all of 0..255. Destination limited range (luma 16..235),
+  // what players assume for H.264 and what the stream says.
   const int* bt709 = sws_getCoefficients(SWS_CS_ITU709);
-  constexpr int kUnity = 1 << 16;
-  checkAv(sws_setColorspaceDetails(scaler.get(), bt709, 1, bt709, 0, 0, kUnity, kUnity),
-          "setting BT.709 limited range on the RGBA to yuv420p converter");
+  setScalerColorDetails(*scaler, bt709, true, bt709, false,
+                        "setting BT.709 limited range on the RGBA to yuv420p converter");
   return scaler;
 }
 

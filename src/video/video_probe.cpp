@@ -78,8 +78,9 @@ VideoInfo readVideoInfo(const std::filesystem::path& path) {
   info.colorSpace = nameOr(av_color_space_name(parameters.color_space), "unknown");
   info.colorRange = nameOr(av_color_range_name(parameters.color_range), "unknown");
   info.fps = stream.avg_frame_rate.den != 0 ? av_q2d(stream.avg_frame_rate) : 0.0;
-  info.durationSeconds = stream.duration != AV_NOPTS_VALUE ? static_cast<double>(stream.duration) * av_q2d(stream.time_base)
-                                                           : static_cast<double>(format->duration) / AV_TIME_BASE;
+  info.durationSeconds = stream.duration != AV_NOPTS_VALUE
+                             ? static_cast<double>(stream.duration) * av_q2d(stream.time_base)
+                             : static_cast<double>(format->duration) / AV_TIME_BASE;
 
   PacketPtr packet(checkAllocated(av_packet_alloc(), path.string() + ": allocating a packet"));
   for (;;) {
@@ -137,10 +138,8 @@ image::Image decodeFrame(const std::filesystem::path& path, std::int64_t index) 
                                       nullptr, nullptr, nullptr));
       if (!scaler) throw std::runtime_error(path.string() + ": cannot convert its pixel format to RGBA");
       const int* matrix = sws_getCoefficients(frame->colorspace);
-      const int isFullRange = frame->color_range == AVCOL_RANGE_JPEG ? 1 : 0;
-      constexpr int kUnity = 1 << 16;  // 1.0 in swscale's 16.16 fixed point
-      checkAv(sws_setColorspaceDetails(scaler.get(), matrix, isFullRange, matrix, 1, 0, kUnity, kUnity),
-              path.string() + ": setting the decoded frame's colour space");
+      setScalerColorDetails(*scaler, matrix, frame->color_range == AVCOL_RANGE_JPEG, matrix, true,
+                            path.string() + ": setting the decoded frame's colour space");
       image::Image rgba(frame->width, frame->height);
       std::uint8_t* const destinationPlanes[] = {rgba.rgba.data()};
       const int destinationStrides[] = {rgba.width * 4};

@@ -1,0 +1,100 @@
+// The quaternion formulation against the seed's Euler-angle one (a second formulation is an
+// independent truth: different state, different equations, same motion), and on its own near flat.
+
+#include "physics/quaternion_dynamics.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include "integrate/trajectory.h"
+#include "physics/dynamics.h"
+#include "physics/observables.h"
+#include "physics/steady.h"
+#include "tolerance.h"
+
+namespace coinroll::physics {
+namespace {
+
+using coinroll::testing::isBelow;
+using coinroll::testing::isNear;
+using integrate::Method;
+using integrate::SolverConfig;
+
+constexpr double kDeg = std::numbers::pi / 180;
+constexpr double kRhsTolerance = 1e-12;        // relative; both sides are a few dozen flops from the state
+constexpr double kTrajectoryTolerance = 1e-9;  // angles rad, rates in sqrt(g/a), positions in a
+const SolverConfig kTight{.method = Method::Dop853, .rtol = 1e-12, .atol = 1e-14};
+
+struct EulerRhs {
+  CoinModel model;
+  StateVec operator()(double t, const StateVec& y) const { return rhs(model, t, y); }
+};
+
+struct QuaternionRhs {
+  CoinModel model;
+  QuaternionStateVec operator()(double t, const QuaternionStateVec& y) const { return quaternionRhs(model, t, y); }
+};
+
+Eigen::Quaterniond pure(const Eigen::Vector3d& v) { return {0, v.x(), v.y(), v.z()}; }
+
+// d/dt of fromEulerState(s) along the seed's flow, by the chain rule on q_y(phi) q_x(theta) q_z(psi)
+// (d q_n(alpha) / d alpha = q_n(alpha) (0, n) / 2) and on omegaBody = R_z(-psi) omega_XYZ.
+QuaternionStateVec seedRateInQuaternionVariables(const CoinModel& m, const CoinState& s) {
+  const StateVec dy = rhs(m, 0.0, toVector(s));
+  const Eigen::Quaterniond qy(Eigen::AngleAxisd(s.phi, Eigen::Vector3d::UnitY()));
+  const Eigen::Quaterniond qx(Eigen::AngleAxisd(s.theta, Eigen::Vector3d::UnitX()));
+  const Eigen::Quaterniond qz(Eigen::AngleAxisd(s.psi, Eigen::Vector3d::UnitZ()));
+  const Eigen::Vector4d qDot = 0.5 * (dy[kPhi] * (qy * pure(Eigen::Vector3d::UnitY()) * qx * qz).coeffs() +
+                                      dy[kTheta] * (qy * qx * pure(Eigen::Vector3d::UnitX()) * qz).coeffs() +
+                                      dy[kPsi] * (qy * qx * qz * pure(Eigen::Vector3d::UnitZ())).coeffs());
+  const double c = std::cos(s.psi), sn = std::sin(s.psi);
+  const Eigen::Vector3d omegaBody = fromEulerState(s).omegaBody;
+  QuaternionStateVec rate;
+  rate << qDot.w(), qDot.x(), qDot.y(), qDot.z(),
+      c * dy[kOmega_X] + sn * dy[kOmega_Y] + dy[kPsi] * omegaBody.y(),
+      -sn * dy[kOmega_X] + c * dy[kOmega_Y] - dy[kPsi] * omegaBody.x(),
+      dy[kOmega_Z], dy[kX], dy[kZ];
+  return rate;
+}
+
+TEST(QuaternionRhs, EqualsTheSeedRhsAtRandomStatesAwayFromFlat) {
+  std::mt19937 random(20261124);
+  std::uniform_real_distribution<double> tilt(-80 * kDeg, 80 * kDeg), angle(-7, 7), rate(-20, 20), position(-1, 1);
+  int checked = 0;
+  for (const CoinModel& m : {diskModel(0.4, 0.0375, 9.81), ringModel(0.4, 0.0375, 0.03, 9.81),
+                             CoinModel{.M = 2, .a = 0.1, .g = 3, .I_X = 0.004, .I_Z = 0.0065}}) {
+    for (int i = 0; i < 1000; ++i) {
+      const CoinState s{tilt(random), angle(random), angle(random), rate(random), rate(random), rate(random),
+                        position(random), position(random)};
+      const QuaternionStateVec expected = seedRateInQuaternionVariables(m, s);
+      const QuaternionStateVec actual = quaternionRhs(m, 0.0, toVector(fromEulerState(s)));
+      EXPECT_TRUE(isBelow((actual - expected).cwiseAbs().maxCoeff() / expected.cwiseAbs().maxCoeff(), kRhsTolerance))
+          << "theta " << s.theta;
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, 3000);
+}
+
+TEST(QuaternionConversion, RoundTripsAndUnwrapsTheAngles) {
+  const CoinState s{.theta = -0.7, .phi = 9.0, .psi = -13.0, .omega_X = 1.5, .omega_Y = -2.5, .omega_Z = 8.0, .x = 0.3, .z = -0.4};
+  const CoinState back = toEulerState(fromEulerState(s), CoinState{.phi = 8.0, .psi = -12.0});
+  const StateVec difference = toVector(back) - toVector(s);
+  EXPECT_TRUE(isBelow(difference.cwiseAbs().maxCoeff(), 1e-13));
+}
+
+TEST(QuaternionObservables, EnergyContactAndReactionMatchTheSeedFormulas) {
+  const CoinModel m = ringModel(0.4, 0.0375, 0.02, 9.81);
+  const CoinState s{.theta = 0.6, .phi = -1.1, .psi = 2.3, .omega_X = 0.7, .omega_Y = -1.9, .omega_Z = 5.2, .x = 0.1, .z = -0.2};
+  const QuaternionState q = fromEulerState(s);
+  EXPECT_TRUE(isNear(energy(m, q), energy(m, s), 1e-15));
+  EXPECT_TRUE(isBelow((contactPoint(m, q) - contactPoint(m, s)).norm(), 1e-16));
+  EXPECT_TRUE(isBelow((reaction(m, q).R - reaction(m, s).R).norm(), 1e-14));
+  EXPECT_TRUE(isNear(tiltMagnitude(q), 0.6, 1e-15));
+}
+
+}  // namespace
+}  // namespace coinroll::physics

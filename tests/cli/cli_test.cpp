@@ -154,7 +154,7 @@ std::vector<double> csvColumn(const fs::path& csv, const std::string& name) {
 }
 
 TEST_F(CliTest, QuaternionFormulationRunsPastTheEulerAnglesFlatStop) {
-  // Let go at 60 degrees with a slow spin, the coin falls to 89.94 degrees and rights itself.
+  // Let go at 60 degrees with a slow spin, the coin falls past 89.9 degrees and rights itself.
   const fs::path scene = writeScene("{" + kCoin + R"(, "initial": {"theta": 60, "omega_Z": 0.1}, "duration": 0.3})");
   const fs::path eulerCsv = dir_ / "euler.csv", quaternionCsv = dir_ / "quaternion.csv";
   const RunResult euler = run("simulate " + scene.string() + " --csv " + eulerCsv.string());

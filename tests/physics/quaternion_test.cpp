@@ -159,8 +159,9 @@ TEST(QuaternionTrajectory, ConservesEnergyAndHoldsTheQuaternionNorm) {
 }
 
 // A coin let go at 60 degrees with a slow spin (1 % of the critical spin) falls nearly flat:
-// its tilt peaks at 89.94 degrees after 0.075 s, then the spin's gyroscopic torque rights it
-// again. N stays above 0.13 M g throughout, so the ideal model holds.
+// its tilt peaks near 89.93 degrees after 0.075 s, then the spin's gyroscopic torque rights it;
+// seven such falls in 1 s, all between 89.9 and 89.95 degrees. N stays above 0.13 M g
+// throughout, so the ideal model holds.
 CoinState fallingNearlyFlat() { return {.theta = 60 * kDeg, .omega_Z = 0.1}; }
 
 TEST(NearFlat, EulerAnglesStopAtTheCoinFlatEventWhileTheQuaternionContinues) {
@@ -221,7 +222,7 @@ Disagreement coordinateFreeDisagreement(const CoinModel& m, const CoinState& sta
 
 TEST(NearFlat, WithoutTheirStopTheEulerAnglesAgreeThereToo) {
   // The honest control: the seed's equations, integrated past their 89-degree stop, follow the
-  // same motion through seven passes to 89.94 degrees: their 1 / cos(theta) multiplies omega_Y,
+  // same motion through seven passes to 89.95 degrees: their 1 / cos(theta) multiplies omega_Y,
   // which vanishes like cos(theta) on every finite-energy approach to flat. The quaternion
   // formulation instead finds the contact direction from q, which amplifies q's integration error
   // by 1 / cos(theta) in omega-dot (docs/quaternion_formulation.md §6): omega agrees to the

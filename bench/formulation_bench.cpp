@@ -58,6 +58,10 @@ int main() {
     simulation.solver.rtol = 1e-13;
     simulation.solver.atol = 1e-15;
     const std::vector<physics::StateVec> reference = samples(simulation);
+    if (static_cast<double>(reference.size() - 1) * 0.01 < simulation.duration - 0.01) {
+      fmt::print("{:<18} skipped: the Euler-angle reference stops with coin-flat\n", file.stem().string());
+      continue;
+    }
     for (const scene::Formulation formulation : {scene::Formulation::EulerAngles, scene::Formulation::Quaternion}) {
       for (const double rtol : {1e-6, 1e-8, 1e-10, 1e-12}) {
         simulation.formulation = formulation;

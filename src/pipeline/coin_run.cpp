@@ -1,7 +1,10 @@
 #include "pipeline/coin_run.h"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
 
 #include "physics/observables.h"
 
@@ -61,6 +64,9 @@ std::optional<physics::CoinState> CoinRun::stateAt(double t) {
 }
 
 std::optional<physics::CoinState> CoinRun::quaternionStateAt(QuaternionTrajectory& trajectory, double t) {
+  if (t < lastTime_) {
+    throw std::logic_error(fmt::format("CoinRun::stateAt: queries must not go back in time ({} after {})", t, lastTime_));
+  }
   while (lastTime_ < t) {
     const double turnRate = std::max(std::abs(physics::precessionRate(lastState_)), std::abs(physics::spinRate(lastState_)));
     const double next = turnRate > 0 ? std::min(t, lastTime_ + kUnwrapTurn / turnRate) : t;

@@ -192,6 +192,28 @@ TEST(NearFlat, EulerAnglesStopAtTheCoinFlatEventWhileTheQuaternionContinues) {
   EXPECT_TRUE(isBelow(worstEnergy, 1e-8));
 }
 
+TEST(NearFlat, PlanarFallRunsToTheQuaternionFlatStopWithTheEnergyIntegralsRate) {
+  // Let go at 60 degrees from rest, the coin tips over about e_X without spinning: omega_Y and
+  // omega_Z stay 0 and energy gives the tipping rate in closed form,
+  // (I_X + M a^2) omega_X^2 / 2 = M g a (cos theta0 - cos theta).
+  const CoinModel m = diskModel(0.4, 0.0375, 9.81);
+  const CoinState start{.theta = 60 * kDeg};
+  std::vector<integrate::Event<kQuaternionStateSize>> flat{
+      {.name = "coin-flat",
+       .g = [](double, const QuaternionStateVec& y) { return flatMargin(toQuaternionState(y)); },
+       .direction = -1}};
+  integrate::Trajectory quaternion(QuaternionRhs{m}, 0.0, toVector(fromEulerState(start)), kTight, flat);
+  EXPECT_FALSE(quaternion.stateAt(1.0).has_value());
+  ASSERT_TRUE(quaternion.stoppedBy().has_value());
+  const QuaternionState s = toQuaternionState(quaternion.stoppedBy()->y);
+  EXPECT_TRUE(isNear(tiltMagnitude(s), kQuaternionFlatTilt, 1e-12));
+  const double Ma2 = m.M * m.a * m.a;
+  const double expectedRate = std::sqrt(2 * m.M * m.g * m.a * (std::cos(start.theta) - std::cos(kQuaternionFlatTilt)) / (m.I_X + Ma2));
+  EXPECT_TRUE(isNear(s.omegaBody.norm(), expectedRate, 1e-9 * naturalRate(m)));
+  EXPECT_TRUE(isNear(energy(m, s), energy(m, start), 1e-12 * energy(m, start)));
+  EXPECT_GT(reaction(m, s).N, 0);  // still on the floor: the stop is the geometry's, not lift-off
+}
+
 // The same comparison in coordinate-free terms, every 1 ms. Near flat phi and psi are
 // ill-conditioned one by one (an attitude error e moves them by e / cos(theta)), so there the
 // Euler-variable comparison would measure the chart, not the motion.

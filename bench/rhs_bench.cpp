@@ -1,12 +1,13 @@
 // Cost of one right-hand-side evaluation of the seed's equations: ours (physics::rhs on an Eigen
 // state) against a plain-double probe of the same formulas written inline, in the same run, so
-// the ratio is meaningful on any machine. Run: build/bench/rhs_bench
+// the ratio is meaningful on any machine; and of the quaternion formulation's. Run: build/bench/rhs_bench
 #include <benchmark/benchmark.h>
 
 #include <cmath>
 
 #include "physics/coin_model.h"
 #include "physics/dynamics.h"
+#include "physics/quaternion_dynamics.h"
 
 namespace {
 
@@ -30,6 +31,20 @@ void BM_RhsEval(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 BENCHMARK(BM_RhsEval);
+
+// The quaternion formulation at the same physical state: its 3x3 solve and rotation matrix
+// against the seed's closed forms.
+void BM_QuaternionRhsEval(benchmark::State& state) {
+  coinroll::physics::QuaternionStateVec y =
+      coinroll::physics::toVector(coinroll::physics::fromEulerState(coinroll::physics::toState(typicalState())));
+  for (auto _ : state) {
+    const coinroll::physics::QuaternionStateVec dy = coinroll::physics::quaternionRhs(kDisk, 0.0, y);
+    benchmark::DoNotOptimize(dy);
+    y[0] += 1e-12;
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_QuaternionRhsEval);
 
 // The baseline: the same equations on eight doubles, no Eigen, no struct.
 void BM_RhsPlainDoubleProbe(benchmark::State& state) {

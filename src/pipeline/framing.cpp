@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "physics/observables.h"
+#include "pipeline/coin_run.h"
 
 namespace coinroll::pipeline {
 
@@ -70,7 +71,7 @@ std::vector<std::string> hudLines(const physics::CoinModel& model, const physics
 double traceInterval(double duration) { return std::max(1.0 / 240, duration / 20000); }
 
 MotionSurvey surveyMotion(const Simulation& simulation) {
-  CoinTrajectory trajectory = startTrajectory(simulation);
+  CoinRun trajectory(simulation);
   const physics::CoinModel& model = simulation.model;
   MotionSurvey survey;
   survey.lower = survey.upper = physics::centreOfMass(model, simulation.initial);
@@ -79,9 +80,9 @@ MotionSurvey surveyMotion(const Simulation& simulation) {
   survey.endTime = simulation.duration;
   for (long k = 0; k <= samples + 1; ++k) {
     const double t = std::min(static_cast<double>(k) * dt, simulation.duration);
-    const std::optional<physics::StateVec> y = trajectory.stateAt(t);
+    const std::optional<physics::CoinState> y = trajectory.stateAt(t);
     if (!y) break;
-    const physics::CoinState s = physics::toState(*y);
+    const physics::CoinState s = *y;
     for (const Eigen::Vector3d& p : {physics::centreOfMass(model, s), physics::contactPoint(model, s)}) {
       survey.lower = survey.lower.cwiseMin(p);
       survey.upper = survey.upper.cwiseMax(p);

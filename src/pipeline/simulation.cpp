@@ -8,6 +8,7 @@
 #include <variant>
 
 #include "physics/observables.h"
+#include "physics/quaternion_dynamics.h"
 #include "physics/steady.h"
 #include "physics/validity.h"
 #include "scene/scene_loader.h"
@@ -77,6 +78,7 @@ Simulation buildSimulation(const scene::SceneConfig& scene) {
   sim.solver.rtol = scene.solver.rtol;
   sim.solver.atol = scene.solver.atol;
   sim.solver.dt = scene.solver.dt;
+  sim.formulation = scene.solver.formulation;
   sim.friction = scene.friction;
   sim.duration = scene.duration;
   requireValidStart(sim);
@@ -110,10 +112,13 @@ CoinTrajectory startTrajectory(const Simulation& simulation) {
 }
 
 std::string describeStop(const integrate::EventHit<physics::kStateSize>& hit) {
-  const char* meaning = hit.name == "coin-flat" ? "the coin is nearly flat; the Euler-angle equations end here"
-                        : hit.name == "lift-off" ? "the normal force reached zero; the coin would leave the floor"
-                        : hit.name == "slip"     ? "friction reached mu N; the contact would start slipping"
-                                                 : "event";
+  const std::string flat = fmt::format(
+      "the coin is nearly flat; the Euler-angle formulation stops at {} deg, the quaternion formulation at {} deg "
+      "(solver.formulation)", physics::kFlatTilt * 180 / std::numbers::pi, physics::kQuaternionFlatTilt * 180 / std::numbers::pi);
+  const std::string meaning = hit.name == "coin-flat" ? flat
+                              : hit.name == "lift-off" ? "the normal force reached zero; the coin would leave the floor"
+                              : hit.name == "slip"     ? "friction reached mu N; the contact would start slipping"
+                                                       : "event";
   return fmt::format("{} at t = {:.9f} s (theta = {:.4f} deg): {}", hit.name, hit.t,
                      hit.y[physics::kTheta] * 180 / std::numbers::pi, meaning);
 }

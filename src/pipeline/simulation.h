@@ -20,6 +20,7 @@ struct Simulation {
   physics::CoinModel model;
   physics::CoinState initial;
   integrate::SolverConfig solver;
+  scene::Formulation formulation = scene::Formulation::EulerAngles;  // which equations CoinRun integrates
   std::optional<double> friction;  // mu; no slip monitor when absent
   double duration = 0;             // s
 };
@@ -42,7 +43,8 @@ struct CoinRhs {
 
 using CoinTrajectory = integrate::Trajectory<physics::kStateSize, CoinRhs>;
 
-// A trajectory from t = 0 with the validity events armed. `simulation` must outlive it.
+// A trajectory of the Euler-angle formulation from t = 0 with the validity events armed, whatever
+// simulation.formulation says (CoinRun honours it). `simulation` must outlive it.
 CoinTrajectory startTrajectory(const Simulation& simulation);
 
 // "coin-flat at t = 1.234567 s (theta = 89.0 deg)"-style description of why a run stopped.

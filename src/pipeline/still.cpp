@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "image/image.h"
+#include "pipeline/coin_run.h"
 #include "pipeline/framing.h"
 #include "pipeline/simulation.h"
 #include "render/renderer.h"
@@ -49,13 +50,13 @@ StillResult renderStill(const scene::SceneConfig& scene, const StillRequest& req
   queries.push_back({result.shownTime, Use::Shown});
   std::stable_sort(queries.begin(), queries.end(), [](const Query& a, const Query& b) { return a.t < b.t; });
 
-  CoinTrajectory trajectory = startTrajectory(simulation);
+  CoinRun trajectory(simulation);
   render::FrameSnapshot snapshot;
   physics::CoinState shown;
   for (const Query& q : queries) {
-    const std::optional<physics::StateVec> y = trajectory.stateAt(q.t);
+    const std::optional<physics::CoinState> y = trajectory.stateAt(q.t);
     if (!y) throw std::logic_error("still: the trajectory ended before the survey said it would");
-    const physics::CoinState s = physics::toState(*y);
+    const physics::CoinState s = *y;
     switch (q.use) {
       case Use::Trace: {
         const Eigen::Vector2d c = contactOnFloor(simulation.model, s);

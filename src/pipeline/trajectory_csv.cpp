@@ -6,6 +6,7 @@
 #include <iterator>
 
 #include "physics/observables.h"
+#include "pipeline/coin_run.h"
 
 namespace coinroll::pipeline {
 
@@ -15,15 +16,15 @@ long sampleCount(double duration, double sampleDt) {
 
 CsvRunResult writeTrajectoryCsv(const Simulation& simulation, double sampleDt, std::ostream& out) {
   out << kCsvHeader << '\n';
-  CoinTrajectory trajectory = startTrajectory(simulation);
+  CoinRun run(simulation);
   CsvRunResult result;
   const long rows = sampleCount(simulation.duration, sampleDt);
   fmt::memory_buffer line;
   for (long k = 0; k < rows; ++k) {
     const double t = static_cast<double>(k) * sampleDt;
-    const std::optional<physics::StateVec> y = trajectory.stateAt(t);
-    if (!y) break;
-    const physics::CoinState s = physics::toState(*y);
+    const std::optional<physics::CoinState> state = run.stateAt(t);
+    if (!state) break;
+    const physics::CoinState& s = *state;
     const Eigen::Vector3d centre = physics::centreOfMass(simulation.model, s);
     const Eigen::Vector3d contact = physics::contactPoint(simulation.model, s);
     const physics::Reaction r = physics::reaction(simulation.model, s);
@@ -36,8 +37,8 @@ CsvRunResult writeTrajectoryCsv(const Simulation& simulation, double sampleDt, s
     out.write(line.data(), static_cast<std::streamsize>(line.size()));
     ++result.rows;
   }
-  result.stoppedBy = trajectory.stoppedBy();
-  result.stats = trajectory.stats();
+  result.stoppedBy = run.stoppedBy();
+  result.stats = run.stats();
   return result;
 }
 

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "physics/observables.h"
+#include "pipeline/coin_run.h"
 #include "pipeline/framing.h"
 #include "pipeline/simulation.h"
 #include "render/renderer.h"
@@ -24,13 +25,13 @@ std::vector<double> frameTimes(const scene::SceneConfig& scene, const Simulation
     for (long k = 0; k < total; ++k) times.push_back(std::min(static_cast<double>(k) * perFrame, endTime));
     return times;
   }
-  CoinTrajectory trajectory = startTrajectory(simulation);
+  CoinRun trajectory(simulation);
   // The sum of steps drifts by round-off; a relative 1e-12 keeps the frame at the very end.
   for (double t = 0; t <= endTime * (1 + 1e-12);) {
     times.push_back(std::min(t, endTime));
-    const std::optional<physics::StateVec> y = trajectory.stateAt(t);
+    const std::optional<physics::CoinState> y = trajectory.stateAt(t);
     if (!y) break;
-    const double spin = std::abs(physics::spinRate(physics::toState(*y)));
+    const double spin = std::abs(physics::spinRate(*y));
     t += perFrame * std::min(1.0, *scene.render.remapSpinRate / spin);
   }
   return times;
@@ -50,7 +51,7 @@ VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& si
   const long total = static_cast<long>(times.size());
   const double traceDt = traceInterval(scene.duration);
 
-  CoinTrajectory trajectory = startTrajectory(simulation);
+  CoinRun trajectory(simulation);
   render::FrameSnapshot snapshot;
   snapshot.showContact = scene.render.trace;
   image::Image frame;
@@ -62,15 +63,15 @@ VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& si
       // Trace points strictly before t; the current contact point is appended per frame below.
       if (!snapshot.trace.empty()) snapshot.trace.pop_back();
       for (; static_cast<double>(nextTracePoint) * traceDt < t; ++nextTracePoint) {
-        const std::optional<physics::StateVec> y = trajectory.stateAt(static_cast<double>(nextTracePoint) * traceDt);
+        const std::optional<physics::CoinState> y = trajectory.stateAt(static_cast<double>(nextTracePoint) * traceDt);
         if (!y) break;
-        const Eigen::Vector2d c = contactOnFloor(model, physics::toState(*y));
+        const Eigen::Vector2d c = contactOnFloor(model, *y);
         snapshot.trace.emplace_back(static_cast<float>(c.x()), static_cast<float>(c.y()));
       }
     }
-    const std::optional<physics::StateVec> y = trajectory.stateAt(t);
+    const std::optional<physics::CoinState> y = trajectory.stateAt(t);
     if (!y) throw std::logic_error("render: the trajectory ended before the survey said it would");
-    const physics::CoinState state = physics::toState(*y);
+    const physics::CoinState state = *y;
     if (scene.render.trace) {
       const Eigen::Vector2d c = contactOnFloor(model, state);
       snapshot.trace.emplace_back(static_cast<float>(c.x()), static_cast<float>(c.y()));

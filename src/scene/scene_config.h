@@ -39,7 +39,14 @@ struct SteadyInitial {
 
 using InitialSpec = std::variant<ExplicitInitial, SteadyInitial>;
 
+// Which equations of motion run (docs/quaternion_formulation.md): the seed's Euler angles, or the
+// attitude quaternion that has no coordinate singularity at theta = 90 degrees.
+enum class Formulation { EulerAngles, Quaternion };
+
 struct SolverSpec {
+  // README "Formulations": the Euler angles are the more accurate per unit of time on every
+  // example; the quaternion is for runs that must go nearer flat than 89 degrees.
+  Formulation formulation = Formulation::EulerAngles;
   std::string method = "dop853";
   double rtol = 1e-10;  // adaptive methods
   double atol = 1e-12;  // adaptive methods

@@ -19,6 +19,11 @@ constexpr double kRadiansPerDegree = std::numbers::pi / 180;
 constexpr std::array<std::string_view, 10> kX264Presets = {"ultrafast", "superfast", "veryfast", "faster", "fast",
                                                            "medium",    "slow",      "slower",   "veryslow", "placebo"};
 
+// In the order of the Formulation enum.
+constexpr std::array<std::string_view, 2> kFormulationNames = {"euler-angles", "quaternion"};
+
+std::string nameOf(Formulation formulation) { return std::string(kFormulationNames.at(static_cast<std::size_t>(formulation))); }
+
 double positive(const JsonReader& r, std::string_view key, std::optional<double> value) {
   if (value && !(*value > 0)) r.fail(key, fmt::format("must be > 0, got {}", *value));
   return value.value_or(0);
@@ -126,7 +131,13 @@ SolverSpec parseSolver(const JsonReader& top, const ParseOptions& options) {
   SolverSpec solver;
   const nlohmann::json* node = top.child("solver");
   if (node == nullptr) return solver;
-  const JsonReader r(*node, "solver", "", {"method", "rtol", "atol", "dt"});
+  const JsonReader r(*node, "solver", "", {"formulation", "method", "rtol", "atol", "dt"});
+  const std::string formulation = r.optionalString("formulation").value_or(nameOf(solver.formulation));
+  const auto known = std::find(kFormulationNames.begin(), kFormulationNames.end(), formulation);
+  if (known == kFormulationNames.end()) {
+    r.fail("formulation", fmt::format("unknown formulation \"{}\"; available: {}", formulation, fmt::join(kFormulationNames, ", ")));
+  }
+  solver.formulation = static_cast<Formulation>(known - kFormulationNames.begin());
   solver.method = r.optionalString("method").value_or(solver.method);
   if (std::find(options.solverMethods.begin(), options.solverMethods.end(), solver.method) == options.solverMethods.end()) {
     r.fail("method", fmt::format("unknown method \"{}\"; available: {}", solver.method, fmt::join(options.solverMethods, ", ")));

@@ -3,7 +3,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+#include <vector>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -66,6 +71,7 @@ TEST_F(CliTest, EveryBadSceneGetsExitTwoANamedKeyAndNoFile) {
       {"duration", "{" + kCoin + R"(, "initial": {}, "duration": -3})"},
       {"solver.dt", "{" + kCoin + R"(, "initial": {}, "duration": 1, "solver": {"method": "rk4", "dt": -0.1}})"},
       {"method", "{" + kCoin + R"(, "initial": {}, "duration": 1, "solver": {"method": "magic"}})"},
+      {"solver.formulation", "{" + kCoin + R"(, "initial": {}, "duration": 1, "solver": {"formulation": "matrix"}})"},
       {"1e400", "{" + kCoin + R"(, "initial": {}, "duration": 1, "gravity": 1e400})"},
       {"shape", R"({"coin": {"shape": "triangle", "radius": 0.03, "mass": 0.4}, "initial": {}, "duration": 1})"},
   };
@@ -128,6 +134,42 @@ TEST_F(CliTest, CoinFallingFlatStopsWithANamedEvent) {
   std::ifstream in(csv);
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   EXPECT_EQ(text.find("nan"), std::string::npos);
+}
+
+// One column of a trajectory CSV, by header name.
+std::vector<double> csvColumn(const fs::path& csv, const std::string& name) {
+  std::ifstream in(csv);
+  std::string line, cell;
+  std::getline(in, line);
+  std::istringstream header(line);
+  int index = 0;
+  while (std::getline(header, cell, ',') && cell != name) ++index;
+  std::vector<double> values;
+  while (std::getline(in, line)) {
+    std::istringstream row(line);
+    for (int i = 0; i <= index; ++i) std::getline(row, cell, ',');
+    values.push_back(std::stod(cell));
+  }
+  return values;
+}
+
+TEST_F(CliTest, QuaternionFormulationRunsPastTheEulerAnglesFlatStop) {
+  // Let go at 60 degrees with a slow spin, the coin falls past 89.9 degrees and rights itself.
+  const fs::path scene = writeScene("{" + kCoin + R"(, "initial": {"theta": 60, "omega_Z": 0.1}, "duration": 0.3})");
+  const fs::path eulerCsv = dir_ / "euler.csv", quaternionCsv = dir_ / "quaternion.csv";
+  const RunResult euler = run("simulate " + scene.string() + " --csv " + eulerCsv.string());
+  EXPECT_EQ(euler.exitCode, 0) << euler.output;
+  EXPECT_NE(euler.output.find("coin-flat"), std::string::npos) << euler.output;
+
+  const RunResult quaternion = run("simulate " + scene.string() + " --csv " + quaternionCsv.string() +
+                                   " --sample-dt 0.0005 --set solver.formulation=quaternion");
+  EXPECT_EQ(quaternion.exitCode, 0) << quaternion.output;
+  EXPECT_EQ(quaternion.output.find("stopped early"), std::string::npos) << quaternion.output;
+  const std::vector<double> theta = csvColumn(quaternionCsv, "theta"), energy = csvColumn(quaternionCsv, "energy");
+  EXPECT_EQ(theta.size(), 601u);
+  EXPECT_GT(*std::max_element(theta.begin(), theta.end()), 89.9 * std::numbers::pi / 180);
+  const auto [low, high] = std::minmax_element(energy.begin(), energy.end());
+  EXPECT_LT((*high - *low) / energy.front(), 1e-8);  // default tolerances, rtol 1e-10
 }
 
 TEST_F(CliTest, SteadyReportsKAndAVerdict) {

@@ -7,6 +7,7 @@
 #include <atomic>
 
 #include "physics/observables.h"
+#include "pipeline/coin_run.h"
 #include "pipeline/framing.h"
 #include "pipeline/video_frames.h"
 #include "scene/scene_loader.h"
@@ -54,9 +55,9 @@ TEST(FrameTimes, RemapHoldsTheOnScreenSpinRateAtTheLimit) {
   scene.render.remapSpinRate = 5;  // the coin spins at about 15 rad/s: about three times slower
   const std::vector<double> remapped = pipeline::frameTimes(scene, simulation, 1.0);
   EXPECT_GT(remapped.size(), 2.5 * constant.size());
-  pipeline::CoinTrajectory trajectory = pipeline::startTrajectory(simulation);
+  pipeline::CoinRun trajectory(simulation);
   for (std::size_t k = 0; k + 1 < remapped.size(); ++k) {
-    const double spin = std::abs(physics::spinRate(physics::toState(*trajectory.stateAt(remapped[k]))));
+    const double spin = std::abs(physics::spinRate(*trajectory.stateAt(remapped[k])));
     ASSERT_GT(spin, 5);
     // Simulated radians of spin per video second = |psi-dot| dt fps = S time_scale.
     EXPECT_NEAR(spin * (remapped[k + 1] - remapped[k]) * scene.render.fps, 5 * 0.5, 1e-12) << "frame " << k;

@@ -1,8 +1,9 @@
 #!/usr/bin/python3
-"""Renders one still of every scene in examples/ with build/coinroll and tiles them into
-docs/gallery.png (the README's gallery). Run from the repository root after building:
+"""Renders one still of the built-in default scene and of every scene in examples/ with
+build/coinroll and tiles them into docs/gallery.png (the README's gallery), in that order.
+Run from the repository root after building:
 
-    /usr/bin/python3 tools/make_gallery.py [--time 3] [--columns 3]
+    /usr/bin/python3 tools/make_gallery.py [--time 3] [--columns 4]
 """
 import argparse
 import json
@@ -19,19 +20,21 @@ ROOT = pathlib.Path(__file__).resolve().parent.parent
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--time", type=float, default=3.0, help="simulated time of each still, s (clamped to the scene)")
-    parser.add_argument("--columns", type=int, default=3)
+    parser.add_argument("--columns", type=int, default=4)
     parser.add_argument("--output", default=str(ROOT / "docs" / "gallery.png"))
     args = parser.parse_args()
 
-    scenes = sorted((ROOT / "examples").glob("*.json"))
+    scenes = [None] + sorted((ROOT / "examples").glob("*.json"))  # None: the built-in default scene
     tiles = []
     with tempfile.TemporaryDirectory() as tmp:
         for scene in scenes:
-            duration = json.loads(scene.read_text())["duration"]
-            still = pathlib.Path(tmp) / (scene.stem + ".png")
-            subprocess.run([str(ROOT / "build" / "coinroll"), "still", str(scene), "--time", str(min(args.time, duration)),
-                            "-o", str(still), "--set", "render.width=320", "--set", "render.height=180",
-                            "--set", "render.hud=false"], check=True)
+            name = scene.stem if scene else "default"
+            duration = json.loads(scene.read_text())["duration"] if scene else args.time
+            still = pathlib.Path(tmp) / (name + ".png")
+            subprocess.run([str(ROOT / "build" / "coinroll"), "still", *([str(scene)] if scene else []),
+                            "--time", str(min(args.time, duration)), "-o", str(still),
+                            "--set", "render.width=320", "--set", "render.height=180", "--set", "render.hud=false"],
+                           check=True, stderr=subprocess.DEVNULL)
             tiles.append(Image.open(still).convert("RGB"))
     width, height = tiles[0].size
     rows = (len(tiles) + args.columns - 1) // args.columns
@@ -39,7 +42,7 @@ def main() -> int:
     for i, tile in enumerate(tiles):
         sheet.paste(tile, ((i % args.columns) * width, (i // args.columns) * height))
     sheet.save(args.output, optimize=True)
-    print(f"wrote {args.output}: {', '.join(s.stem for s in scenes)}")
+    print(f"wrote {args.output}: {', '.join(s.stem if s else 'default' for s in scenes)}")
     return 0
 
 

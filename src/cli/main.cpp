@@ -81,7 +81,7 @@ int main(int argc, char** argv) {
   StillOptions still;
   CLI::App* stillCommand = app.add_subcommand(
       "still", "Render one PNG of a scene at a simulated time (optionally a stroboscopic figure)");
-  addSceneOptions(*stillCommand, still.scene, true);
+  addSceneOptions(*stillCommand, still.scene, false);  // no file: the built-in default scene
   stillCommand->add_option("--time", still.time, "Simulated time to show, s (0 to the scene's duration)")->required();
   stillCommand->add_option("-o,--output", still.output, "Output PNG path (written atomically)")->required();
   stillCommand->add_option("--strobe", still.strobe,

@@ -164,6 +164,7 @@ render::RenderSettings renderSettings(const scene::SceneConfig& scene) {
   settings.width = scene.render.width;
   settings.height = scene.render.height;
   settings.msaa = scene.render.msaa;
+  settings.antialiasing = scene.render.antialiasing == "fxaa" ? render::Antialiasing::Fxaa : render::Antialiasing::Msaa;
   settings.coin.radius = static_cast<float>(scene.coin.radius);
   settings.coin.thickness = static_cast<float>(scene.coin.thickness);
   if (scene.coin.shape == scene::Shape::Ring) {

@@ -7,10 +7,12 @@
 #include <cstring>
 #include <glm/gtc/matrix_transform.hpp>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
 
 #include "render/assets.h"
 #include "render/camera.h"
+#include "render/floor_tile.h"
 #include "render/gl_handles.h"
 #include "render/osmesa_context.h"
 #include "render/shader_program.h"
@@ -31,7 +33,7 @@ const glm::vec4 kContactColour(0.85f, 0.1f, 0.08f, 1.0f);
 void validate(const RenderSettings& s) {
   if (s.width < 16 || s.width > 8192) throw std::invalid_argument(fmt::format("render.width: must be 16..8192 pixels, got {}", s.width));
   if (s.height < 16 || s.height > 8192) throw std::invalid_argument(fmt::format("render.height: must be 16..8192 pixels, got {}", s.height));
-  if (s.msaa != 1 && s.msaa != 2 && s.msaa != 4 && s.msaa != 8) {
+  if (s.msaa != 1 && s.msaa != 2 && s.msaa != 4 && s.msaa != 8 && s.antialiasing == Antialiasing::Msaa) {
     throw std::invalid_argument(fmt::format("render.msaa: must be 1, 2, 4 or 8 samples, got {}", s.msaa));
   }
   if (!(s.coin.radius > 0) || !(s.coin.thickness > 0) || !(s.coin.innerRadius >= 0 && s.coin.innerRadius < s.coin.radius)) {
@@ -75,11 +77,14 @@ struct Renderer::Gl {
   ShaderProgram flatProgram{"flat.vert", "flat.frag"};
   ShaderProgram traceProgram{"trace.vert", "trace.frag"};
   ShaderProgram hudProgram{"hud.vert", "hud.frag"};
+  std::optional<ShaderProgram> fxaaProgram;  // only for Antialiasing::Fxaa
+  Texture sceneColour;                       // the FXAA pass reads the scene from this texture
   VertexArray coinArray = makeVertexArray(), floorArray = makeVertexArray(), markerArray = makeVertexArray(),
-              traceArray = makeVertexArray(), hudArray = makeVertexArray();
+              traceArray = makeVertexArray(), hudArray = makeVertexArray(), fullScreenArray = makeVertexArray();
   Buffer coinBuffer = makeBuffer(), floorBuffer = makeBuffer(), markerBuffer = makeBuffer(), traceBuffer = makeBuffer(),
          hudBuffer = makeBuffer();
   Texture coinFace = makeTexture();
+  Texture floorGrid = makeTexture();
   GLsizei coinVertices = 0, markerVertices = 0;
 };
 
@@ -91,24 +96,37 @@ Renderer::Renderer(const RenderSettings& settings) : settings_(settings) {
 
   GLint maxSamples = 0;
   glGetIntegerv(GL_MAX_SAMPLES, &maxSamples);
-  if (settings_.msaa > maxSamples) {
+  if (settings_.antialiasing == Antialiasing::Msaa && settings_.msaa > maxSamples) {
     throw std::invalid_argument(fmt::format("render.msaa: this OpenGL allows at most {} samples, got {}", maxSamples, settings_.msaa));
   }
-  const bool multisampled = settings_.msaa > 1;
+  const bool fxaa = settings_.antialiasing == Antialiasing::Fxaa;
+  const bool multisampled = !fxaa && settings_.msaa > 1;
   gl.drawTarget = makeFramebuffer();
-  gl.drawColour = makeRenderbuffer();
   gl.drawDepthStencil = makeRenderbuffer();
   glBindFramebuffer(GL_FRAMEBUFFER, gl.drawTarget.get());
-  glBindRenderbuffer(GL_RENDERBUFFER, gl.drawColour.get());
-  glRenderbufferStorageMultisample(GL_RENDERBUFFER, multisampled ? settings_.msaa : 0, GL_RGBA8, w, h);
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, gl.drawColour.get());
+  if (fxaa) {
+    gl.fxaaProgram.emplace("fullscreen.vert", "fxaa.frag");
+    gl.sceneColour = makeTexture();
+    glBindTexture(GL_TEXTURE_2D, gl.sceneColour.get());
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, gl.sceneColour.get(), 0);
+  } else {
+    gl.drawColour = makeRenderbuffer();
+    glBindRenderbuffer(GL_RENDERBUFFER, gl.drawColour.get());
+    glRenderbufferStorageMultisample(GL_RENDERBUFFER, multisampled ? settings_.msaa : 0, GL_RGBA8, w, h);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, gl.drawColour.get());
+  }
   glBindRenderbuffer(GL_RENDERBUFFER, gl.drawDepthStencil.get());
   glRenderbufferStorageMultisample(GL_RENDERBUFFER, multisampled ? settings_.msaa : 0, GL_DEPTH24_STENCIL8, w, h);
   glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, gl.drawDepthStencil.get());
   if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
     throw std::runtime_error(fmt::format("OpenGL: cannot create a {}x{} framebuffer with {} samples", w, h, settings_.msaa));
   }
-  if (multisampled) {
+  if (multisampled || fxaa) {
     gl.resolveTarget = makeFramebuffer();
     gl.resolveColour = makeRenderbuffer();
     glBindFramebuffer(GL_FRAMEBUFFER, gl.resolveTarget.get());
@@ -131,6 +149,17 @@ Renderer::Renderer(const RenderSettings& settings) : settings_(settings) {
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+
+  // 512 texels per 10 cm: the 0.5 mm minor lines are 2.6 texels wide, so every mipmap level is
+  // a faithful average of the one above.
+  const image::Image grid = floorTile(512);
+  glBindTexture(GL_TEXTURE_2D, gl.floorGrid.get());
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, grid.width, grid.height, 0, GL_RGBA, GL_UNSIGNED_BYTE, grid.rgba.data());
+  glGenerateMipmap(GL_TEXTURE_2D);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
 
   const std::vector<CoinVertex> coin = coinTriangles(settings_.coin, kCoinSegments);
   gl.coinVertices = static_cast<GLsizei>(coin.size());
@@ -211,7 +240,10 @@ void Renderer::draw(const FrameSnapshot& snapshot, image::Image& out) {
   gl.floorProgram.set("fogStart", 2.5f * cameraDistance);
   gl.floorProgram.set("fogEnd", 12.0f * cameraDistance);
   gl.floorProgram.set("backgroundSrgb", kBackgroundSrgb);
-  gl.floorProgram.set("lightDirection", kLightDirection);
+  gl.floorProgram.set("tileMetres", kFloorTileMetres);
+  gl.floorProgram.set("gridTile", 0);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, gl.floorGrid.get());
   glBindVertexArray(gl.floorArray.get());
   glDrawArrays(GL_TRIANGLES, 0, 6);
 
@@ -289,6 +321,21 @@ void Renderer::draw(const FrameSnapshot& snapshot, image::Image& out) {
     for (const CoinPose* ghost : farToNear) drawCoin(*ghost, 0.45f);
   }
 
+  // The overlay goes on after anti-aliasing: FXAA would soften the text, MSAA gains nothing on it.
+  const bool fxaa = settings_.antialiasing == Antialiasing::Fxaa;
+  if (fxaa) {
+    glBindFramebuffer(GL_FRAMEBUFFER, gl.resolveTarget.get());
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_BLEND);
+    gl.fxaaProgram->use();
+    gl.fxaaProgram->set("scene", 0);
+    gl.fxaaProgram->set("texelSize", glm::vec2(1.0f / static_cast<float>(w), 1.0f / static_cast<float>(h)));
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, gl.sceneColour.get());
+    glBindVertexArray(gl.fullScreenArray.get());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+  }
   if (const std::vector<TextVertex> hud = hudTriangles(snapshot.hudLines, std::max(1.0f, std::floor(h / 300.0f)));
       !hud.empty()) {
     glDisable(GL_DEPTH_TEST);
@@ -302,7 +349,9 @@ void Renderer::draw(const FrameSnapshot& snapshot, image::Image& out) {
   }
   glBindVertexArray(0);
 
-  if (settings_.msaa > 1) {
+  if (fxaa) {
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, gl.resolveTarget.get());
+  } else if (settings_.msaa > 1) {
     glBindFramebuffer(GL_READ_FRAMEBUFFER, gl.drawTarget.get());
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, gl.resolveTarget.get());
     glBlitFramebuffer(0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);

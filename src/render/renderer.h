@@ -11,8 +11,13 @@
 
 namespace coinroll::render {
 
+// Msaa: `msaa` samples per pixel, resolved by a blit. Fxaa: one sample per pixel and a fast
+// approximate anti-aliasing pass over the picture (shaders/fxaa.frag); `msaa` is ignored.
+enum class Antialiasing { Msaa, Fxaa };
+
 struct RenderSettings {
   int width = 1280, height = 720;  // pixels
+  Antialiasing antialiasing = Antialiasing::Msaa;
   int msaa = 4;                    // samples per pixel: 1 (none), 2, 4 or 8
   CoinShape coin;
   bool showShadow = true;

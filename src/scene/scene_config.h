@@ -70,6 +70,7 @@ struct VideoSpec {
 struct RenderSpec {
   int width = 1280, height = 720;  // pixels, even
   int fps = 30;                    // frames per second of video
+  std::string antialiasing = "msaa";  // msaa (render.msaa samples per pixel) | fxaa (one sample, then FXAA)
   int msaa = 4;                    // samples per pixel: 1, 2, 4 or 8
   double timeScale = 1.0;          // video seconds per simulated second
   // When set, playback slows further whenever |psi-dot| exceeds this rate (rad/s), so the spin

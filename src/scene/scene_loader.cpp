@@ -187,7 +187,7 @@ RenderSpec parseRender(const JsonReader& top) {
   RenderSpec render;
   const nlohmann::json* node = top.child("render");
   if (node == nullptr) return render;
-  const JsonReader r(*node, "render", "", {"width", "height", "fps", "msaa", "time_scale", "time_remap", "camera", "trace", "hud", "video"});
+  const JsonReader r(*node, "render", "", {"width", "height", "fps", "antialiasing", "msaa", "time_scale", "time_remap", "camera", "trace", "hud", "video"});
   for (auto [key, field] : {std::pair{"width", &render.width}, std::pair{"height", &render.height}}) {
     *field = r.integer(key, *field);
     if (*field < 16 || *field > 7680 || *field % 2 != 0) {
@@ -196,6 +196,10 @@ RenderSpec parseRender(const JsonReader& top) {
   }
   render.fps = r.integer("fps", render.fps);
   if (render.fps < 1 || render.fps > 240) r.fail("fps", fmt::format("must be in [1, 240], got {}", render.fps));
+  render.antialiasing = r.optionalString("antialiasing").value_or(render.antialiasing);
+  if (render.antialiasing != "msaa" && render.antialiasing != "fxaa") {
+    r.fail("antialiasing", fmt::format("must be \"msaa\" or \"fxaa\", got \"{}\"", render.antialiasing));
+  }
   render.msaa = r.integer("msaa", render.msaa);
   if (render.msaa != 1 && render.msaa != 2 && render.msaa != 4 && render.msaa != 8) {
     r.fail("msaa", fmt::format("must be 1, 2, 4 or 8 samples, got {}", render.msaa));

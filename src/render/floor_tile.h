@@ -1,0 +1,16 @@
+#pragma once
+// The floor's look, computed once on the CPU: one 10 cm x 10 cm tile of the metric grid (thin
+// lines every centimetre, a stronger one on the tile's edge, so every 10 cm), lit and in sRGB,
+// repeated over the floor by the sampler. Mipmaps of it fade the grid smoothly with distance, at
+// a fraction of the cost of drawing the lines in the fragment shader per pixel.
+
+#include "image/image.h"
+
+namespace coinroll::render {
+
+inline constexpr float kFloorTileMetres = 0.10f;
+
+// `pixels` x `pixels` RGBA; texel (i, j) covers floor [i, i+1) x [j, j+1) * tile / pixels.
+image::Image floorTile(int pixels);
+
+}  // namespace coinroll::render

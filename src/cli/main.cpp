@@ -74,8 +74,8 @@ int main(int argc, char** argv) {
       "Size, fps, anti-aliasing, camera, trace, overlay and encoder come from the scene's render block, e.g.\n"
       "  coinroll render                                    (built-in scene -> coinroll.mp4)\n"
       "  coinroll render examples/steady_circle.json -o circle.mp4\n"
-      "  coinroll render examples/ring.json -o frames/ring_%04d.png --set render.fps=10\n"
-      "  coinroll render scene.json --set render.time_scale=0.25 --set render.camera.mode=\\\"follow\\\"\n"
+      "  coinroll render examples/ring.json -o ring_%04d.png --set render.fps=10\n"
+      "  coinroll render scene.json --set render.time_scale=0.25 --set render.camera.mode=follow\n"
       "Outputs appear only when complete (written under a temporary name, then renamed); Ctrl-C leaves nothing.");
 
   StillOptions still;

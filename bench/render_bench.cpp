@@ -18,6 +18,7 @@
 #include "render/gl_handles.h"
 #include "render/meshes.h"
 #include "render/osmesa_context.h"
+#include "render/image_compare.h"
 #include "render/renderer.h"
 
 namespace {
@@ -128,38 +129,9 @@ class Probe {
   GLsizei coinFirst_ = 0, coinCount_ = 0, traceFirst_ = 0, traceCount_ = 0;
 };
 
-// Anti-aliasing quality (llvmpipe offers at most 4 samples): each mode at 320x180 against a reference drawn at 8x the size with one
-// sample per pixel and box-averaged down (64 samples per pixel), as PSNR over the whole picture
-// and over edge pixels (where the reference differs from a 4-neighbour by more than 8 levels).
-struct Quality {
-  double psnrAll, psnrEdges;
-};
-
-Quality compareToReference(const coinroll::image::Image& picture, const std::vector<double>& reference) {
-  const int w = picture.width, h = picture.height;
-  double squaredAll = 0, squaredEdges = 0;
-  long edges = 0;
-  auto ref = [&](int x, int y, int c) { return reference[(std::size_t(y) * w + x) * 3 + c]; };
-  for (int y = 1; y + 1 < h; ++y) {
-    for (int x = 1; x + 1 < w; ++x) {
-      double contrast = 0, error = 0;
-      for (int c = 0; c < 3; ++c) {
-        contrast = std::max({contrast, std::abs(ref(x, y, c) - ref(x + 1, y, c)), std::abs(ref(x, y, c) - ref(x - 1, y, c)),
-                             std::abs(ref(x, y, c) - ref(x, y + 1, c)), std::abs(ref(x, y, c) - ref(x, y - 1, c))});
-        const double d = picture.pixel(x, y)[c] - ref(x, y, c);
-        error += d * d / 3;
-      }
-      squaredAll += error;
-      if (contrast > 8) {
-        squaredEdges += error;
-        ++edges;
-      }
-    }
-  }
-  auto psnr = [](double meanSquared) { return 10 * std::log10(255.0 * 255.0 / meanSquared); };
-  return {psnr(squaredAll / ((w - 2.0) * (h - 2.0))), psnr(squaredEdges / std::max(edges, 1L))};
-}
-
+// Anti-aliasing quality (llvmpipe offers at most 4 samples): each mode at 320x180 against a
+// reference drawn at 8x the size with one sample per pixel and box-averaged down (64 samples per
+// pixel), as PSNR over edge pixels (tests/render/image_compare.h).
 void antialiasingQuality() {
   constexpr int kWidth = 320, kHeight = 180, kFactor = 8;
   FrameSnapshot snapshot = benchSnapshot(1.0);
@@ -169,17 +141,9 @@ void antialiasingQuality() {
   big.width = kWidth * kFactor;
   big.height = kHeight * kFactor;
   big.msaa = 1;
-  const coinroll::image::Image large = Renderer(big).draw(snapshot);
-  std::vector<double> reference(std::size_t(kWidth) * kHeight * 3, 0.0);
-  for (int y = 0; y < large.height; ++y) {
-    for (int x = 0; x < large.width; ++x) {
-      for (int c = 0; c < 3; ++c) {
-        reference[(std::size_t(y / kFactor) * kWidth + x / kFactor) * 3 + c] += large.pixel(x, y)[c] / double(kFactor * kFactor);
-      }
-    }
-  }
-  fmt::print("\nanti-aliasing quality at {}x{} against a 64-sample reference:\n{:>10} {:>14} {:>14}\n", kWidth, kHeight, "mode",
-             "PSNR all dB", "PSNR edges dB");
+  const std::vector<double> reference = coinroll::testing::boxDownsample(Renderer(big).draw(snapshot), kFactor);
+  fmt::print("\nanti-aliasing quality at {}x{} against a 64-sample reference:\n{:>10} {:>14}\n", kWidth, kHeight, "mode",
+             "PSNR edges dB");
   struct Mode {
     const char* name;
     Antialiasing antialiasing;
@@ -193,8 +157,7 @@ void antialiasingQuality() {
     small.height = kHeight;
     small.antialiasing = mode.antialiasing;
     small.msaa = mode.msaa;
-    const Quality q = compareToReference(Renderer(small).draw(snapshot), reference);
-    fmt::print("{:>10} {:>14.2f} {:>14.2f}\n", mode.name, q.psnrAll, q.psnrEdges);
+    fmt::print("{:>10} {:>14.2f}\n", mode.name, coinroll::testing::edgePsnr(Renderer(small).draw(snapshot), reference));
   }
 }
 

@@ -60,6 +60,17 @@ void upload(GLuint buffer, const std::vector<Vertex>& vertices, GLenum usage) {
   glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(Vertex)), vertices.data(), usage);
 }
 
+void uploadMipmapped(const Texture& texture, const image::Image& picture, GLint minFilter, GLint wrap) {
+  glBindTexture(GL_TEXTURE_2D, texture.get());
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, picture.width, picture.height, 0, GL_RGBA, GL_UNSIGNED_BYTE, picture.rgba.data());
+  glGenerateMipmap(GL_TEXTURE_2D);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, minFilter);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, wrap);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, wrap);
+}
+
 void floatAttribute(GLuint index, int components, std::size_t stride, std::size_t offset) {
   glEnableVertexAttribArray(index);
   glVertexAttribPointer(index, components, GL_FLOAT, GL_FALSE, static_cast<GLsizei>(stride),
@@ -140,26 +151,12 @@ Renderer::Renderer(const RenderSettings& settings) : settings_(settings) {
 
   // The face pattern (assets/coin_face.png): row 0 of the image is body +Y, so the shader maps
   // t = (1 - Y / a) / 2 and the pixels go up unflipped. Mipmaps keep a distant coin from shimmering.
-  const image::Image face = loadAssetImage("coin_face.png");
-  glBindTexture(GL_TEXTURE_2D, gl.coinFace.get());
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, face.width, face.height, 0, GL_RGBA, GL_UNSIGNED_BYTE, face.rgba.data());
-  glGenerateMipmap(GL_TEXTURE_2D);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  uploadMipmapped(gl.coinFace, loadAssetImage("coin_face.png"), GL_LINEAR_MIPMAP_LINEAR, GL_CLAMP_TO_EDGE);
 
   // 512 texels per 10 cm: the 0.5 mm minor lines are 2.6 texels wide, so every mipmap level is
-  // a faithful average of the one above.
-  const image::Image grid = floorTile(512);
-  glBindTexture(GL_TEXTURE_2D, gl.floorGrid.get());
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, grid.width, grid.height, 0, GL_RGBA, GL_UNSIGNED_BYTE, grid.rgba.data());
-  glGenerateMipmap(GL_TEXTURE_2D);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_NEAREST);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+  // a faithful average of the one above. One mipmap level per lookup (not two blended) halves
+  // the floor's texturing cost, the largest part of a frame on llvmpipe, with no visible seams.
+  uploadMipmapped(gl.floorGrid, floorTile(512), GL_LINEAR_MIPMAP_NEAREST, GL_REPEAT);
 
   const std::vector<CoinVertex> coin = coinTriangles(settings_.coin, kCoinSegments);
   gl.coinVertices = static_cast<GLsizei>(coin.size());

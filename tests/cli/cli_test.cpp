@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include "cli/run_command.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -18,20 +20,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct RunResult {
-  int exitCode = -1;
-  std::string output;  // stdout and stderr together
-};
+using coinroll::testing::RunResult;
 
-RunResult run(const std::string& arguments) {
-  const std::string command = std::string(COINROLL_BINARY_DIR) + "/coinroll " + arguments + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  RunResult result;
-  std::array<char, 4096> buffer{};
-  while (std::fgets(buffer.data(), buffer.size(), pipe) != nullptr) result.output += buffer.data();
-  const int status = pclose(pipe);
-  result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
+RunResult run(const std::string& arguments, const std::string& environment = "") {
+  return coinroll::testing::runCoinroll(arguments, environment);
 }
 
 class CliTest : public ::testing::Test {

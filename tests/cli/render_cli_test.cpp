@@ -3,6 +3,8 @@
 // Ctrl-C leaving nothing under the output name.
 
 #include <gtest/gtest.h>
+
+#include "cli/run_command.h"
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -22,20 +24,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct RunResult {
-  int exitCode = -1;
-  std::string output;
-};
+using coinroll::testing::RunResult;
 
 RunResult run(const std::string& arguments, const std::string& environment = "") {
-  const std::string command = environment + " " + std::string(COINROLL_BINARY_DIR) + "/coinroll " + arguments + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  RunResult result;
-  std::array<char, 4096> buffer{};
-  while (std::fgets(buffer.data(), buffer.size(), pipe) != nullptr) result.output += buffer.data();
-  const int status = pclose(pipe);
-  result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
+  return coinroll::testing::runCoinroll(arguments, environment);
 }
 
 std::string bytesOf(const fs::path& path) {

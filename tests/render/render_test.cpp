@@ -270,29 +270,6 @@ TEST(RenderSemantics, SpinMarkerTurnsWithPsi) {
   }
 }
 
-// PSNR over edge pixels (where the reference changes by more than 8 levels to a 4-neighbour).
-double edgePsnr(const Image& picture, const std::vector<double>& reference) {
-  const int w = picture.width, h = picture.height;
-  auto ref = [&](int x, int y, int c) { return reference[(std::size_t(y) * w + x) * 3 + c]; };
-  double squared = 0;
-  long count = 0;
-  for (int y = 1; y + 1 < h; ++y) {
-    for (int x = 1; x + 1 < w; ++x) {
-      double contrast = 0, error = 0;
-      for (int c = 0; c < 3; ++c) {
-        contrast = std::max({contrast, std::abs(ref(x, y, c) - ref(x + 1, y, c)), std::abs(ref(x, y, c) - ref(x - 1, y, c)),
-                             std::abs(ref(x, y, c) - ref(x, y + 1, c)), std::abs(ref(x, y, c) - ref(x, y - 1, c))});
-        error += std::pow(picture.pixel(x, y)[c] - ref(x, y, c), 2) / 3;
-      }
-      if (contrast > 8) {
-        squared += error;
-        ++count;
-      }
-    }
-  }
-  return 10 * std::log10(255.0 * 255.0 * count / squared);
-}
-
 TEST(RenderAntialiasing, EdgesApproachASupersampledReference) {
   // Reference: the same view drawn 8x larger with one sample and box-averaged (64 samples/pixel).
   FrameSnapshot s = goldenSnapshot("circle_trace");
@@ -302,18 +279,12 @@ TEST(RenderAntialiasing, EdgesApproachASupersampledReference) {
   big.width *= 8;
   big.height *= 8;
   big.msaa = 1;
-  const Image large = Renderer(big).draw(s);
-  std::vector<double> reference(std::size_t(settings.width) * settings.height * 3, 0.0);
-  for (int y = 0; y < large.height; ++y) {
-    for (int x = 0; x < large.width; ++x) {
-      for (int c = 0; c < 3; ++c) reference[(std::size_t(y / 8) * settings.width + x / 8) * 3 + c] += large.pixel(x, y)[c] / 64.0;
-    }
-  }
+  const std::vector<double> reference = coinroll::testing::boxDownsample(Renderer(big).draw(s), 8);
   auto psnrWith = [&](Antialiasing antialiasing, int msaa) {
     RenderSettings r = settings;
     r.antialiasing = antialiasing;
     r.msaa = msaa;
-    return edgePsnr(Renderer(r).draw(s), reference);
+    return coinroll::testing::edgePsnr(Renderer(r).draw(s), reference);
   };
   const double none = psnrWith(Antialiasing::Msaa, 1), fxaa = psnrWith(Antialiasing::Fxaa, 1),
                msaa4 = psnrWith(Antialiasing::Msaa, 4);

@@ -16,6 +16,7 @@
 #include "integrate/dop853.h"
 #include "integrate/event_location.h"
 #include "integrate/events.h"
+#include "integrate/gauss_legendre.h"
 #include "integrate/solver_config.h"
 #include "integrate/steppers.h"
 
@@ -97,8 +98,7 @@ class Trajectory {
       // Fixed steps sit on the grid t0 + k dt so step points do not drift with round-off.
       const double tNext = gridOrigin_ + static_cast<double>(stats_.acceptedSteps + 1) * config_.dt;
       const double h = tNext - t_;
-      const Vec<N> y1 = config_.method == Method::Rk4 ? rk4Step<N>(f_, t_, y_, f0_, h) : eulerStep<N>(f_, t_, y_, f0_, h);
-      stats_.rhsEvaluations += config_.method == Method::Rk4 ? 3 : 0;
+      const Vec<N> y1 = fixedStep(h);
       const Vec<N> f1 = evaluate(tNext, y1);
       interval_ = hermiteInterval<N>(t_, h, y_, f0_, y1, f1);
       if (config_.method == Method::Euler) {  // the chord: Euler's slope at t1 is not its own
@@ -108,6 +108,17 @@ class Trajectory {
       accept(tNext, y1, f1);
     }
     checkEvents(tStart);
+  }
+
+  Vec<N> fixedStep(double h) {
+    switch (config_.method) {
+      case Method::Rk4: stats_.rhsEvaluations += 3; return rk4Step<N>(f_, t_, y_, f0_, h);
+      case Method::Gauss4: return gauss4_.step(f_, t_, y_, f0_, h, stats_.rhsEvaluations);
+      case Method::Euler: return eulerStep<N>(f_, t_, y_, f0_, h);
+      case Method::Dopri5:
+      case Method::Dop853: break;
+    }
+    throw std::logic_error(fmt::format("{} is not a fixed-step method", nameOf(config_.method)));
   }
 
   // Step-size controller constants of HNW's codes: DOPRI5 uses a PI controller (beta = 0.04),
@@ -228,6 +239,7 @@ class Trajectory {
   double previousError_ = 1e-4;   // PI controller memory
   double lastQuery_ = -std::numeric_limits<double>::infinity();
   DenseInterval<N> interval_;
+  GaussLegendre4<N> gauss4_;  // Newton's Jacobian and starting guess carry over between steps
   Stats stats_;
   std::optional<EventHit<N>> stoppedBy_;
   std::vector<EventHit<N>> nonTerminalHits_;

@@ -4,6 +4,7 @@
 #include <numbers>
 
 #include "integrate/dop853.h"
+#include "integrate/gauss_legendre.h"
 #include "integrate/steppers.h"
 #include "integrate/trajectory.h"
 #include "tolerance.h"
@@ -27,6 +28,8 @@ double globalError(Method method, int n) {
   Riccati f;
   const double h = 2.0 / n;
   V1 y(1.0);
+  GaussLegendre4<1> gauss4;
+  long rhsEvaluations = 0;
   for (int i = 0; i < n; ++i) {
     const double t = i * h;
     const V1 f0 = f(t, y);
@@ -35,6 +38,7 @@ double globalError(Method method, int n) {
       case Method::Rk4: y = rk4Step<1>(f, t, y, f0, h); break;
       case Method::Dopri5: y = dopri5Step<1>(f, t, y, f0, h).y1; break;
       case Method::Dop853: y = dop853Step<1>(f, t, y, f0, h).y1; break;
+      case Method::Gauss4: y = gauss4.step(f, t, y, f0, h, rhsEvaluations); break;
     }
   }
   return std::abs(y[0] - Riccati::exact(2.0));
@@ -48,6 +52,7 @@ constexpr double kOrderTolerance = 0.3;  // asymptotic slopes on a smooth proble
 
 TEST(FixedStep, EulerConvergesAtOrderOne) { EXPECT_TRUE(isNear(observedOrder(Method::Euler, 400), 1, kOrderTolerance)); }
 TEST(FixedStep, Rk4ConvergesAtOrderFour) { EXPECT_TRUE(isNear(observedOrder(Method::Rk4, 80), 4, kOrderTolerance)); }
+TEST(FixedStep, Gauss4ConvergesAtOrderFour) { EXPECT_TRUE(isNear(observedOrder(Method::Gauss4, 40), 4, kOrderTolerance)); }
 TEST(FixedStep, Dopri5ConvergesAtOrderFive) { EXPECT_TRUE(isNear(observedOrder(Method::Dopri5, 160), 5, kOrderTolerance)); }
 
 TEST(FixedStep, Dop853ConvergesAtOrderEight) {

@@ -122,7 +122,10 @@ void writeEnergyHistory(const std::filesystem::path& path) {
     double error = 0;
     try {
       for (double periods = 1; periods <= 1e4 * (1 + 1e-12) && error < 1; periods *= std::pow(10.0, 0.05)) {
-        const auto y = trajectory.stateAt(std::min(periods * period, end));
+        // Fixed-step runs are sampled on step points: their cubic interpolant conserves nothing.
+        double t = std::min(periods * period, end);
+        if (!integrate::isAdaptive(run.config.method)) t = run.config.dt * std::round(t / run.config.dt);
+        const auto y = trajectory.stateAt(t);
         error = std::abs(physics::energy(kDisk, physics::toState(*y)) - E0) / E0;
         out << fmt::format("{},{:.6g},{:.6g}\n", run.label, periods, error);
       }

@@ -137,6 +137,20 @@ TEST(Trajectory, GlobalErrorFollowsTheTolerance) {
   }
 }
 
+TEST(Trajectory, Dop853PaysForDenseOutputOnlyInStepsThatAreQueried) {
+  // Evaluations: the first slope, one for the starting step's estimate, 12 per attempted step
+  // and 3 for each interpolant actually built.
+  auto run = [](int queries) {
+    Trajectory trajectory(Oscillator{}, 0.0, V2(0, 1), SolverConfig{.method = Method::Dop853, .rtol = 1e-10, .atol = 1e-10});
+    for (int k = 1; k <= queries; ++k) trajectory.stateAt(10.0 * k / queries);
+    return trajectory.stats();
+  };
+  const Stats sparse = run(1), dense = run(10'000);
+  EXPECT_EQ(sparse.rhsEvaluations, 2 + 12 * (sparse.acceptedSteps + sparse.rejectedSteps) + 3);
+  EXPECT_EQ(dense.acceptedSteps, sparse.acceptedSteps);  // queries never change the steps
+  EXPECT_EQ(dense.rhsEvaluations, 2 + 15 * dense.acceptedSteps + 12 * dense.rejectedSteps);
+}
+
 TEST(Trajectory, FixedStepMethodsLandOnTheirGrid) {
   Trajectory trajectory(Oscillator{}, 0.0, V2(0, 1), SolverConfig{.method = Method::Rk4, .dt = 0.01});
   trajectory.stateAt(1.0);

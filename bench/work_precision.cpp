@@ -5,8 +5,9 @@
 // and the best wall time; then our DOP853's time over each peer's at equal error.
 //
 // Run: build/bench/work_precision [CSV_PATH] [--quick]
-//   CSV_PATH  default docs/work_precision.csv; the ratio table goes to the same name with
-//             _ratios before .csv. tools/plot_work_precision.py charts both.
+//   CSV_PATH  default docs/work_precision.csv; beside it go the ratio table (_ratios.csv) and
+//             the cases with their reference end states (_cases.csv, read by
+//             tools/scipy_peer.py). tools/plot_work_precision.py charts them.
 //   --quick   one short timing batch per point (for trying things out, not for quoting)
 
 #include <fmt/format.h>
@@ -201,6 +202,26 @@ void writePoints(const std::filesystem::path& path, const std::vector<Point>& po
   }
 }
 
+// The cases and their reference end states, for peers driven from a script
+// (tools/scipy_peer.py): model, t_end, y(0) and y_ref(t_end).
+void writeCases(const std::filesystem::path& path, const std::vector<Case>& cases, const std::vector<StateVec>& references) {
+  std::ofstream out(path);
+  out << "case,t_end,M,a,g,I_X,I_Z";
+  for (const char* prefix : {"y0_", "yref_"}) {
+    for (int i = 0; i < physics::kStateSize; ++i) out << "," << prefix << i;
+  }
+  out << "\n";
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    const Case& c = cases[k];
+    out << fmt::format("{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}", c.name, c.tEnd, c.model.M, c.model.a,
+                       c.model.g, c.model.I_X, c.model.I_Z);
+    const StateVec y0 = physics::toVector(c.start);
+    for (int i = 0; i < physics::kStateSize; ++i) out << fmt::format(",{:.17g}", y0[i]);
+    for (int i = 0; i < physics::kStateSize; ++i) out << fmt::format(",{:.17g}", references[k][i]);
+    out << "\n";
+  }
+}
+
 // Our DOP853's time over each peer's at equal error; the targets are checked on the
 // 0..1000 natural-units case: <= 1 x fehlberg78, <= 0.5 x dopri5, <= 0.1 x CVODE Adams.
 void writeRatios(const std::filesystem::path& path, const std::vector<Point>& points, const std::vector<Case>& cases) {
@@ -247,6 +268,7 @@ int main(int argc, char** argv) {
   }
   const std::vector<Case> cases = benchmarkCases();
   std::vector<Point> points;
+  std::vector<StateVec> references;
   fmt::print("{:>10} {:>22} {:>9} {:>10} {:>10} {:>11} {:>9} {:>7} {:>10}\n", "case", "method", "tol|dt", "rel error",
              "max dE/E", "rhs evals", "steps", "reject", "seconds");
   for (const Case& c : cases) {
@@ -256,11 +278,14 @@ int main(int argc, char** argv) {
     const RunResult check = boostFehlberg78(c, 1e-14, false);
     fmt::print("{:>10}: t_end = {:.4g} s, reference vs odeint Fehlberg 7(8) at 1e-14: {:.2e} relative\n", c.name, c.tEnd,
                (reference.yEnd - check.yEnd).norm() / reference.yEnd.norm());
+    references.push_back(reference.yEnd);
     const std::vector<Point> casePoints = sweepCase(c, reference.yEnd, timing);
     points.insert(points.end(), casePoints.begin(), casePoints.end());
   }
   writePoints(csvPath, points);
-  std::filesystem::path ratiosPath = csvPath;
-  ratiosPath.replace_filename(csvPath.stem().string() + "_ratios.csv");
-  writeRatios(ratiosPath, points, cases);
+  auto besideCsv = [&](const std::string& suffix) {
+    return std::filesystem::path(csvPath).replace_filename(csvPath.stem().string() + suffix);
+  };
+  writeCases(besideCsv("_cases.csv"), cases, references);
+  writeRatios(besideCsv("_ratios.csv"), points, cases);
 }

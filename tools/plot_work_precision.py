@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Charts of the integrator benchmarks (Debian's matplotlib; run with /usr/bin/python3).
 
-Reads the CSV files written by build/bench/work_precision and build/bench/stability and writes
+Reads the CSV files written by build/bench/work_precision, build/bench/stability and (if run)
+tools/scipy_peer.py, and writes
   docs/work_precision.png  relative state error at t_end against wall time, log-log, one panel
                            per case, one line per method; peers dashed
   docs/stability.png       RK4's and explicit Euler's largest stable step against spin, and the
@@ -36,6 +37,9 @@ def read_rows(path):
 
 def plot_work_precision(docs):
     rows = read_rows(docs / "work_precision.csv")
+    scipy_rows = docs / "work_precision_scipy.csv"  # written by tools/scipy_peer.py, if run
+    if scipy_rows.exists():
+        rows += read_rows(scipy_rows)
     lines = defaultdict(list)  # (case, method) -> [(seconds, error)]
     peers = set()
     for row in rows:

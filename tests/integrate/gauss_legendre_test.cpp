@@ -28,10 +28,10 @@ TEST(Gauss4, ConservesTheOscillatorsQuadraticInvariantToRoundOff) {
   Trajectory trajectory(Oscillator{}, 0.0, V2(0, 1), SolverConfig{.method = Method::Gauss4, .dt = 0.1});
   double worst = 0;
   for (int k = 1; k <= 1000; ++k) {
-    const V2 y = *trajectory.stateAt(10.0 * k);  // 10^4 time units, 1600 periods, 10^5 steps
+    const V2 y = *trajectory.stateAt(2.0 * k);  // 2000 time units, 320 periods, 2 10^4 steps
     worst = std::max(worst, std::abs(y.squaredNorm() - 1));
   }
-  EXPECT_TRUE(isBelow(worst, 1e-12));  // measured 1.2e-13
+  EXPECT_TRUE(isBelow(worst, 1e-12));  // measured 1.8e-14
 }
 
 // Kepler's problem q'' = -q / |q|^3 as y = (q, p), started at perihelion with eccentricity 0.5.
@@ -70,25 +70,26 @@ KeplerErrors keplerErrors(Method method, double dt, int orbits) {
   return errors;
 }
 
-constexpr int kKeplerOrbits = 1000;
-constexpr double kKeplerStep = 0.05;  // 126 steps per orbit
+constexpr int kKeplerOrbits = 400;
+constexpr double kKeplerStep = 0.1;  // 63 steps per orbit
 
-TEST(Gauss4, KeplerEnergyErrorStaysBoundedOverAThousandOrbits) {
+TEST(Gauss4, KeplerEnergyErrorStaysBoundedOverFourHundredOrbits) {
   const KeplerErrors gauss = keplerErrors(Method::Gauss4, kKeplerStep, kKeplerOrbits);
   // Symplectic: the error oscillates with the orbit but does not grow (GNI X.3); 1.2 allows the
   // last window to catch a slightly higher peak of the same oscillation.
   EXPECT_TRUE(isBelow(gauss.energyLastOrbits, 1.2 * gauss.energyFirstOrbits));
-  EXPECT_TRUE(isBelow(gauss.energyFirstOrbits, 2e-6));  // measured 9.6e-7: order 4 at 126 steps per orbit
-  // Quadratic, so exact but for round-off and the 1e-15 Newton tolerance over 1.3e5 steps
-  // (measured 5.9e-12, against an energy error of 1e-6).
-  EXPECT_TRUE(isBelow(gauss.angularMomentum, 2e-11));
+  EXPECT_TRUE(isBelow(gauss.energyFirstOrbits, 3e-5));  // measured 1.5e-5: order 4 at 63 steps per orbit
+  // Quadratic, so exact but for round-off and the 1e-15 Newton tolerance over 2.5e4 steps
+  // (measured 1.3e-11, six orders of magnitude below the energy error).
+  EXPECT_TRUE(isBelow(gauss.angularMomentum, 5e-11));
 }
 
 TEST(Gauss4, Rk4AtTheSameStepDriftsOnKepler) {
   // The contrast that makes the previous test meaningful: RK4, same order and step, not
-  // symplectic, loses energy linearly in time (20 times more in the last 50 orbits of 1000).
+  // symplectic, loses energy linearly in time: the last 50 of 400 orbits end 400 / 50 = 8 times
+  // further off than the first 50 (measured 8.3).
   const KeplerErrors rk4 = keplerErrors(Method::Rk4, kKeplerStep, kKeplerOrbits);
-  EXPECT_GT(rk4.energyLastOrbits, 10 * rk4.energyFirstOrbits);
+  EXPECT_GT(rk4.energyLastOrbits, 5 * rk4.energyFirstOrbits);
 }
 
 TEST(Gauss4, CountsStageAndJacobianEvaluations) {

@@ -63,7 +63,7 @@ class GaussLegendre4 {
   using IterationMatrix = Eigen::Matrix<double, 2 * N, 2 * N>;
 
   static constexpr int kMaxIterations = 10;
-  // Converged when the next correction (estimated from the contraction rate, HW IV.8 (8.10))
+  // Converged when the next correction (estimated from the contraction rate as in HW IV.8)
   // is below a few ulps of the state: symplecticity holds only for converged stages.
   static constexpr double kNewtonTolerance = 1e-15;
   // Stagnation at round-off: the correction stopped shrinking while already this small.

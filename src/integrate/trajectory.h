@@ -121,8 +121,8 @@ class Trajectory {
     throw std::logic_error(fmt::format("{} is not a fixed-step method", nameOf(config_.method)));
   }
 
-  // Step-size control of HNW's codes (Solving ODEs I, IV.2 for the PI form): the next step is
-  // h err^-exponent prev_err^beta times the safety factor, its growth per step bounded. DOPRI5
+  // Step-size control of HNW's codes (Solving ODEs I, II.4; the PI form in II, IV.2): the next
+  // step is h err^-exponent prev_err^beta times the safety factor, growth per step bounded. DOPRI5
   // keeps HNW's beta = 0.04. DOP853 ships with beta = 0 (plain I control), which on the coin
   // rejects 15-20 % of its steps at rtol 1e-6..1e-10, each wasting 12 stages; beta = 0.08
   // (exponent 1/8 - 0.2 beta as in DOP853's code) rejects none and needs 15 % fewer

@@ -75,7 +75,7 @@ constexpr double kKeplerStep = 0.1;  // 63 steps per orbit
 
 TEST(Gauss4, KeplerEnergyErrorStaysBoundedOverFourHundredOrbits) {
   const KeplerErrors gauss = keplerErrors(Method::Gauss4, kKeplerStep, kKeplerOrbits);
-  // Symplectic: the error oscillates with the orbit but does not grow (GNI X.3); 1.2 allows the
+  // Symplectic: the error oscillates with the orbit but does not grow (GNI IX.8); 1.2 allows the
   // last window to catch a slightly higher peak of the same oscillation.
   EXPECT_TRUE(isBelow(gauss.energyLastOrbits, 1.2 * gauss.energyFirstOrbits));
   EXPECT_TRUE(isBelow(gauss.energyFirstOrbits, 3e-5));  // measured 1.5e-5: order 4 at 63 steps per orbit

@@ -66,7 +66,8 @@ def plot_work_precision(docs):
         ax.set_ylim(1e-14, 1)
         ax.grid(True, which="major", alpha=0.3)
     axes.flat[0].legend(fontsize=8, loc="lower left")
-    figure.suptitle("Work-precision on the rolling coin (ours solid, peers dashed; same RHS, one run)")
+    figure.suptitle("Work-precision on the rolling coin (ours solid, peers dashed; the C++ peers on the same RHS "
+                    "in the same run, scipy from Python)")
     figure.tight_layout()
     figure.savefig(docs / "work_precision.png", dpi=90)
 

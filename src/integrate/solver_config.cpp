@@ -6,7 +6,7 @@ namespace coinroll::integrate {
 
 namespace {
 
-constexpr std::array<std::string_view, 4> kMethodNames = {"euler", "rk4", "dopri5", "dop853"};
+constexpr std::array<std::string_view, 5> kMethodNames = {"euler", "rk4", "dopri5", "dop853", "gauss4"};
 
 }  // namespace
 

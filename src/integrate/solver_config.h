@@ -18,6 +18,7 @@ enum class Method {
   Rk4,     // classic Runge-Kutta, fixed step, order 4
   Dopri5,  // Dormand-Prince 5(4), adaptive, 4th-order dense output
   Dop853,  // Dormand-Prince 8(5,3), adaptive, 7th-order dense output
+  Gauss4,  // 2-stage Gauss-Legendre, implicit, fixed step, order 4, symplectic (no energy drift)
 };
 
 std::optional<Method> methodFromName(std::string_view name);

@@ -4,6 +4,7 @@
 #include <numbers>
 
 #include "integrate/dop853.h"
+#include "integrate/gauss_legendre.h"
 #include "integrate/steppers.h"
 #include "integrate/trajectory.h"
 #include "tolerance.h"
@@ -27,6 +28,8 @@ double globalError(Method method, int n) {
   Riccati f;
   const double h = 2.0 / n;
   V1 y(1.0);
+  GaussLegendre4<1> gauss4;
+  long rhsEvaluations = 0;
   for (int i = 0; i < n; ++i) {
     const double t = i * h;
     const V1 f0 = f(t, y);
@@ -35,6 +38,7 @@ double globalError(Method method, int n) {
       case Method::Rk4: y = rk4Step<1>(f, t, y, f0, h); break;
       case Method::Dopri5: y = dopri5Step<1>(f, t, y, f0, h).y1; break;
       case Method::Dop853: y = dop853Step<1>(f, t, y, f0, h).y1; break;
+      case Method::Gauss4: y = gauss4.step(f, t, y, f0, h, rhsEvaluations); break;
     }
   }
   return std::abs(y[0] - Riccati::exact(2.0));
@@ -48,6 +52,7 @@ constexpr double kOrderTolerance = 0.3;  // asymptotic slopes on a smooth proble
 
 TEST(FixedStep, EulerConvergesAtOrderOne) { EXPECT_TRUE(isNear(observedOrder(Method::Euler, 400), 1, kOrderTolerance)); }
 TEST(FixedStep, Rk4ConvergesAtOrderFour) { EXPECT_TRUE(isNear(observedOrder(Method::Rk4, 80), 4, kOrderTolerance)); }
+TEST(FixedStep, Gauss4ConvergesAtOrderFour) { EXPECT_TRUE(isNear(observedOrder(Method::Gauss4, 40), 4, kOrderTolerance)); }
 TEST(FixedStep, Dopri5ConvergesAtOrderFive) { EXPECT_TRUE(isNear(observedOrder(Method::Dopri5, 160), 5, kOrderTolerance)); }
 
 TEST(FixedStep, Dop853ConvergesAtOrderEight) {
@@ -130,6 +135,20 @@ TEST(Trajectory, GlobalErrorFollowsTheTolerance) {
       EXPECT_TRUE(isBelow(error, 200 * rtol)) << nameOf(method) << " rtol " << rtol;
     }
   }
+}
+
+TEST(Trajectory, Dop853PaysForDenseOutputOnlyInStepsThatAreQueried) {
+  // Evaluations: the first slope, one for the starting step's estimate, 12 per attempted step
+  // and 3 for each interpolant actually built.
+  auto run = [](int queries) {
+    Trajectory trajectory(Oscillator{}, 0.0, V2(0, 1), SolverConfig{.method = Method::Dop853, .rtol = 1e-10, .atol = 1e-10});
+    for (int k = 1; k <= queries; ++k) trajectory.stateAt(10.0 * k / queries);
+    return trajectory.stats();
+  };
+  const Stats sparse = run(1), dense = run(10'000);
+  EXPECT_EQ(sparse.rhsEvaluations, 2 + 12 * (sparse.acceptedSteps + sparse.rejectedSteps) + 3);
+  EXPECT_EQ(dense.acceptedSteps, sparse.acceptedSteps);  // queries never change the steps
+  EXPECT_EQ(dense.rhsEvaluations, 2 + 15 * dense.acceptedSteps + 12 * dense.rejectedSteps);
 }
 
 TEST(Trajectory, FixedStepMethodsLandOnTheirGrid) {

@@ -18,7 +18,7 @@ struct Mp4Options {
   std::string preset = "veryfast"; // an x264 preset name, ultrafast .. placebo
   // Encoder threads, 1..16. Fixed, never "auto": x264's output depends on its thread count, so a
   // count taken from the machine would make the same render differ between machines.
-  int threads = 2;
+  int threads = 1;
 };
 
 // Throws std::invalid_argument naming the field, the rule and the value if `options` is unusable.

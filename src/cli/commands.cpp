@@ -177,7 +177,7 @@ void runStill(const StillOptions& options) {
     std::cerr << fmt::format("coinroll: the run stopped early, so the still shows t = {:.6f} s: {}\n", result.shownTime,
                              *result.stopDescription);
   }
-  std::cerr << fmt::format("coinroll: wrote {} ({}x{}, t = {} s)\n", options.output, scene.render.width, scene.render.height,
+  std::cerr << fmt::format("coinroll: wrote {} ({}x{}, t = {:.6g} s)\n", options.output, scene.render.width, scene.render.height,
                            result.shownTime);
 }
 

@@ -261,7 +261,6 @@ void Renderer::draw(const FrameSnapshot& snapshot, image::Image& out) {
     gl.flatProgram.set("model", shadow * modelMatrix(snapshot.coin));
     glDrawArrays(GL_TRIANGLES, 0, gl.coinVertices);
     gl.flatProgram.set("colour", glm::vec4(glm::vec3(kShadowColour), 0.5f * kShadowColour.a));
-    glStencilFunc(GL_EQUAL, 0, 0xFF);
     for (const CoinPose& ghost : snapshot.ghosts) {
       gl.flatProgram.set("model", shadow * modelMatrix(ghost));
       glDrawArrays(GL_TRIANGLES, 0, gl.coinVertices);

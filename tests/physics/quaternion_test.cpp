@@ -14,6 +14,7 @@
 #include "physics/observables.h"
 #include "physics/steady.h"
 #include "physics/validity.h"
+#include "physics/bound_rhs.h"
 #include "tolerance.h"
 
 namespace coinroll::physics {
@@ -32,11 +33,6 @@ const SolverConfig kTight{.method = Method::Dop853, .rtol = 1e-12, .atol = 1e-14
 // until it saturates); one more digit keeps 4 s of it within kTrajectoryTolerance, so what is
 // compared is the formulations, not the integrator's error.
 const SolverConfig kTighter{.method = Method::Dop853, .rtol = 1e-13, .atol = 1e-15};
-
-struct EulerRhs {
-  CoinModel model;
-  StateVec operator()(double t, const StateVec& y) const { return rhs(model, t, y); }
-};
 
 struct QuaternionRhs {
   CoinModel model;
@@ -104,7 +100,7 @@ TEST(QuaternionObservables, EnergyContactAndReactionMatchTheSeedFormulas) {
 // Largest difference between the two formulations' trajectories, sampled every 0.01 s: angles in
 // rad, rates in units of sqrt(g/a), positions in units of a.
 double formulationDisagreement(const CoinModel& m, const CoinState& start, double duration) {
-  integrate::Trajectory euler(EulerRhs{m}, 0.0, toVector(start), kTighter);
+  integrate::Trajectory euler(SeedRhs{m}, 0.0, toVector(start), kTighter);
   integrate::Trajectory quaternion(QuaternionRhs{m}, 0.0, toVector(fromEulerState(start)), kTighter);
   const Eigen::Matrix<double, kStateSize, 1> scale =
       (StateVec() << 1, 1, 1, naturalRate(m), naturalRate(m), naturalRate(m), m.a, m.a).finished();
@@ -170,7 +166,7 @@ TEST(NearFlat, EulerAnglesStopAtTheCoinFlatEventWhileTheQuaternionContinues) {
       {.name = "coin-flat",
        .g = [](double, const QuaternionStateVec& y) { return flatMargin(toQuaternionState(y)); },
        .direction = -1}};
-  integrate::Trajectory euler(EulerRhs{m}, 0.0, toVector(start), kTight, eulerFlat);
+  integrate::Trajectory euler(SeedRhs{m}, 0.0, toVector(start), kTight, eulerFlat);
   integrate::Trajectory quaternion(QuaternionRhs{m}, 0.0, toVector(fromEulerState(start)), kTight, quaternionFlat);
 
   EXPECT_FALSE(euler.stateAt(1.0).has_value());
@@ -225,7 +221,7 @@ struct Disagreement {
 };
 
 Disagreement coordinateFreeDisagreement(const CoinModel& m, const CoinState& start, double duration) {
-  integrate::Trajectory euler(EulerRhs{m}, 0.0, toVector(start), kTighter);
+  integrate::Trajectory euler(SeedRhs{m}, 0.0, toVector(start), kTighter);
   integrate::Trajectory quaternion(QuaternionRhs{m}, 0.0, toVector(fromEulerState(start)), kTighter);
   Disagreement worst;
   for (int k = 1; k <= static_cast<int>(std::round(duration / 0.001)); ++k) {

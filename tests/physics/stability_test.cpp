@@ -15,6 +15,7 @@
 #include "physics/dynamics.h"
 #include "physics/observables.h"
 #include "physics/steady.h"
+#include "physics/bound_rhs.h"
 #include "tolerance.h"
 
 namespace coinroll::physics {
@@ -24,11 +25,6 @@ using coinroll::testing::isBelow;
 using coinroll::testing::isNear;
 using integrate::Method;
 using integrate::SolverConfig;
-
-struct Rhs {
-  CoinModel model;
-  StateVec operator()(double t, const StateVec& y) const { return rhs(model, t, y); }
-};
 
 const CoinModel kDisk = diskModel(0.4, 0.0375, 9.81);
 
@@ -52,7 +48,7 @@ constexpr double kRk4StepLimit = 0.07972;
 std::vector<double> energyErrors(Method method, double dt, double periods, int samples) {
   const CoinState start = kickedCircle();
   const double E0 = energy(kDisk, start);
-  integrate::Trajectory trajectory(Rhs{kDisk}, 0.0, toVector(start), SolverConfig{.method = method, .dt = dt});
+  integrate::Trajectory trajectory(SeedRhs{kDisk}, 0.0, toVector(start), SolverConfig{.method = method, .dt = dt});
   std::vector<double> errors(samples, std::numeric_limits<double>::infinity());
   try {
     for (int k = 0; k < samples; ++k) {

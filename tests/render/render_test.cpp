@@ -117,28 +117,32 @@ struct Silhouette {
   double axisAngleFromVertical = 0;  // radians, principal axis of the pixel cloud
 };
 
-Silhouette silhouette(const Image& withCoin, const Image& without) {
-  Silhouette s;
-  double sxx = 0, syy = 0, sxy = 0;
-  for (int pass = 0; pass < 2; ++pass) {
-    for (int y = 0; y < withCoin.height; ++y) {
-      for (int x = 0; x < withCoin.width; ++x) {
-        const std::uint8_t* a = withCoin.pixel(x, y);
-        const std::uint8_t* b = without.pixel(x, y);
-        if (std::abs(a[0] - b[0]) + std::abs(a[1] - b[1]) + std::abs(a[2] - b[2]) < 60) continue;
-        const glm::dvec2 p(x + 0.5, y + 0.5);
-        if (pass == 0) {
-          s.count += 1;
-          s.centroid += p;
-        } else {
-          const glm::dvec2 d = p - s.centroid;
-          sxx += d.x * d.x;
-          syy += d.y * d.y;
-          sxy += d.x * d.y;
-        }
-      }
+// Centres of the pixels that differ from `without` by at least `threshold` (summed over RGB).
+std::vector<glm::dvec2> changedPixelCentres(const Image& withCoin, const Image& without, int threshold) {
+  std::vector<glm::dvec2> centres;
+  for (int y = 0; y < withCoin.height; ++y) {
+    for (int x = 0; x < withCoin.width; ++x) {
+      const std::uint8_t* a = withCoin.pixel(x, y);
+      const std::uint8_t* b = without.pixel(x, y);
+      if (std::abs(a[0] - b[0]) + std::abs(a[1] - b[1]) + std::abs(a[2] - b[2]) >= threshold) centres.emplace_back(x + 0.5, y + 0.5);
     }
-    if (pass == 0 && s.count > 0) s.centroid /= s.count;
+  }
+  return centres;
+}
+
+// Only pixels the coin clearly covers, so the moments are not skewed by faint edge pixels.
+Silhouette silhouette(const Image& withCoin, const Image& without) {
+  const std::vector<glm::dvec2> pixels = changedPixelCentres(withCoin, without, 60);
+  Silhouette s;
+  s.count = static_cast<double>(pixels.size());
+  for (const glm::dvec2& p : pixels) s.centroid += p;
+  if (!pixels.empty()) s.centroid /= s.count;
+  double sxx = 0, syy = 0, sxy = 0;
+  for (const glm::dvec2& p : pixels) {
+    const glm::dvec2 d = p - s.centroid;
+    sxx += d.x * d.x;
+    syy += d.y * d.y;
+    sxy += d.x * d.y;
   }
   // Angle of the major axis, measured from the image's vertical (y down) towards +x.
   s.axisAngleFromVertical = 0.5 * std::atan2(2 * sxy, syy - sxx);
@@ -168,26 +172,27 @@ struct PixelBox {
 // extreme pixel centres sit within about half a pixel of the true silhouette.
 PixelBox changedPixels(const Image& withCoin, const Image& without) {
   PixelBox box;
-  for (int y = 0; y < withCoin.height; ++y) {
-    for (int x = 0; x < withCoin.width; ++x) {
-      const std::uint8_t* a = withCoin.pixel(x, y);
-      const std::uint8_t* b = without.pixel(x, y);
-      if (std::abs(a[0] - b[0]) + std::abs(a[1] - b[1]) + std::abs(a[2] - b[2]) < 24) continue;
-      ++box.count;
-      box.minX = std::min(box.minX, x + 0.5f);
-      box.maxX = std::max(box.maxX, x + 0.5f);
-      box.minY = std::min(box.minY, y + 0.5f);
-      box.maxY = std::max(box.maxY, y + 0.5f);
-    }
+  for (const glm::dvec2& p : changedPixelCentres(withCoin, without, 24)) {
+    ++box.count;
+    box.minX = std::min(box.minX, float(p.x));
+    box.maxX = std::max(box.maxX, float(p.x));
+    box.minY = std::min(box.minY, float(p.y));
+    box.maxY = std::max(box.maxY, float(p.y));
   }
   return box;
 }
 
-TEST(RenderSemantics, SilhouetteSitsWhereTheCameraProjectsTheCoin) {
+// Settings for the semantic tests: no shadow, so only the coin differs from the coin-less view.
+RenderSettings coinOnlySettings(int width, int height) {
   RenderSettings settings = smallSettings();
   settings.showShadow = false;
-  settings.width = 640;
-  settings.height = 360;
+  settings.width = width;
+  settings.height = height;
+  return settings;
+}
+
+TEST(RenderSemantics, SilhouetteSitsWhereTheCameraProjectsTheCoin) {
+  const RenderSettings settings = coinOnlySettings(640, 360);
   Renderer renderer(settings);
   const CameraView camera{{0.05f, 0.12f, 0.30f}, {0.0f, 0.02f, 0.0f}, 35.0f};
   // The silhouette's extent in the image must match the extremes of the projected rim circles
@@ -218,10 +223,7 @@ TEST(RenderSemantics, SilhouetteSitsWhereTheCameraProjectsTheCoin) {
 }
 
 TEST(RenderSemantics, TiltSeenEdgeOnIsTheTiltAngle) {
-  RenderSettings settings = smallSettings();
-  settings.showShadow = false;
-  settings.width = 640;
-  settings.height = 360;
+  const RenderSettings settings = coinOnlySettings(640, 360);
   Renderer renderer(settings);
   // Looking along -x at the coin's height, a coin at tilt theta (rotated about floor x) is a thin
   // slab leaning theta from the vertical, towards -z, which is image right seen from +x.
@@ -236,10 +238,7 @@ TEST(RenderSemantics, TiltSeenEdgeOnIsTheTiltAngle) {
 }
 
 TEST(RenderSemantics, SpinMarkerTurnsWithPsi) {
-  RenderSettings settings = smallSettings();
-  settings.showShadow = false;
-  settings.width = 480;
-  settings.height = 480;
+  const RenderSettings settings = coinOnlySettings(480, 480);
   Renderer renderer(settings);
   // Face-on from +z: body +X (the enamel bar) appears at image angle psi, counter-clockwise from
   // image right, because q_z(psi) turns body X towards body Y (floor up) when theta = phi = 0.

@@ -226,7 +226,8 @@ TEST(RenderSemantics, TiltSeenEdgeOnIsTheTiltAngle) {
   const RenderSettings settings = coinOnlySettings(640, 360);
   Renderer renderer(settings);
   // Looking along -x at the coin's height, a coin at tilt theta (rotated about floor x) is a thin
-  // slab leaning theta from the vertical, towards -z, which is image right seen from +x.
+  // slab leaning theta from the vertical, its top towards +z (e_Y = (0, cos, sin) at phi = 0), which is
+  // image left seen from +x: the major axis runs down and to the right at +theta from vertical.
   for (double degrees : {0.0, 15.0, 30.0, 50.0}) {
     const CoinPose coin = pose(degrees * kPi / 180, 0, 0);
     const CameraView camera{coin.centre + glm::vec3(0.35f, 0.0f, 0.0f), coin.centre, 30.0f};

@@ -16,6 +16,7 @@
 #include <string>
 
 #include "integrate/trajectory.h"
+#include "physics/coin_rhs.h"
 #include "physics/dynamics.h"
 #include "physics/observables.h"
 #include "physics/steady.h"
@@ -29,10 +30,7 @@ using physics::CoinModel;
 using physics::CoinState;
 using physics::StateVec;
 
-struct CoinRhs {
-  CoinModel model;
-  StateVec operator()(double t, const StateVec& y) const { return physics::rhs(model, t, y); }
-};
+using CoinRhs = physics::CoinRhs<physics::Formulation::EulerAngles>;
 
 const CoinModel kDisk = physics::diskModel(0.4, 0.0375, 9.81);
 constexpr double kTilt = 20 * std::numbers::pi / 180;  // rad, tilt of the steady circles

@@ -7,19 +7,20 @@
 
 #include "physics/coin_model.h"
 #include "physics/coin_state.h"
+#include "physics/coin_rhs.h"
 #include "physics/dynamics.h"
 #include "physics/observables.h"
 
 namespace coinroll::bench {
 
-// The seed's equations bound to one model; every solver, ours and the peers, calls this same
-// object (the peers through thin adapters that only copy eight doubles in and out).
+// The seed's equations bound to one model, counting its calls; every solver, ours and the peers,
+// calls this same object (the peers through thin adapters that only copy eight doubles in and out).
 struct CoinRhs {
-  physics::CoinModel model;
+  physics::CoinRhs<physics::Formulation::EulerAngles> seed;
   long* evaluations;  // counts every call, so all solvers are counted the same way
   physics::StateVec operator()(double t, const physics::StateVec& y) const {
     ++*evaluations;
-    return physics::rhs(model, t, y);
+    return seed(t, y);
   }
 };
 

@@ -1,7 +1,11 @@
 #pragma once
-// What stays fixed during a run: mass, radius, gravity and the two principal moments of an
-// axisymmetric coin. Kept apart from CoinState so every physics function reads
-// (const CoinModel&, state) and nothing is cached behind the caller's back.
+// What stays fixed during a run: mass, radius, gravity, the two principal moments of an
+// axisymmetric coin and the dissipation laws switched on. Kept apart from CoinState so every
+// physics function reads (const CoinModel&, state) and nothing is cached behind the caller's back.
+
+#include <vector>
+
+#include "physics/effects.h"
 
 namespace coinroll::physics {
 
@@ -11,6 +15,7 @@ struct CoinModel {
   double g = 0;    // m/s^2, gravitational acceleration
   double I_X = 0;  // kg m^2, moment about a diameter (I_X = I_Y by symmetry)
   double I_Z = 0;  // kg m^2, moment about the symmetry axis
+  std::vector<Effect> effects;  // empty: the seed's ideal rolling, energy conserved
 };
 
 // Thin uniform disk: I_X = M a^2 / 4, I_Z = M a^2 / 2 (seed eq. 12).

@@ -2,13 +2,15 @@
 
 #include <cmath>
 
+#include "physics/observables.h"
+
 namespace coinroll::physics {
 
 namespace {
 
 // Eqs. (14)-(16) from precomputed sin/cos so rhs() pays for one sin and one cos per call.
-AngularAcceleration angularAcceleration(const CoinModel& m, double sinTheta, double cosTheta,
-                                        double omega_X, double omega_Y, double omega_Z) {
+AngularAcceleration idealAngularAcceleration(const CoinModel& m, double sinTheta, double cosTheta, double omega_X,
+                                             double omega_Y, double omega_Z) {
   const double tanTheta = sinTheta / cosTheta;
   const double Ma2 = m.M * m.a * m.a;
   const double Mga = m.M * m.g * m.a;
@@ -20,17 +22,36 @@ AngularAcceleration angularAcceleration(const CoinModel& m, double sinTheta, dou
   };
 }
 
-}  // namespace
-
-AngularAcceleration angularAcceleration(const CoinModel& model, const CoinState& s) {
-  return angularAcceleration(model, std::sin(s.theta), std::cos(s.theta), s.omega_X, s.omega_Y, s.omega_Z);
+// A couple adds to (14)-(16) through the mass matrix diag(I_X + M a^2, I_X, I_Z + M a^2), which
+// is what I_G + M (a^2 1 - c c^t) is in XYZ with c = -a e_Y (docs/euler_disk.md eq. 1.3).
+AngularAcceleration plusCouple(const CoinModel& m, AngularAcceleration ideal, const Eigen::Vector3d& torqueXYZ) {
+  const double Ma2 = m.M * m.a * m.a;
+  ideal.dOmega_X += torqueXYZ.x() / (m.I_X + Ma2);
+  ideal.dOmega_Y += torqueXYZ.y() / m.I_X;
+  ideal.dOmega_Z += torqueXYZ.z() / (m.I_Z + Ma2);
+  return ideal;
 }
 
-StateVec rhs(const CoinModel& model, double /*t*/, const StateVec& y) {
-  const double sinTheta = std::sin(y[kTheta]), cosTheta = std::cos(y[kTheta]);
+Reaction reactionFrom(const CoinModel& m, const CoinState& s, const AngularAcceleration& dOmega) {
+  // dv/dt in coin-frame components (seed section 4, checked in docs/derivations.md §2):
+  //   a ( -(dOmega_Z - omega_X omega_Y), -(omega_X^2 - omega_Y omega_Z tan theta), dOmega_X + omega_Y omega_Z )
+  const double tanTheta = std::tan(s.theta);
+  const Eigen::Vector3d accelerationInCoinFrame =
+      m.a * Eigen::Vector3d(-(dOmega.dOmega_Z - s.omega_X * s.omega_Y),
+                            -(s.omega_X * s.omega_X - s.omega_Y * s.omega_Z * tanTheta),
+                            dOmega.dOmega_X + s.omega_Y * s.omega_Z);
+  // Rows of R are the coin axes in floor components, so floor components are R^t times coin ones.
+  const Eigen::Vector3d acceleration = coinAxesInFloor(s).transpose() * accelerationInCoinFrame;
+  Reaction r;
+  r.R = m.M * acceleration + Eigen::Vector3d(0, m.M * m.g, 0);
+  r.N = r.R.y();
+  r.F = std::hypot(r.R.x(), r.R.z());
+  return r;
+}
+
+StateVec pack(const CoinModel& model, const StateVec& y, double sinTheta, double cosTheta, const AngularAcceleration& dOmega) {
   const double sinPhi = std::sin(y[kPhi]), cosPhi = std::cos(y[kPhi]);
   const double omega_X = y[kOmega_X], omega_Y = y[kOmega_Y], omega_Z = y[kOmega_Z];
-  const AngularAcceleration dOmega = angularAcceleration(model, sinTheta, cosTheta, omega_X, omega_Y, omega_Z);
   const double a = model.a;
 
   StateVec dy;
@@ -44,5 +65,46 @@ StateVec rhs(const CoinModel& model, double /*t*/, const StateVec& y) {
   dy[kZ]       = a * (omega_Z * sinPhi + omega_X * cosTheta * cosPhi);      // section 4, v_z
   return dy;
 }
+
+}  // namespace
+
+ContactKinematics contactKinematics(const CoinModel& model, const CoinState& s, double N) {
+  const Eigen::Matrix3d axes = coinAxesInFloor(s);
+  return {.e_X = axes.row(0).transpose(),
+          .e_Y = axes.row(1).transpose(),
+          .e_Z = axes.row(2).transpose(),
+          .omega = axes.transpose() * Eigen::Vector3d(s.omega_X, s.omega_Y, s.omega_Z),
+          .a = model.a,
+          .N = N};
+}
+
+Dynamics dynamics(const CoinModel& model, const CoinState& s) {
+  const AngularAcceleration ideal =
+      idealAngularAcceleration(model, std::sin(s.theta), std::cos(s.theta), s.omega_X, s.omega_Y, s.omega_Z);
+  Dynamics d{.dOmega = ideal, .reaction = reactionFrom(model, s, ideal), .loads = {}};
+  if (model.effects.empty()) return d;
+  // N depends on a couple only through its e_X part, and no N-dependent law has one (eq. 1.6):
+  // the first pass finds N under the N-independent couples, the second is exact.
+  const Eigen::Matrix3d axes = coinAxesInFloor(s);
+  for (int pass = 0; pass < 2; ++pass) {
+    d.loads = totalLoads(model.effects, contactKinematics(model, s, d.reaction.N));
+    d.dOmega = plusCouple(model, ideal, axes * d.loads.torque);
+    d.reaction = reactionFrom(model, s, d.dOmega);
+  }
+  return d;
+}
+
+Rates rates(const CoinModel& model, const StateVec& y) {
+  const double sinTheta = std::sin(y[kTheta]), cosTheta = std::cos(y[kTheta]);
+  if (model.effects.empty()) {
+    const AngularAcceleration dOmega =
+        idealAngularAcceleration(model, sinTheta, cosTheta, y[kOmega_X], y[kOmega_Y], y[kOmega_Z]);
+    return {.dy = pack(model, y, sinTheta, cosTheta, dOmega), .power = 0};
+  }
+  const Dynamics d = dynamics(model, toState(y));
+  return {.dy = pack(model, y, sinTheta, cosTheta, d.dOmega), .power = d.loads.power};
+}
+
+StateVec rhs(const CoinModel& model, double /*t*/, const StateVec& y) { return rates(model, y).dy; }
 
 }  // namespace coinroll::physics

@@ -50,22 +50,6 @@ double spinRate(const CoinState& s) { return s.omega_Z + std::tan(s.theta) * s.o
 
 double precessionRate(const CoinState& s) { return s.omega_Y / std::cos(s.theta); }
 
-Reaction reaction(const CoinModel& m, const CoinState& s) {
-  // dv/dt in coin-frame components (seed section 4, checked in docs/derivations.md §2):
-  //   a ( -(dOmega_Z - omega_X omega_Y), -(omega_X^2 - omega_Y omega_Z tan theta), dOmega_X + omega_Y omega_Z )
-  const AngularAcceleration dOmega = angularAcceleration(m, s);
-  const double tanTheta = std::tan(s.theta);
-  const Eigen::Vector3d accelerationInCoinFrame =
-      m.a * Eigen::Vector3d(-(dOmega.dOmega_Z - s.omega_X * s.omega_Y),
-                            -(s.omega_X * s.omega_X - s.omega_Y * s.omega_Z * tanTheta),
-                            dOmega.dOmega_X + s.omega_Y * s.omega_Z);
-  // Rows of R are the coin axes in floor components, so floor components are R^t times coin ones.
-  const Eigen::Vector3d acceleration = coinAxesInFloor(s).transpose() * accelerationInCoinFrame;
-  Reaction r;
-  r.R = m.M * acceleration + Eigen::Vector3d(0, m.M * m.g, 0);
-  r.N = r.R.y();
-  r.F = std::hypot(r.R.x(), r.R.z());
-  return r;
-}
+Reaction reaction(const CoinModel& m, const CoinState& s) { return dynamics(m, s).reaction; }
 
 }  // namespace coinroll::physics

@@ -7,6 +7,7 @@
 
 #include "physics/coin_model.h"
 #include "physics/coin_state.h"
+#include "physics/dynamics.h"
 
 namespace coinroll::physics {
 
@@ -36,13 +37,8 @@ double spinRate(const CoinState& state);
 // phi-dot, rad/s: rate of change of heading (eq. 18).
 double precessionRate(const CoinState& state);
 
-// The floor's reaction R = M dv/dt + M g e_y, with its vertical part N and horizontal size F.
-struct Reaction {
-  Eigen::Vector3d R = Eigen::Vector3d::Zero();  // N, floor components
-  double N = 0;                                 // N, normal force R_y (the model needs N > 0)
-  double F = 0;                                 // N, friction force sqrt(R_x^2 + R_z^2) (ERRATA)
-};
-
+// The floor's reaction with its normal force N and friction force F, including the effects'
+// couples: dynamics(model, state).reaction.
 Reaction reaction(const CoinModel& model, const CoinState& state);
 
 }  // namespace coinroll::physics

@@ -3,6 +3,9 @@
 #include <Eigen/Cholesky>
 
 #include <cmath>
+#include <numbers>
+
+#include "physics/observables.h"
 
 namespace coinroll::physics {
 
@@ -36,7 +39,9 @@ Eigen::Vector3d contactDrift(const CoinModel& m, const ContactGeometry& geo, con
   return -m.a * psiDot * geo.e_X;
 }
 
-Eigen::Vector3d angularAcceleration(const CoinModel& m, const ContactGeometry& geo, const Eigen::Vector3d& omega) {
+// The ideal path adds no couple, so a scene without effects integrates exactly as before.
+Eigen::Vector3d angularAcceleration(const CoinModel& m, const ContactGeometry& geo, const Eigen::Vector3d& omega,
+                                    const Eigen::Vector3d* torqueBody = nullptr) {
   const Eigen::Vector3d inertia(m.I_X, m.I_X, m.I_Z);  // principal moments about G, material frame
   const Eigen::Vector3d& c = geo.c;
   const Eigen::Vector3d cDot = contactDrift(m, geo, omega);
@@ -44,13 +49,50 @@ Eigen::Vector3d angularAcceleration(const CoinModel& m, const ContactGeometry& g
   //                                              + M g c x e_y
   const Eigen::Matrix3d A = Eigen::Matrix3d(inertia.asDiagonal()) +
                             m.M * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
-  const Eigen::Vector3d b = -omega.cross(inertia.cwiseProduct(omega)) -
-                            m.M * c.cross(omega.cross(cDot) + omega.cross(omega.cross(c))) + m.M * m.g * c.cross(geo.up);
+  // A couple adds to b (docs/euler_disk.md eq. 1.2).
+  Eigen::Vector3d b = -omega.cross(inertia.cwiseProduct(omega)) -
+                      m.M * c.cross(omega.cross(cDot) + omega.cross(omega.cross(c))) + m.M * m.g * c.cross(geo.up);
+  if (torqueBody != nullptr) b += *torqueBody;
   return A.llt().solve(b);
 }
 
 Eigen::Vector3d centreOfMassVelocityBody(const ContactGeometry& geo, const Eigen::Vector3d& omega) {
   return -omega.cross(geo.c);  // no slip, seed eq. (3)
+}
+
+Reaction reactionFrom(const CoinModel& m, const QuaternionState& s, const ContactGeometry& geo, const Eigen::Vector3d& dw) {
+  const Eigen::Vector3d& w = s.omegaBody;
+  // (5.2): dv/dt of v = -omega x c, with c-dot the contact's drift round the rim and the frame's turn.
+  const Eigen::Vector3d accelerationBody =
+      -(dw.cross(geo.c) + w.cross(contactDrift(m, geo, w))) + w.cross(centreOfMassVelocityBody(geo, w));
+  Reaction r;
+  r.R = m.M * geo.floorFromBody * accelerationBody + Eigen::Vector3d(0, m.M * m.g, 0);
+  r.N = r.R.y();
+  r.F = std::hypot(r.R.x(), r.R.z());
+  return r;
+}
+
+ContactKinematics contactKinematics(const CoinModel& m, const QuaternionState& s, const ContactGeometry& geo, double N) {
+  return {.e_X = geo.floorFromBody * geo.e_X,
+          .e_Y = geo.floorFromBody * geo.e_Y,
+          .e_Z = geo.floorFromBody.col(2),
+          .omega = geo.floorFromBody * s.omegaBody,
+          .a = m.a,
+          .N = N};
+}
+
+QuaternionDynamics dynamicsAt(const CoinModel& m, const QuaternionState& s, const ContactGeometry& geo) {
+  QuaternionDynamics d;
+  d.dOmegaBody = angularAcceleration(m, geo, s.omegaBody);
+  d.reaction = reactionFrom(m, s, geo, d.dOmegaBody);
+  // Two passes, exact for the same reason as in the Euler angles (docs/euler_disk.md eq. 1.6).
+  for (int pass = 0; pass < 2 && !m.effects.empty(); ++pass) {
+    d.loads = totalLoads(m.effects, contactKinematics(m, s, geo, d.reaction.N));
+    const Eigen::Vector3d torqueBody = geo.floorFromBody.transpose() * d.loads.torque;
+    d.dOmegaBody = angularAcceleration(m, geo, s.omegaBody, &torqueBody);
+    d.reaction = reactionFrom(m, s, geo, d.dOmegaBody);
+  }
+  return d;
 }
 
 }  // namespace
@@ -97,16 +139,11 @@ CoinState toEulerState(const QuaternionState& s, const CoinState& continuation) 
   return e;
 }
 
-double tiltMagnitude(const QuaternionState& s) {
-  const Eigen::Vector3d normal = s.q.toRotationMatrix().col(2);
-  return std::atan2(std::abs(normal.y()), std::hypot(normal.x(), normal.z()));
+QuaternionDynamics quaternionDynamics(const CoinModel& model, const QuaternionState& s) {
+  return dynamicsAt(model, s, contactGeometry(model, s.q));
 }
 
-Eigen::Vector3d angularAccelerationBody(const CoinModel& model, const QuaternionState& s) {
-  return angularAcceleration(model, contactGeometry(model, s.q), s.omegaBody);
-}
-
-QuaternionStateVec quaternionRhs(const CoinModel& model, double /*t*/, const QuaternionStateVec& y) {
+QuaternionRates quaternionRates(const CoinModel& model, const QuaternionStateVec& y) {
   const Eigen::Quaterniond stored(y[kQw], y[kQx], y[kQy], y[kQz]);
   const double normSquared = stored.squaredNorm();
   const Eigen::Quaterniond q = stored.normalized();
@@ -119,52 +156,26 @@ QuaternionStateVec quaternionRhs(const CoinModel& model, double /*t*/, const Qua
   const double restoring = naturalRate(model) * (1 - normSquared);
   const Eigen::Vector3d velocity = geo.floorFromBody * centreOfMassVelocityBody(geo, omega);  // (2.3)
 
-  QuaternionStateVec dy;
+  QuaternionRates rates;
+  QuaternionStateVec& dy = rates.dy;
   dy[kQw] = 0.5 * spin.w() + restoring * q.w();
   dy[kQx] = 0.5 * spin.x() + restoring * q.x();
   dy[kQy] = 0.5 * spin.y() + restoring * q.y();
   dy[kQz] = 0.5 * spin.z() + restoring * q.z();
-  dy.segment<3>(kOmegaBody1) = angularAcceleration(model, geo, omega);           // (3.4)
+  if (model.effects.empty()) {
+    dy.segment<3>(kOmegaBody1) = angularAcceleration(model, geo, omega);           // (3.4)
+  } else {
+    const QuaternionDynamics d = dynamicsAt(model, {.q = q, .omegaBody = omega, .x = y[kCentreX], .z = y[kCentreZ]}, geo);
+    dy.segment<3>(kOmegaBody1) = d.dOmegaBody;
+    rates.power = d.loads.power;
+  }
   dy[kCentreX] = velocity.x();
   dy[kCentreZ] = velocity.z();
-  return dy;
+  return rates;
 }
 
-double energy(const CoinModel& m, const QuaternionState& s) {
-  const ContactGeometry geo = contactGeometry(m, s.q);
-  const Eigen::Vector3d& w = s.omegaBody;
-  const Eigen::Vector3d v = centreOfMassVelocityBody(geo, w);
-  const double rotational = m.I_X * (w.x() * w.x() + w.y() * w.y()) + m.I_Z * w.z() * w.z();
-  return 0.5 * m.M * v.squaredNorm() + 0.5 * rotational + m.M * m.g * m.a * geo.cosTheta;  // (5.1)
+QuaternionStateVec quaternionRhs(const CoinModel& model, double /*t*/, const QuaternionStateVec& y) {
+  return quaternionRates(model, y).dy;
 }
-
-Eigen::Vector3d contactPoint(const CoinModel& m, const QuaternionState& s) {
-  const ContactGeometry geo = contactGeometry(m, s.q);
-  const Eigen::Vector3d centre(s.x, m.a * geo.cosTheta, s.z);
-  return centre + geo.floorFromBody * geo.c;
-}
-
-Reaction reaction(const CoinModel& m, const QuaternionState& s) {
-  const ContactGeometry geo = contactGeometry(m, s.q);
-  const Eigen::Vector3d& w = s.omegaBody;
-  const Eigen::Vector3d dw = angularAcceleration(m, geo, w);
-  // (5.2): dv/dt of v = -omega x c, with c-dot the contact's drift round the rim and the frame's turn.
-  const Eigen::Vector3d accelerationBody =
-      -(dw.cross(geo.c) + w.cross(contactDrift(m, geo, w))) + w.cross(centreOfMassVelocityBody(geo, w));
-  Reaction r;
-  r.R = m.M * geo.floorFromBody * accelerationBody + Eigen::Vector3d(0, m.M * m.g, 0);
-  r.N = r.R.y();
-  r.F = std::hypot(r.R.x(), r.R.z());
-  return r;
-}
-
-double liftOffMargin(const CoinModel& m, const QuaternionState& s) { return reaction(m, s).N / (m.M * m.g); }
-
-double slipMargin(const CoinModel& m, const QuaternionState& s, double mu) {
-  const Reaction r = reaction(m, s);
-  return (mu * r.N - r.F) / (m.M * m.g);
-}
-
-double flatMargin(const QuaternionState& s) { return kQuaternionFlatTilt - tiltMagnitude(s); }
 
 }  // namespace coinroll::physics

@@ -5,14 +5,12 @@
 // angles it has no coordinate singularity: it integrates up to within a hundredth of a degree of
 // flat, where the contact point itself (the lowest point of the rim) stops being defined.
 
-#include <numbers>
-
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
 #include "physics/coin_model.h"
 #include "physics/coin_state.h"
-#include "physics/observables.h"
+#include "physics/dynamics.h"
 
 namespace coinroll::physics {
 
@@ -44,33 +42,26 @@ QuaternionState fromEulerState(const CoinState& state);
 // Precondition: not flat (|theta| < 90 degrees), where phi and psi are defined.
 CoinState toEulerState(const QuaternionState& state, const CoinState& continuation);
 
-// |theta|, rad: the coin plane's tilt from the vertical, in [0, pi/2]; pi/2 is lying flat.
-double tiltMagnitude(const QuaternionState& state);
+// Everything the equations give at one state: the body-frame angular acceleration (eq. 3.4 with
+// the effects' couple added to b), the floor's reaction (eq. 5.2) and the effects' loads.
+struct QuaternionDynamics {
+  Eigen::Vector3d dOmegaBody = Eigen::Vector3d::Zero();  // rad/s^2, material components
+  Reaction reaction;
+  Loads loads;  // zero without effects
+};
 
-// Body-frame angular acceleration d(omegaBody)/dt, rad/s^2, from the 3x3 system (eq. 3.4).
-Eigen::Vector3d angularAccelerationBody(const CoinModel& model, const QuaternionState& state);
+QuaternionDynamics quaternionDynamics(const CoinModel& model, const QuaternionState& state);
+
+// dy/dt and the power the effects dissipate, W.
+struct QuaternionRates {
+  QuaternionStateVec dy;
+  double power = 0;
+};
+
+QuaternionRates quaternionRates(const CoinModel& model, const QuaternionStateVec& y);
 
 // dy/dt for y = (q, omegaBody, x, z): eqs. (3.4), (4.1) with the norm-restoring term, (2.3).
 // q is normalised before use, so the result is the motion of the attitude q / |q|.
 QuaternionStateVec quaternionRhs(const CoinModel& model, double t, const QuaternionStateVec& y);
-
-// Total energy, J, as in the seed's section 4 but from this state (eq. 5.1).
-double energy(const CoinModel& model, const QuaternionState& state);
-
-// The point of the rim touching the floor, m, floor frame.
-Eigen::Vector3d contactPoint(const CoinModel& model, const QuaternionState& state);
-
-// The floor's reaction R = M dv/dt + M g e_y (eq. 5.2).
-Reaction reaction(const CoinModel& model, const QuaternionState& state);
-
-// rad. The quaternion formulation stops here with the "coin-flat" event: cos(theta) = 1.7e-4,
-// the contact point runs round the rim at psi-dot ~ omega / cos(theta) and is undefined at 90
-// degrees; a real coin of any thickness has landed on its face before this.
-inline constexpr double kQuaternionFlatTilt = 89.99 * std::numbers::pi / 180.0;
-
-// Validity margins as in validity.h, positive while the ideal model holds.
-double liftOffMargin(const CoinModel& model, const QuaternionState& state);
-double slipMargin(const CoinModel& model, const QuaternionState& state, double mu);
-double flatMargin(const QuaternionState& state);  // kQuaternionFlatTilt - |theta|, rad
 
 }  // namespace coinroll::physics

@@ -6,6 +6,11 @@
 
 namespace coinroll::physics {
 
+double flatTiltFor(const CoinModel& model, bool quaternionFormulation) {
+  if (!model.effects.empty()) return kSpinDownFlatTilt;
+  return quaternionFormulation ? kQuaternionFlatTilt : kFlatTilt;
+}
+
 double liftOffMargin(const CoinModel& model, const CoinState& state) {
   return reaction(model, state).N / (model.M * model.g);
 }
@@ -15,6 +20,6 @@ double slipMargin(const CoinModel& model, const CoinState& state, double mu) {
   return (mu * r.N - r.F) / (model.M * model.g);
 }
 
-double flatMargin(const CoinState& state) { return kFlatTilt - std::abs(state.theta); }
+double flatMargin(const CoinState& state, double flatTilt) { return flatTilt - std::abs(state.theta); }
 
 }  // namespace coinroll::physics

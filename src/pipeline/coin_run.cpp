@@ -7,10 +7,13 @@
 #include <stdexcept>
 
 #include "physics/observables.h"
+#include "pipeline/validity_events.h"
 
 namespace coinroll::pipeline {
 
 namespace {
+
+using physics::Formulation;
 
 // rad. The quaternion carries no phi or psi: toEulerState recovers them modulo 2 pi and unwraps
 // against the previous sample, which is right only while they turn by less than pi in between.
@@ -18,73 +21,113 @@ namespace {
 // within one such interval (they do near flat, like 1 / sqrt(cos theta)).
 constexpr double kUnwrapTurn = std::numbers::pi / 4;
 
-std::variant<CoinTrajectory, QuaternionTrajectory> startEither(const Simulation& simulation) {
-  if (simulation.formulation == scene::Formulation::EulerAngles) return startTrajectory(simulation);
-  return QuaternionTrajectory(QuaternionRhs{&simulation.model}, 0.0,
-                              physics::toVector(physics::fromEulerState(simulation.initial)), simulation.solver,
-                              quaternionValidityEvents(simulation.model, simulation.friction));
+template <Formulation F, int N>
+integrate::Trajectory<N, physics::CoinRhs<F>> start(const Simulation& simulation) {
+  integrate::Vec<N> y0;
+  if constexpr (F == Formulation::EulerAngles) {
+    y0.template head<physics::kStateSize>() = physics::toVector(simulation.initial);
+  } else {
+    y0.template head<physics::kQuaternionStateSize>() = physics::toVector(physics::fromEulerState(simulation.initial));
+  }
+  if constexpr (N > physics::kMotionSize<F>) y0[N - 1] = 0;  // nothing dissipated yet
+  return {physics::CoinRhs<F>{simulation.model}, 0.0, y0, simulation.solver,
+          validityEvents<F, N>(simulation.model, simulation.friction, simulation.validityIsTerminal)};
 }
+
+template <class Variant>
+Variant startEither(const Simulation& simulation) {
+  const bool dissipative = !simulation.model.effects.empty();
+  if (simulation.formulation == Formulation::EulerAngles) {
+    if (dissipative) return start<Formulation::EulerAngles, physics::kStateSize + 1>(simulation);
+    return start<Formulation::EulerAngles, physics::kStateSize>(simulation);
+  }
+  if (dissipative) return start<Formulation::Quaternion, physics::kQuaternionStateSize + 1>(simulation);
+  return start<Formulation::Quaternion, physics::kQuaternionStateSize>(simulation);
+}
+
+template <Formulation F, int N>
+double dissipatedOf(const integrate::Vec<N>& y) {
+  if constexpr (N > physics::kMotionSize<F>) return y[N - 1];
+  else return 0;
+}
+
+template <class T>
+struct RunTraits;
+
+template <int N, Formulation F>
+struct RunTraits<integrate::Trajectory<N, physics::CoinRhs<F>>> {
+  static constexpr Formulation kFormulation = F;
+  static constexpr int kSize = N;
+};
 
 }  // namespace
 
-std::vector<integrate::Event<physics::kQuaternionStateSize>> quaternionValidityEvents(const physics::CoinModel& model,
-                                                                                      std::optional<double> friction) {
-  using physics::QuaternionStateVec;
-  using physics::toQuaternionState;
-  std::vector<integrate::Event<physics::kQuaternionStateSize>> events;
-  events.push_back({.name = "coin-flat",
-                    .g = [](double, const QuaternionStateVec& y) { return physics::flatMargin(toQuaternionState(y)); },
-                    .direction = -1});
-  events.push_back({.name = "lift-off",
-                    .g = [model](double, const QuaternionStateVec& y) {
-                      return physics::liftOffMargin(model, toQuaternionState(y));
-                    },
-                    .direction = -1});
-  if (friction) {
-    const double mu = *friction;
-    events.push_back({.name = "slip",
-                      .g = [model, mu](double, const QuaternionStateVec& y) {
-                        return physics::slipMargin(model, toQuaternionState(y), mu);
-                      },
-                      .direction = -1});
-  }
-  return events;
-}
-
 CoinRun::CoinRun(const Simulation& simulation)
-    : trajectory_(startEither(simulation)), lastState_(simulation.initial) {}
+    : trajectory_(startEither<decltype(trajectory_)>(simulation)), lastState_(simulation.initial) {}
+
+std::optional<RunSample> CoinRun::sampleAt(double t) {
+  return std::visit(
+      [this, t](auto& run) {
+        using Traits = RunTraits<std::decay_t<decltype(run)>>;
+        return sampleOf<Traits::kFormulation, Traits::kSize>(run, t);
+      },
+      trajectory_);
+}
 
 std::optional<physics::CoinState> CoinRun::stateAt(double t) {
-  if (auto* euler = std::get_if<CoinTrajectory>(&trajectory_)) {
-    const std::optional<physics::StateVec> y = euler->stateAt(t);
-    if (!y) return std::nullopt;
-    return physics::toState(*y);
-  }
-  return quaternionStateAt(std::get<QuaternionTrajectory>(trajectory_), t);
+  const std::optional<RunSample> sample = sampleAt(t);
+  if (!sample) return std::nullopt;
+  return sample->state;
 }
 
-std::optional<physics::CoinState> CoinRun::quaternionStateAt(QuaternionTrajectory& trajectory, double t) {
-  if (t < lastTime_) {
-    throw std::logic_error(fmt::format("CoinRun::stateAt: queries must not go back in time ({} after {})", t, lastTime_));
-  }
-  while (lastTime_ < t) {
-    const double turnRate = std::max(std::abs(physics::precessionRate(lastState_)), std::abs(physics::spinRate(lastState_)));
-    const double next = turnRate > 0 ? std::min(t, lastTime_ + kUnwrapTurn / turnRate) : t;
-    const std::optional<physics::QuaternionStateVec> y = trajectory.stateAt(next);
+template <Formulation F, int N>
+std::optional<RunSample> CoinRun::sampleOf(Run<F, N>& run, double t) {
+  if constexpr (F == Formulation::EulerAngles) {
+    const std::optional<integrate::Vec<N>> y = run.stateAt(t);
     if (!y) return std::nullopt;
-    lastState_ = physics::toEulerState(physics::toQuaternionState(*y), lastState_);
-    lastTime_ = next;
+    return RunSample{seedState<F, N>(*y), dissipatedOf<F, N>(*y)};
+  } else {
+    if (t < lastTime_) {
+      throw std::logic_error(fmt::format("CoinRun::stateAt: queries must not go back in time ({} after {})", t, lastTime_));
+    }
+    while (lastTime_ < t) {
+      const double turnRate = std::max(std::abs(physics::precessionRate(lastState_)), std::abs(physics::spinRate(lastState_)));
+      const double next = turnRate > 0 ? std::min(t, lastTime_ + kUnwrapTurn / turnRate) : t;
+      const std::optional<integrate::Vec<N>> y = run.stateAt(next);
+      if (!y) return std::nullopt;
+      lastState_ = seedState<F, N>(*y, lastState_);
+      lastDissipated_ = dissipatedOf<F, N>(*y);
+      lastTime_ = next;
+    }
+    return RunSample{lastState_, lastDissipated_};
   }
-  return lastState_;
 }
 
 std::optional<integrate::EventHit<physics::kStateSize>> CoinRun::stoppedBy() const {
-  if (const auto* euler = std::get_if<CoinTrajectory>(&trajectory_)) return euler->stoppedBy();
-  const auto& hit = std::get<QuaternionTrajectory>(trajectory_).stoppedBy();
-  if (!hit) return std::nullopt;
-  // The hit lies within one unwrap interval of the last sample, so lastState_ continues it.
-  const physics::CoinState s = physics::toEulerState(physics::toQuaternionState(hit->y), lastState_);
-  return integrate::EventHit<physics::kStateSize>{hit->name, hit->t, physics::toVector(s)};
+  return std::visit(
+      [this](const auto& run) -> std::optional<integrate::EventHit<physics::kStateSize>> {
+        using Traits = RunTraits<std::decay_t<decltype(run)>>;
+        const auto& hit = run.stoppedBy();
+        if (!hit) return std::nullopt;
+        // The hit lies within one unwrap interval of the last sample, so lastState_ continues it.
+        const physics::CoinState s = seedState<Traits::kFormulation, Traits::kSize>(hit->y, lastState_);
+        return integrate::EventHit<physics::kStateSize>{hit->name, hit->t, physics::toVector(s)};
+      },
+      trajectory_);
+}
+
+std::vector<integrate::EventHit<physics::kStateSize>> CoinRun::warnings() const {
+  return std::visit(
+      [](const auto& run) {
+        using Traits = RunTraits<std::decay_t<decltype(run)>>;
+        std::vector<integrate::EventHit<physics::kStateSize>> hits;
+        for (const auto& hit : run.nonTerminalHits()) {
+          const physics::CoinState s = seedState<Traits::kFormulation, Traits::kSize>(hit.y);
+          hits.push_back({hit.name, hit.t, physics::toVector(s)});
+        }
+        return hits;
+      },
+      trajectory_);
 }
 
 integrate::Stats CoinRun::stats() const {

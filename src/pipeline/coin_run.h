@@ -1,54 +1,60 @@
 #pragma once
 // One run of a Simulation in the formulation its scene chose, seen through the seed's CoinState:
-// the CSV (and any other consumer of samples) need not know which equations are integrated.
+// the CSV (and any other consumer of samples) need not know which equations are integrated, nor
+// whether the dissipated energy is integrated beside them.
 
 #include <optional>
 #include <variant>
+#include <vector>
 
 #include "integrate/events.h"
 #include "integrate/solver_config.h"
 #include "integrate/trajectory.h"
+#include "physics/coin_rhs.h"
 #include "physics/coin_state.h"
-#include "physics/quaternion_dynamics.h"
 #include "pipeline/simulation.h"
 
 namespace coinroll::pipeline {
 
-// The quaternion formulation's right-hand side bound to one model.
-struct QuaternionRhs {
-  const physics::CoinModel* model;
-  physics::QuaternionStateVec operator()(double t, const physics::QuaternionStateVec& y) const {
-    return physics::quaternionRhs(*model, t, y);
-  }
+// One sample of a run.
+struct RunSample {
+  physics::CoinState state;
+  double dissipated = 0;  // J, energy the effects have dissipated since t = 0
 };
-
-using QuaternionTrajectory = integrate::Trajectory<physics::kQuaternionStateSize, QuaternionRhs>;
-
-// validityEvents() for the quaternion state: coin-flat at physics::kQuaternionFlatTilt instead of
-// physics::kFlatTilt, lift-off and slip unchanged.
-std::vector<integrate::Event<physics::kQuaternionStateSize>> quaternionValidityEvents(const physics::CoinModel& model,
-                                                                                      std::optional<double> friction);
 
 class CoinRun {
  public:
-  // Starts at t = 0 with the validity events armed. `simulation` must outlive the run.
+  // Starts at t = 0 with the validity events armed. The run keeps its own copy of the model.
   explicit CoinRun(const Simulation& simulation);
 
-  // The state at t >= every earlier query; std::nullopt once an event has ended the run before t.
-  // phi and psi are continuous in t in both formulations.
+  // The sample at t >= every earlier query; std::nullopt once an event has ended the run before
+  // t. phi and psi are continuous in t in both formulations.
+  std::optional<RunSample> sampleAt(double t);
   std::optional<physics::CoinState> stateAt(double t);
 
   // The event that ended the run, its state in the seed's variables.
   std::optional<integrate::EventHit<physics::kStateSize>> stoppedBy() const;
 
+  // Lift-off and slip crossings the run went on past (on_invalid "warn"), in time order so far.
+  std::vector<integrate::EventHit<physics::kStateSize>> warnings() const;
+
   integrate::Stats stats() const;
 
  private:
-  std::optional<physics::CoinState> quaternionStateAt(QuaternionTrajectory& trajectory, double t);
+  template <physics::Formulation F, int N>
+  using Run = integrate::Trajectory<N, physics::CoinRhs<F>>;
+  using EulerRun = Run<physics::Formulation::EulerAngles, physics::kStateSize>;
+  using EulerDissipativeRun = Run<physics::Formulation::EulerAngles, physics::kStateSize + 1>;
+  using QuaternionRun = Run<physics::Formulation::Quaternion, physics::kQuaternionStateSize>;
+  using QuaternionDissipativeRun = Run<physics::Formulation::Quaternion, physics::kQuaternionStateSize + 1>;
 
-  std::variant<CoinTrajectory, QuaternionTrajectory> trajectory_;
+  template <physics::Formulation F, int N>
+  std::optional<RunSample> sampleOf(Run<F, N>& run, double t);
+
+  std::variant<EulerRun, EulerDissipativeRun, QuaternionRun, QuaternionDissipativeRun> trajectory_;
   double lastTime_ = 0;             // s, time of lastState_
   physics::CoinState lastState_;    // the latest sample: the continuation for phi and psi
+  double lastDissipated_ = 0;       // J, at lastTime_
 };
 
 }  // namespace coinroll::pipeline

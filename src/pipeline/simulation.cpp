@@ -79,42 +79,26 @@ Simulation buildSimulation(const scene::SceneConfig& scene) {
   sim.solver.atol = scene.solver.atol;
   sim.solver.dt = scene.solver.dt;
   sim.formulation = scene.solver.formulation;
+  sim.model.effects = scene.effects;
   sim.friction = scene.friction;
+  sim.validityIsTerminal = scene.onInvalid == scene::OnInvalid::Stop;
   sim.duration = scene.duration;
   requireValidStart(sim);
   return sim;
 }
 
-std::vector<integrate::Event<physics::kStateSize>> validityEvents(const physics::CoinModel& model,
-                                                                  std::optional<double> friction) {
-  using physics::StateVec;
-  std::vector<integrate::Event<physics::kStateSize>> events;
-  events.push_back({.name = "coin-flat",
-                    .g = [](double, const StateVec& y) { return physics::flatMargin(physics::toState(y)); },
-                    .direction = -1});
-  events.push_back({.name = "lift-off",
-                    .g = [model](double, const StateVec& y) { return physics::liftOffMargin(model, physics::toState(y)); },
-                    .direction = -1});
-  if (friction) {
-    const double mu = *friction;
-    events.push_back({.name = "slip",
-                      .g = [model, mu](double, const StateVec& y) {
-                        return physics::slipMargin(model, physics::toState(y), mu);
-                      },
-                      .direction = -1});
-  }
-  return events;
-}
-
-CoinTrajectory startTrajectory(const Simulation& simulation) {
-  return CoinTrajectory(CoinRhs{&simulation.model}, 0.0, physics::toVector(simulation.initial), simulation.solver,
-                        validityEvents(simulation.model, simulation.friction));
+std::string steadyStartNote(const scene::SceneConfig& scene) {
+  if (scene.effects.empty() || !std::holds_alternative<scene::SteadyInitial>(scene.initial)) return {};
+  return "initial.steady is a steady motion of the ideal model; with effects it is only the starting state of a "
+         "motion that slows down";
 }
 
 std::string describeStop(const integrate::EventHit<physics::kStateSize>& hit) {
   const std::string flat = fmt::format(
-      "the coin is nearly flat; the Euler-angle formulation stops at {} deg, the quaternion formulation at {} deg "
-      "(solver.formulation)", physics::kFlatTilt * 180 / std::numbers::pi, physics::kQuaternionFlatTilt * 180 / std::numbers::pi);
+      "the coin is nearly flat; an ideal run stops at {} deg in the Euler-angle formulation and {} deg in the quaternion "
+      "one (solver.formulation), a run with effects at {} deg",
+      physics::kFlatTilt * 180 / std::numbers::pi, physics::kQuaternionFlatTilt * 180 / std::numbers::pi,
+      physics::kSpinDownFlatTilt * 180 / std::numbers::pi);
   const std::string meaning = hit.name == "coin-flat" ? flat
                               : hit.name == "lift-off" ? "the normal force reached zero; the coin would leave the floor"
                               : hit.name == "slip"     ? "friction reached mu N; the contact would start slipping"

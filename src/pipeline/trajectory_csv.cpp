@@ -15,29 +15,34 @@ long sampleCount(double duration, double sampleDt) {
 }
 
 CsvRunResult writeTrajectoryCsv(const Simulation& simulation, double sampleDt, std::ostream& out) {
-  out << kCsvHeader << '\n';
+  const bool dissipative = !simulation.model.effects.empty();
+  out << kCsvHeader << (dissipative ? kCsvDissipationColumns : "") << '\n';
   CoinRun run(simulation);
   CsvRunResult result;
   const long rows = sampleCount(simulation.duration, sampleDt);
   fmt::memory_buffer line;
   for (long k = 0; k < rows; ++k) {
     const double t = static_cast<double>(k) * sampleDt;
-    const std::optional<physics::CoinState> state = run.stateAt(t);
-    if (!state) break;
-    const physics::CoinState& s = *state;
+    const std::optional<RunSample> sample = run.sampleAt(t);
+    if (!sample) break;
+    const physics::CoinState& s = sample->state;
     const Eigen::Vector3d centre = physics::centreOfMass(simulation.model, s);
     const Eigen::Vector3d contact = physics::contactPoint(simulation.model, s);
-    const physics::Reaction r = physics::reaction(simulation.model, s);
+    const physics::Dynamics d = physics::dynamics(simulation.model, s);
+    const physics::Reaction& r = d.reaction;
     line.clear();
     // 17 significant digits round-trip every double: the CSV is a faithful copy of the state.
     fmt::format_to(std::back_inserter(line), "{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},",
                    t, s.theta, s.phi, s.psi, s.omega_X, s.omega_Y, s.omega_Z, s.x);
-    fmt::format_to(std::back_inserter(line), "{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n",
+    fmt::format_to(std::back_inserter(line), "{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}",
                    centre.y(), s.z, contact.x(), contact.z(), physics::energy(simulation.model, s), r.N, r.F);
+    if (dissipative) fmt::format_to(std::back_inserter(line), ",{:.17g},{:.17g}", d.loads.power, sample->dissipated);
+    line.push_back('\n');
     out.write(line.data(), static_cast<std::streamsize>(line.size()));
     ++result.rows;
   }
   result.stoppedBy = run.stoppedBy();
+  result.warnings = run.warnings();
   result.stats = run.stats();
   return result;
 }

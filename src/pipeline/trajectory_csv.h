@@ -3,6 +3,7 @@
 
 #include <optional>
 #include <ostream>
+#include <vector>
 
 #include "integrate/events.h"
 #include "physics/coin_state.h"
@@ -13,6 +14,9 @@ namespace coinroll::pipeline {
 inline constexpr const char* kCsvHeader =
     "t,theta,phi,psi,omega_X,omega_Y,omega_Z,x,y,z,contact_x,contact_z,energy,normal_force,friction_force";
 
+// Appended to the header when the scene has effects: power dissipated now (W) and since t = 0 (J).
+inline constexpr const char* kCsvDissipationColumns = ",power,dissipated";
+
 // Number of rows for a duration and sample step: k = 0 .. floor(duration / S). The quotient is
 // nudged by a relative 1e-9 so 5.0 / 0.01 counts 501 rows despite 5.0 / 0.01 = 499.99999...
 long sampleCount(double duration, double sampleDt);
@@ -20,6 +24,7 @@ long sampleCount(double duration, double sampleDt);
 struct CsvRunResult {
   long rows = 0;
   std::optional<integrate::EventHit<physics::kStateSize>> stoppedBy;
+  std::vector<integrate::EventHit<physics::kStateSize>> warnings;  // on_invalid "warn": crossings gone past
   integrate::Stats stats;
 };
 

@@ -7,6 +7,10 @@
 #include <optional>
 #include <string>
 #include <variant>
+#include <vector>
+
+#include "physics/effects.h"
+#include "physics/formulation.h"
 
 namespace coinroll::scene {
 
@@ -39,9 +43,7 @@ struct SteadyInitial {
 
 using InitialSpec = std::variant<ExplicitInitial, SteadyInitial>;
 
-// Which equations of motion run (docs/quaternion_formulation.md): the seed's Euler angles, or the
-// attitude quaternion that has no coordinate singularity at theta = 90 degrees.
-enum class Formulation { EulerAngles, Quaternion };
+using physics::Formulation;
 
 struct SolverSpec {
   // README "Formulations": the Euler angles are the more accurate per unit of time on every
@@ -84,6 +86,12 @@ struct RenderSpec {
   VideoSpec video;
 };
 
+// What the validity events lift-off and slip do (INTERFACE.md "Dissipation").
+enum class OnInvalid {
+  Stop,  // end the run at the event
+  Warn,  // report each crossing with its time and go on
+};
+
 struct SceneConfig {
   std::string name = "coinroll";
   CoinSpec coin;
@@ -92,6 +100,8 @@ struct SceneConfig {
   InitialSpec initial;
   double duration = 0;              // s, required
   SolverSpec solver;
+  std::vector<physics::Effect> effects;  // empty: the seed's ideal rolling
+  OnInvalid onInvalid = OnInvalid::Stop;
   RenderSpec render;
 };
 

@@ -231,6 +231,70 @@ RenderSpec parseRender(const JsonReader& top) {
   return render;
 }
 
+double nonNegative(const JsonReader& r, std::string_view key, double value) {
+  if (!(value >= 0)) r.fail(key, fmt::format("must be >= 0, got {}", value));
+  return value;
+}
+
+// One entry of "effects" (docs/euler_disk.md §2); defaults are the laws' own member initializers.
+physics::Effect parseEffect(const nlohmann::json& node, const std::string& path) {
+  if (!node.is_object() || !node.contains("type") || !node["type"].is_string()) {
+    throw SceneError(fmt::format("{}: must be an object with a \"type\": \"air_drag\", \"rolling_resistance\" or "
+                                 "\"spin_friction\", got {}", path, describeJson(node)));
+  }
+  const std::string type = node["type"].get<std::string>();
+  if (type == "air_drag") {
+    const JsonReader r(node, path, "", {"type", "model", "viscosity", "density"});
+    physics::AirDrag law;
+    const std::string model = r.optionalString("model").value_or("moffatt");
+    if (model == "moffatt") law.model = physics::AirFlow::Moffatt;
+    else if (model == "boundary_layer") law.model = physics::AirFlow::BoundaryLayer;
+    else r.fail("model", fmt::format("must be \"moffatt\" or \"boundary_layer\", got \"{}\"", model));
+    law.viscosity = r.number("viscosity", law.viscosity);
+    positive(r, "viscosity", law.viscosity);
+    law.density = r.number("density", law.density);
+    positive(r, "density", law.density);
+    return law;
+  }
+  if (type == "rolling_resistance") {
+    const JsonReader r(node, path, "", {"type", "length", "load_exponent"});
+    physics::RollingResistance law;
+    law.length = nonNegative(r, "length", r.number("length", law.length));
+    law.loadExponent = r.number("load_exponent", law.loadExponent);
+    if (!(law.loadExponent > 0 && law.loadExponent <= 2)) {
+      r.fail("load_exponent", fmt::format("must be in (0, 2] (1: couple proportional to the load), got {}", law.loadExponent));
+    }
+    return law;
+  }
+  if (type == "spin_friction") {
+    const JsonReader r(node, path, "", {"type", "length"});
+    physics::SpinFriction law;
+    law.length = nonNegative(r, "length", r.number("length", law.length));
+    return law;
+  }
+  throw SceneError(fmt::format("{}.type: must be \"air_drag\", \"rolling_resistance\" or \"spin_friction\", got \"{}\"",
+                               path, type));
+}
+
+std::vector<physics::Effect> parseEffects(const JsonReader& top) {
+  const nlohmann::json* node = top.child("effects");
+  if (node == nullptr) return {};
+  if (!node->is_array()) top.fail("effects", "must be a list of effects, e.g. [{\"type\": \"air_drag\"}], got " + describeJson(*node));
+  std::vector<physics::Effect> effects;
+  for (std::size_t i = 0; i < node->size(); ++i) {
+    const std::string path = fmt::format("effects[{}]", i);
+    physics::Effect effect = parseEffect((*node)[i], path);
+    for (const physics::Effect& earlier : effects) {
+      if (earlier.index() == effect.index()) {
+        throw SceneError(fmt::format("{}: a second \"{}\"; each law may appear once (merge their parameters)", path,
+                                     physics::typeName(effect)));
+      }
+    }
+    effects.push_back(effect);
+  }
+  return effects;
+}
+
 // 1-based line and column of a byte offset in `text`.
 std::pair<std::size_t, std::size_t> lineAndColumn(const std::string& text, std::size_t byte) {
   std::size_t line = 1, column = 1;
@@ -246,7 +310,7 @@ std::pair<std::size_t, std::size_t> lineAndColumn(const std::string& text, std::
 SceneConfig parseScene(const nlohmann::json& document, std::string_view sourceName, const ParseOptions& options) {
   try {
     const JsonReader top(document, "", sourceName,
-                         {"name", "coin", "gravity", "friction", "initial", "duration", "solver", "effects", "render"});
+                         {"name", "coin", "gravity", "friction", "initial", "duration", "solver", "effects", "on_invalid", "render"});
     SceneConfig scene;
     scene.name = top.optionalString("name").value_or(scene.name);
     scene.coin = parseCoin(top);
@@ -258,9 +322,11 @@ SceneConfig parseScene(const nlohmann::json& document, std::string_view sourceNa
     scene.duration = top.requiredNumber("duration");
     positive(top, "duration", scene.duration);
     scene.solver = parseSolver(top, options);
-    if (const nlohmann::json* effects = top.child("effects"); effects != nullptr && !(effects->is_array() && effects->empty())) {
-      top.fail("effects", "this version has only the ideal rolling model of the seed: leave effects empty or absent, got " +
-                              describeJson(*effects));
+    scene.effects = parseEffects(top);
+    if (const std::optional<std::string> onInvalid = top.optionalString("on_invalid")) {
+      if (*onInvalid == "stop") scene.onInvalid = OnInvalid::Stop;
+      else if (*onInvalid == "warn") scene.onInvalid = OnInvalid::Warn;
+      else top.fail("on_invalid", fmt::format("must be \"stop\" or \"warn\", got \"{}\"", *onInvalid));
     }
     scene.render = parseRender(top);
     return scene;

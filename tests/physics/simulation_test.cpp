@@ -10,7 +10,7 @@
 #include "physics/dynamics.h"
 #include "physics/observables.h"
 #include "physics/steady.h"
-#include "physics/bound_rhs.h"
+#include "physics/coin_rhs.h"
 #include "tolerance.h"
 
 namespace coinroll::physics {
@@ -30,7 +30,7 @@ CoinState wobblingState() { return {.theta = 20 * kDeg, .omega_X = 0.5, .omega_Y
 
 TEST(EnergyConservation, DriftBelow1e10Over100NaturalPeriods) {
   for (const CoinModel& m : {diskModel(0.4, 0.0375, 9.81), ringModel(0.4, 0.0375, 0.02, 9.81)}) {
-    integrate::Trajectory trajectory(SeedRhs{m}, 0.0, toVector(wobblingState()), kTight);
+    integrate::Trajectory trajectory(CoinRhs<Formulation::EulerAngles>{m}, 0.0, toVector(wobblingState()), kTight);
     const double E0 = energy(m, wobblingState());
     double worst = 0;
     const double period = 2 * std::numbers::pi * naturalTime(m);
@@ -52,7 +52,7 @@ TEST(ChaplyginIntegrals, ThetaParametrisedRatesMatchTheTimeIntegration) {
   auto inTheta = [&](double theta, const integrate::Vec<2>& w) {
     return integrate::Vec<2>(std::tan(theta) * w[0] + (m.I_Z / m.I_X) * w[1], Ma2 / (m.I_Z + Ma2) * w[0]);
   };
-  integrate::Trajectory inTime(SeedRhs{m}, 0.0, toVector(start), kTight);
+  integrate::Trajectory inTime(CoinRhs<Formulation::EulerAngles>{m}, 0.0, toVector(start), kTight);
   integrate::Trajectory alongTheta(inTheta, start.theta, integrate::Vec<2>(start.omega_Y, start.omega_Z), kTight);
   int compared = 0;
   for (double t = 0.001; t < 1.0; t += 0.001) {
@@ -67,7 +67,7 @@ TEST(ChaplyginIntegrals, ThetaParametrisedRatesMatchTheTimeIntegration) {
 }
 
 double maxDeviationFromSteady(const CoinModel& m, const CoinState& steady, double duration) {
-  integrate::Trajectory trajectory(SeedRhs{m}, 0.0, toVector(steady), kTight);
+  integrate::Trajectory trajectory(CoinRhs<Formulation::EulerAngles>{m}, 0.0, toVector(steady), kTight);
   double worst = 0;
   for (double t = 0.01; t <= duration + 1e-12; t += 0.01) {
     const CoinState s = toState(*trajectory.stateAt(t));
@@ -91,7 +91,7 @@ TEST(SteadyStates, StaySteadyForTenSeconds) {
 double largestTilt(const CoinModel& m, double omega_Z, double duration) {
   CoinState s = straightRolling(omega_Z);
   s.theta = 1e-4;
-  integrate::Trajectory trajectory(SeedRhs{m}, 0.0, toVector(s), kTight);
+  integrate::Trajectory trajectory(CoinRhs<Formulation::EulerAngles>{m}, 0.0, toVector(s), kTight);
   double largest = 0;
   for (double t = 0.005; t <= duration; t += 0.005) {
     const auto y = trajectory.stateAt(t);
@@ -120,7 +120,7 @@ TEST(WobbleFrequency, SimulatedPeriodMatchesTwoPiOverRootK) {
       // Tilt maxima: omega_X = theta-dot falls through zero.
       std::vector<integrate::Event<kStateSize>> maxima{
           {.name = "max", .g = [](double, const StateVec& y) { return y[kOmega_X]; }, .direction = -1, .terminal = false}};
-      integrate::Trajectory trajectory(SeedRhs{m}, 0.0, toVector(s), kTight, maxima);
+      integrate::Trajectory trajectory(CoinRhs<Formulation::EulerAngles>{m}, 0.0, toVector(s), kTight, maxima);
       const double expectedPeriod = 2 * std::numbers::pi / std::sqrt(K);
       trajectory.stateAt(10.5 * expectedPeriod);
       const auto& hits = trajectory.nonTerminalHits();
@@ -133,10 +133,10 @@ TEST(WobbleFrequency, SimulatedPeriodMatchesTwoPiOverRootK) {
 
 TEST(Rk4OnTheCoin, ConvergesAtOrderFour) {
   const CoinModel m = diskModel(0.4, 0.0375, 9.81);
-  integrate::Trajectory reference(SeedRhs{m}, 0.0, toVector(wobblingState()), kTight);
+  integrate::Trajectory reference(CoinRhs<Formulation::EulerAngles>{m}, 0.0, toVector(wobblingState()), kTight);
   const StateVec exact = *reference.stateAt(0.5);
   auto errorWith = [&](double dt) {
-    integrate::Trajectory rk4(SeedRhs{m}, 0.0, toVector(wobblingState()), SolverConfig{.method = Method::Rk4, .dt = dt});
+    integrate::Trajectory rk4(CoinRhs<Formulation::EulerAngles>{m}, 0.0, toVector(wobblingState()), SolverConfig{.method = Method::Rk4, .dt = dt});
     return (*rk4.stateAt(0.5) - exact).norm();
   };
   EXPECT_TRUE(isNear(std::log2(errorWith(1e-3) / errorWith(5e-4)), 4, 0.2));
@@ -145,10 +145,10 @@ TEST(Rk4OnTheCoin, ConvergesAtOrderFour) {
 TEST(Dop853OnTheCoin, ErrorFallsWithTheTolerance) {
   // The adaptive method's "order": tightening rtol 100x cuts the error by 20x or more.
   const CoinModel m = diskModel(0.4, 0.0375, 9.81);
-  integrate::Trajectory reference(SeedRhs{m}, 0.0, toVector(wobblingState()), SolverConfig{.rtol = 1e-13, .atol = 1e-15});
+  integrate::Trajectory reference(CoinRhs<Formulation::EulerAngles>{m}, 0.0, toVector(wobblingState()), SolverConfig{.rtol = 1e-13, .atol = 1e-15});
   const StateVec exact = *reference.stateAt(2.0);
   auto errorWith = [&](double rtol) {
-    integrate::Trajectory run(SeedRhs{m}, 0.0, toVector(wobblingState()), SolverConfig{.rtol = rtol, .atol = rtol * 1e-2});
+    integrate::Trajectory run(CoinRhs<Formulation::EulerAngles>{m}, 0.0, toVector(wobblingState()), SolverConfig{.rtol = rtol, .atol = rtol * 1e-2});
     return (*run.stateAt(2.0) - exact).norm();
   };
   EXPECT_GT(errorWith(1e-7) / errorWith(1e-9), 20);

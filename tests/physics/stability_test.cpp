@@ -15,7 +15,7 @@
 #include "physics/dynamics.h"
 #include "physics/observables.h"
 #include "physics/steady.h"
-#include "physics/bound_rhs.h"
+#include "physics/coin_rhs.h"
 #include "tolerance.h"
 
 namespace coinroll::physics {
@@ -48,7 +48,7 @@ constexpr double kRk4StepLimit = 0.07972;
 std::vector<double> energyErrors(Method method, double dt, double periods, int samples) {
   const CoinState start = kickedCircle();
   const double E0 = energy(kDisk, start);
-  integrate::Trajectory trajectory(SeedRhs{kDisk}, 0.0, toVector(start), SolverConfig{.method = method, .dt = dt});
+  integrate::Trajectory trajectory(CoinRhs<Formulation::EulerAngles>{kDisk}, 0.0, toVector(start), SolverConfig{.method = method, .dt = dt});
   std::vector<double> errors(samples, std::numeric_limits<double>::infinity());
   try {
     for (int k = 0; k < samples; ++k) {

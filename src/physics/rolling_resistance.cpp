@@ -1,0 +1,22 @@
+#include "physics/rolling_resistance.h"
+
+#include <cmath>
+
+namespace coinroll::physics {
+
+Loads loads(const RollingResistance& law, const ContactKinematics& k) {
+  // Without load there is no contact to deform: the couple vanishes with N (lift-off is an event).
+  if (!(k.N > 0)) return {};
+  const double couple = law.loadExponent == 1
+                            ? law.length * k.N
+                            : law.length * kRollingReferenceLoad * std::pow(k.N / kRollingReferenceLoad, law.loadExponent);
+  const Eigen::Vector3d h = rollingAxis(k);
+  const double rollingRate = k.omega.dot(h);  // psi-dot cos(theta), eq. (2.7)
+  const double cosTheta = k.e_Y.y();
+  // The couple about h that does the work delta N |psi-dot| while the face turns about h only
+  // at psi-dot cos(theta) (eq. 2.8).
+  const double magnitude = couple / cosTheta * smoothSign(rollingRate, kRollingRegularisationRate);
+  return {.torque = -magnitude * h, .power = magnitude * rollingRate};
+}
+
+}  // namespace coinroll::physics

@@ -1,0 +1,27 @@
+#pragma once
+// Rolling resistance: the energy a rolling contact loses per distance travelled
+// (docs/euler_disk.md §2.3; McDonald and McDonald 2000, Leine 2009, Thorne et al. 2026).
+
+#include "physics/contact_kinematics.h"
+
+namespace coinroll::physics {
+
+// N, the load at which `length` is quoted when the couple is not proportional to N.
+inline constexpr double kRollingReferenceLoad = 1.0;
+
+// rad/s. Below this rolling rate omega . h the couple fades linearly to zero instead of
+// switching sign; a spin-down rolls a thousand times faster than this until it is flat.
+inline constexpr double kRollingRegularisationRate = 1e-3;
+
+struct RollingResistance {
+  double length = 2e-6;  // m, rolling-resistance length delta: the couple is delta N for a wheel
+  // n: the couple is delta N_ref (N / N_ref)^n with N_ref = kRollingReferenceLoad; 1 is
+  // proportional to the load, n < 1 the sublinear growth with mass measured on glass.
+  double loadExponent = 1;
+};
+
+// P = delta N |psi-dot| (the contact moves at a |psi-dot|, resisted by (delta / a) N), done by
+// the couple tau = -(delta N / cos theta) sign(omega . h) h, h = rollingAxis() (eq. 2.8).
+Loads loads(const RollingResistance& law, const ContactKinematics& k);
+
+}  // namespace coinroll::physics

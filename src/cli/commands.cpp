@@ -45,9 +45,23 @@ scene::SceneConfig loadScene(const SceneSource& source) {
 }
 
 void reportStop(const pipeline::CsvRunResult& result) {
+  for (const auto& warning : result.warnings) {
+    std::cerr << "coinroll: warning: the ideal contact fails here (on_invalid: warn, going on): "
+              << pipeline::describeStop(warning) << '\n';
+  }
   if (result.stoppedBy) {
     std::cerr << "coinroll: stopped early: " << pipeline::describeStop(*result.stoppedBy) << '\n';
   }
+  if (result.singularTime) {
+    const pipeline::SingularTimeEstimate& e = *result.singularTime;
+    std::cerr << fmt::format("coinroll: singular time t0 = {:.6f} s, {:.3g} s after the stop (E ~ (t0 - t)^{:.3f}, fitted "
+                             "to E/P over t >= {:.6g} s, {} samples)\n",
+                             e.t0, e.t0 - result.stoppedBy->t, e.gamma, e.fitFrom, e.samples);
+  }
+}
+
+void reportSteadyStart(const scene::SceneConfig& scene) {
+  if (const std::string note = pipeline::steadyStartNote(scene); !note.empty()) std::cerr << "coinroll: note: " << note << '\n';
 }
 
 // Set by SIGINT/SIGTERM; the frame loop polls it and unwinds, so the sink removes its partial file.
@@ -92,6 +106,7 @@ void runSimulate(const SimulateOptions& options) {
   }
   const scene::SceneConfig scene = loadScene(options.scene);
   const pipeline::Simulation simulation = pipeline::buildSimulation(scene);
+  reportSteadyStart(scene);
 
   pipeline::CsvRunResult result;
   if (options.csvPath == "-") {
@@ -128,6 +143,10 @@ void runSteady(const SteadyOptions& options) {
     throw UsageError("steady: give --kind straight|circle|spin-in-place, or a scene whose initial names a steady state");
   }
   const pipeline::Simulation sim = pipeline::buildSimulation(scene);
+  if (!scene.effects.empty()) {
+    std::cerr << "coinroll: note: the steady state and its stability below are those of the ideal model; the scene's "
+                 "effects dissipate energy, so with them this state is only where a slowing motion starts\n";
+  }
   const physics::CoinModel& m = sim.model;
   const physics::CoinState& s = sim.initial;
   const double rateUnit = physics::naturalRate(m);
@@ -167,6 +186,7 @@ void runStill(const StillOptions& options) {
     throw UsageError(fmt::format("-o: a still is written as PNG; give a name ending in .png, got \"{}\"", options.output));
   }
   const scene::SceneConfig scene = loadScene(options.scene);
+  reportSteadyStart(scene);
   pipeline::StillResult result;
   try {
     result = pipeline::renderStill(scene, {.time = options.time, .ghosts = options.strobe, .output = output});
@@ -183,6 +203,7 @@ void runStill(const StillOptions& options) {
 
 void runRender(const RenderOptions& options) {
   const scene::SceneConfig scene = loadScene(options.scene);
+  reportSteadyStart(scene);
   const std::filesystem::path output = options.output ? std::filesystem::path(*options.output)
                                                       : std::filesystem::path(fileNameFrom(scene.name) + ".mp4");
   const video::Mp4Options encoding{.width = scene.render.width,

@@ -1,6 +1,6 @@
 #pragma once
 // Viscous drag of the air squeezed in and out of the thin gap under a nearly flat coin
-// (docs/euler_disk.md §2.1-2.2): a couple resisting the face's rocking.
+// (docs/euler_disk.md §2 (a), (b)): a couple resisting the face's rocking.
 
 #include "physics/contact_kinematics.h"
 
@@ -18,7 +18,7 @@ struct AirDrag {
 };
 
 // tau = -C omega_h with C = pi mu a^3 / (4 alpha^3) (Moffatt, eq. 2.2) or
-// C = (pi / 4) sqrt(mu rho) a^4 |omega_h|^(1/2) alpha^(-5/2) (boundary layer, eq. 2.5); P = C |omega_h|^2.
+// C = (pi / 4) sqrt(mu rho) a^4 |omega_h|^(1/2) alpha^(-5/2) (boundary layer, eq. 2.6); P = C |omega_h|^2.
 Loads loads(const AirDrag& law, const ContactKinematics& k);
 
 }  // namespace coinroll::physics

@@ -27,7 +27,7 @@ inline Eigen::Vector3d floorNormal() { return Eigen::Vector3d::UnitY(); }
 inline double tiltAboveFloor(const ContactKinematics& k) { return std::atan2(k.e_Y.y(), std::abs(k.e_Z.y())); }
 
 // h = e_X x e_y: unit, horizontal, perpendicular to the contact's travel over the floor; the axis
-// the coin rolls about (docs/euler_disk.md eq. 2.7). omega . h = psi-dot cos(theta).
+// the coin rolls about (docs/euler_disk.md eq. 2.9). omega . h = psi-dot cos(theta).
 inline Eigen::Vector3d rollingAxis(const ContactKinematics& k) { return k.e_X.cross(floorNormal()); }
 
 // omega_h, rad/s: the horizontal part of omega, the rocking of the face that pumps the air gap.

@@ -23,7 +23,7 @@ AngularAcceleration idealAngularAcceleration(const CoinModel& m, double sinTheta
 }
 
 // A couple adds to (14)-(16) through the mass matrix diag(I_X + M a^2, I_X, I_Z + M a^2), which
-// is what I_G + M (a^2 1 - c c^t) is in XYZ with c = -a e_Y (docs/euler_disk.md eq. 1.3).
+// is what I_G + M (a^2 1 - c c^t) is in XYZ with c = -a e_Y (docs/euler_disk.md eqs. 1.4-1.5).
 AngularAcceleration plusCouple(const CoinModel& m, AngularAcceleration ideal, const Eigen::Vector3d& torqueXYZ) {
   const double Ma2 = m.M * m.a * m.a;
   ideal.dOmega_X += torqueXYZ.x() / (m.I_X + Ma2);
@@ -83,7 +83,7 @@ Dynamics dynamics(const CoinModel& model, const CoinState& s) {
       idealAngularAcceleration(model, std::sin(s.theta), std::cos(s.theta), s.omega_X, s.omega_Y, s.omega_Z);
   Dynamics d{.dOmega = ideal, .reaction = reactionFrom(model, s, ideal), .loads = {}};
   if (model.effects.empty()) return d;
-  // N depends on a couple only through its e_X part, and no N-dependent law has one (eq. 1.6):
+  // N depends on a couple only through its e_X part, and no N-dependent law has one (eq. 1.8):
   // the first pass finds N under the N-independent couples, the second is exact.
   const Eigen::Matrix3d axes = coinAxesInFloor(s);
   for (int pass = 0; pass < 2; ++pass) {

@@ -49,7 +49,7 @@ Eigen::Vector3d angularAcceleration(const CoinModel& m, const ContactGeometry& g
   //                                              + M g c x e_y
   const Eigen::Matrix3d A = Eigen::Matrix3d(inertia.asDiagonal()) +
                             m.M * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
-  // A couple adds to b (docs/euler_disk.md eq. 1.2).
+  // A couple adds to b (docs/euler_disk.md eq. 1.3).
   Eigen::Vector3d b = -omega.cross(inertia.cwiseProduct(omega)) -
                       m.M * c.cross(omega.cross(cDot) + omega.cross(omega.cross(c))) + m.M * m.g * c.cross(geo.up);
   if (torqueBody != nullptr) b += *torqueBody;
@@ -85,7 +85,7 @@ QuaternionDynamics dynamicsAt(const CoinModel& m, const QuaternionState& s, cons
   QuaternionDynamics d;
   d.dOmegaBody = angularAcceleration(m, geo, s.omegaBody);
   d.reaction = reactionFrom(m, s, geo, d.dOmegaBody);
-  // Two passes, exact for the same reason as in the Euler angles (docs/euler_disk.md eq. 1.6).
+  // Two passes, exact for the same reason as in the Euler angles (docs/euler_disk.md eq. 1.8).
   for (int pass = 0; pass < 2 && !m.effects.empty(); ++pass) {
     d.loads = totalLoads(m.effects, contactKinematics(m, s, geo, d.reaction.N));
     const Eigen::Vector3d torqueBody = geo.floorFromBody.transpose() * d.loads.torque;

@@ -11,10 +11,10 @@ Loads loads(const RollingResistance& law, const ContactKinematics& k) {
                             ? law.length * k.N
                             : law.length * kRollingReferenceLoad * std::pow(k.N / kRollingReferenceLoad, law.loadExponent);
   const Eigen::Vector3d h = rollingAxis(k);
-  const double rollingRate = k.omega.dot(h);  // psi-dot cos(theta), eq. (2.7)
+  const double rollingRate = k.omega.dot(h);  // psi-dot cos(theta), eq. (2.9)
   const double cosTheta = k.e_Y.y();
   // The couple about h that does the work delta N |psi-dot| while the face turns about h only
-  // at psi-dot cos(theta) (eq. 2.8).
+  // at psi-dot cos(theta) (eq. 2.10).
   const double magnitude = couple / cosTheta * smoothSign(rollingRate, kRollingRegularisationRate);
   return {.torque = -magnitude * h, .power = magnitude * rollingRate};
 }

@@ -1,6 +1,6 @@
 #pragma once
 // Rolling resistance: the energy a rolling contact loses per distance travelled
-// (docs/euler_disk.md §2.3; McDonald and McDonald 2000, Leine 2009, Thorne et al. 2026).
+// (docs/euler_disk.md §2 (c); McDonald and McDonald 2000, Leine 2009, Thorne et al. 2026).
 
 #include "physics/contact_kinematics.h"
 
@@ -21,7 +21,7 @@ struct RollingResistance {
 };
 
 // P = delta N |psi-dot| (the contact moves at a |psi-dot|, resisted by (delta / a) N), done by
-// the couple tau = -(delta N / cos theta) sign(omega . h) h, h = rollingAxis() (eq. 2.8).
+// the couple tau = -(delta N / cos theta) sign(omega . h) h, h = rollingAxis() (eq. 2.10).
 Loads loads(const RollingResistance& law, const ContactKinematics& k);
 
 }  // namespace coinroll::physics

@@ -7,6 +7,7 @@
 
 #include "physics/observables.h"
 #include "pipeline/coin_run.h"
+#include "pipeline/singular_time.h"
 
 namespace coinroll::pipeline {
 
@@ -21,6 +22,7 @@ CsvRunResult writeTrajectoryCsv(const Simulation& simulation, double sampleDt, s
   CsvRunResult result;
   const long rows = sampleCount(simulation.duration, sampleDt);
   fmt::memory_buffer line;
+  SingularTimeFit singularTime;
   for (long k = 0; k < rows; ++k) {
     const double t = static_cast<double>(k) * sampleDt;
     const std::optional<RunSample> sample = run.sampleAt(t);
@@ -36,12 +38,22 @@ CsvRunResult writeTrajectoryCsv(const Simulation& simulation, double sampleDt, s
                    t, s.theta, s.phi, s.psi, s.omega_X, s.omega_Y, s.omega_Z, s.x);
     fmt::format_to(std::back_inserter(line), "{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}",
                    centre.y(), s.z, contact.x(), contact.z(), physics::energy(simulation.model, s), r.N, r.F);
-    if (dissipative) fmt::format_to(std::back_inserter(line), ",{:.17g},{:.17g}", d.loads.power, sample->dissipated);
+    if (dissipative) {
+      fmt::format_to(std::back_inserter(line), ",{:.17g},{:.17g}", d.loads.power, sample->dissipated);
+      singularTime.add(t, physics::energy(simulation.model, s), d.loads.power);
+    }
     line.push_back('\n');
     out.write(line.data(), static_cast<std::streamsize>(line.size()));
     ++result.rows;
   }
   result.stoppedBy = run.stoppedBy();
+  if (dissipative && result.stoppedBy && result.stoppedBy->name == "coin-flat") {
+    // The stop itself is the sample nearest the singularity; the fit needs it most.
+    const physics::CoinState end = physics::toState(result.stoppedBy->y);
+    singularTime.add(result.stoppedBy->t, physics::energy(simulation.model, end),
+                     physics::dynamics(simulation.model, end).loads.power);
+    result.singularTime = singularTime.estimate();
+  }
   result.warnings = run.warnings();
   result.stats = run.stats();
   return result;

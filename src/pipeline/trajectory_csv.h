@@ -8,6 +8,7 @@
 #include "integrate/events.h"
 #include "physics/coin_state.h"
 #include "pipeline/simulation.h"
+#include "pipeline/singular_time.h"
 
 namespace coinroll::pipeline {
 
@@ -25,6 +26,7 @@ struct CsvRunResult {
   long rows = 0;
   std::optional<integrate::EventHit<physics::kStateSize>> stoppedBy;
   std::vector<integrate::EventHit<physics::kStateSize>> warnings;  // on_invalid "warn": crossings gone past
+  std::optional<SingularTimeEstimate> singularTime;  // a spin-down that reached coin-flat
   integrate::Stats stats;
 };
 

@@ -58,12 +58,19 @@ Eigen::Vector2d contactOnFloor(const physics::CoinModel& model, const physics::C
 
 std::vector<std::string> hudLines(const physics::CoinModel& model, const physics::CoinState& state, double time,
                                   const std::vector<std::string>& extra) {
+  // Near flat psi-dot grows with the contact point's rate while the face itself turns slowly, so
+  // the overlay names what it shows: Omega = phi-dot (the contact point round the floor, in Hz,
+  // what the ear hears and the eye follows) and the face's own turning omega_Z = psi-dot - phi-dot sin(theta).
   std::vector<std::string> lines = {
-      fmt::format("t     {:8.3f} s", time),
-      fmt::format("tilt  {:8.2f} deg", state.theta * 180 / std::numbers::pi),
-      fmt::format("spin  {:8.2f} rad/s", physics::spinRate(state)),
-      fmt::format("E     {:8.5f} J", physics::energy(model, state)),
+      fmt::format("t        {:9.3f} s", time),
+      fmt::format("tilt     {:9.2f} deg above floor", 90 - std::abs(state.theta) * 180 / std::numbers::pi),
+      fmt::format("contact  {:9.2f} Hz round the floor", std::abs(physics::precessionRate(state)) / (2 * std::numbers::pi)),
+      fmt::format("face     {:9.2f} rad/s about its axis", state.omega_Z),
+      fmt::format("E        {:9.5f} J", physics::energy(model, state)),
   };
+  if (!model.effects.empty()) {
+    lines.push_back(fmt::format("P        {:9.3f} mW dissipated", 1e3 * physics::dynamics(model, state).loads.power));
+  }
   lines.insert(lines.end(), extra.begin(), extra.end());
   return lines;
 }

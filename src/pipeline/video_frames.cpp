@@ -20,7 +20,7 @@ long frameCount(double simulatedSeconds, double timeScale, int fps) {
 std::vector<double> frameTimes(const scene::SceneConfig& scene, const Simulation& simulation, double endTime) {
   std::vector<double> times;
   const double perFrame = scene.render.timeScale / scene.render.fps;
-  if (!scene.render.remapSpinRate) {
+  if (!scene.render.timeRemap) {
     const long total = frameCount(endTime, scene.render.timeScale, scene.render.fps);
     for (long k = 0; k < total; ++k) times.push_back(std::min(static_cast<double>(k) * perFrame, endTime));
     return times;
@@ -31,8 +31,9 @@ std::vector<double> frameTimes(const scene::SceneConfig& scene, const Simulation
     times.push_back(std::min(t, endTime));
     const std::optional<physics::CoinState> y = trajectory.stateAt(t);
     if (!y) break;
-    const double spin = std::abs(physics::spinRate(*y));
-    t += perFrame * std::min(1.0, *scene.render.remapSpinRate / spin);
+    const scene::TimeRemap& remap = *scene.render.timeRemap;
+    const double rate = std::abs(remap.rate == scene::TimeRemap::Rate::Spin ? physics::spinRate(*y) : physics::precessionRate(*y));
+    t += perFrame * std::min(1.0, remap.limit / rate);
   }
   return times;
 }

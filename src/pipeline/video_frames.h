@@ -21,7 +21,8 @@ long frameCount(double simulatedSeconds, double timeScale, int fps);
 
 // Simulated time of every frame up to `endTime`. Without a remap, t_k = k time_scale / fps.
 // With render.time_remap.spin_rate S, each frame advances by (time_scale / fps) min(1, S / |psi-dot(t_k)|):
-// the picture slows down while the coin spins faster than S.
+// the picture slows down while the coin spins faster than S; precession_rate does the same with
+// phi-dot, the contact point's rate round the floor.
 std::vector<double> frameTimes(const scene::SceneConfig& scene, const Simulation& simulation, double endTime);
 
 struct FrameProgress {

@@ -72,15 +72,25 @@ struct VideoSpec {
   int threads = 1;
 };
 
+// render.time_remap: which rate drives the slow motion.
+struct TimeRemap {
+  enum class Rate {
+    Spin,        // spin_rate: |psi-dot|, the rim rolling over the floor
+    Precession,  // precession_rate: |phi-dot| = Omega, the contact point going round the floor
+  };
+  Rate rate = Rate::Precession;
+  double limit = 0;  // rad/s, > 0
+};
+
 struct RenderSpec {
   int width = 1280, height = 720;  // pixels, even
   int fps = 30;                    // frames per second of video
   std::string antialiasing = "msaa";  // msaa (render.msaa samples per pixel) | fxaa (one sample, then FXAA)
   int msaa = 4;                    // samples per pixel: 1, 2, 4 or 8
   double timeScale = 1.0;          // video seconds per simulated second
-  // When set, playback slows further whenever |psi-dot| exceeds this rate (rad/s), so the spin
-  // seen on screen never exceeds it times time_scale (an Euler's disk stays readable).
-  std::optional<double> remapSpinRate;
+  // When set, playback slows further whenever the chosen rate exceeds its limit, so that rate seen
+  // on screen never exceeds the limit times time_scale (an Euler's disk stays readable).
+  std::optional<TimeRemap> timeRemap;
   CameraSpec camera;
   bool trace = true, hud = true;
   VideoSpec video;

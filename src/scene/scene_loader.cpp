@@ -207,10 +207,16 @@ RenderSpec parseRender(const JsonReader& top) {
   render.timeScale = r.number("time_scale", render.timeScale);
   positive(r, "time_scale", render.timeScale);
   if (const nlohmann::json* remap = r.child("time_remap")) {
-    const JsonReader m(*remap, "render.time_remap", "", {"spin_rate"});
-    const double spinRate = m.number("spin_rate", 0);
-    if (!(spinRate > 0)) m.fail("spin_rate", fmt::format("must be a spin rate > 0 rad/s, got {}", spinRate));
-    render.remapSpinRate = spinRate;
+    const JsonReader m(*remap, "render.time_remap", "", {"spin_rate", "precession_rate"});
+    if (m.has("spin_rate") == m.has("precession_rate")) {
+      r.fail("time_remap", "give exactly one of spin_rate (slow down by psi-dot) or precession_rate (by phi-dot, the "
+                           "contact point's rate round the floor), in rad/s");
+    }
+    const std::string_view key = m.has("spin_rate") ? "spin_rate" : "precession_rate";
+    const double limit = m.number(key, 0);
+    if (!(limit > 0)) m.fail(key, fmt::format("must be a rate > 0 rad/s, got {}", limit));
+    render.timeRemap = TimeRemap{.rate = key == "spin_rate" ? TimeRemap::Rate::Spin : TimeRemap::Rate::Precession,
+                                 .limit = limit};
   }
   render.camera = parseCamera(r);
   render.trace = r.boolean("trace", render.trace);

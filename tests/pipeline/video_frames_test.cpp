@@ -47,12 +47,12 @@ TEST(FrameTimes, RemapHoldsTheOnScreenSpinRateAtTheLimit) {
   const pipeline::Simulation simulation = pipeline::buildSimulation(scene);
   const std::vector<double> constant = pipeline::frameTimes(scene, simulation, 1.0);
   ASSERT_EQ(constant.size(), 21u);
-  scene.render.remapSpinRate = 1000;  // far above the coin's ~15 rad/s: no effect
+  scene.render.timeRemap = scene::TimeRemap{.rate = scene::TimeRemap::Rate::Spin, .limit = 1000};  // far above the coin's ~15 rad/s: no effect
   const std::vector<double> unchanged = pipeline::frameTimes(scene, simulation, 1.0);
   ASSERT_EQ(unchanged.size(), constant.size());
   for (std::size_t k = 0; k < constant.size(); ++k) EXPECT_NEAR(unchanged[k], constant[k], 1e-14);
 
-  scene.render.remapSpinRate = 5;  // the coin spins at about 15 rad/s: about three times slower
+  scene.render.timeRemap = scene::TimeRemap{.rate = scene::TimeRemap::Rate::Spin, .limit = 5};  // the coin spins at about 15 rad/s: about three times slower
   const std::vector<double> remapped = pipeline::frameTimes(scene, simulation, 1.0);
   EXPECT_GT(remapped.size(), 2.5 * constant.size());
   pipeline::CoinRun trajectory(simulation);

@@ -189,7 +189,7 @@ void runStill(const StillOptions& options) {
   reportSteadyStart(scene);
   pipeline::StillResult result;
   try {
-    result = pipeline::renderStill(scene, {.time = options.time, .ghosts = options.strobe, .output = output});
+    result = pipeline::renderStill(scene, {.time = options.time, .ghosts = options.strobe, .ghostsFrom = options.strobeFrom, .output = output});
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }

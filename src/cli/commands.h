@@ -33,7 +33,8 @@ struct StillOptions {
   SceneSource scene;
   double time = 0;       // s of simulated time
   std::string output;    // PNG path
-  int strobe = 0;        // earlier copies of the coin overlaid, evenly spaced over [0, time)
+  int strobe = 0;        // earlier copies of the coin overlaid, evenly spaced over [strobeFrom, time)
+  double strobeFrom = 0;  // s
 };
 void runStill(const StillOptions& options);
 

@@ -87,10 +87,14 @@ int main(int argc, char** argv) {
   stillCommand->add_option("--strobe", still.strobe,
                            "Overlay N semi-transparent copies of the coin at evenly spaced earlier times (a figure)")
       ->capture_default_str();
+  stillCommand->add_option("--strobe-from", still.strobeFrom,
+                           "Simulated time of the first copy, s (default 0): e.g. the last second of a spin-down")
+      ->capture_default_str();
   stillCommand->footer(
       "Size, anti-aliasing, camera, trace and overlay come from the scene's render block, e.g.\n"
       "  coinroll still examples/steady_circle.json --time 1.5 -o circle.png --set render.width=640 --set render.height=360\n"
-      "  coinroll still examples/perturbed_circle.json --time 2 --strobe 12 -o strobe.png --set render.hud=false");
+      "  coinroll still examples/perturbed_circle.json --time 2 --strobe 12 -o strobe.png --set render.hud=false\n"
+      "  coinroll still examples/euler_disk.json --time 98.77 --strobe 16 --strobe-from 97.77 -o last_second.png");
 
   try {
     app.parse(argc, argv);

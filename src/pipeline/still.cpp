@@ -34,6 +34,10 @@ StillResult renderStill(const scene::SceneConfig& scene, const StillRequest& req
   if (request.ghosts < 0 || request.ghosts > 500) {
     throw std::invalid_argument(fmt::format("--strobe: must be 0 to 500 copies, got {}", request.ghosts));
   }
+  if (!(request.ghostsFrom >= 0 && request.ghostsFrom < request.time) && request.ghostsFrom != 0) {
+    throw std::invalid_argument(
+        fmt::format("--strobe-from: must be at least 0 and before --time ({} s), got {}", request.time, request.ghostsFrom));
+  }
   const Simulation simulation = buildSimulation(scene);
   render::Renderer renderer(renderSettings(scene));  // before the physics: bad render settings fail fast
   const MotionSurvey survey = surveyMotion(simulation);
@@ -46,7 +50,11 @@ StillResult renderStill(const scene::SceneConfig& scene, const StillRequest& req
     const double dt = traceInterval(scene.duration);
     for (long k = 0; static_cast<double>(k) * dt < result.shownTime; ++k) queries.push_back({static_cast<double>(k) * dt, Use::Trace});
   }
-  for (int i = 0; i < request.ghosts; ++i) queries.push_back({result.shownTime * i / request.ghosts, Use::Ghost});
+  // A run that stopped early shows its end; the ghosts then span [ghostsFrom, end) if it is long enough.
+  const double from = std::min(request.ghostsFrom, result.shownTime);
+  for (int i = 0; i < request.ghosts; ++i) {
+    queries.push_back({from + (result.shownTime - from) * i / request.ghosts, Use::Ghost});
+  }
   queries.push_back({result.shownTime, Use::Shown});
   std::stable_sort(queries.begin(), queries.end(), [](const Query& a, const Query& b) { return a.t < b.t; });
 

@@ -11,7 +11,8 @@ namespace coinroll::pipeline {
 
 struct StillRequest {
   double time = 0;                 // s of simulated time, in [0, duration]
-  int ghosts = 0;                  // > 0: this many earlier poses, evenly spaced over [0, time)
+  int ghosts = 0;                  // > 0: this many earlier poses, evenly spaced over [ghostsFrom, time)
+  double ghostsFrom = 0;           // s, the first ghost's time, in [0, time)
   std::filesystem::path output;    // .png, written atomically
 };
 

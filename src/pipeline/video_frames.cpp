@@ -85,7 +85,8 @@ VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& si
       const double step = k + 1 < total ? times[static_cast<std::size_t>(k) + 1] - t : scene.render.timeScale / scene.render.fps;
       const double slowdown = 1 / (step * scene.render.fps);
       std::vector<std::string> extra;
-      if (std::abs(slowdown - 1) > 1e-9) extra.push_back(fmt::format("slow  x{:.3g}", slowdown));
+      if (slowdown > 1 + 1e-9) extra.push_back(fmt::format("slow motion x{:.3g}", slowdown));
+      if (slowdown < 1 - 1e-9) extra.push_back(fmt::format("fast forward x{:.3g}", 1 / slowdown));
       snapshot.hudLines = hudLines(model, state, t, extra);
     }
     renderer.draw(snapshot, frame);

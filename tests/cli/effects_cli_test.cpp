@@ -1,0 +1,154 @@
+// Dissipation through the program's contract (INTERFACE.md "Dissipation and the end of the
+// motion"), and the promise that a scene without effects is computed exactly as before effects
+// existed: every example's CSV, PNG and MP4 hash to what the program wrote before the effects
+// refactor (recorded with that build, overlay off: the overlay's labels changed deliberately since).
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cli/run_command.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+using coinroll::testing::RunResult;
+using coinroll::testing::runCoinroll;
+
+class EffectsCliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("coinroll_effects_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path dir_;
+};
+
+std::string example(const std::string& name) { return std::string(COINROLL_SOURCE_DIR) + "/examples/" + name + ".json"; }
+
+std::uint64_t fnv1a(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::uint64_t hash = 1469598103934665603ull;
+  for (std::istreambuf_iterator<char> it(in), end; it != end; ++it) {
+    hash = (hash ^ static_cast<std::uint8_t>(*it)) * 1099511628211ull;
+  }
+  return hash;
+}
+
+std::vector<std::vector<double>> readRows(const fs::path& csv, std::string& header) {
+  std::ifstream in(csv);
+  std::getline(in, header);
+  std::vector<std::vector<double>> rows;
+  for (std::string line; std::getline(in, line);) {
+    std::vector<double> row;
+    std::stringstream fields(line);
+    for (std::string field; std::getline(fields, field, ',');) row.push_back(std::stod(field));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+TEST_F(EffectsCliTest, SpinDownRunsToCoinFlatWithItsEnergyBudgetT0AndWarnings) {
+  const fs::path csv = dir_ / "spin_down.csv";
+  const RunResult r = runCoinroll("simulate " + example("euler_disk") + " --csv " + csv.string() + " --sample-dt 0.05");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  std::string header;
+  const std::vector<std::vector<double>> rows = readRows(csv, header);
+  EXPECT_EQ(header,
+            "t,theta,phi,psi,omega_X,omega_Y,omega_Z,x,y,z,contact_x,contact_z,energy,normal_force,friction_force,power,"
+            "dissipated");
+  ASSERT_GT(rows.size(), 100u);
+  const double E0 = rows.front()[12];
+  for (const std::vector<double>& row : rows) {
+    ASSERT_EQ(row.size(), 17u);
+    EXPECT_GE(row[15], 0);                                // power
+    EXPECT_LE(std::abs(row[12] + row[16] - E0), 1e-9 * E0);  // energy + dissipated
+  }
+  EXPECT_GT(rows.back()[16], 0.9 * E0);  // nearly all of it spent by the end
+  EXPECT_NE(r.output.find("stopped early: coin-flat at t = "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("89.5000 deg"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("singular time t0 = "), std::string::npos) << r.output;
+  // on_invalid "warn": the slip crossing is reported and the run goes on to flat.
+  EXPECT_NE(r.output.find("warning: the ideal contact fails here (on_invalid: warn, going on): slip at t = "),
+            std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("note: initial.steady is a steady motion of the ideal model"), std::string::npos) << r.output;
+}
+
+TEST_F(EffectsCliTest, OnInvalidStopEndsTheSpinDownAtSlip) {
+  const fs::path csv = dir_ / "stop.csv";
+  const RunResult r = runCoinroll("simulate " + example("euler_disk") + " --csv " + csv.string() +
+                                  " --sample-dt 0.5 --set on_invalid=stop");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("stopped early: slip at t = "), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("coin-flat"), std::string::npos) << r.output;
+}
+
+TEST_F(EffectsCliTest, BadEffectsGetExitTwoNameTheKeyAndWriteNothing) {
+  const std::string start = R"({"coin": {"radius": 0.0375, "mass": 0.4}, "initial": {"theta": 60}, "duration": 1, )";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"effects", R"("effects": {"type": "air_drag"}})"},
+      {"effects[0]", R"("effects": ["air_drag"]})"},
+      {"effects[0].type", R"("effects": [{"type": "magnetism"}]})"},
+      {"effects[0].model", R"("effects": [{"type": "air_drag", "model": "turbulent"}]})"},
+      {"effects[0].viscosity", R"("effects": [{"type": "air_drag", "viscosity": -1}]})"},
+      {"effects[0].temperature", R"("effects": [{"type": "air_drag", "temperature": 20}]})"},
+      {"effects[0].length", R"("effects": [{"type": "rolling_resistance", "length": -2e-6}]})"},
+      {"effects[0].load_exponent", R"("effects": [{"type": "rolling_resistance", "load_exponent": 0}]})"},
+      {"effects[1]", R"("effects": [{"type": "spin_friction"}, {"type": "spin_friction"}]})"},
+      {"on_invalid", R"("on_invalid": "ignore"})"},
+  };
+  for (const auto& [key, tail] : cases) {
+    const fs::path scene = dir_ / "scene.json", csv = dir_ / "out.csv";
+    std::ofstream(scene) << start << tail;
+    const RunResult r = runCoinroll("simulate " + scene.string() + " --csv " + csv.string());
+    EXPECT_EQ(r.exitCode, 2) << key << ": " << r.output;
+    EXPECT_NE(r.output.find(key), std::string::npos) << key << ": " << r.output;
+    EXPECT_FALSE(fs::exists(csv)) << key;
+  }
+}
+
+struct Recorded {
+  const char* example;
+  std::uint64_t csv, png, mp4;
+};
+
+TEST_F(EffectsCliTest, ScenesWithoutEffectsGiveTheBytesTheyGaveBeforeEffectsExisted) {
+  const Recorded recorded[] = {
+      {"falling_flat", 0xd25578aef8fd97c0ull, 0x436ef6ecaf639248ull, 0x1c4a44623c32bcd1ull},
+      {"perturbed_circle", 0xbcab92c1507693e1ull, 0x04837bcbd4409935ull, 0xb61a918036a79a66ull},
+      {"ring", 0x99f21397fcf14070ull, 0x5212aea8d6b58f97ull, 0x74cd5db057595741ull},
+      {"spin_in_place", 0x686069e8237da8ddull, 0x3c5e1486f6cd31beull, 0x5853b88ecb56a8d4ull},
+      {"steady_circle", 0xb7e55c2fc6a7506cull, 0x727da729393bf0e3ull, 0x55edef30892cde16ull},
+      {"straight_stable", 0x1676f7cb6562c2ffull, 0xa7d6df803604871dull, 0xcc25d6ed2479bdd3ull},
+      {"straight_unstable", 0x16ec4c380d8a2b17ull, 0x05798648074919cdull, 0x9d40fa4b522cb137ull},
+  };
+  for (const Recorded& r : recorded) {
+    const std::string scene = example(r.example);
+    const fs::path csv = dir_ / "run.csv", png = dir_ / "still.png", mp4 = dir_ / "clip.mp4";
+    ASSERT_EQ(runCoinroll("simulate " + scene + " --csv " + csv.string()).exitCode, 0) << r.example;
+    ASSERT_EQ(runCoinroll("still " + scene + " --time 0.5 -o " + png.string() +
+                          " --set render.width=320 --set render.height=180 --set render.hud=false").exitCode, 0);
+    ASSERT_EQ(runCoinroll("render " + scene + " -q -o " + mp4.string() +
+                          " --set render.width=160 --set render.height=90 --set render.fps=10 --set render.hud=false")
+                  .exitCode, 0);
+    EXPECT_EQ(fnv1a(csv), r.csv) << r.example << " CSV";
+    EXPECT_EQ(fnv1a(png), r.png) << r.example << " PNG";
+    EXPECT_EQ(fnv1a(mp4), r.mp4) << r.example << " MP4";
+  }
+  const fs::path defaultCsv = dir_ / "default.csv";
+  ASSERT_EQ(runCoinroll("simulate --csv " + defaultCsv.string()).exitCode, 0);
+  EXPECT_EQ(fnv1a(defaultCsv), 0x953433f4ef16ee03ull) << "built-in default scene CSV";
+}
+
+}  // namespace

@@ -302,8 +302,9 @@ TEST(SpinDownCrossover, RollingResistanceEarlyAirDragLateAtThePredictedTime) {
       break;
     }
   }
-  EXPECT_GT(simulatedCrossover, predictedCrossover / 1.5);
-  EXPECT_LT(simulatedCrossover, predictedCrossover * 1.5);
+  // Within a factor 1.5 either way (the bound): |ln(simulated / predicted)| <= ln 1.5.
+  EXPECT_TRUE(isNear(std::log(simulatedCrossover / predictedCrossover), 0, std::log(1.5)))
+      << "simulated " << simulatedCrossover << " s, predicted " << predictedCrossover << " s before t0";
 
   // The local slope d ln(Omega) / d ln(t0 - t) of the two-law solution: with
   // t0 - t = scale (x - ln(1 + x)), d ln(t0 - t) / d ln(x) = x^2 / ((1 + x)(x - ln(1 + x))) and
@@ -321,14 +322,15 @@ TEST(SpinDownCrossover, RollingResistanceEarlyAirDragLateAtThePredictedTime) {
     const Slopes s = logLogSlopes(run, remaining / 1.5, remaining * 1.5);
     return s.Omega;
   };
-  for (const double factor : {0.05, 0.2, 1.0, 3.0, 10.0, 25.0}) {
+  // Up to ten times the crossover's distance from t0: beyond that the start (12 degrees, about
+  // 90 s before t0) is near and the spin-in-place start's transient has not died out.
+  for (const double factor : {0.05, 0.2, 1.0, 3.0, 10.0}) {
     const double remaining = factor * predictedCrossover;
     EXPECT_TRUE(isNear(simulatedSlope(remaining), theorySlope(remaining), kExponent)) << "t0 - t = " << remaining;
   }
-  // From near air's -1/6 late to near rolling's -1/3 early (the asymptotes are reached only
-  // logarithmically, (3.12)).
-  EXPECT_GT(simulatedSlope(0.05 * predictedCrossover), -0.2);
-  EXPECT_LT(simulatedSlope(25 * predictedCrossover), -0.25);
+  // It moves from near rolling's -1/3 towards air's -1/6 (the asymptotes are reached only
+  // logarithmically, (3.12); the theory moves by 0.079 between these two points).
+  EXPECT_GT(simulatedSlope(0.05 * predictedCrossover) - simulatedSlope(10 * predictedCrossover), 0.05);
 }
 
 }  // namespace

@@ -10,7 +10,7 @@ void SingularTimeFit::add(double t, double energy, double power) {
 
 std::optional<SingularTimeEstimate> SingularTimeFit::estimate() const {
   if (samples_.empty()) return std::nullopt;
-  // u is (t0 - t) / gamma: the window of two decades of u is two decades of t0 - t.
+  // u is (t0 - t) / gamma: a decade of u is a decade of t0 - t.
   const double uLast = samples_.back().u;
   std::size_t first = samples_.size();
   while (first > 0 && samples_[first - 1].u <= uLast * std::pow(10.0, kDecades)) --first;

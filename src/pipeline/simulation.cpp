@@ -22,7 +22,7 @@ physics::CoinModel modelFrom(const scene::CoinSpec& coin, double g) {
     case scene::Shape::Disk: return physics::diskModel(coin.mass, coin.radius, g);
     case scene::Shape::Ring: return physics::ringModel(coin.mass, coin.radius, coin.innerRadius, g);
     case scene::Shape::Custom:
-      return {.M = coin.mass, .a = coin.radius, .g = g, .I_X = coin.I_X.value(), .I_Z = coin.I_Z.value()};
+      return {.M = coin.mass, .a = coin.radius, .g = g, .I_X = coin.I_X.value(), .I_Z = coin.I_Z.value(), .effects = {}};
   }
   throw std::logic_error("unhandled coin shape");
 }

@@ -163,7 +163,9 @@ void expectEnergyBudget(const BudgetCase& c) {
   }
   EXPECT_TRUE(isBelow(worst, kEnergyBudget)) << c.name;
   EXPECT_GT(run.samples.back().dissipated, 0.5 * E0 * (c.name == "spin_friction" ? 0.01 : 1)) << c.name;
-  if (c.name != "spin_friction") EXPECT_TRUE(run.flatAt.has_value()) << c.name << ": did not reach flat";
+  if (c.name != "spin_friction") {
+    EXPECT_TRUE(run.flatAt.has_value()) << c.name << ": did not reach flat";
+  }
 }
 
 TEST(EnergyBudget, HoldsThroughWholeSpinDownsInTheEulerAngles) {

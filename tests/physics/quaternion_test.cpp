@@ -68,7 +68,7 @@ TEST(QuaternionRhs, EqualsTheSeedRhsAtRandomStatesAwayFromFlat) {
   std::uniform_real_distribution<double> tilt(-80 * kDeg, 80 * kDeg), angle(-7, 7), rate(-20, 20), position(-1, 1);
   int checked = 0;
   for (const CoinModel& m : {diskModel(0.4, 0.0375, 9.81), ringModel(0.4, 0.0375, 0.03, 9.81),
-                             CoinModel{.M = 2, .a = 0.1, .g = 3, .I_X = 0.004, .I_Z = 0.0065}}) {
+                             CoinModel{.M = 2, .a = 0.1, .g = 3, .I_X = 0.004, .I_Z = 0.0065, .effects = {}}}) {
     for (int i = 0; i < 1000; ++i) {
       const CoinState s{tilt(random), angle(random), angle(random), rate(random), rate(random), rate(random),
                         position(random), position(random)};

@@ -21,7 +21,7 @@ constexpr double kDeg = std::numbers::pi / 180;
 
 std::vector<CoinModel> coins() {
   return {diskModel(0.4, 0.0375, 9.81), ringModel(0.4, 0.0375, 0.03, 9.81), ringModel(0.4, 0.0375, 0.0375, 9.81),
-          {.M = 0.01, .a = 0.012, .g = 9.81, .I_X = 5e-7, .I_Z = 8e-7}};
+          {.M = 0.01, .a = 0.012, .g = 9.81, .I_X = 5e-7, .I_Z = 8e-7, .effects = {}}};
 }
 
 // max |d(omega)/dt| and |d(theta)/dt|, relative to the size of the terms that cancel in eq. (14)

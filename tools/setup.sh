@@ -12,6 +12,7 @@ packages=(
   ffmpeg
   libboost-dev libsundials-dev
   python3 python3-matplotlib python3-numpy python3-scipy python3-sympy
+  parallel
 )
 
 missing=()

@@ -14,6 +14,8 @@
 #include <fstream>
 #include <iostream>
 #include <numbers>
+#include <thread>
+#include <tuple>
 #include <variant>
 
 #include "cli/exit_codes.h"
@@ -23,6 +25,7 @@
 #include "physics/steady.h"
 #include "pipeline/simulation.h"
 #include "pipeline/still.h"
+#include "pipeline/sweep.h"
 #include "pipeline/video_frames.h"
 #include "video/async_sink.h"
 #include "video/make_sink.h"
@@ -35,6 +38,13 @@ namespace coinroll::cli {
 namespace {
 
 constexpr double kDegreesPerRadian = 180 / std::numbers::pi;
+
+// The scene document with --set applied, and the name its messages use.
+std::pair<nlohmann::json, std::string> loadSceneDocument(const SceneSource& source) {
+  nlohmann::json document = source.file ? scene::readSceneDocument(*source.file) : scene::builtInDefaultScene();
+  for (const std::string& assignment : source.overrides) scene::applyOverride(document, assignment);
+  return {document, source.file ? *source.file : "built-in default scene"};
+}
 
 scene::SceneConfig loadScene(const SceneSource& source) {
   const scene::ParseOptions options{.solverMethods = integrate::methodNames()};
@@ -248,6 +258,69 @@ void runRender(const RenderOptions& options) {
                              output.string(), result.frames, scene.render.width, scene.render.height, scene.render.fps,
                              static_cast<double>(result.frames) / scene.render.fps, seconds);
   }
+}
+
+void runSweep(const SweepOptions& options) {
+  pipeline::SweepSpec spec;
+  std::tie(spec.scene, spec.sourceName) = loadSceneDocument(options.scene);
+  spec.parseOptions = {.solverMethods = integrate::methodNames()};
+  // The scene must be valid as given: a grid then only varies fields of a scene that works.
+  scene::parseScene(spec.scene, spec.sourceName, spec.parseOptions);
+  try {
+    for (const std::string& axis : options.grid) spec.axes.push_back(pipeline::parseGridAxis(axis));
+    if (options.shard) spec.shard = pipeline::parseShard(*options.shard);
+    if (options.maxPoints < 0) throw std::invalid_argument("--max-points: must be >= 1");
+    if (options.maxPoints > 0) spec.maxPoints = options.maxPoints;
+    if (options.threads < 0 || options.threads > 1024) {
+      throw std::invalid_argument(fmt::format("--threads: must be 1 to 1024 (0: every hardware thread), got {}", options.threads));
+    }
+    pipeline::gridPointCount(spec);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+  spec.threads = options.threads > 0 ? options.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+
+  io::AtomicOutputFile file(options.output);
+  const InterruptGuard interrupts;
+  ProgressLine progress(!options.quiet && isatty(STDERR_FILENO) == 1);
+  const auto start = std::chrono::steady_clock::now();
+  pipeline::SweepResult result;
+  try {
+    std::ofstream out(file.temporaryPath());
+    result = pipeline::runSweep(spec, out, [&](long done, long total) { progress.update(done, total); }, &interruptRequested);
+    out.close();
+    if (!out) throw std::runtime_error(options.output + ": writing the sweep failed");
+  } catch (const pipeline::Cancelled&) {
+    progress.finish();
+    throw std::runtime_error(fmt::format("interrupted; nothing was written to {}", options.output));
+  } catch (const std::invalid_argument& e) {
+    progress.finish();
+    throw UsageError(e.what());
+  } catch (...) {
+    progress.finish();
+    throw;
+  }
+  progress.finish();
+  file.commit();
+  if (!options.quiet) {
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::cerr << fmt::format("coinroll: wrote {} ({} points{}, {} failed; {:.1f} s, {:.0f} points/s on {} threads)\n",
+                             options.output, result.points,
+                             spec.shard.count > 1 ? fmt::format(", shard {}/{}", spec.shard.index, spec.shard.count) : "",
+                             result.failed, seconds, result.points / std::max(seconds, 1e-9), spec.threads);
+  }
+}
+
+void runSweepMerge(const SweepMergeOptions& options) {
+  io::AtomicOutputFile file(options.output);
+  {
+    std::ofstream out(file.temporaryPath());
+    std::vector<std::filesystem::path> shards(options.shards.begin(), options.shards.end());
+    pipeline::mergeSweepShards(shards, out);
+    out.close();
+    if (!out) throw std::runtime_error(options.output + ": writing the merged sweep failed");
+  }
+  file.commit();
 }
 
 }  // namespace coinroll::cli

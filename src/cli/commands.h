@@ -45,4 +45,21 @@ struct RenderOptions {
 };
 void runRender(const RenderOptions& options);
 
+struct SweepOptions {
+  SceneSource scene;
+  std::vector<std::string> grid;  // KEY.PATH=START:STOP:COUNT
+  std::string output;             // CSV path
+  std::optional<std::string> shard;  // "K/N"
+  int threads = 0;                // 0: every hardware thread
+  long maxPoints = 0;             // 0: pipeline::kDefaultMaxPoints
+  bool quiet = false;
+};
+void runSweep(const SweepOptions& options);
+
+struct SweepMergeOptions {
+  std::vector<std::string> shards;
+  std::string output;
+};
+void runSweepMerge(const SweepMergeOptions& options);
+
 }  // namespace coinroll::cli

@@ -344,16 +344,14 @@ SceneConfig parseScene(const nlohmann::json& document, std::string_view sourceNa
   }
 }
 
-SceneConfig loadScene(const std::filesystem::path& file, std::span<const std::string> overrides,
-                      const ParseOptions& options) {
+nlohmann::json readSceneDocument(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
   if (!in) throw SceneError(fmt::format("{}: cannot open the scene file (does it exist?)", file.string()));
   std::stringstream buffer;
   buffer << in.rdbuf();
   const std::string text = buffer.str();
-  nlohmann::json document;
   try {
-    document = nlohmann::json::parse(text);
+    return nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
     // nlohmann reports the byte just past the offending token; its own text says what was expected.
     const auto [line, column] = lineAndColumn(text, e.byte == 0 ? 0 : e.byte - 1);
@@ -366,6 +364,11 @@ SceneConfig loadScene(const std::filesystem::path& file, std::span<const std::st
     if (const auto bracket = reason.find("] "); bracket != std::string::npos) reason = reason.substr(bracket + 2);
     throw SceneError(fmt::format("{}: invalid JSON: {} (numbers must be finite doubles)", file.string(), reason));
   }
+}
+
+SceneConfig loadScene(const std::filesystem::path& file, std::span<const std::string> overrides,
+                      const ParseOptions& options) {
+  nlohmann::json document = readSceneDocument(file);
   for (const std::string& assignment : overrides) applyOverride(document, assignment);
   return parseScene(document, file.string(), options);
 }

@@ -26,6 +26,10 @@ struct ParseOptions {
 // Validates `document` and fills defaults; `sourceName` prefixes every message.
 SceneConfig parseScene(const nlohmann::json& document, std::string_view sourceName, const ParseOptions& options);
 
+// The JSON document of a scene file, before validation. A syntax error is reported with its line
+// and column.
+nlohmann::json readSceneDocument(const std::filesystem::path& file);
+
 // Reads `file`, applies `overrides` ("key.path=value") in order, then parses. A JSON syntax
 // error is reported with its line and column.
 SceneConfig loadScene(const std::filesystem::path& file, std::span<const std::string> overrides,

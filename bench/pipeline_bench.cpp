@@ -43,7 +43,7 @@ scene::SceneConfig benchScene(const std::string& cameraMode, int encoderThreads)
 
 video::Mp4Options encoding(const scene::SceneConfig& s) {
   return {.width = s.render.width, .height = s.render.height, .fps = s.render.fps, .crf = s.render.video.crf,
-          .preset = s.render.video.preset, .threads = s.render.video.threads};
+          .preset = s.render.video.preset, .threads = s.render.video.threads, .audio = false};
 }
 
 class DiscardSink final : public video::FrameSink {

@@ -221,7 +221,8 @@ void runRender(const RenderOptions& options) {
                                    .fps = scene.render.fps,
                                    .crf = scene.render.video.crf,
                                    .preset = scene.render.video.preset,
-                                   .threads = scene.render.video.threads};
+                                   .threads = scene.render.video.threads,
+                                   .audio = scene.render.audio.has_value()};
   std::unique_ptr<video::FrameSink> sink;
   try {
     sink = std::make_unique<video::AsyncSink>(video::makeSinkForPath(output, encoding));

@@ -3,9 +3,14 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstdint>
+#include <numbers>
+#include <optional>
+#include <vector>
 
 #include "physics/observables.h"
 #include "pipeline/coin_run.h"
+#include "pipeline/coin_sound.h"
 #include "pipeline/framing.h"
 #include "pipeline/simulation.h"
 #include "render/renderer.h"
@@ -38,6 +43,50 @@ std::vector<double> frameTimes(const scene::SceneConfig& scene, const Simulation
   return times;
 }
 
+namespace {
+
+// The sound track, produced frame by frame from the states the pictures use: the block between
+// frames k - 1 and k is synthesised when frame k's state is known, its pitch moving linearly
+// between the two frames' (docs/sound.md §2).
+class SoundTrack {
+ public:
+  SoundTrack(const scene::AudioSpec& spec, int fps) : spec_(spec), fps_(fps), synth_(spec, video::kAudioSampleRate) {}
+
+  void reachFrame(long k, const physics::CoinState& state, double playbackRate, video::FrameSink& sink) {
+    // Omega = |phi-dot|, the contact point's rate round the floor; with pitch "video" the sound is
+    // played at the picture's speed, so its frequency scales with simulated seconds per video second.
+    const double rate = spec_.pitch == scene::AudioSpec::Pitch::Video ? playbackRate : 1.0;
+    const double f = spec_.frequencyScale * std::abs(physics::precessionRate(state)) / (2 * std::numbers::pi) * rate;
+    if (k > 0) emit(k, f, sink, false);
+    frequency_ = f;
+  }
+
+  // The last frame's block, so the track lasts exactly as long as the video.
+  void finish(long frames, video::FrameSink& sink) { emit(frames, frequency_, sink, true); }
+
+ private:
+  // Sample index at which frame k starts: k * rate / fps, exact in integers.
+  std::int64_t sampleAt(long k) const {
+    return static_cast<std::int64_t>(k) * video::kAudioSampleRate / fps_;
+  }
+
+  void emit(long k, double f, video::FrameSink& sink, bool last) {
+    block_.clear();
+    synth_.synthesize(frequency_, f, static_cast<std::size_t>(sampleAt(k) - sampleAt(k - 1)), block_);
+    if (k == 1) synth_.fadeIn(block_);
+    if (last) synth_.fadeOut(block_);
+    sink.pushAudio(block_);
+  }
+
+  scene::AudioSpec spec_;
+  int fps_;
+  CoinSound synth_;
+  double frequency_ = 0;  // Hz, at the previous frame
+  std::vector<float> block_;
+};
+
+}  // namespace
+
 VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& sink, const VideoRunOptions& options) {
   const Simulation simulation = buildSimulation(scene);
   render::Renderer renderer(renderSettings(scene));
@@ -57,6 +106,8 @@ VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& si
   snapshot.showContact = scene.render.trace;
   image::Image frame;
   long nextTracePoint = 0;
+  std::optional<SoundTrack> sound;
+  if (scene.render.audio) sound.emplace(*scene.render.audio, scene.render.fps);
   for (long k = 0; k < total; ++k) {
     if (options.cancel != nullptr && options.cancel->load()) throw Cancelled();
     const double t = times[static_cast<std::size_t>(k)];
@@ -73,6 +124,10 @@ VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& si
     const std::optional<physics::CoinState> y = trajectory.stateAt(t);
     if (!y) throw std::logic_error("render: the trajectory ended before the survey said it would");
     const physics::CoinState state = *y;
+    // Simulated seconds per video second at this frame, from the frame times.
+    const double step = k + 1 < total ? times[static_cast<std::size_t>(k) + 1] - t : scene.render.timeScale / scene.render.fps;
+    const double playbackRate = step * scene.render.fps;
+    if (sound) sound->reachFrame(k, state, playbackRate, sink);
     if (scene.render.trace) {
       const Eigen::Vector2d c = contactOnFloor(model, state);
       snapshot.trace.emplace_back(static_cast<float>(c.x()), static_cast<float>(c.y()));
@@ -81,9 +136,7 @@ VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& si
     snapshot.camera = rig.at(t, state);
     snapshot.traceWidth = traceWidthFor(snapshot.camera, scene.render.height, model.a);
     if (scene.render.hud) {
-      // Playback speed of this frame: simulated seconds per video second, from the frame times.
-      const double step = k + 1 < total ? times[static_cast<std::size_t>(k) + 1] - t : scene.render.timeScale / scene.render.fps;
-      const double slowdown = 1 / (step * scene.render.fps);
+      const double slowdown = 1 / playbackRate;
       std::vector<std::string> extra;
       if (slowdown > 1 + 1e-9) extra.push_back(fmt::format("slow motion x{:.3g}", slowdown));
       if (slowdown < 1 - 1e-9) extra.push_back(fmt::format("fast forward x{:.3g}", 1 / slowdown));
@@ -94,6 +147,7 @@ VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& si
     result.frames = k + 1;
     if (options.onFrame) options.onFrame({k + 1, total});
   }
+  if (sound) sound->finish(total, sink);
   sink.finish();
   return result;
 }

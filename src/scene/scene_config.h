@@ -82,6 +82,22 @@ struct TimeRemap {
   double limit = 0;  // rad/s, > 0
 };
 
+// render.audio: a sound track synthesised from the motion (docs/sound.md).
+struct AudioSpec {
+  enum class Pitch {
+    Video,  // the sound follows the video's clock: slow motion lowers the pitch by its factor
+    Real,   // the pitch of the real motion, whatever the playback speed
+  };
+  enum class Timbre {
+    Clicks,  // a band-limited click per turn of the contact point: the rim's rattle, a buzz when fast
+    Tone,    // a pure sine at the contact point's rate
+  };
+  Pitch pitch = Pitch::Video;
+  Timbre timbre = Timbre::Clicks;
+  double frequencyScale = 1;  // k: the fundamental is k Omega / (2 pi); 1 is the physical rate
+  double volume = 0.5;        // peak amplitude, (0, 1]
+};
+
 struct RenderSpec {
   int width = 1280, height = 720;  // pixels, even
   int fps = 30;                    // frames per second of video
@@ -94,6 +110,7 @@ struct RenderSpec {
   CameraSpec camera;
   bool trace = true, hud = true;
   VideoSpec video;
+  std::optional<AudioSpec> audio;  // absent: no sound track
 };
 
 // What the validity events lift-off and slip do (INTERFACE.md "Dissipation").

@@ -183,11 +183,35 @@ CameraSpec parseCamera(const JsonReader& render) {
   return camera;
 }
 
+std::optional<AudioSpec> parseAudio(const JsonReader& render) {
+  const nlohmann::json* node = render.child("audio");
+  if (node == nullptr || (node->is_boolean() && !node->get<bool>())) return std::nullopt;
+  AudioSpec audio;
+  if (node->is_boolean()) return audio;
+  if (!node->is_object()) render.fail("audio", "must be true, false or an object of options, got " + describeJson(*node));
+  const JsonReader a(*node, "render.audio", "", {"pitch", "timbre", "frequency_scale", "volume"});
+  const std::string pitch = a.optionalString("pitch").value_or("video");
+  if (pitch == "video") audio.pitch = AudioSpec::Pitch::Video;
+  else if (pitch == "real") audio.pitch = AudioSpec::Pitch::Real;
+  else a.fail("pitch", fmt::format("must be \"video\" (follows slow motion) or \"real\", got \"{}\"", pitch));
+  const std::string timbre = a.optionalString("timbre").value_or("clicks");
+  if (timbre == "clicks") audio.timbre = AudioSpec::Timbre::Clicks;
+  else if (timbre == "tone") audio.timbre = AudioSpec::Timbre::Tone;
+  else a.fail("timbre", fmt::format("must be \"clicks\" or \"tone\", got \"{}\"", timbre));
+  audio.frequencyScale = a.number("frequency_scale", audio.frequencyScale);
+  if (!(audio.frequencyScale > 0 && audio.frequencyScale <= 1000)) {
+    a.fail("frequency_scale", fmt::format("must be in (0, 1000], got {}", audio.frequencyScale));
+  }
+  audio.volume = a.number("volume", audio.volume);
+  if (!(audio.volume > 0 && audio.volume <= 1)) a.fail("volume", fmt::format("must be in (0, 1], got {}", audio.volume));
+  return audio;
+}
+
 RenderSpec parseRender(const JsonReader& top) {
   RenderSpec render;
   const nlohmann::json* node = top.child("render");
   if (node == nullptr) return render;
-  const JsonReader r(*node, "render", "", {"width", "height", "fps", "antialiasing", "msaa", "time_scale", "time_remap", "camera", "trace", "hud", "video"});
+  const JsonReader r(*node, "render", "", {"width", "height", "fps", "antialiasing", "msaa", "time_scale", "time_remap", "camera", "trace", "hud", "video", "audio"});
   for (auto [key, field] : {std::pair{"width", &render.width}, std::pair{"height", &render.height}}) {
     *field = r.integer(key, *field);
     if (*field < 16 || *field > 7680 || *field % 2 != 0) {
@@ -234,6 +258,7 @@ RenderSpec parseRender(const JsonReader& top) {
       v.fail("threads", fmt::format("must be in [1, 16], got {}", render.video.threads));
     }
   }
+  render.audio = parseAudio(r);
   return render;
 }
 

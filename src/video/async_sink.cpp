@@ -23,17 +23,18 @@ AsyncSink::~AsyncSink() {
 
 void AsyncSink::runWorker() {
   for (;;) {
-    image::Image frame;
+    Item item;
     {
       std::unique_lock lock(mutex_);
       queueChanged_.wait(lock, [this] { return abandoned_ || closing_ || !queue_.empty(); });
       if (abandoned_ || queue_.empty()) return;  // queue empty here means closing_ and drained
-      frame = std::move(queue_.front());
+      item = std::move(queue_.front());
       queue_.pop_front();
     }
     queueChanged_.notify_all();  // a slot is free
     try {
-      inner_->push(frame);
+      if (const auto* frame = std::get_if<image::Image>(&item)) inner_->push(*frame);
+      else inner_->pushAudio(std::get<std::vector<float>>(item));
     } catch (...) {
       {
         std::lock_guard lock(mutex_);
@@ -52,13 +53,19 @@ void AsyncSink::rethrowWorkerError() const {
 
 void AsyncSink::push(const image::Image& frame) { push(image::Image(frame)); }
 
-void AsyncSink::push(image::Image&& frame) {
+void AsyncSink::push(image::Image&& frame) { enqueue(std::move(frame)); }
+
+void AsyncSink::pushAudio(std::span<const float> samples) {
+  enqueue(std::vector<float>(samples.begin(), samples.end()));
+}
+
+void AsyncSink::enqueue(Item item) {
   {
     std::unique_lock lock(mutex_);
     if (closing_) throw std::logic_error("AsyncSink: push() after finish()");
     queueChanged_.wait(lock, [this] { return workerError_ || queue_.size() < capacity_; });
     rethrowWorkerError();
-    queue_.push_back(std::move(frame));
+    queue_.push_back(std::move(item));
   }
   queueChanged_.notify_all();
 }

@@ -8,12 +8,14 @@
 #include <memory>
 #include <mutex>
 #include <thread>
+#include <variant>
+#include <vector>
 
 #include "video/frame_sink.h"
 
 namespace coinroll::video {
 
-// Frames wait in a bounded queue (memory stays constant however long the clip): push() blocks
+// Frames (and audio blocks) wait in a bounded queue (memory stays constant however long the clip): push() blocks
 // while it is full. An exception thrown by the inner sink on the worker thread is rethrown by the
 // next push() or finish(). Destroyed without finish(), the worker stops
 // after the frame in hand, queued frames are dropped and the inner sink is destroyed unfinished,
@@ -28,6 +30,8 @@ class AsyncSink final : public FrameSink {
 
   void push(const image::Image& frame) override;  // copies the frame
   void push(image::Image&& frame);                 // takes the frame's pixels without copying
+  // Queued with the frames, so the inner sink sees pictures and sound in the order pushed.
+  void pushAudio(std::span<const float> samples) override;
   // Waits for the queue to drain, then finishes the inner sink (on the caller's thread).
   void finish() override;
 
@@ -39,7 +43,9 @@ class AsyncSink final : public FrameSink {
   const std::size_t capacity_;
   std::mutex mutex_;
   std::condition_variable queueChanged_;
-  std::deque<image::Image> queue_;
+  using Item = std::variant<image::Image, std::vector<float>>;  // a frame or a block of audio
+  void enqueue(Item item);
+  std::deque<Item> queue_;
   std::exception_ptr workerError_;
   bool closing_ = false;    // no more frames will come; the worker drains the queue and exits
   bool abandoned_ = false;  // destroyed unfinished; the worker exits at once

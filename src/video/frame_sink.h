@@ -1,9 +1,14 @@
 #pragma once
 // Where rendered frames go. One sink per output format; the frame loop only knows this interface.
 
+#include <span>
+
 #include "image/image.h"
 
 namespace coinroll::video {
+
+// Hz. The sample rate of every audio track coinroll writes.
+inline constexpr int kAudioSampleRate = 48000;
 
 class FrameSink {
  public:
@@ -13,6 +18,10 @@ class FrameSink {
   // writing failure, or std::invalid_argument on a frame the sink cannot take; after a throw
   // the sink is broken and should be destroyed (which removes its partial output).
   virtual void push(const image::Image& frame) = 0;
+
+  // Appends mono audio samples in [-1, 1] at kAudioSampleRate, to play from where the samples
+  // pushed so far end. Formats without an audio track (PNG sequences) ignore them.
+  virtual void pushAudio(std::span<const float> /*samples*/) {}
 
   // Completes the output and publishes it under its final name in one step. A sink destroyed
   // without a successful finish() leaves nothing under the final name.

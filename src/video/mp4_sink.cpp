@@ -4,12 +4,14 @@
 #include <array>
 #include <stdexcept>
 #include <string_view>
+#include <vector>
 
 #include "io/atomic_file.h"
 #include "video/ffmpeg_handles.h"
 #include "video/rgba_to_yuv.h"
 
 extern "C" {
+#include <libavutil/channel_layout.h>
 #include <libavutil/log.h>
 #include <libavutil/opt.h>
 }
@@ -68,10 +70,20 @@ struct Mp4Sink::Encoder {
   PacketPtr packet;
   ScalerPtr scaler;
 
+  // The AAC track, when asked for. AAC codes fixed blocks of frame_size samples, so samples wait
+  // in `pending` until a block is full; the last, shorter block goes out at finish().
+  CodecContextPtr audioCodec;
+  AVStream* audioStream = nullptr;  // owned by `format`
+  FramePtr audioFrame;
+  std::vector<float> pending;
+  std::int64_t audioSamplesSent = 0;
+
   Encoder(const std::filesystem::path& destination, const Mp4Options& options);
 
-  // Sends `yuv` (or nullptr to drain) to the encoder and muxes every packet it returns.
-  void encode(const AVFrame* yuv);
+  // Sends `frame` (or nullptr to drain) to an encoder and muxes every packet it returns.
+  void encode(AVCodecContext& encoder, AVStream& target, const AVFrame* frame, const char* what);
+  // Encodes `count` samples from the front of `pending`.
+  void encodeAudioBlock(int count);
 };
 
 Mp4Sink::Encoder::Encoder(const std::filesystem::path& destination, const Mp4Options& options)
@@ -111,6 +123,30 @@ Mp4Sink::Encoder::Encoder(const std::filesystem::path& destination, const Mp4Opt
   stream->time_base = codec->time_base;  // a hint; the muxer may choose a finer one
   stream->avg_frame_rate = codec->framerate;
 
+  if (options.audio) {
+    const AVCodec* aac = avcodec_find_encoder(AV_CODEC_ID_AAC);
+    if (aac == nullptr) throw std::runtime_error(context + "this FFmpeg build has no AAC encoder");
+    audioCodec.reset(checkAllocated(avcodec_alloc_context3(aac), context + "allocating the AAC encoder"));
+    audioCodec->sample_fmt = AV_SAMPLE_FMT_FLTP;
+    audioCodec->sample_rate = kAudioSampleRate;
+    av_channel_layout_default(&audioCodec->ch_layout, 1);
+    audioCodec->bit_rate = 128000;
+    audioCodec->time_base = AVRational{1, kAudioSampleRate};
+    audioCodec->flags |= AV_CODEC_FLAG_BITEXACT;
+    if ((format->oformat->flags & AVFMT_GLOBALHEADER) != 0) audioCodec->flags |= AV_CODEC_FLAG_GLOBAL_HEADER;
+    checkAv(avcodec_open2(audioCodec.get(), aac, nullptr), context + "opening the AAC encoder");
+    audioStream = checkAllocated(avformat_new_stream(format.get(), nullptr), context + "adding the audio stream");
+    checkAv(avcodec_parameters_from_context(audioStream->codecpar, audioCodec.get()),
+            context + "copying the audio encoder's parameters to the stream");
+    audioStream->time_base = audioCodec->time_base;
+    audioFrame.reset(checkAllocated(av_frame_alloc(), context + "allocating an audio frame"));
+    audioFrame->format = AV_SAMPLE_FMT_FLTP;
+    audioFrame->sample_rate = kAudioSampleRate;
+    checkAv(av_channel_layout_copy(&audioFrame->ch_layout, &audioCodec->ch_layout), context + "setting the channel layout");
+    audioFrame->nb_samples = audioCodec->frame_size;
+    checkAv(av_frame_get_buffer(audioFrame.get(), 0), context + "allocating audio frame buffers");
+  }
+
   checkAv(avio_open(&format->pb, temporary.c_str(), AVIO_FLAG_WRITE), context + "opening " + temporary);
   // faststart rewrites the file at the trailer so moov precedes mdat.
   AVDictionary* rawOptions = nullptr;
@@ -140,19 +176,30 @@ Mp4Sink::Encoder::Encoder(const std::filesystem::path& destination, const Mp4Opt
   scaler = makeRgbaToYuvScaler(options.width, options.height, kRgbaToYuvScalerFlags);
 }
 
-void Mp4Sink::Encoder::encode(const AVFrame* yuv) {
-  checkAv(avcodec_send_frame(codec.get(), yuv), context + (yuv ? "sending a frame to libx264" : "flushing libx264"));
+void Mp4Sink::Encoder::encode(AVCodecContext& encoder, AVStream& target, const AVFrame* input, const char* what) {
+  checkAv(avcodec_send_frame(&encoder, input),
+          context + (input ? "sending a frame to " : "flushing ") + what);
   for (;;) {
-    const int received = avcodec_receive_packet(codec.get(), packet.get());
+    const int received = avcodec_receive_packet(&encoder, packet.get());
     if (received == AVERROR(EAGAIN) || received == AVERROR_EOF) return;
-    checkAv(received, context + "receiving a packet from libx264");
-    // Every frame lasts one tick of 1/fps; without this the last frame has no duration and the
-    // file is one frame short.
-    packet->duration = 1;
-    av_packet_rescale_ts(packet.get(), codec->time_base, stream->time_base);
-    packet->stream_index = stream->index;
+    checkAv(received, context + "receiving a packet from " + what);
+    // Every video frame lasts one tick of 1/fps; without this the last frame has no duration and
+    // the file is one frame short. (The AAC encoder sets its packets' durations itself.)
+    if (&encoder == codec.get()) packet->duration = 1;
+    av_packet_rescale_ts(packet.get(), encoder.time_base, target.time_base);
+    packet->stream_index = target.index;
     checkAv(av_interleaved_write_frame(format.get(), packet.get()), context + "writing a packet");
   }
+}
+
+void Mp4Sink::Encoder::encodeAudioBlock(int count) {
+  checkAv(av_frame_make_writable(audioFrame.get()), context + "making the audio frame writable");
+  audioFrame->nb_samples = count;
+  std::copy_n(pending.begin(), count, reinterpret_cast<float*>(audioFrame->data[0]));
+  pending.erase(pending.begin(), pending.begin() + count);
+  audioFrame->pts = audioSamplesSent;
+  audioSamplesSent += count;
+  encode(*audioCodec, *audioStream, audioFrame.get(), "the AAC encoder");
 }
 
 Mp4Sink::Mp4Sink(std::filesystem::path destination, const Mp4Options& options)
@@ -180,15 +227,28 @@ void Mp4Sink::push(const image::Image& frame) {
   checkAv(av_frame_make_writable(encoder.frame.get()), encoder.context + "making the frame writable");
   convertRgbaToYuv(*encoder.scaler, frame, *encoder.frame);
   encoder.frame->pts = framesPushed_;
-  encoder.encode(encoder.frame.get());
+  encoder.encode(*encoder.codec, *encoder.stream, encoder.frame.get(), "libx264");
   ++framesPushed_;
+}
+
+void Mp4Sink::pushAudio(std::span<const float> samples) {
+  if (finished_) throw std::logic_error(destination_.string() + ": pushAudio() after finish()");
+  Encoder& encoder = *encoder_;
+  if (!encoder.audioCodec) throw std::logic_error(destination_.string() + ": audio pushed to a video without an audio track");
+  encoder.pending.insert(encoder.pending.end(), samples.begin(), samples.end());
+  const auto block = static_cast<std::size_t>(encoder.audioCodec->frame_size);
+  while (encoder.pending.size() >= block) encoder.encodeAudioBlock(static_cast<int>(block));
 }
 
 void Mp4Sink::finish() {
   if (finished_) throw std::logic_error(destination_.string() + ": finish() called twice");
   if (framesPushed_ == 0) throw std::runtime_error(destination_.string() + ": no frames to write");
   Encoder& encoder = *encoder_;
-  encoder.encode(nullptr);
+  encoder.encode(*encoder.codec, *encoder.stream, nullptr, "libx264");
+  if (encoder.audioCodec) {
+    if (!encoder.pending.empty()) encoder.encodeAudioBlock(static_cast<int>(encoder.pending.size()));
+    encoder.encode(*encoder.audioCodec, *encoder.audioStream, nullptr, "the AAC encoder");
+  }
   checkAv(av_write_trailer(encoder.format.get()), encoder.context + "writing the MP4 trailer");
   checkAv(avio_closep(&encoder.format->pb), encoder.context + "closing the file");
   encoder.file.commit();

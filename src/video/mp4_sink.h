@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <span>
 #include <string>
 
 #include "video/frame_sink.h"
@@ -19,6 +20,8 @@ struct Mp4Options {
   // Encoder threads, 1..16. Fixed, never "auto": x264's output depends on its thread count, so a
   // count taken from the machine would make the same render differ between machines.
   int threads = 1;
+  // Adds a mono AAC track (FFmpeg's own encoder, 48 kHz, 128 kbit/s) fed by pushAudio().
+  bool audio = false;
 };
 
 // Throws std::invalid_argument naming the field, the rule and the value if `options` is unusable.
@@ -39,6 +42,9 @@ class Mp4Sink final : public FrameSink {
 
   // The frame must be options.width x options.height (std::invalid_argument otherwise).
   void push(const image::Image& frame) override;
+  // Appends audio samples (mono, [-1, 1], kAudioSampleRate) after the frames pushed so far; the
+  // muxer interleaves them with the video by timestamp. std::logic_error without options.audio.
+  void pushAudio(std::span<const float> samples) override;
   // Drains the encoder, writes the trailer (moving moov to the front) and renames the file into
   // place. Throws std::runtime_error if no frame was pushed.
   void finish() override;

@@ -151,4 +151,45 @@ image::Image decodeFrame(const std::filesystem::path& path, std::int64_t index) 
   }
 }
 
+DecodedAudio decodeAudio(const std::filesystem::path& path) {
+  InputFormatPtr format = openInput(path);
+  const AVCodec* decoder = nullptr;
+  const int streamIndex = checkAv(av_find_best_stream(format.get(), AVMEDIA_TYPE_AUDIO, -1, -1, &decoder, 0),
+                                  path.string() + ": finding an audio stream");
+  const AVStream& stream = *format->streams[streamIndex];
+  CodecContextPtr codec(checkAllocated(avcodec_alloc_context3(decoder), path.string() + ": allocating a decoder"));
+  checkAv(avcodec_parameters_to_context(codec.get(), stream.codecpar), path.string() + ": configuring the decoder");
+  checkAv(avcodec_open2(codec.get(), decoder, nullptr), path.string() + ": opening the audio decoder");
+
+  DecodedAudio audio;
+  audio.codecName = avcodec_get_name(stream.codecpar->codec_id);
+  audio.sampleRate = stream.codecpar->sample_rate;
+  audio.durationSeconds = static_cast<double>(stream.duration) * av_q2d(stream.time_base);
+  PacketPtr packet(checkAllocated(av_packet_alloc(), path.string() + ": allocating a packet"));
+  FramePtr frame(checkAllocated(av_frame_alloc(), path.string() + ": allocating a frame"));
+  const auto drain = [&] {
+    for (;;) {
+      const int received = avcodec_receive_frame(codec.get(), frame.get());
+      if (received == AVERROR(EAGAIN) || received == AVERROR_EOF) return;
+      checkAv(received, path.string() + ": decoding audio");
+      if (frame->format != AV_SAMPLE_FMT_FLTP && frame->format != AV_SAMPLE_FMT_FLT) {
+        throw std::runtime_error(path.string() + ": audio decodes to a sample format other than float");
+      }
+      const auto* first = reinterpret_cast<const float*>(frame->data[0]);
+      const int stride = frame->format == AV_SAMPLE_FMT_FLT ? frame->ch_layout.nb_channels : 1;
+      for (int i = 0; i < frame->nb_samples; ++i) audio.samples.push_back(first[i * stride]);
+    }
+  };
+  while (av_read_frame(format.get(), packet.get()) >= 0) {
+    if (packet->stream_index == streamIndex) {
+      checkAv(avcodec_send_packet(codec.get(), packet.get()), path.string() + ": sending an audio packet");
+      drain();
+    }
+    av_packet_unref(packet.get());
+  }
+  checkAv(avcodec_send_packet(codec.get(), nullptr), path.string() + ": flushing the audio decoder");
+  drain();
+  return audio;
+}
+
 }  // namespace coinroll::video

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "image/image.h"
 
@@ -32,5 +33,17 @@ VideoInfo readVideoInfo(const std::filesystem::path& path);
 // converting with the matrix and range the stream is tagged with (BT.601 when untagged, as
 // FFmpeg assumes). Throws std::runtime_error naming the path if the file has fewer frames.
 image::Image decodeFrame(const std::filesystem::path& path, std::int64_t index);
+
+// The first audio stream: its codec, rate and duration, and every sample decoded to mono floats
+// (the encoder's priming samples, which the container marks to skip, already dropped).
+struct DecodedAudio {
+  std::string codecName;        // e.g. "aac"
+  int sampleRate = 0;           // Hz
+  double durationSeconds = 0;   // s, of the audio stream as the container states it
+  std::vector<float> samples;   // the first channel
+};
+
+// Throws std::runtime_error naming the path if it cannot be opened or has no audio stream.
+DecodedAudio decodeAudio(const std::filesystem::path& path);
 
 }  // namespace coinroll::video

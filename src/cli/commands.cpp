@@ -11,6 +11,7 @@
 #include <cmath>
 #include <csignal>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <iostream>
 #include <numbers>
@@ -98,6 +99,30 @@ class InterruptGuard {
   void (*previousInt_)(int) = SIG_DFL;
   void (*previousTerm_)(int) = SIG_DFL;
 };
+
+// Runs a long command's work with its progress line, ending the line however the work ends, and
+// maps the ways it fails alike for every command: Ctrl-C (after `discardOutput`, which removes
+// a partial output the caller holds) to exit 1 saying nothing was written, a bad request to
+// exit 2.
+template <class Work>
+auto withProgress(ProgressLine& progress, const std::string& output, Work work,
+                  const std::function<void()>& discardOutput = {}) -> decltype(work()) {
+  try {
+    auto result = work();
+    progress.finish();
+    return result;
+  } catch (const pipeline::Cancelled&) {
+    progress.finish();
+    if (discardOutput) discardOutput();
+    throw std::runtime_error(fmt::format("interrupted; nothing was written to {}", output));
+  } catch (const std::invalid_argument& e) {
+    progress.finish();
+    throw UsageError(e.what());
+  } catch (...) {
+    progress.finish();
+    throw;
+  }
+}
 
 // "My scene: v2" -> "My_scene__v2": a scene name made safe as a file name.
 std::string fileNameFrom(const std::string& sceneName) {
@@ -232,23 +257,15 @@ void runRender(const RenderOptions& options) {
   const InterruptGuard interrupts;
   ProgressLine progress(!options.quiet && isatty(STDERR_FILENO) == 1);
   const auto start = std::chrono::steady_clock::now();
-  pipeline::VideoRunResult result;
-  try {
-    result = pipeline::renderVideo(scene, *sink,
-                                   {.onFrame = [&](const pipeline::FrameProgress& p) { progress.update(p.frame, p.total); },
-                                    .cancel = &interruptRequested});
-  } catch (const pipeline::Cancelled&) {
-    progress.finish();
-    sink.reset();  // removes the partial output before we report
-    throw std::runtime_error(fmt::format("interrupted; nothing was written to {}", output.string()));
-  } catch (const std::invalid_argument& e) {
-    progress.finish();
-    throw UsageError(e.what());
-  } catch (...) {
-    progress.finish();
-    throw;
-  }
-  progress.finish();
+  const pipeline::VideoRunResult result = withProgress(
+      progress, output.string(),
+      [&] {
+        return pipeline::renderVideo(
+            scene, *sink,
+            {.onFrame = [&](const pipeline::FrameProgress& p) { progress.update(p.frame, p.total); },
+             .cancel = &interruptRequested});
+      },
+      [&] { sink.reset(); });  // removes the partial output before we report
   if (result.stopDescription) {
     std::cerr << fmt::format("coinroll: the run stopped early, the clip ends at t = {:.6f} s: {}\n", result.simulatedSeconds,
                              *result.stopDescription);
@@ -285,23 +302,15 @@ void runSweep(const SweepOptions& options) {
   const InterruptGuard interrupts;
   ProgressLine progress(!options.quiet && isatty(STDERR_FILENO) == 1);
   const auto start = std::chrono::steady_clock::now();
-  pipeline::SweepResult result;
-  try {
+  // The temporary file goes with `file` when an exception leaves this function.
+  const pipeline::SweepResult result = withProgress(progress, options.output, [&] {
     std::ofstream out(file.temporaryPath());
-    result = pipeline::runSweep(spec, out, [&](long done, long total) { progress.update(done, total); }, &interruptRequested);
+    const pipeline::SweepResult r =
+        pipeline::runSweep(spec, out, [&](long done, long total) { progress.update(done, total); }, &interruptRequested);
     out.close();
     if (!out) throw std::runtime_error(options.output + ": writing the sweep failed");
-  } catch (const pipeline::Cancelled&) {
-    progress.finish();
-    throw std::runtime_error(fmt::format("interrupted; nothing was written to {}", options.output));
-  } catch (const std::invalid_argument& e) {
-    progress.finish();
-    throw UsageError(e.what());
-  } catch (...) {
-    progress.finish();
-    throw;
-  }
-  progress.finish();
+    return r;
+  });
   file.commit();
   if (!options.quiet) {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

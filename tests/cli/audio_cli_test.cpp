@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "cli/run_command.h"
+#include "cli/scratch_dir.h"
 #include "video/video_probe.h"
 
 namespace {
@@ -21,16 +22,8 @@ namespace fs = std::filesystem;
 
 using coinroll::testing::runCoinroll;
 
-class AudioCliTest : public ::testing::Test {
+class AudioCliTest : public coinroll::testing::ScratchDirTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("coinroll_audio_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  fs::path dir_;
 };
 
 constexpr int kRate = 48000;

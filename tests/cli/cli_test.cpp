@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "cli/run_command.h"
+#include "cli/scratch_dir.h"
 
 #include <algorithm>
 #include <array>
@@ -26,19 +27,13 @@ RunResult run(const std::string& arguments, const std::string& environment = "")
   return coinroll::testing::runCoinroll(arguments, environment);
 }
 
-class CliTest : public ::testing::Test {
+class CliTest : public coinroll::testing::ScratchDirTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("coinroll_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
   fs::path writeScene(const std::string& json) const {
     const fs::path path = dir_ / "scene.json";
     std::ofstream(path) << json;
     return path;
   }
-  fs::path dir_;
 };
 
 const std::string kCoin = R"("coin": {"shape": "disk", "radius": 0.0375, "mass": 0.4})";

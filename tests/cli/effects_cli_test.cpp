@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "cli/run_command.h"
+#include "cli/scratch_dir.h"
 
 namespace {
 
@@ -23,17 +24,7 @@ namespace fs = std::filesystem;
 using coinroll::testing::RunResult;
 using coinroll::testing::runCoinroll;
 
-class EffectsCliTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("coinroll_effects_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  fs::path dir_;
-};
+class EffectsCliTest : public coinroll::testing::ScratchDirTest {};
 
 std::string example(const std::string& name) { return std::string(COINROLL_SOURCE_DIR) + "/examples/" + name + ".json"; }
 

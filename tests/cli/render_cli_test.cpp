@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "cli/run_command.h"
+#include "cli/scratch_dir.h"
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -35,13 +36,10 @@ std::string bytesOf(const fs::path& path) {
   return {std::istreambuf_iterator<char>(in), {}};
 }
 
-class RenderCliTest : public ::testing::Test {
+class RenderCliTest : public coinroll::testing::ScratchDirTest {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("coinroll_render_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    ScratchDirTest::SetUp();
     scene_ = dir_ / "scene.json";
     std::ofstream(scene_) << R"({"name": "toy", "coin": {"radius": 0.0375, "mass": 0.4},
       "initial": {"theta": 20, "omega_Y": 3.0, "omega_Z": 14.0}, "duration": 1.0,
@@ -55,7 +53,7 @@ class RenderCliTest : public ::testing::Test {
     }
     return names;
   }
-  fs::path dir_, scene_;
+  fs::path scene_;
 };
 
 TEST_F(RenderCliTest, Mp4ReadsBackWithTheAskedFramesSizeAndTags) {

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "cli/run_command.h"
+#include "cli/scratch_dir.h"
 
 namespace {
 
@@ -22,19 +23,14 @@ namespace fs = std::filesystem;
 using coinroll::testing::RunResult;
 using coinroll::testing::runCoinroll;
 
-class SweepCliTest : public ::testing::Test {
+class SweepCliTest : public coinroll::testing::ScratchDirTest {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("coinroll_sweep_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    ScratchDirTest::SetUp();
     std::ofstream(scene()) << R"({"name": "toy", "coin": {"shape": "disk", "radius": 0.0375, "mass": 0.4},
                                   "initial": {"theta": 10, "omega_Z": 12}, "duration": 2})";
   }
-  void TearDown() override { fs::remove_all(dir_); }
   fs::path scene() const { return dir_ / "toy.json"; }
-  fs::path dir_;
 };
 
 const std::string kGrid = " --grid initial.theta=5:40:8 --grid initial.omega_Z=4:16:7";

@@ -9,7 +9,8 @@
 #include <cctype>
 #include <chrono>
 #include <cmath>
-#include <csignal>
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <functional>
 #include <fstream>
@@ -20,6 +21,7 @@
 #include <variant>
 
 #include "cli/exit_codes.h"
+#include "cli/interrupts.h"
 #include "integrate/solver_config.h"
 #include "io/atomic_file.h"
 #include "physics/observables.h"
@@ -75,31 +77,6 @@ void reportSteadyStart(const scene::SceneConfig& scene) {
   if (const std::string note = pipeline::steadyStartNote(scene); !note.empty()) std::cerr << "coinroll: note: " << note << '\n';
 }
 
-// Set by SIGINT/SIGTERM; the frame loop polls it and unwinds, so the sink removes its partial file.
-std::atomic<bool> interruptRequested{false};
-
-extern "C" void requestInterrupt(int) { interruptRequested.store(true); }
-
-// Restores the default handlers when the render ends, so a later Ctrl-C behaves as usual.
-class InterruptGuard {
- public:
-  InterruptGuard() {
-    interruptRequested.store(false);
-    previousInt_ = std::signal(SIGINT, requestInterrupt);
-    previousTerm_ = std::signal(SIGTERM, requestInterrupt);
-  }
-  ~InterruptGuard() {
-    std::signal(SIGINT, previousInt_);
-    std::signal(SIGTERM, previousTerm_);
-  }
-  InterruptGuard(const InterruptGuard&) = delete;
-  InterruptGuard& operator=(const InterruptGuard&) = delete;
-
- private:
-  void (*previousInt_)(int) = SIG_DFL;
-  void (*previousTerm_)(int) = SIG_DFL;
-};
-
 // Runs a long command's work with its progress line, ending the line however the work ends, and
 // maps the ways it fails alike for every command: Ctrl-C (after `discardOutput`, which removes
 // a partial output the caller holds) to exit 1 saying nothing was written, a bad request to
@@ -124,6 +101,23 @@ auto withProgress(ProgressLine& progress, const std::string& output, Work work,
   }
 }
 
+// An output must never replace a file the command reads: refused before anything runs.
+void refuseOverwritingInput(const std::string& option, const std::filesystem::path& output,
+                            const std::vector<std::filesystem::path>& inputs) {
+  std::error_code error;
+  for (const std::filesystem::path& input : inputs) {
+    if (std::filesystem::equivalent(output, input, error)) {
+      throw UsageError(fmt::format("{} {}: that is the input {}; choose another output name", option, output.string(),
+                                   input.string()));
+    }
+  }
+}
+
+std::vector<std::filesystem::path> inputsOf(const SceneSource& source) {
+  if (!source.file) return {};
+  return {std::filesystem::path(*source.file)};
+}
+
 // "My scene: v2" -> "My_scene__v2": a scene name made safe as a file name.
 std::string fileNameFrom(const std::string& sceneName) {
   std::string name = sceneName.empty() ? "coinroll" : sceneName;
@@ -139,24 +133,32 @@ void runSimulate(const SimulateOptions& options) {
   if (!(options.sampleDt > 0) || !std::isfinite(options.sampleDt)) {
     throw UsageError(fmt::format("--sample-dt: must be a finite number > 0 s, got {}", options.sampleDt));
   }
+  if (options.csvPath != "-") refuseOverwritingInput("--csv", options.csvPath, inputsOf(options.scene));
   const scene::SceneConfig scene = loadScene(options.scene);
-  const pipeline::Simulation simulation = pipeline::buildSimulation(scene);
+  pipeline::Simulation simulation = pipeline::buildSimulation(scene);
+  simulation.cancel = &interruptRequested();
   reportSteadyStart(scene);
 
-  pipeline::CsvRunResult result;
-  if (options.csvPath == "-") {
-    result = pipeline::writeTrajectoryCsv(simulation, options.sampleDt, std::cout);
-    std::cout.flush();
-  } else {
+  ProgressLine noProgress(false);
+  const pipeline::CsvRunResult result = withProgress(noProgress, options.csvPath, [&] {
+    if (options.csvPath == "-") {
+      const pipeline::CsvRunResult r = pipeline::writeTrajectoryCsv(simulation, options.sampleDt, std::cout);
+      std::cout.flush();
+      // A full device, a closed stdout or a reader gone while SIGPIPE is ignored: the stream says so.
+      if (!std::cout) throw std::runtime_error(std::string("writing the CSV to stdout failed: ") + std::strerror(errno));
+      return r;
+    }
     io::AtomicOutputFile file(options.csvPath);
+    pipeline::CsvRunResult r;
     {
       std::ofstream out(file.temporaryPath());
-      result = pipeline::writeTrajectoryCsv(simulation, options.sampleDt, out);
+      r = pipeline::writeTrajectoryCsv(simulation, options.sampleDt, out);
       out.close();
-      if (!out) throw std::runtime_error(options.csvPath + ": writing the CSV failed");
+      if (!out) throw std::runtime_error(options.csvPath + ": writing the CSV failed: " + std::strerror(errno));
     }
     file.commit();
-  }
+    return r;
+  });
   reportStop(result);
   std::cerr << fmt::format("coinroll: {} rows, {} steps ({} rejected), {} right-hand-side evaluations\n", result.rows,
                            result.stats.acceptedSteps, result.stats.rejectedSteps, result.stats.rhsEvaluations);
@@ -220,13 +222,20 @@ void runStill(const StillOptions& options) {
   if (output.extension() != ".png") {
     throw UsageError(fmt::format("-o: a still is written as PNG; give a name ending in .png, got \"{}\"", options.output));
   }
+  refuseOverwritingInput("-o", output, inputsOf(options.scene));
   const scene::SceneConfig scene = loadScene(options.scene);
   reportSteadyStart(scene);
   pipeline::StillResult result;
   try {
-    result = pipeline::renderStill(scene, {.time = options.time, .ghosts = options.strobe, .ghostsFrom = options.strobeFrom, .output = output});
+    result = pipeline::renderStill(scene, {.time = options.time,
+                                           .ghosts = options.strobe,
+                                           .ghostsFrom = options.strobeFrom,
+                                           .output = output,
+                                           .cancel = &interruptRequested()});
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
+  } catch (const pipeline::Cancelled&) {
+    throw std::runtime_error(fmt::format("interrupted; nothing was written to {}", options.output));
   }
   if (result.stopDescription) {
     std::cerr << fmt::format("coinroll: the run stopped early, so the still shows t = {:.6f} s: {}\n", result.shownTime,
@@ -241,6 +250,7 @@ void runRender(const RenderOptions& options) {
   reportSteadyStart(scene);
   const std::filesystem::path output = options.output ? std::filesystem::path(*options.output)
                                                       : std::filesystem::path(fileNameFrom(scene.name) + ".mp4");
+  refuseOverwritingInput("-o", output, inputsOf(options.scene));
   const video::Mp4Options encoding{.width = scene.render.width,
                                    .height = scene.render.height,
                                    .fps = scene.render.fps,
@@ -254,7 +264,6 @@ void runRender(const RenderOptions& options) {
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
-  const InterruptGuard interrupts;
   ProgressLine progress(!options.quiet && isatty(STDERR_FILENO) == 1);
   const auto start = std::chrono::steady_clock::now();
   const pipeline::VideoRunResult result = withProgress(
@@ -263,7 +272,7 @@ void runRender(const RenderOptions& options) {
         return pipeline::renderVideo(
             scene, *sink,
             {.onFrame = [&](const pipeline::FrameProgress& p) { progress.update(p.frame, p.total); },
-             .cancel = &interruptRequested});
+             .cancel = &interruptRequested()});
       },
       [&] { sink.reset(); });  // removes the partial output before we report
   if (result.stopDescription) {
@@ -279,6 +288,7 @@ void runRender(const RenderOptions& options) {
 }
 
 void runSweep(const SweepOptions& options) {
+  refuseOverwritingInput("-o", options.output, inputsOf(options.scene));
   pipeline::SweepSpec spec;
   std::tie(spec.scene, spec.sourceName) = loadSceneDocument(options.scene);
   spec.parseOptions = {.solverMethods = integrate::methodNames()};
@@ -299,14 +309,13 @@ void runSweep(const SweepOptions& options) {
   spec.threads = options.threads > 0 ? options.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 
   io::AtomicOutputFile file(options.output);
-  const InterruptGuard interrupts;
   ProgressLine progress(!options.quiet && isatty(STDERR_FILENO) == 1);
   const auto start = std::chrono::steady_clock::now();
   // The temporary file goes with `file` when an exception leaves this function.
   const pipeline::SweepResult result = withProgress(progress, options.output, [&] {
     std::ofstream out(file.temporaryPath());
     const pipeline::SweepResult r =
-        pipeline::runSweep(spec, out, [&](long done, long total) { progress.update(done, total); }, &interruptRequested);
+        pipeline::runSweep(spec, out, [&](long done, long total) { progress.update(done, total); }, &interruptRequested());
     out.close();
     if (!out) throw std::runtime_error(options.output + ": writing the sweep failed");
     return r;
@@ -322,6 +331,7 @@ void runSweep(const SweepOptions& options) {
 }
 
 void runSweepMerge(const SweepMergeOptions& options) {
+  refuseOverwritingInput("-o", options.output, {options.shards.begin(), options.shards.end()});
   io::AtomicOutputFile file(options.output);
   {
     std::ofstream out(file.temporaryPath());

@@ -8,6 +8,7 @@
 
 #include "cli/commands.h"
 #include "cli/exit_codes.h"
+#include "cli/interrupts.h"
 #include "scene/scene_loader.h"
 
 namespace {
@@ -134,6 +135,8 @@ int main(int argc, char** argv) {
     return code == 0 ? kExitSuccess : kExitBadInput;
   }
 
+  // Before any command can create an output (docs in cli/interrupts.h).
+  const InterruptGuard interrupts;
   try {
     if (*simulateCommand) runSimulate(simulate);
     if (*steadyCommand) runSteady(steady);

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "physics/observables.h"
+#include "pipeline/cancelled.h"
 #include "pipeline/validity_events.h"
 
 namespace coinroll::pipeline {
@@ -63,9 +64,11 @@ struct RunTraits<integrate::Trajectory<N, physics::CoinRhs<F>>> {
 }  // namespace
 
 CoinRun::CoinRun(const Simulation& simulation)
-    : trajectory_(startEither<decltype(trajectory_)>(simulation)), lastState_(simulation.initial) {}
+    : trajectory_(startEither<decltype(trajectory_)>(simulation)), lastState_(simulation.initial),
+      cancel_(simulation.cancel) {}
 
 std::optional<RunSample> CoinRun::sampleAt(double t) {
+  throwIfCancelled(cancel_);
   return std::visit(
       [this, t](auto& run) {
         using Traits = RunTraits<std::decay_t<decltype(run)>>;
@@ -91,6 +94,7 @@ std::optional<RunSample> CoinRun::sampleOf(Run<F, N>& run, double t) {
       throw std::logic_error(fmt::format("CoinRun::stateAt: queries must not go back in time ({} after {})", t, lastTime_));
     }
     while (lastTime_ < t) {
+      throwIfCancelled(cancel_);
       const double turnRate = std::max(std::abs(physics::precessionRate(lastState_)), std::abs(physics::spinRate(lastState_)));
       const double next = turnRate > 0 ? std::min(t, lastTime_ + kUnwrapTurn / turnRate) : t;
       const std::optional<integrate::Vec<N>> y = run.stateAt(next);

@@ -3,6 +3,7 @@
 // the CSV (and any other consumer of samples) need not know which equations are integrated, nor
 // whether the dissipated energy is integrated beside them.
 
+#include <atomic>
 #include <optional>
 #include <variant>
 #include <vector>
@@ -28,7 +29,8 @@ class CoinRun {
   explicit CoinRun(const Simulation& simulation);
 
   // The sample at t >= every earlier query; std::nullopt once an event has ended the run before
-  // t. phi and psi are continuous in t in both formulations.
+  // t. phi and psi are continuous in t in both formulations. Throws Cancelled when the
+  // simulation's cancel flag is set.
   std::optional<RunSample> sampleAt(double t);
   std::optional<physics::CoinState> stateAt(double t);
 
@@ -55,6 +57,7 @@ class CoinRun {
   double lastTime_ = 0;             // s, time of lastState_
   physics::CoinState lastState_;    // the latest sample: the continuation for phi and psi
   double lastDissipated_ = 0;       // J, at lastTime_
+  const std::atomic<bool>* cancel_ = nullptr;
 };
 
 }  // namespace coinroll::pipeline

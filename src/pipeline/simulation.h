@@ -2,6 +2,7 @@
 // A scene turned into what the integrator needs: the coin model with its effects, its initial
 // state, the solver and how the validity events act. Shared by `simulate`, `still` and `render`.
 
+#include <atomic>
 #include <optional>
 #include <string>
 
@@ -22,6 +23,8 @@ struct Simulation {
   std::optional<double> friction;  // mu; no slip monitor when absent
   bool validityIsTerminal = true;  // on_invalid: "stop" ends the run at lift-off or slip
   double duration = 0;             // s
+  // When set and true, runs of this simulation stop at their next sample with Cancelled.
+  const std::atomic<bool>* cancel = nullptr;
 };
 
 // Builds the model (disk, ring or custom inertia, effects), resolves a steady-state `initial` for

@@ -38,7 +38,8 @@ StillResult renderStill(const scene::SceneConfig& scene, const StillRequest& req
     throw std::invalid_argument(
         fmt::format("--strobe-from: must be at least 0 and before --time ({} s), got {}", request.time, request.ghostsFrom));
   }
-  const Simulation simulation = buildSimulation(scene);
+  Simulation simulation = buildSimulation(scene);
+  simulation.cancel = request.cancel;
   render::Renderer renderer(renderSettings(scene));  // before the physics: bad render settings fail fast
   const MotionSurvey survey = surveyMotion(simulation);
   StillResult result;

@@ -1,6 +1,7 @@
 #pragma once
 // `coinroll still`: one PNG of a scene at one simulated time, optionally stroboscopic.
 
+#include <atomic>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -14,6 +15,7 @@ struct StillRequest {
   int ghosts = 0;                  // > 0: this many earlier poses, evenly spaced over [ghostsFrom, time)
   double ghostsFrom = 0;           // s, the first ghost's time, in [0, time)
   std::filesystem::path output;    // .png, written atomically
+  const std::atomic<bool>* cancel = nullptr;  // when set and true, stops with Cancelled
 };
 
 struct StillResult {

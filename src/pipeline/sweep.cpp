@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "physics/observables.h"
+#include "pipeline/cancelled.h"
 #include "pipeline/coin_run.h"
 #include "pipeline/simulation.h"
 #include "pipeline/trajectory_csv.h"
@@ -95,16 +96,19 @@ std::vector<double> pointValues(const std::vector<GridAxis>& axes, long point) {
   return values;
 }
 
-std::string pointRow(const SweepSpec& spec, long point) {
+std::string pointRow(const SweepSpec& spec, long point, const std::atomic<bool>* cancel) {
   const std::vector<double> values = pointValues(spec.axes, point);
   std::string row = fmt::format("{}", point);
   for (const double v : values) row += fmt::format(",{}", v);
   try {
     nlohmann::json document = spec.scene;
     for (std::size_t i = 0; i < values.size(); ++i) scene::applyOverride(document, fmt::format("{}={}", spec.axes[i].key, values[i]));
-    const Simulation simulation = buildSimulation(scene::parseScene(document, spec.sourceName, spec.parseOptions));
+    Simulation simulation = buildSimulation(scene::parseScene(document, spec.sourceName, spec.parseOptions));
+    simulation.cancel = cancel;
     const PointSummary s = summarize(simulation);
     row += fmt::format(",{},{},{},{},{},{}", s.end, s.tEnd, s.thetaMin, s.thetaMax, s.energyStart, s.energyEnd);
+  } catch (const Cancelled&) {
+    throw;  // not the point's failure: the whole sweep stops
   } catch (const std::exception& e) {
     row += "," + csvField(std::string("error: ") + e.what()) + ",,,,,";
   }
@@ -196,11 +200,13 @@ SweepResult runSweep(const SweepSpec& spec, std::ostream& out, const std::functi
     std::atomic<bool> cancelled{false};
     const auto work = [&] {
       for (long i; (i = next.fetch_add(1)) < blockSize;) {
-        if (cancel != nullptr && cancel->load()) {
-          cancelled = true;
+        try {
+          throwIfCancelled(cancel);
+          rows[static_cast<std::size_t>(i)] = pointRow(spec, first + (blockStart + i) * step, cancel);
+        } catch (const Cancelled&) {
+          cancelled = true;  // an exception must not leave a worker thread
           return;
         }
-        rows[static_cast<std::size_t>(i)] = pointRow(spec, first + (blockStart + i) * step);
       }
     };
     std::vector<std::jthread> helpers;

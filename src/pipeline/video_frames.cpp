@@ -88,7 +88,8 @@ class SoundTrack {
 }  // namespace
 
 VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& sink, const VideoRunOptions& options) {
-  const Simulation simulation = buildSimulation(scene);
+  Simulation simulation = buildSimulation(scene);
+  simulation.cancel = options.cancel;
   render::Renderer renderer(renderSettings(scene));
   const MotionSurvey survey = surveyMotion(simulation);
   const CameraRig rig(scene.render.camera, survey, simulation.model, scene.render.width, scene.render.height);

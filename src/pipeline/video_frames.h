@@ -12,6 +12,7 @@
 
 #include "pipeline/simulation.h"
 #include "scene/scene_config.h"
+#include "pipeline/cancelled.h"
 #include "video/frame_sink.h"
 
 namespace coinroll::pipeline {
@@ -39,11 +40,6 @@ struct VideoRunResult {
   long frames = 0;
   double simulatedSeconds = 0;  // s shown; less than the duration when a validity event ended the run
   std::optional<std::string> stopDescription;
-};
-
-class Cancelled : public std::runtime_error {
- public:
-  Cancelled() : std::runtime_error("interrupted") {}
 };
 
 // Renders every frame of `scene` into `sink` and finishes it. Throws scene::SceneError for

@@ -142,12 +142,23 @@ SolverSpec parseSolver(const JsonReader& top, const ParseOptions& options) {
   if (std::find(options.solverMethods.begin(), options.solverMethods.end(), solver.method) == options.solverMethods.end()) {
     r.fail("method", fmt::format("unknown method \"{}\"; available: {}", solver.method, fmt::join(options.solverMethods, ", ")));
   }
+  // Below 1e-14 the steps a tolerance asks for are lost in round-off (double precision is 2e-16);
+  // above 1e-2 the dense output and the events it locates are no longer worth reading.
   solver.rtol = r.number("rtol", solver.rtol);
-  if (!(solver.rtol > 0 && solver.rtol < 1)) r.fail("rtol", fmt::format("must be in (0, 1), got {}", solver.rtol));
+  if (!(solver.rtol >= 1e-14 && solver.rtol <= 1e-2)) {
+    r.fail("rtol", fmt::format("must be in [1e-14, 1e-2] (default 1e-10), got {}", solver.rtol));
+  }
+  // A pure relative tolerance (atol = 0) cannot control a component that is or passes through 0:
+  // its error weight is 1 / 0.
   solver.atol = r.number("atol", solver.atol);
-  if (!(solver.atol >= 0)) r.fail("atol", fmt::format("must be >= 0, got {}", solver.atol));
+  if (!(solver.atol > 0 && solver.atol <= 1e-2)) {
+    r.fail("atol", fmt::format("must be in (0, 1e-2] (default 1e-12; 0 cannot weigh a state component that is 0), got {}",
+                               solver.atol));
+  }
+  // More than 10^7 fixed steps per simulated second, or steps longer than the coin's own time
+  // scale sqrt(a/g) ~ 0.06 s many times over, are typos rather than choices.
   solver.dt = r.number("dt", solver.dt);
-  positive(r, "dt", solver.dt);
+  if (!(solver.dt >= 1e-7 && solver.dt <= 1)) r.fail("dt", fmt::format("must be in [1e-7, 1] s (default 1e-3), got {}", solver.dt));
   return solver;
 }
 

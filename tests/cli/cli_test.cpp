@@ -16,6 +16,11 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <thread>
+
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 namespace {
 
@@ -173,6 +178,84 @@ TEST_F(CliTest, HelpTeachesAndExitsZero) {
   EXPECT_EQ(r.exitCode, 0);
   EXPECT_NE(r.output.find("simulate"), std::string::npos);
   EXPECT_NE(r.output.find("Examples"), std::string::npos);
+}
+
+}  // namespace
+
+namespace {
+
+// The names of the files in `dir` (temporaries are ".NAME.partial-...").
+std::vector<std::string> filesIn(const fs::path& dir) {
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(dir)) names.push_back(entry.path().filename().string());
+  return names;
+}
+
+TEST_F(CliTest, InterruptedSimulateExitsOneAndLeavesNothing) {
+  const fs::path scene = writeScene(kValid), csv = dir_ / "out.csv";
+  for (const int signal : {SIGINT, SIGTERM}) {
+    const pid_t child = fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+      const std::string binary = std::string(COINROLL_BINARY_DIR) + "/coinroll";
+      std::freopen("/dev/null", "w", stderr);
+      execl(binary.c_str(), binary.c_str(), "simulate", scene.c_str(), "--csv", csv.c_str(), "--sample-dt", "0.0001",
+            "--set", "duration=1e6", static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    // The signal guard is installed before any output exists, so the signal may come as soon as
+    // the temporary file does: no window in which it would kill the process.
+    for (int i = 0; i < 400 && filesIn(dir_).size() < 2; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    ASSERT_EQ(filesIn(dir_).size(), 2u) << "the run never started writing";
+    kill(child, signal);
+    int status = 0;
+    waitpid(child, &status, 0);
+    ASSERT_TRUE(WIFEXITED(status)) << "killed by signal " << signal << " instead of stopping cleanly";
+    EXPECT_EQ(WEXITSTATUS(status), 1);
+    EXPECT_EQ(filesIn(dir_), std::vector<std::string>{"scene.json"});
+  }
+}
+
+TEST_F(CliTest, AnOutputThatIsTheInputIsRefusedAndTheInputKept) {
+  const fs::path scene = writeScene(kValid);
+  const std::string before = [&] {
+    std::ifstream in(scene);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  }();
+  for (const std::string& command : {"simulate " + scene.string() + " --csv " + scene.string(),
+                                     "simulate " + scene.string() + " --csv " + (dir_ / "." / "scene.json").string(),
+                                     "sweep " + scene.string() + " --grid initial.theta=1:2:2 -o " + scene.string(),
+                                     "still " + scene.string() + " --time 0.1 -o " + scene.string()}) {
+    const RunResult r = run(command);
+    EXPECT_EQ(r.exitCode, 2) << command << ": " << r.output;
+    std::ifstream in(scene);
+    EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}), before) << command;
+  }
+  const RunResult r = run("simulate " + scene.string() + " --csv " + scene.string());
+  EXPECT_NE(r.output.find("that is the input"), std::string::npos) << r.output;
+}
+
+TEST_F(CliTest, AFailedWriteToStdoutIsAnError) {
+  // stderr to the pipe we read, stdout to the full device (runCoinroll would send both there).
+  const std::string command = std::string(COINROLL_BINARY_DIR) + "/coinroll simulate " + writeScene(kValid).string() +
+                              " --csv - 2>&1 >/dev/full";
+  FILE* pipe = popen(command.c_str(), "r");
+  std::string output;
+  for (std::array<char, 4096> buffer{}; std::fgets(buffer.data(), buffer.size(), pipe) != nullptr;) output += buffer.data();
+  const int status = pclose(pipe);
+  EXPECT_EQ(WEXITSTATUS(status), 1) << output;
+  EXPECT_NE(output.find("writing the CSV to stdout failed: No space left on device"), std::string::npos) << output;
+}
+
+TEST_F(CliTest, ToleranceOutsideItsMeaningfulRangeIsRefused) {
+  for (const auto& [key, value] : std::vector<std::pair<std::string, std::string>>{
+           {"atol", "0"}, {"atol", "1"}, {"rtol", "0.5"}, {"rtol", "1e-16"}, {"dt", "1e-9"}, {"dt", "10"}}) {
+    const RunResult r = run("simulate " + writeScene(kValid).string() + " --csv " + (dir_ / "o.csv").string() +
+                            " --set solver." + key + "=" + value);
+    EXPECT_EQ(r.exitCode, 2) << key << "=" << value << ": " << r.output;
+    EXPECT_NE(r.output.find("solver." + key), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir_ / "o.csv"));
+  }
 }
 
 }  // namespace

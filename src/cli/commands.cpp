@@ -317,7 +317,7 @@ void runSweep(const SweepOptions& options) {
     const pipeline::SweepResult r =
         pipeline::runSweep(spec, out, [&](long done, long total) { progress.update(done, total); }, &interruptRequested());
     out.close();
-    if (!out) throw std::runtime_error(options.output + ": writing the sweep failed");
+    if (!out) throw std::runtime_error(options.output + ": writing the sweep failed: " + std::strerror(errno));
     return r;
   });
   file.commit();
@@ -338,7 +338,7 @@ void runSweepMerge(const SweepMergeOptions& options) {
     std::vector<std::filesystem::path> shards(options.shards.begin(), options.shards.end());
     pipeline::mergeSweepShards(shards, out);
     out.close();
-    if (!out) throw std::runtime_error(options.output + ": writing the merged sweep failed");
+    if (!out) throw std::runtime_error(options.output + ": writing the merged sweep failed: " + std::strerror(errno));
   }
   file.commit();
 }

@@ -28,6 +28,11 @@ struct Image {
 // std::runtime_error naming the path on failure; nothing is left under `path` then.
 void writePng(const Image& image, const std::filesystem::path& path);
 
+// Encodes `image` and writes the bytes to `path` itself, checking every write and the close
+// (std::runtime_error naming `name`, the output the user asked for, with the system's reason on a
+// full disk or any other failure); making the result appear atomically is the caller's business.
+void writePngBytes(const Image& image, const std::filesystem::path& path, const std::filesystem::path& name);
+
 // Reads an 8-bit PNG as RGBA. Throws std::runtime_error naming the path on failure.
 Image readPng(const std::filesystem::path& path);
 

@@ -79,13 +79,7 @@ PngSequenceSink::PngSequenceSink(std::filesystem::path pattern) {
   }
 }
 
-PngSequenceSink::~PngSequenceSink() {
-  if (finished_) return;
-  for (const std::filesystem::path& path : written_) {
-    std::error_code ignored;
-    std::filesystem::remove(path, ignored);
-  }
-}
+PngSequenceSink::~PngSequenceSink() = default;  // uncommitted temporaries remove themselves
 
 std::filesystem::path PngSequenceSink::pathOfFrame(int index) const {
   std::string number = std::to_string(index);
@@ -95,14 +89,14 @@ std::filesystem::path PngSequenceSink::pathOfFrame(int index) const {
 
 void PngSequenceSink::push(const image::Image& frame) {
   if (finished_) throw std::logic_error(pathOfFrame(0).string() + ": push() after finish()");
-  const std::filesystem::path path = pathOfFrame(static_cast<int>(written_.size()));
-  // Listed only once written: writePng leaves nothing under `path` when it fails.
-  image::writePng(frame, path);
-  written_.push_back(path);
+  auto file = std::make_unique<io::AtomicOutputFile>(pathOfFrame(static_cast<int>(staged_.size())));
+  image::writePngBytes(frame, file->temporaryPath(), file->destination());
+  staged_.push_back(std::move(file));
 }
 
 void PngSequenceSink::finish() {
   if (finished_) throw std::logic_error(pathOfFrame(0).string() + ": finish() called twice");
+  for (const auto& file : staged_) file->commit();
   finished_ = true;
 }
 

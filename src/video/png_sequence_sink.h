@@ -2,8 +2,11 @@
 // A numbered sequence of PNG files, one per frame.
 
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
+
+#include "io/atomic_file.h"
 
 #include "video/frame_sink.h"
 
@@ -14,12 +17,12 @@ namespace coinroll::video {
 // there. The directory part is taken literally, '%' included.
 // Frames are numbered from 0: "out/frame_%05d.png" gives out/frame_00000.png, frame_00001.png, ...
 //
-// Each frame is written atomically under its final name as it arrives (image::writePng), and the
-// sink remembers what it wrote: destroyed without finish(), it removes those files, so an
-// interrupted render leaves no partial sequence. (Renaming everything in finish() instead would
-// hide the frames from a viewer during a long render and make finish() take time proportional to
-// the clip; deleting on failure gives the same all-or-nothing result.) Files of an earlier run
-// with the same names are overwritten frame by frame, and those this run does not reach remain.
+// Each frame is written as it arrives under a hidden temporary name beside its final one, every
+// write checked; finish() renames them all into place (thousands a second: renames are cheap).
+// Destroyed without finish(), the sink removes only its temporaries, so an interrupted or failed
+// render leaves no partial sequence and never touches files it did not write: files of an earlier
+// run with the same names are replaced only when this run completes, and those it does not reach
+// remain.
 class PngSequenceSink final : public FrameSink {
  public:
   // Throws std::invalid_argument naming the pattern if it is malformed, std::runtime_error if its
@@ -38,7 +41,7 @@ class PngSequenceSink final : public FrameSink {
   std::string prefix_;  // file name before the number
   std::string suffix_;  // file name after the number
   int minimumDigits_ = 0;
-  std::vector<std::filesystem::path> written_;
+  std::vector<std::unique_ptr<io::AtomicOutputFile>> staged_;  // frame i's temporary, in order
   bool finished_ = false;
 };
 

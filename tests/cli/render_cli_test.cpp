@@ -146,4 +146,22 @@ TEST_F(RenderCliTest, StillIsByteIdenticalAcrossRerunsAndLlvmpipeThreadCounts) {
   EXPECT_NE(bytesOf(strobe), bytesOf(a));
 }
 
+TEST_F(RenderCliTest, AFullDiskFailsEveryWriterWithoutLeavingAFile) {
+  // A file-size limit of 512 bytes stands in for a full disk: with SIGXFSZ ignored, writes past
+  // it fail with EFBIG, as they would with ENOSPC.
+  const std::string fullDisk = "ulimit -f 1; trap '' XFSZ; ";
+  const std::vector<std::string> commands = {
+      "still " + scene_.string() + " --time 0.5 -o " + (dir_ / "still.png").string(),
+      "render " + scene_.string() + " -q -o " + (dir_ / "clip.mp4").string(),
+      "render " + scene_.string() + " -q -o " + (dir_ / "f_%03d.png").string(),
+      "simulate " + scene_.string() + " --csv " + (dir_ / "run.csv").string(),
+      "sweep " + scene_.string() + " --grid initial.theta=1:20:40 -q -o " + (dir_ / "sweep.csv").string()};
+  for (const std::string& command : commands) {
+    const coinroll::testing::RunResult r = coinroll::testing::runCoinroll(command, fullDisk);
+    EXPECT_EQ(r.exitCode, 1) << command << ": " << r.output;
+    EXPECT_NE(r.output.find("coinroll: error:"), std::string::npos) << r.output;
+    EXPECT_TRUE(leftovers().empty()) << command << " left " << leftovers().front();
+  }
+}
+
 }  // namespace

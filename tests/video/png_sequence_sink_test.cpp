@@ -46,6 +46,27 @@ TEST(PngSequenceSink, DestroyedWithoutFinishRemovesItsFrames) {
   EXPECT_EQ(directory.fileCount(), 0);
 }
 
+TEST(PngSequenceSink, EarlierFilesOfTheSameNamesSurviveAnUnfinishedRunAndAreReplacedByAFinishedOne) {
+  ScratchDirectory directory;
+  const fs::path earlier = directory / "frame_001.png";
+  coinroll::image::writePng(movingSquareFrame(32, 18, 9), earlier);
+  const auto earlierPixels = coinroll::image::readPng(earlier).rgba;
+  {
+    PngSequenceSink sink(directory / "frame_%03d.png");
+    for (int i = 0; i < 3; ++i) sink.push(movingSquareFrame(32, 18, i));
+  }  // interrupted: the user's file is untouched, nothing of ours remains
+  EXPECT_EQ(directory.fileCount(), 1);
+  EXPECT_EQ(coinroll::image::readPng(earlier).rgba, earlierPixels);
+  {
+    PngSequenceSink sink(directory / "frame_%03d.png");
+    for (int i = 0; i < 3; ++i) sink.push(movingSquareFrame(32, 18, i));
+    EXPECT_EQ(coinroll::image::readPng(earlier).rgba, earlierPixels);  // not before the run completes
+    sink.finish();
+  }
+  EXPECT_EQ(directory.fileCount(), 3);
+  EXPECT_EQ(coinroll::image::readPng(earlier).rgba, movingSquareFrame(32, 18, 1).rgba);
+}
+
 TEST(PngSequenceSink, MalformedPatternsAreRefusedNamingThePattern) {
   ScratchDirectory directory;
   for (const char* pattern : {"frame.png", "a_%d_%d.png", "frame_%s.png", "frame_%5d.png", "frame_%05d.jpg",

@@ -135,6 +135,11 @@ void runSimulate(const SimulateOptions& options) {
   }
   if (options.csvPath != "-") refuseOverwritingInput("--csv", options.csvPath, inputsOf(options.scene));
   const scene::SceneConfig scene = loadScene(options.scene);
+  const long maxRows = options.maxRows > 0 ? options.maxRows : kDefaultMaxRows;
+  if (const double rows = scene.duration / options.sampleDt + 1; rows > static_cast<double>(maxRows)) {
+    throw UsageError(fmt::format("--sample-dt {}: duration {} s gives {:.4g} rows, more than the limit {}; raise "
+                                 "--sample-dt, or the limit with --max-rows", options.sampleDt, scene.duration, rows, maxRows));
+  }
   pipeline::Simulation simulation = pipeline::buildSimulation(scene);
   simulation.cancel = &interruptRequested();
   reportSteadyStart(scene);
@@ -272,7 +277,8 @@ void runRender(const RenderOptions& options) {
         return pipeline::renderVideo(
             scene, *sink,
             {.onFrame = [&](const pipeline::FrameProgress& p) { progress.update(p.frame, p.total); },
-             .cancel = &interruptRequested()});
+             .cancel = &interruptRequested(),
+             .maxFrames = options.maxFrames > 0 ? options.maxFrames : pipeline::kDefaultMaxFrames});
       },
       [&] { sink.reset(); });  // removes the partial output before we report
   if (result.stopDescription) {

@@ -17,7 +17,11 @@ struct SimulateOptions {
   SceneSource scene;
   std::string csvPath;    // "-" = stdout
   double sampleDt = 0.01; // s
+  long maxRows = 0;       // 0: kDefaultMaxRows
 };
+
+// Rows above this need --max-rows: 10 000 000 rows is about 3 GB of CSV.
+inline constexpr long kDefaultMaxRows = 10'000'000;
 void runSimulate(const SimulateOptions& options);
 
 struct SteadyOptions {
@@ -42,6 +46,7 @@ struct RenderOptions {
   SceneSource scene;
   std::optional<std::string> output;  // .mp4 or a %d pattern of .png; default <scene name>.mp4
   bool quiet = false;                 // no progress line, no summary
+  long maxFrames = 0;                 // 0: pipeline::kDefaultMaxFrames
 };
 void runRender(const RenderOptions& options);
 

@@ -50,6 +50,7 @@ int main(int argc, char** argv) {
   simulateCommand->add_option("--csv", simulate.csvPath, "Output CSV path, or - for stdout")->required();
   simulateCommand->add_option("--sample-dt", simulate.sampleDt, "Time between rows, s (rows at t = k S)")
       ->capture_default_str();
+  simulateCommand->add_option("--max-rows", simulate.maxRows, "Refuse runs of more rows than this (default 10000000)");
 
   SteadyOptions steady;
   CLI::App* steadyCommand = app.add_subcommand(
@@ -71,6 +72,7 @@ int main(int argc, char** argv) {
                             "Output: NAME.mp4, or a PNG sequence pattern like frames_%05d.png (frames numbered from 0); "
                             "default: the scene's name + .mp4 (coinroll.mp4 for the built-in scene)");
   renderCommand->add_flag("-q,--quiet", render.quiet, "No progress line and no summary on stderr");
+  renderCommand->add_option("--max-frames", render.maxFrames, "Refuse clips of more frames than this (default 1000000)");
   renderCommand->footer(
       "Frame k shows simulated time k * render.time_scale / render.fps, from the integrator's dense output.\n"
       "Size, fps, anti-aliasing, camera, trace, overlay and encoder come from the scene's render block, e.g.\n"
@@ -128,6 +130,18 @@ int main(int argc, char** argv) {
   sweepMergeCommand->add_option("shards", sweepMerge.shards, "Shard CSV files (any order)")->required();
   sweepMergeCommand->footer("Fails, naming the points, if a point is missing or repeated.");
 
+  // CLI11 reports a misspelt command only as "a subcommand is required": name it and the choices.
+  std::string commands;
+  bool known = false;
+  for (const CLI::App* command : app.get_subcommands({})) {
+    commands += (commands.empty() ? "" : ", ") + command->get_name();
+    known = known || (argc > 1 && command->get_name() == argv[1]);
+  }
+  if (argc > 1 && argv[1][0] != '-' && !known) {
+    std::cerr << "coinroll: error: unknown command '" << argv[1] << "'; the commands are " << commands
+              << " (coinroll --help)\n";
+    return kExitBadInput;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <numbers>
 #include <optional>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "physics/observables.h"
@@ -22,17 +24,32 @@ long frameCount(double simulatedSeconds, double timeScale, int fps) {
   return static_cast<long>(std::floor(simulatedSeconds / timeScale * fps * (1 + 1e-12) + 1e-9)) + 1;
 }
 
-std::vector<double> frameTimes(const scene::SceneConfig& scene, const Simulation& simulation, double endTime) {
+namespace {
+
+[[noreturn]] void refuseFrames(const scene::SceneConfig& scene, long maxFrames, const std::string& count) {
+  throw std::invalid_argument(fmt::format(
+      "render: duration {} s at time_scale {}, fps {}{} gives {} frames, more than the limit {}; shorten the duration, "
+      "raise time_scale or lower fps, or raise the limit with --max-frames",
+      scene.duration, scene.render.timeScale, scene.render.fps, scene.render.timeRemap ? " and the time remap" : "", count,
+      maxFrames));
+}
+
+}  // namespace
+
+std::vector<double> frameTimes(const scene::SceneConfig& scene, const Simulation& simulation, double endTime,
+                               long maxFrames) {
   std::vector<double> times;
   const double perFrame = scene.render.timeScale / scene.render.fps;
   if (!scene.render.timeRemap) {
     const long total = frameCount(endTime, scene.render.timeScale, scene.render.fps);
+    if (total > maxFrames) refuseFrames(scene, maxFrames, std::to_string(total));
     for (long k = 0; k < total; ++k) times.push_back(std::min(static_cast<double>(k) * perFrame, endTime));
     return times;
   }
   CoinRun trajectory(simulation);
   // The sum of steps drifts by round-off; a relative 1e-12 keeps the frame at the very end.
   for (double t = 0; t <= endTime * (1 + 1e-12);) {
+    if (static_cast<long>(times.size()) == maxFrames) refuseFrames(scene, maxFrames, "more than that");
     times.push_back(std::min(t, endTime));
     const std::optional<physics::CoinState> y = trajectory.stateAt(t);
     if (!y) break;
@@ -88,6 +105,11 @@ class SoundTrack {
 }  // namespace
 
 VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& sink, const VideoRunOptions& options) {
+  // The frames without a remap are a lower bound on the frames with one: refuse before any work.
+  if (const double atLeast = static_cast<double>(scene.duration) / scene.render.timeScale * scene.render.fps;
+      atLeast > static_cast<double>(options.maxFrames)) {
+    refuseFrames(scene, options.maxFrames, fmt::format("{:.4g}", atLeast));
+  }
   Simulation simulation = buildSimulation(scene);
   simulation.cancel = options.cancel;
   render::Renderer renderer(renderSettings(scene));
@@ -98,7 +120,7 @@ VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& si
   VideoRunResult result;
   result.simulatedSeconds = survey.endTime;
   if (survey.stoppedBy) result.stopDescription = describeStop(*survey.stoppedBy);
-  const std::vector<double> times = frameTimes(scene, simulation, survey.endTime);
+  const std::vector<double> times = frameTimes(scene, simulation, survey.endTime, options.maxFrames);
   const long total = static_cast<long>(times.size());
   const double traceDt = traceInterval(scene.duration);
 

@@ -17,6 +17,10 @@
 
 namespace coinroll::pipeline {
 
+// Frames above this need --max-frames: 1 000 000 frames is 9 h of video at 30 fps, and a typo in
+// a duration or a time remap should be refused before hours of work, not after.
+inline constexpr long kDefaultMaxFrames = 1'000'000;
+
 // Frames in a clip of `simulatedSeconds` at `fps` and `timeScale`: k = 0 .. floor(video length * fps).
 long frameCount(double simulatedSeconds, double timeScale, int fps);
 
@@ -24,7 +28,10 @@ long frameCount(double simulatedSeconds, double timeScale, int fps);
 // With render.time_remap.spin_rate S, each frame advances by (time_scale / fps) min(1, S / |psi-dot(t_k)|):
 // the picture slows down while the coin spins faster than S; precession_rate does the same with
 // phi-dot, the contact point's rate round the floor.
-std::vector<double> frameTimes(const scene::SceneConfig& scene, const Simulation& simulation, double endTime);
+// Throws std::invalid_argument naming the render fields when there would be more than
+// `maxFrames`; stops planning there, so memory stays bounded whatever the time remap.
+std::vector<double> frameTimes(const scene::SceneConfig& scene, const Simulation& simulation, double endTime,
+                               long maxFrames = kDefaultMaxFrames);
 
 struct FrameProgress {
   long frame = 0;  // frames done
@@ -34,6 +41,7 @@ struct FrameProgress {
 struct VideoRunOptions {
   std::function<void(const FrameProgress&)> onFrame;  // called after each frame; may be empty
   const std::atomic<bool>* cancel = nullptr;          // when set and true, the loop stops (Cancelled)
+  long maxFrames = kDefaultMaxFrames;                 // more frames: std::invalid_argument, before any work
 };
 
 struct VideoRunResult {

@@ -7,7 +7,6 @@
 #include <cmath>
 #include <fstream>
 #include <numbers>
-#include <sstream>
 
 #include "scene/json_reader.h"
 
@@ -381,11 +380,21 @@ SceneConfig parseScene(const nlohmann::json& document, std::string_view sourceNa
 }
 
 nlohmann::json readSceneDocument(const std::filesystem::path& file) {
+  std::error_code error;
+  if (std::filesystem::is_directory(file, error)) {
+    throw SceneError(fmt::format("{}: is a directory; give a scene file (JSON)", file.string()));
+  }
   std::ifstream in(file, std::ios::binary);
   if (!in) throw SceneError(fmt::format("{}: cannot open the scene file (does it exist?)", file.string()));
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  const std::string text = buffer.str();
+  // Scenes are a few hundred bytes. The read stops past this, so a huge file given by mistake, or
+  // a device that never ends (/dev/zero), is refused instead of filling memory; pipes still work.
+  constexpr std::size_t kMaxSceneBytes = 16 << 20;
+  std::string text(kMaxSceneBytes + 1, '\0');
+  in.read(text.data(), static_cast<std::streamsize>(text.size()));
+  text.resize(static_cast<std::size_t>(in.gcount()));
+  if (text.size() > kMaxSceneBytes) {
+    throw SceneError(fmt::format("{}: more than {} bytes; a scene file is a small JSON document", file.string(), kMaxSceneBytes));
+  }
   try {
     return nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {

@@ -259,3 +259,33 @@ TEST_F(CliTest, ToleranceOutsideItsMeaningfulRangeIsRefused) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST_F(CliTest, AbsurdRequestsAreRefusedUpFrontNamingWhatAndTheLimit) {
+  const fs::path scene = writeScene(kValid);
+  struct Case {
+    std::string arguments, mustSay;
+  };
+  const std::vector<Case> cases = {
+      {"simulat " + scene.string(), "unknown command 'simulat'; the commands are simulate, "},
+      {"simulate " + dir_.string() + " --csv " + (dir_ / "o.csv").string(), "is a directory"},
+      {"simulate /dev/zero --csv " + (dir_ / "o.csv").string(), "more than 16777216 bytes"},
+      {"simulate " + scene.string() + " --sample-dt 1e-9 --csv " + (dir_ / "o.csv").string(), "--max-rows"},
+      {"render " + scene.string() + " --set duration=1e7 --set render.fps=240 -o " + (dir_ / "o.mp4").string(),
+       "2.4e+09 frames, more than the limit 1000000"},
+      {"render " + scene.string() + " --max-frames 10 -o " + (dir_ / "o.mp4").string(),  // a limit the user set
+       "15 frames, more than the limit 10"},
+  };
+  for (const Case& c : cases) {
+    const auto start = std::chrono::steady_clock::now();
+    const RunResult r = run(c.arguments);
+    EXPECT_EQ(r.exitCode, 2) << c.arguments << ": " << r.output;
+    EXPECT_NE(r.output.find(c.mustSay), std::string::npos) << c.arguments << ": " << r.output;
+    EXPECT_EQ(filesIn(dir_), std::vector<std::string>{"scene.json"}) << c.arguments;
+    // Refused before the work, not after it (the render above would integrate for minutes).
+    EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(20)) << c.arguments;
+  }
+}
+
+}  // namespace

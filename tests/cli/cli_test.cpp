@@ -200,7 +200,7 @@ TEST_F(CliTest, InterruptedSimulateExitsOneAndLeavesNothing) {
       const std::string binary = std::string(COINROLL_BINARY_DIR) + "/coinroll";
       std::freopen("/dev/null", "w", stderr);
       execl(binary.c_str(), binary.c_str(), "simulate", scene.c_str(), "--csv", csv.c_str(), "--sample-dt", "0.0001",
-            "--set", "duration=1e6", static_cast<char*>(nullptr));
+            "--set", "duration=1e6", "--max-rows", "100000000000", static_cast<char*>(nullptr));
       _exit(127);
     }
     // The signal guard is installed before any output exists, so the signal may come as soon as

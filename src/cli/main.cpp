@@ -50,7 +50,7 @@ int main(int argc, char** argv) {
   simulateCommand->add_option("--csv", simulate.csvPath, "Output CSV path, or - for stdout")->required();
   simulateCommand->add_option("--sample-dt", simulate.sampleDt, "Time between rows, s (rows at t = k S)")
       ->capture_default_str();
-  simulateCommand->add_option("--max-rows", simulate.maxRows, "Refuse runs of more rows than this (default 10000000)");
+  simulateCommand->add_option("--max-rows", simulate.maxRows, "Refuse runs whose duration / sample step exceeds this many rows (default 1000000000)");
 
   SteadyOptions steady;
   CLI::App* steadyCommand = app.add_subcommand(
@@ -72,7 +72,7 @@ int main(int argc, char** argv) {
                             "Output: NAME.mp4, or a PNG sequence pattern like frames_%05d.png (frames numbered from 0); "
                             "default: the scene's name + .mp4 (coinroll.mp4 for the built-in scene)");
   renderCommand->add_flag("-q,--quiet", render.quiet, "No progress line and no summary on stderr");
-  renderCommand->add_option("--max-frames", render.maxFrames, "Refuse clips of more frames than this (default 1000000)");
+  renderCommand->add_option("--max-frames", render.maxFrames, "Refuse clips of more frames than this (default 1000000; a duration alone giving 1000 times as many is refused before any work)");
   renderCommand->footer(
       "Frame k shows simulated time k * render.time_scale / render.fps, from the integrator's dense output.\n"
       "Size, fps, anti-aliasing, camera, trace, overlay and encoder come from the scene's render block, e.g.\n"

@@ -105,10 +105,11 @@ class SoundTrack {
 }  // namespace
 
 VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& sink, const VideoRunOptions& options) {
-  // The frames without a remap are a lower bound on the frames with one: refuse before any work.
-  if (const double atLeast = static_cast<double>(scene.duration) / scene.render.timeScale * scene.render.fps;
-      atLeast > static_cast<double>(options.maxFrames)) {
-    refuseFrames(scene, options.maxFrames, fmt::format("{:.4g}", atLeast));
+  // The duration's frames bound what a run that goes the distance shows (a remap only adds):
+  // absurd ones are refused before the first pass (video_frames.h, kUpFrontFrameFactor).
+  if (const double atMost = static_cast<double>(scene.duration) / scene.render.timeScale * scene.render.fps;
+      atMost > kUpFrontFrameFactor * static_cast<double>(options.maxFrames)) {
+    refuseFrames(scene, options.maxFrames, fmt::format("{:.4g}", atMost));
   }
   Simulation simulation = buildSimulation(scene);
   simulation.cancel = options.cancel;

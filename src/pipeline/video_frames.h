@@ -18,8 +18,12 @@
 namespace coinroll::pipeline {
 
 // Frames above this need --max-frames: 1 000 000 frames is 9 h of video at 30 fps, and a typo in
-// a duration or a time remap should be refused before hours of work, not after.
+// a duration or a time remap should be refused before hours of work, not after. The frames a
+// clip shows are known once the first pass has found where the run ends (an event may end it
+// long before its duration); before that pass only a duration that alone would give
+// kUpFrontFrameFactor times the limit is refused, since its first pass alone could take hours.
 inline constexpr long kDefaultMaxFrames = 1'000'000;
+inline constexpr double kUpFrontFrameFactor = 1000;
 
 // Frames in a clip of `simulatedSeconds` at `fps` and `timeScale`: k = 0 .. floor(video length * fps).
 long frameCount(double simulatedSeconds, double timeScale, int fps);

@@ -271,11 +271,11 @@ TEST_F(CliTest, AbsurdRequestsAreRefusedUpFrontNamingWhatAndTheLimit) {
       {"simulat " + scene.string(), "unknown command 'simulat'; the commands are simulate, "},
       {"simulate " + dir_.string() + " --csv " + (dir_ / "o.csv").string(), "is a directory"},
       {"simulate /dev/zero --csv " + (dir_ / "o.csv").string(), "more than 16777216 bytes"},
-      {"simulate " + scene.string() + " --sample-dt 1e-9 --csv " + (dir_ / "o.csv").string(), "--max-rows"},
+      {"simulate " + scene.string() + " --sample-dt 1e-10 --csv " + (dir_ / "o.csv").string(), "--max-rows"},
       {"render " + scene.string() + " --set duration=1e7 --set render.fps=240 -o " + (dir_ / "o.mp4").string(),
        "2.4e+09 frames, more than the limit 1000000"},
       {"render " + scene.string() + " --max-frames 10 -o " + (dir_ / "o.mp4").string(),  // a limit the user set
-       "15 frames, more than the limit 10"},
+       "16 frames, more than the limit 10"},
   };
   for (const Case& c : cases) {
     const auto start = std::chrono::steady_clock::now();

@@ -143,3 +143,21 @@ TEST_F(EffectsCliTest, ScenesWithoutEffectsGiveTheBytesTheyGaveBeforeEffectsExis
 }
 
 }  // namespace
+
+namespace {
+
+TEST_F(EffectsCliTest, ASpinDownGivenAHugeDurationRunsToItsEnd) {
+  // "duration": 1e5 s means "until it stops": the row and frame limits must not refuse it.
+  const fs::path scene = dir_ / "long.json", csv = dir_ / "long.csv";
+  std::ofstream(scene) << R"({"coin": {"shape": "disk", "radius": 0.0375, "mass": 0.4},
+    "initial": {"steady": "spin-in-place", "theta": 75}, "duration": 100000, "on_invalid": "warn",
+    "effects": [{"type": "rolling_resistance", "length": 1e-4}, {"type": "air_drag", "model": "moffatt"}]})";
+  const RunResult r = runCoinroll("simulate " + scene.string() + " --csv " + csv.string());
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("coin-flat at t = 1.55"), std::string::npos) << r.output;
+  const RunResult video = runCoinroll("render " + scene.string() + " -q --set render.width=32 --set render.height=18 -o " +
+                                      (dir_ / "long.mp4").string());
+  EXPECT_EQ(video.exitCode, 0) << video.output;
+}
+
+}  // namespace

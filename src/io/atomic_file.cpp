@@ -13,6 +13,9 @@ namespace coinroll::io {
 
 namespace {
 
+// Bytes in one file name on Linux file systems (NAME_MAX).
+constexpr std::size_t kMaxNameBytes = 255;
+
 std::filesystem::path directoryOf(const std::filesystem::path& file) {
   const std::filesystem::path parent = file.parent_path();
   return parent.empty() ? std::filesystem::path(".") : parent;
@@ -37,9 +40,13 @@ AtomicOutputFile::AtomicOutputFile(std::filesystem::path destination)
   static std::atomic<unsigned> counter{0};
   for (int attempt = 0;; ++attempt) {
     // Built with append: GCC 12 flags `"." + std::string` with a false -Wrestrict (GCC bug 105651).
+    // The destination's own name when it fits, so a user can see what is being written; a fixed
+    // stem when it does not, so a legal 255-byte name is not refused for its temporary's length.
+    std::string suffix = ".partial-";
+    suffix.append(std::to_string(::getpid())).append("-").append(std::to_string(counter++));
     std::string name = ".";
-    name.append(destination_.filename().string()).append(".partial-").append(std::to_string(::getpid()));
-    name.append("-").append(std::to_string(counter++));
+    const std::string stem = destination_.filename().string();
+    name.append(stem.size() + suffix.size() + 1 <= kMaxNameBytes ? stem : "coinroll").append(suffix);
     temporary_ = directory / name;
     const int fd = ::open(temporary_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
     if (fd >= 0) {

@@ -65,7 +65,7 @@ struct RunTraits<integrate::Trajectory<N, physics::CoinRhs<F>>> {
 
 CoinRun::CoinRun(const Simulation& simulation)
     : trajectory_(startEither<decltype(trajectory_)>(simulation)), lastState_(simulation.initial),
-      cancel_(simulation.cancel) {}
+      cancel_(simulation.cancel), duration_(simulation.duration) {}
 
 std::optional<RunSample> CoinRun::sampleAt(double t) {
   throwIfCancelled(cancel_);
@@ -112,7 +112,8 @@ std::optional<integrate::EventHit<physics::kStateSize>> CoinRun::stoppedBy() con
       [this](const auto& run) -> std::optional<integrate::EventHit<physics::kStateSize>> {
         using Traits = RunTraits<std::decay_t<decltype(run)>>;
         const auto& hit = run.stoppedBy();
-        if (!hit) return std::nullopt;
+        // A fixed step may end past the duration and find an event there: not this run's.
+        if (!hit || hit->t > duration_) return std::nullopt;
         // The hit lies within one unwrap interval of the last sample, so lastState_ continues it.
         const physics::CoinState s = seedState<Traits::kFormulation, Traits::kSize>(hit->y, lastState_);
         return integrate::EventHit<physics::kStateSize>{hit->name, hit->t, physics::toVector(s)};
@@ -122,10 +123,11 @@ std::optional<integrate::EventHit<physics::kStateSize>> CoinRun::stoppedBy() con
 
 std::vector<integrate::EventHit<physics::kStateSize>> CoinRun::warnings() const {
   return std::visit(
-      [](const auto& run) {
+      [this](const auto& run) {
         using Traits = RunTraits<std::decay_t<decltype(run)>>;
         std::vector<integrate::EventHit<physics::kStateSize>> hits;
         for (const auto& hit : run.nonTerminalHits()) {
+          if (hit.t > duration_) break;
           const physics::CoinState s = seedState<Traits::kFormulation, Traits::kSize>(hit.y);
           hits.push_back({hit.name, hit.t, physics::toVector(s)});
         }

@@ -34,7 +34,7 @@ class CoinRun {
   std::optional<RunSample> sampleAt(double t);
   std::optional<physics::CoinState> stateAt(double t);
 
-  // The event that ended the run, its state in the seed's variables.
+  // The event that ended the run before its duration, its state in the seed's variables.
   std::optional<integrate::EventHit<physics::kStateSize>> stoppedBy() const;
 
   // Lift-off and slip crossings the run went on past (on_invalid "warn"), in time order so far.
@@ -58,6 +58,7 @@ class CoinRun {
   physics::CoinState lastState_;    // the latest sample: the continuation for phi and psi
   double lastDissipated_ = 0;       // J, at lastTime_
   const std::atomic<bool>* cancel_ = nullptr;
+  double duration_ = 0;             // s; events found past it (by a fixed step's overshoot) are not reported
 };
 
 }  // namespace coinroll::pipeline

@@ -182,6 +182,18 @@ CameraSpec parseCamera(const JsonReader& render) {
   }
   if (r.has("eye")) camera.eye = parsePoint(r, "eye");
   if (r.has("target")) camera.target = parsePoint(r, "target");
+  if (camera.eye && camera.target) {
+    // The view direction must exist and not be vertical: the camera's "up" is the floor normal y.
+    const std::array<double, 3>& e = *camera.eye;
+    const std::array<double, 3>& t = *camera.target;
+    const double dx = t[0] - e[0], dy = t[1] - e[1], dz = t[2] - e[2];
+    const double length = std::sqrt(dx * dx + dy * dy + dz * dz), horizontal = std::hypot(dx, dz);
+    if (!(length > 1e-6)) r.fail("target", "must differ from eye (the camera needs a direction to look in)");
+    if (!(horizontal > 1e-3 * length)) {
+      r.fail("target", "must not lie straight above or below eye (the picture's up is the floor normal; tilt the view "
+                       "slightly)");
+    }
+  }
   camera.fovDegrees = r.number("fov", camera.fovDegrees);
   if (!(camera.fovDegrees > 1 && camera.fovDegrees < 170)) r.fail("fov", fmt::format("must be in (1, 170) degrees, got {}", camera.fovDegrees));
   camera.orbitPeriod = r.number("orbit_period", camera.orbitPeriod);

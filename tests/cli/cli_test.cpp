@@ -289,3 +289,37 @@ TEST_F(CliTest, AbsurdRequestsAreRefusedUpFrontNamingWhatAndTheLimit) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST_F(CliTest, AFixedStepPastTheDurationReportsNoEventAfterTheEnd) {
+  // The fall reaches the 89-degree stop at t = 0.073 s; a 0.05 s RK4 step from 0.05 lands at 0.1,
+  // past the 0.07 s duration, and finds it there. The run ended at 0.07 s, before the event.
+  const fs::path scene = std::string(COINROLL_SOURCE_DIR) + "/examples/falling_flat.json";
+  const RunResult r = run("simulate " + scene.string() + " --csv " + (dir_ / "o.csv").string() +
+                          " --set solver.formulation=euler-angles --set solver.method=rk4 --set solver.dt=0.05 "
+                          "--set duration=0.07");
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_EQ(r.output.find("stopped early"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("coinroll: 8 rows"), std::string::npos) << r.output;
+}
+
+TEST_F(CliTest, ALegalLongFileNameIsWritten) {
+  const std::string name(251, 'a');  // + ".csv" = 255 bytes, the longest name Linux allows
+  const RunResult r = run("simulate " + writeScene(kValid).string() + " --csv " + (dir_ / (name + ".csv")).string());
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_TRUE(fs::exists(dir_ / (name + ".csv")));
+}
+
+TEST_F(CliTest, ADegenerateCameraIsRefused) {
+  for (const std::string& camera : {std::string(R"({"eye": [0, 0.2, 0], "target": [0, 0.2, 0]})"),
+                                    std::string(R"({"eye": [0, 1, 0], "target": [0, 0, 0]})")}) {
+    const RunResult r = run("still " + writeScene(kValid).string() + " --time 0.1 -o " + (dir_ / "o.png").string() +
+                            " --set 'render.camera=" + camera + "'");
+    EXPECT_EQ(r.exitCode, 2) << camera << ": " << r.output;
+    EXPECT_NE(r.output.find("render.camera.target"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir_ / "o.png"));
+  }
+}
+
+}  // namespace

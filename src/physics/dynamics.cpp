@@ -32,7 +32,8 @@ AngularAcceleration plusCouple(const CoinModel& m, AngularAcceleration ideal, co
   return ideal;
 }
 
-Reaction reactionFrom(const CoinModel& m, const CoinState& s, const AngularAcceleration& dOmega) {
+// `axes` = coinAxesInFloor(s), computed once by the caller for all its passes.
+Reaction reactionFrom(const CoinModel& m, const CoinState& s, const Eigen::Matrix3d& axes, const AngularAcceleration& dOmega) {
   // dv/dt in coin-frame components (seed section 4, checked in docs/derivations.md §2):
   //   a ( -(dOmega_Z - omega_X omega_Y), -(omega_X^2 - omega_Y omega_Z tan theta), dOmega_X + omega_Y omega_Z )
   const double tanTheta = std::tan(s.theta);
@@ -41,7 +42,7 @@ Reaction reactionFrom(const CoinModel& m, const CoinState& s, const AngularAccel
                             -(s.omega_X * s.omega_X - s.omega_Y * s.omega_Z * tanTheta),
                             dOmega.dOmega_X + s.omega_Y * s.omega_Z);
   // Rows of R are the coin axes in floor components, so floor components are R^t times coin ones.
-  const Eigen::Vector3d acceleration = coinAxesInFloor(s).transpose() * accelerationInCoinFrame;
+  const Eigen::Vector3d acceleration = axes.transpose() * accelerationInCoinFrame;
   Reaction r;
   r.R = m.M * acceleration + Eigen::Vector3d(0, m.M * m.g, 0);
   r.N = r.R.y();
@@ -66,10 +67,7 @@ StateVec pack(const CoinModel& model, const StateVec& y, double sinTheta, double
   return dy;
 }
 
-}  // namespace
-
-ContactKinematics contactKinematics(const CoinModel& model, const CoinState& s, double N) {
-  const Eigen::Matrix3d axes = coinAxesInFloor(s);
+ContactKinematics kinematicsFrom(const CoinModel& model, const CoinState& s, const Eigen::Matrix3d& axes, double N) {
   return {.e_X = axes.row(0).transpose(),
           .e_Y = axes.row(1).transpose(),
           .e_Z = axes.row(2).transpose(),
@@ -78,18 +76,27 @@ ContactKinematics contactKinematics(const CoinModel& model, const CoinState& s, 
           .N = N};
 }
 
+}  // namespace
+
+ContactKinematics contactKinematics(const CoinModel& model, const CoinState& s, double N) {
+  return kinematicsFrom(model, s, coinAxesInFloor(s), N);
+}
+
 Dynamics dynamics(const CoinModel& model, const CoinState& s) {
   const AngularAcceleration ideal =
       idealAngularAcceleration(model, std::sin(s.theta), std::cos(s.theta), s.omega_X, s.omega_Y, s.omega_Z);
-  Dynamics d{.dOmega = ideal, .reaction = reactionFrom(model, s, ideal), .loads = {}};
+  const Eigen::Matrix3d axes = coinAxesInFloor(s);
+  Dynamics d{.dOmega = ideal, .reaction = reactionFrom(model, s, axes, ideal), .loads = {}};
   if (model.effects.empty()) return d;
   // N depends on a couple only through its e_X part, and no N-dependent law has one (eq. 1.8):
-  // the first pass finds N under the N-independent couples, the second is exact.
-  const Eigen::Matrix3d axes = coinAxesInFloor(s);
+  // the first pass finds N under the N-independent couples, the second is exact. Only N changes
+  // between the passes.
+  ContactKinematics kinematics = kinematicsFrom(model, s, axes, d.reaction.N);
   for (int pass = 0; pass < 2; ++pass) {
-    d.loads = totalLoads(model.effects, contactKinematics(model, s, d.reaction.N));
+    kinematics.N = d.reaction.N;
+    d.loads = totalLoads(model.effects, kinematics);
     d.dOmega = plusCouple(model, ideal, axes * d.loads.torque);
-    d.reaction = reactionFrom(model, s, d.dOmega);
+    d.reaction = reactionFrom(model, s, axes, d.dOmega);
   }
   return d;
 }

@@ -86,8 +86,11 @@ QuaternionDynamics dynamicsAt(const CoinModel& m, const QuaternionState& s, cons
   d.dOmegaBody = angularAcceleration(m, geo, s.omegaBody);
   d.reaction = reactionFrom(m, s, geo, d.dOmegaBody);
   // Two passes, exact for the same reason as in the Euler angles (docs/euler_disk.md eq. 1.8).
-  for (int pass = 0; pass < 2 && !m.effects.empty(); ++pass) {
-    d.loads = totalLoads(m.effects, contactKinematics(m, s, geo, d.reaction.N));
+  if (m.effects.empty()) return d;
+  ContactKinematics kinematics = contactKinematics(m, s, geo, d.reaction.N);  // only N changes per pass
+  for (int pass = 0; pass < 2; ++pass) {
+    kinematics.N = d.reaction.N;
+    d.loads = totalLoads(m.effects, kinematics);
     const Eigen::Vector3d torqueBody = geo.floorFromBody.transpose() * d.loads.torque;
     d.dOmegaBody = angularAcceleration(m, geo, s.omegaBody, &torqueBody);
     d.reaction = reactionFrom(m, s, geo, d.dOmegaBody);

@@ -32,15 +32,16 @@ CsvRunResult writeTrajectoryCsv(const Simulation& simulation, double sampleDt, s
     const Eigen::Vector3d contact = physics::contactPoint(simulation.model, s);
     const physics::Dynamics d = physics::dynamics(simulation.model, s);
     const physics::Reaction& r = d.reaction;
+    const double energy = physics::energy(simulation.model, s);
     line.clear();
     // 17 significant digits round-trip every double: the CSV is a faithful copy of the state.
     fmt::format_to(std::back_inserter(line), "{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},",
                    t, s.theta, s.phi, s.psi, s.omega_X, s.omega_Y, s.omega_Z, s.x);
     fmt::format_to(std::back_inserter(line), "{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}",
-                   centre.y(), s.z, contact.x(), contact.z(), physics::energy(simulation.model, s), r.N, r.F);
+                   centre.y(), s.z, contact.x(), contact.z(), energy, r.N, r.F);
     if (dissipative) {
       fmt::format_to(std::back_inserter(line), ",{:.17g},{:.17g}", d.loads.power, sample->dissipated);
-      singularTime.add(t, physics::energy(simulation.model, s), d.loads.power);
+      singularTime.add(t, energy, d.loads.power);
     }
     line.push_back('\n');
     out.write(line.data(), static_cast<std::streamsize>(line.size()));

@@ -176,7 +176,8 @@ void runSteady(const SteadyOptions& options) {
     if (options.thetaDegrees) initial["theta"] = *options.thetaDegrees;
     if (options.omega_Z) initial["omega_Z"] = *options.omega_Z;
     if (options.branch) initial["branch"] = *options.branch;
-    source.overrides.push_back("initial=" + initial.dump());
+    // Replacement characters keep argv that is not UTF-8 an input error the parser names.
+    source.overrides.push_back("initial=" + initial.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
   } else if (options.thetaDegrees || options.omega_Z || options.branch) {
     throw UsageError("--theta, --omega-Z and --branch describe a steady state: give --kind too");
   }

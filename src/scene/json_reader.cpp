@@ -9,13 +9,16 @@
 namespace coinroll::scene {
 
 std::string describeJson(const nlohmann::json& value) {
+  // A --set value is any argv text, so a string here need not be UTF-8 (found by the fuzzer):
+  // describe it with replacement characters rather than throw from inside an error message.
+  const auto text = [&] { return value.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace); };
   switch (value.type()) {
-    case nlohmann::json::value_t::string: return "string " + value.dump();
-    case nlohmann::json::value_t::boolean: return "boolean " + value.dump();
+    case nlohmann::json::value_t::string: return "string " + text();
+    case nlohmann::json::value_t::boolean: return "boolean " + text();
     case nlohmann::json::value_t::null: return "null";
     case nlohmann::json::value_t::object: return "an object";
     case nlohmann::json::value_t::array: return "an array";
-    default: return value.dump();
+    default: return text();
   }
 }
 

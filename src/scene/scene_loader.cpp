@@ -349,7 +349,7 @@ std::vector<physics::Effect> parseEffects(const JsonReader& top) {
 }
 
 // 1-based line and column of a byte offset in `text`.
-std::pair<std::size_t, std::size_t> lineAndColumn(const std::string& text, std::size_t byte) {
+std::pair<std::size_t, std::size_t> lineAndColumn(std::string_view text, std::size_t byte) {
   std::size_t line = 1, column = 1;
   for (std::size_t i = 0; i < std::min(byte, text.size()); ++i) {
     if (text[i] == '\n') ++line, column = 1;
@@ -407,6 +407,10 @@ nlohmann::json readSceneDocument(const std::filesystem::path& file) {
   if (text.size() > kMaxSceneBytes) {
     throw SceneError(fmt::format("{}: more than {} bytes; a scene file is a small JSON document", file.string(), kMaxSceneBytes));
   }
+  return parseSceneText(text, file.string());
+}
+
+nlohmann::json parseSceneText(std::string_view text, std::string_view sourceName) {
   try {
     return nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
@@ -414,12 +418,12 @@ nlohmann::json readSceneDocument(const std::filesystem::path& file) {
     const auto [line, column] = lineAndColumn(text, e.byte == 0 ? 0 : e.byte - 1);
     std::string reason = e.what();
     if (const auto colon = reason.rfind(": "); colon != std::string::npos) reason = reason.substr(colon + 2);
-    throw SceneError(fmt::format("{}: invalid JSON at line {}, column {}: {}", file.string(), line, column, reason));
+    throw SceneError(fmt::format("{}: invalid JSON at line {}, column {}: {}", sourceName, line, column, reason));
   } catch (const nlohmann::json::exception& e) {
     // E.g. a number beyond double range ("1e400"): not finite, so never a valid value.
     std::string reason = e.what();
     if (const auto bracket = reason.find("] "); bracket != std::string::npos) reason = reason.substr(bracket + 2);
-    throw SceneError(fmt::format("{}: invalid JSON: {} (numbers must be finite doubles)", file.string(), reason));
+    throw SceneError(fmt::format("{}: invalid JSON: {} (numbers must be finite doubles)", sourceName, reason));
   }
 }
 

@@ -30,6 +30,9 @@ SceneConfig parseScene(const nlohmann::json& document, std::string_view sourceNa
 // and column.
 nlohmann::json readSceneDocument(const std::filesystem::path& file);
 
+// The JSON document in `text`; a syntax error names `sourceName`, the line and the column.
+nlohmann::json parseSceneText(std::string_view text, std::string_view sourceName);
+
 // Reads `file`, applies `overrides` ("key.path=value") in order, then parses. A JSON syntax
 // error is reported with its line and column.
 SceneConfig loadScene(const std::filesystem::path& file, std::span<const std::string> overrides,

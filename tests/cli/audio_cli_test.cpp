@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "cli/run_command.h"
-#include "cli/scratch_dir.h"
+#include "scratch_dir.h"
 #include "tolerance.h"
 #include "video/video_probe.h"
 

@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "cli/run_command.h"
-#include "cli/scratch_dir.h"
+#include "scratch_dir.h"
 
 #include <algorithm>
 #include <array>

@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "cli/run_command.h"
-#include "cli/scratch_dir.h"
+#include "scratch_dir.h"
 
 namespace {
 

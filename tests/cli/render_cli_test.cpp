@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "cli/run_command.h"
-#include "cli/scratch_dir.h"
+#include "scratch_dir.h"
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>

@@ -4,13 +4,16 @@
 
 #include <filesystem>
 
+#include "scratch_dir.h"
+
 namespace fs = std::filesystem;
 using coinroll::image::Image;
 
 TEST(Png, RoundTripKeepsEveryByte) {
   Image original(7, 5);
   for (std::size_t i = 0; i < original.rgba.size(); ++i) original.rgba[i] = static_cast<std::uint8_t>(i * 37 + 11);
-  const fs::path path = fs::temp_directory_path() / "coinroll_png_roundtrip.png";
+  const coinroll::testing::ScratchDirectory scratch;
+  const fs::path path = scratch / "roundtrip.png";
   coinroll::image::writePng(original, path);
   const Image read = coinroll::image::readPng(path);
   EXPECT_EQ(read.width, 7);
@@ -21,8 +24,8 @@ TEST(Png, RoundTripKeepsEveryByte) {
 TEST(Png, InconsistentImageIsRefusedAndNothingWritten) {
   Image broken(4, 4);
   broken.rgba.resize(3);
-  const fs::path path = fs::temp_directory_path() / "coinroll_png_broken.png";
-  fs::remove(path);
+  const coinroll::testing::ScratchDirectory scratch;
+  const fs::path path = scratch / "broken.png";
   EXPECT_THROW(coinroll::image::writePng(broken, path), std::runtime_error);
   EXPECT_FALSE(fs::exists(path));
 }

@@ -6,22 +6,15 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "scratch_dir.h"
+
 namespace fs = std::filesystem;
 using coinroll::io::AtomicOutputFile;
 
-namespace {
-
-fs::path freshDirectory(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("coinroll_io_test_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-}  // namespace
 
 TEST(AtomicOutputFile, NothingAppearsUnderTheFinalNameUntilCommit) {
-  const fs::path dir = freshDirectory("commit");
+  const coinroll::testing::ScratchDirectory scratch;
+  const fs::path& dir = scratch.path();
   const fs::path target = dir / "out.csv";
   {
     AtomicOutputFile file(target);
@@ -34,7 +27,8 @@ TEST(AtomicOutputFile, NothingAppearsUnderTheFinalNameUntilCommit) {
 }
 
 TEST(AtomicOutputFile, AbandonedFileLeavesNothingBehind) {
-  const fs::path dir = freshDirectory("abandon");
+  const coinroll::testing::ScratchDirectory scratch;
+  const fs::path& dir = scratch.path();
   {
     AtomicOutputFile file(dir / "out.csv");
     std::ofstream(file.temporaryPath()) << "half";
@@ -43,7 +37,8 @@ TEST(AtomicOutputFile, AbandonedFileLeavesNothingBehind) {
 }
 
 TEST(AtomicOutputFile, MissingDirectoryIsReportedWithThePath) {
-  const fs::path target = fs::temp_directory_path() / "coinroll_no_such_dir" / "x" / "out.csv";
+  const coinroll::testing::ScratchDirectory scratch;
+  const fs::path target = scratch / "no_such_dir" / "x" / "out.csv";
   try {
     AtomicOutputFile file(target);
     FAIL() << "expected an exception";

@@ -18,6 +18,7 @@
 #include "render/image_compare.h"
 #include "render/meshes.h"
 #include "render/renderer.h"
+#include "scratch_dir.h"
 #include "tolerance.h"
 
 namespace {
@@ -322,8 +323,8 @@ TEST(RenderErrors, BadSettingsNameTheField) {
 }
 
 TEST(RenderErrors, ShaderCompileErrorsGiveFileAndLine) {
-  const fs::path dir = fs::temp_directory_path() / "coinroll_broken_shaders";
-  fs::remove_all(dir);
+  const coinroll::testing::ScratchDirectory scratch;
+  const fs::path dir = scratch / "shaders";
   fs::copy(fs::path(COINROLL_SOURCE_DIR) / "shaders", dir);
   {
     std::ofstream broken(dir / "coin.frag", std::ios::app);
@@ -337,7 +338,6 @@ TEST(RenderErrors, ShaderCompileErrorsGiveFileAndLine) {
     message = e.what();
   }
   unsetenv("COINROLL_SHADER_DIR");
-  fs::remove_all(dir);
   EXPECT_NE(message.find("coin.frag:"), std::string::npos) << message;
   EXPECT_NE(message.find("error"), std::string::npos) << message;
 }

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "image/image.h"
+#include "scratch_dir.h"
 
 namespace coinroll::video::testing {
 
@@ -64,30 +65,6 @@ inline double rmsErrorRgb(const image::Image& reference, const image::Image& tes
   return std::sqrt(squaredError / double(samples));
 }
 
-// A fresh, empty directory named after the running test, removed afterwards.
-class ScratchDirectory {
- public:
-  ScratchDirectory() {
-    const ::testing::TestInfo* test = ::testing::UnitTest::GetInstance()->current_test_info();
-    path_ = std::filesystem::temp_directory_path() /
-            ("coinroll_video_" + std::string(test->test_suite_name()) + "_" + test->name());
-    std::filesystem::remove_all(path_);
-    std::filesystem::create_directories(path_);
-  }
-  ~ScratchDirectory() {
-    std::error_code ignored;
-    std::filesystem::remove_all(path_, ignored);
-  }
-  const std::filesystem::path& path() const { return path_; }
-  std::filesystem::path operator/(const std::string& name) const { return path_ / name; }
-  int fileCount() const {
-    int count = 0;
-    for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(path_)) ++count;
-    return count;
-  }
-
- private:
-  std::filesystem::path path_;
-};
+using ScratchDirectory = coinroll::testing::ScratchDirectory;
 
 }  // namespace coinroll::video::testing

@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# Builds coinroll and every test with AddressSanitizer + UndefinedBehaviorSanitizer in
+# build-sanitize/ and runs the whole suite there. Any report fails the run: UBSan does not
+# recover, and LeakSanitizer is on (OSMesa's own one-time allocations are suppressed).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build=build-sanitize
+
+# -O1 keeps the build and the sanitized tests quick; the physics tests' tolerances hold at any -O.
+cmake -B "$build" -DCOINROLL_SANITIZE=ON -DCOINROLL_BENCHMARKS=OFF -DCMAKE_COMPILE_WARNING_AS_ERROR=ON \
+      -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-O1 -DNDEBUG" >/dev/null
+cmake --build "$build" -j"$(nproc)"
+
+export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:detect_stack_use_after_return=1
+export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+export LSAN_OPTIONS=suppressions=$PWD/.ci/lsan.supp:print_suppressions=0
+ctest --test-dir "$build" --output-on-failure -j"$(nproc)" --timeout 600

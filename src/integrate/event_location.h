@@ -3,6 +3,7 @@
 // the Illinois variant of regula falsi, which keeps the bracket and converges superlinearly,
 // with a bisection fallback when an iterate stalls at one end.
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 

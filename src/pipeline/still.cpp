@@ -40,7 +40,9 @@ StillResult renderStill(const scene::SceneConfig& scene, const StillRequest& req
   }
   Simulation simulation = buildSimulation(scene);
   simulation.cancel = request.cancel;
-  render::Renderer renderer(renderSettings(scene));  // before the physics: bad render settings fail fast
+  render::RenderSettings settings = renderSettings(scene);
+  settings.reuseStaticBackground = false;  // one frame: nothing to reuse
+  render::Renderer renderer(settings);  // before the physics: bad render settings fail fast
   const MotionSurvey survey = surveyMotion(simulation);
   StillResult result;
   result.shownTime = std::min(request.time, survey.endTime);

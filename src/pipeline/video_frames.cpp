@@ -113,7 +113,9 @@ VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& si
   }
   Simulation simulation = buildSimulation(scene);
   simulation.cancel = options.cancel;
-  render::Renderer renderer(renderSettings(scene));
+  render::RenderSettings settings = renderSettings(scene);
+  settings.reuseStaticBackground = options.reuseStaticBackground;
+  render::Renderer renderer(settings);
   const MotionSurvey survey = surveyMotion(simulation);
   const CameraRig rig(scene.render.camera, survey, simulation.model, scene.render.width, scene.render.height);
   const physics::CoinModel& model = simulation.model;

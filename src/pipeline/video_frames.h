@@ -46,6 +46,7 @@ struct VideoRunOptions {
   std::function<void(const FrameProgress&)> onFrame;  // called after each frame; may be empty
   const std::atomic<bool>* cancel = nullptr;          // when set and true, the loop stops (Cancelled)
   long maxFrames = kDefaultMaxFrames;                 // more frames: std::invalid_argument, before any work
+  bool reuseStaticBackground = true;  // render::RenderSettings; off only to measure what it saves
 };
 
 struct VideoRunResult {

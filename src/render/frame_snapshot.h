@@ -18,6 +18,8 @@ struct CameraView {
   glm::vec3 eye{0.0f, 0.3f, 0.6f};  // m
   glm::vec3 target{0.0f};           // m
   float fovYDegrees = 35.0f;        // vertical field of view
+
+  bool operator==(const CameraView&) const = default;
 };
 
 struct FrameSnapshot {

@@ -97,6 +97,11 @@ struct Renderer::Gl {
   Texture coinFace = makeTexture();
   Texture floorGrid = makeTexture();
   GLsizei coinVertices = 0, markerVertices = 0;
+  // The draw target's colour, depth and stencil just after the floor, for the camera it was
+  // drawn with; a blit of the same format and sample count restores it exactly.
+  Framebuffer backgroundCache;
+  Renderbuffer backgroundColour, backgroundDepthStencil;
+  std::optional<CameraView> backgroundCamera, previousCamera;
 };
 
 Renderer::Renderer(const RenderSettings& settings) : settings_(settings) {
@@ -204,36 +209,42 @@ image::Image Renderer::draw(const FrameSnapshot& snapshot) {
   return out;
 }
 
-void Renderer::draw(const FrameSnapshot& snapshot, image::Image& out) {
+// Allocated on the first frame whose camera repeats, so orbit and follow clips never pay for it.
+void Renderer::allocateBackgroundCache() {
   Gl& gl = *gl_;
-  gl.context.makeCurrent();
   const int w = settings_.width, h = settings_.height;
-  const CameraMatrices camera = cameraMatrices(snapshot.camera, w, h);
-  const glm::mat4 viewProjection = camera.projection * camera.view;
-  const float cameraDistance = glm::length(snapshot.camera.eye - snapshot.camera.target);
-  const float coinRadius = settings_.coin.radius;
+  const int samples = settings_.antialiasing == Antialiasing::Msaa && settings_.msaa > 1 ? settings_.msaa : 0;
+  gl.backgroundCache = makeFramebuffer();
+  gl.backgroundColour = makeRenderbuffer();
+  gl.backgroundDepthStencil = makeRenderbuffer();
+  glBindFramebuffer(GL_FRAMEBUFFER, gl.backgroundCache.get());
+  glBindRenderbuffer(GL_RENDERBUFFER, gl.backgroundColour.get());
+  glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_RGBA8, w, h);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, gl.backgroundColour.get());
+  glBindRenderbuffer(GL_RENDERBUFFER, gl.backgroundDepthStencil.get());
+  glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_DEPTH24_STENCIL8, w, h);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, gl.backgroundDepthStencil.get());
+  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+    throw std::runtime_error(fmt::format("OpenGL: cannot create a {}x{} background framebuffer", w, h));
+  }
+}
 
-  glBindFramebuffer(GL_FRAMEBUFFER, gl.drawTarget.get());
-  glViewport(0, 0, w, h);
+void Renderer::drawBackground(const CameraView& camera, const glm::mat4& viewProjection) {
+  Gl& gl = *gl_;
+  const float cameraDistance = glm::length(camera.eye - camera.target);
   glClearColor(kBackgroundSrgb.r, kBackgroundSrgb.g, kBackgroundSrgb.b, 1.0f);
   glClearStencil(0);
   glClearDepth(1.0);
   glDepthMask(GL_TRUE);
   glStencilMask(0xFF);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-  glEnable(GL_CULL_FACE);
-  // Keep the destination alpha at 1 so the PNG is opaque whatever was blended over it.
-  glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
-  glDisable(GL_BLEND);
 
   // Floor (writes depth so the coin's lower edge meets it correctly).
   gl.floorProgram.use();
   gl.floorProgram.set("viewProjection", viewProjection);
-  gl.floorProgram.set("centre", glm::vec2(snapshot.camera.target.x, snapshot.camera.target.z));
+  gl.floorProgram.set("centre", glm::vec2(camera.target.x, camera.target.z));
   gl.floorProgram.set("extent", 150.0f * cameraDistance);
-  gl.floorProgram.set("eye", snapshot.camera.eye);
+  gl.floorProgram.set("eye", camera.eye);
   gl.floorProgram.set("fogStart", 2.5f * cameraDistance);
   gl.floorProgram.set("fogEnd", 12.0f * cameraDistance);
   gl.floorProgram.set("backgroundSrgb", kBackgroundSrgb);
@@ -243,6 +254,42 @@ void Renderer::draw(const FrameSnapshot& snapshot, image::Image& out) {
   glBindTexture(GL_TEXTURE_2D, gl.floorGrid.get());
   glBindVertexArray(gl.floorArray.get());
   glDrawArrays(GL_TRIANGLES, 0, 6);
+}
+
+void Renderer::draw(const FrameSnapshot& snapshot, image::Image& out) {
+  Gl& gl = *gl_;
+  gl.context.makeCurrent();
+  const int w = settings_.width, h = settings_.height;
+  const CameraMatrices camera = cameraMatrices(snapshot.camera, w, h);
+  const glm::mat4 viewProjection = camera.projection * camera.view;
+  const float coinRadius = settings_.coin.radius;
+
+  glBindFramebuffer(GL_FRAMEBUFFER, gl.drawTarget.get());
+  glViewport(0, 0, w, h);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glEnable(GL_CULL_FACE);
+  // Keep the destination alpha at 1 so the PNG is opaque whatever was blended over it.
+  glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
+  glDisable(GL_BLEND);
+  constexpr GLbitfield kAllBuffers = GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT;
+  if (gl.backgroundCamera == snapshot.camera) {
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, gl.backgroundCache.get());
+    glBlitFramebuffer(0, 0, w, h, 0, 0, w, h, kAllBuffers, GL_NEAREST);
+    glBindFramebuffer(GL_FRAMEBUFFER, gl.drawTarget.get());
+  } else {
+    drawBackground(snapshot.camera, viewProjection);
+    // Saved only once the camera has stayed put for a frame: a moving camera never pays the copy.
+    if (settings_.reuseStaticBackground && gl.previousCamera == snapshot.camera) {
+      if (gl.backgroundCache.get() == 0) allocateBackgroundCache();
+      glBindFramebuffer(GL_READ_FRAMEBUFFER, gl.drawTarget.get());
+      glBindFramebuffer(GL_DRAW_FRAMEBUFFER, gl.backgroundCache.get());
+      glBlitFramebuffer(0, 0, w, h, 0, 0, w, h, kAllBuffers, GL_NEAREST);
+      glBindFramebuffer(GL_FRAMEBUFFER, gl.drawTarget.get());
+      gl.backgroundCamera = snapshot.camera;
+    }
+  }
+  gl.previousCamera = snapshot.camera;
 
   // Decals on the floor: nothing but the coins can hide them, and those are drawn afterwards.
   glDisable(GL_DEPTH_TEST);
@@ -350,7 +397,7 @@ void Renderer::draw(const FrameSnapshot& snapshot, image::Image& out) {
   } else if (settings_.msaa > 1) {
     glBindFramebuffer(GL_READ_FRAMEBUFFER, gl.drawTarget.get());
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, gl.resolveTarget.get());
-    glBlitFramebuffer(0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    glBlitFramebuffer(0, 0, w, h, 0, 0, w, h, kAllBuffers, GL_NEAREST);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, gl.resolveTarget.get());
   } else {
     glBindFramebuffer(GL_READ_FRAMEBUFFER, gl.drawTarget.get());

@@ -21,6 +21,10 @@ struct RenderSettings {
   int msaa = 4;                    // samples per pixel: 1 (none), 2, 4 or 8
   CoinShape coin;
   bool showShadow = true;
+  // When a frame's camera equals the previous frame's, the sky and the floor are copied from the
+  // first such frame instead of shaded again (the largest part of a frame on llvmpipe). The bytes
+  // are the same either way; off only to measure or test the saving.
+  bool reuseStaticBackground = true;
 };
 
 class Renderer {
@@ -40,6 +44,10 @@ class Renderer {
   const RenderSettings& settings() const { return settings_; }
 
  private:
+  // Clears the draw target and shades the sky and the floor: everything a fixed camera sees the same.
+  void drawBackground(const CameraView& camera, const glm::mat4& viewProjection);
+  void allocateBackgroundCache();
+
   struct Gl;  // the context and GL objects, out of this header so callers need no GL
   RenderSettings settings_;
   std::unique_ptr<Gl> gl_;

@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <functional>
 #include <fstream>
+#include <regex>
 #include <iostream>
 #include <numbers>
 #include <thread>
@@ -102,10 +103,37 @@ auto withProgress(ProgressLine& progress, const std::string& output, Work work,
 }
 
 // An output must never replace a file the command reads: refused before anything runs.
+// Whether `name` is one of the file names a PNG sequence pattern ("f_%03d.png") produces.
+bool isFrameOf(const std::string& pattern, const std::string& name) {
+  std::string expression;
+  for (std::size_t i = 0; i < pattern.size(); ++i) {
+    if (pattern[i] == '%' && i + 1 < pattern.size() && pattern[i + 1] == '%') {
+      expression += "%";
+      ++i;
+    } else if (pattern[i] == '%') {
+      while (i < pattern.size() && pattern[i] != 'd') ++i;  // flags and width: any count of digits matches
+      expression += "[0-9]+";
+    } else {
+      if (std::string_view("\\^$.|?*+()[]{}").find(pattern[i]) != std::string_view::npos) expression += '\\';
+      expression += pattern[i];
+    }
+  }
+  return std::regex_match(name, std::regex(expression));
+}
+
 void refuseOverwritingInput(const std::string& option, const std::filesystem::path& output,
                             const std::vector<std::filesystem::path>& inputs) {
   std::error_code error;
+  const std::string outputName = output.filename().string();
+  const bool isSequence = outputName.find('%') != std::string::npos;
   for (const std::filesystem::path& input : inputs) {
+    const std::filesystem::path outputDirectory = output.parent_path().empty() ? "." : output.parent_path();
+    const std::filesystem::path inputDirectory = input.parent_path().empty() ? "." : input.parent_path();
+    if (isSequence && std::filesystem::equivalent(outputDirectory, inputDirectory, error) &&
+        isFrameOf(outputName, input.filename().string())) {
+      throw UsageError(fmt::format("{} {}: one of its frames would be the input {}; choose another output name", option,
+                                   output.string(), input.string()));
+    }
     if (std::filesystem::equivalent(output, input, error)) {
       throw UsageError(fmt::format("{} {}: that is the input {}; choose another output name", option, output.string(),
                                    input.string()));
@@ -294,6 +322,29 @@ void runRender(const RenderOptions& options) {
   }
 }
 
+// A grid key that names no field, or names one twice, would give a whole grid of identical or
+// failed rows; both are typos to refuse before any work. A value that is wrong at some points is
+// not: those rows carry their error.
+void refuseMisnamedAxes(const pipeline::SweepSpec& spec) {
+  for (std::size_t i = 0; i < spec.axes.size(); ++i) {
+    const pipeline::GridAxis& axis = spec.axes[i];
+    for (std::size_t j = 0; j < i; ++j) {
+      if (spec.axes[j].key == axis.key) {
+        throw std::invalid_argument(fmt::format("--grid {}: given twice; give each field one axis", axis.key));
+      }
+    }
+    nlohmann::json document = spec.scene;
+    try {
+      scene::applyOverride(document, fmt::format("{}={}", axis.key, axis.valueAt(0)));
+      scene::parseScene(document, spec.sourceName, spec.parseOptions);
+    } catch (const scene::SceneError& e) {
+      if (e.kind() == scene::SceneError::Kind::UnknownKey) {
+        throw std::invalid_argument(fmt::format("--grid {}: not a scene field: {}", axis.key, e.what()));
+      }
+    }
+  }
+}
+
 void runSweep(const SweepOptions& options) {
   refuseOverwritingInput("-o", options.output, inputsOf(options.scene));
   pipeline::SweepSpec spec;
@@ -303,8 +354,8 @@ void runSweep(const SweepOptions& options) {
   scene::parseScene(spec.scene, spec.sourceName, spec.parseOptions);
   try {
     for (const std::string& axis : options.grid) spec.axes.push_back(pipeline::parseGridAxis(axis));
+    refuseMisnamedAxes(spec);
     if (options.shard) spec.shard = pipeline::parseShard(*options.shard);
-    if (options.maxPoints < 0) throw std::invalid_argument("--max-points: must be >= 1");
     if (options.maxPoints > 0) spec.maxPoints = options.maxPoints;
     if (options.threads < 0 || options.threads > 1024) {
       throw std::invalid_argument(fmt::format("--threads: must be 1 to 1024 (0: every hardware thread), got {}", options.threads));
@@ -343,7 +394,11 @@ void runSweepMerge(const SweepMergeOptions& options) {
   {
     std::ofstream out(file.temporaryPath());
     std::vector<std::filesystem::path> shards(options.shards.begin(), options.shards.end());
-    pipeline::mergeSweepShards(shards, out);
+    try {
+      pipeline::mergeSweepShards(shards, out);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(e.what());
+    }
     out.close();
     if (!out) throw std::runtime_error(options.output + ": writing the merged sweep failed: " + std::strerror(errno));
   }

@@ -2,9 +2,15 @@
 // codes of INTERFACE.md. All logic lives in the libraries; this file only wires them.
 
 #include <CLI/CLI.hpp>
+#include <fmt/format.h>
 
+#include <cerrno>
+#include <charconv>
+#include <cstdio>
+#include <cstring>
 #include <exception>
 #include <iostream>
+#include <stdexcept>
 
 #include "cli/commands.h"
 #include "cli/exit_codes.h"
@@ -23,6 +29,18 @@ void addSceneOptions(CLI::App& command, SceneSource& scene, bool fileRequired) {
                      "repeatable")
       ->type_name("KEY=VALUE");
 }
+
+// Limits a user raises: whole numbers from 1 (0 and negatives used to mean "the default" silently).
+const CLI::Validator kAtLeastOne(
+    [](std::string& text) -> std::string {
+      long value = 0;
+      const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+      if (error != std::errc() || end != text.data() + text.size() || value < 1) {
+        return "must be a whole number >= 1, got " + text;
+      }
+      return {};
+    },
+    "INT>=1");
 
 }  // namespace
 
@@ -50,7 +68,7 @@ int main(int argc, char** argv) {
   simulateCommand->add_option("--csv", simulate.csvPath, "Output CSV path, or - for stdout")->required();
   simulateCommand->add_option("--sample-dt", simulate.sampleDt, "Time between rows, s (rows at t = k S)")
       ->capture_default_str();
-  simulateCommand->add_option("--max-rows", simulate.maxRows, "Refuse runs whose duration / sample step exceeds this many rows (default 1000000000)");
+  simulateCommand->add_option("--max-rows", simulate.maxRows, "Refuse runs whose duration / sample step exceeds this many rows (default 1000000000)")->check(kAtLeastOne);
 
   SteadyOptions steady;
   CLI::App* steadyCommand = app.add_subcommand(
@@ -72,7 +90,7 @@ int main(int argc, char** argv) {
                             "Output: NAME.mp4, or a PNG sequence pattern like frames_%05d.png (frames numbered from 0); "
                             "default: the scene's name + .mp4 (coinroll.mp4 for the built-in scene)");
   renderCommand->add_flag("-q,--quiet", render.quiet, "No progress line and no summary on stderr");
-  renderCommand->add_option("--max-frames", render.maxFrames, "Refuse clips of more frames than this (default 1000000; a duration alone giving 1000 times as many is refused before any work)");
+  renderCommand->add_option("--max-frames", render.maxFrames, "Refuse clips of more frames than this (default 1000000; a duration alone giving 1000 times as many is refused before any work)")->check(kAtLeastOne);
   renderCommand->footer(
       "Frame k shows simulated time k * render.time_scale / render.fps, from the integrator's dense output.\n"
       "Size, fps, anti-aliasing, camera, trace, overlay and encoder come from the scene's render block, e.g.\n"
@@ -113,7 +131,7 @@ int main(int argc, char** argv) {
   sweepCommand->add_option("--shard", sweep.shard, "Compute only the points p with p mod N = K - 1 (K/N, 1 <= K <= N)")
       ->type_name("K/N");
   sweepCommand->add_option("--threads", sweep.threads, "Worker threads (default 0: every hardware thread)");
-  sweepCommand->add_option("--max-points", sweep.maxPoints, "Refuse grids larger than this (default 10000000)");
+  sweepCommand->add_option("--max-points", sweep.maxPoints, "Refuse grids larger than this (default 10000000)")->check(kAtLeastOne);
   sweepCommand->add_flag("-q,--quiet", sweep.quiet, "No progress line and no summary on stderr");
   sweepCommand->footer(
       "Rows: point, the grid values, end (duration, or the event that ended the run, or error: why), t_end, theta_min,\n"
@@ -158,6 +176,14 @@ int main(int argc, char** argv) {
     if (*renderCommand) runRender(render);
     if (*sweepCommand) runSweep(sweep);
     if (*sweepMergeCommand) runSweepMerge(sweepMerge);
+    // Reports printed to stdout (steady, summaries) are output too: a full device or a closed
+    // stdout must not pass as success.
+    errno = 0;
+    std::cout.flush();
+    if (!std::cout || std::fflush(stdout) != 0 || std::ferror(stdout)) {
+      throw std::runtime_error(fmt::format("writing to standard output failed: {}",
+                                           errno != 0 ? std::strerror(errno) : "the stream reported an error"));
+    }
     return kExitSuccess;
   } catch (const coinroll::scene::SceneError& e) {
     std::cerr << "coinroll: error: " << e.what() << '\n';

@@ -225,27 +225,71 @@ SweepResult runSweep(const SweepSpec& spec, std::ostream& out, const std::functi
   return result;
 }
 
+namespace {
+
+// Fields of one CSV row as csvField writes them (quoted fields may hold commas).
+std::size_t csvFieldCount(std::string_view row) {
+  std::size_t fields = 1;
+  bool quoted = false;
+  for (const char c : row) {
+    if (c == '"') quoted = !quoted;
+    else if (c == ',' && !quoted) ++fields;
+  }
+  return fields;
+}
+
+// Rows end with a line break; a file that does not was cut short (a shard killed mid-write, or a
+// copy that stopped). Leaves `in` where it was.
+bool endsWithNewline(std::ifstream& in) {
+  in.clear();  // a first line without a line break leaves the stream at its end
+  const std::streampos position = in.tellg();
+  in.seekg(-1, std::ios::end);
+  const bool ends = in.get() == '\n';
+  in.seekg(position);
+  return ends;
+}
+
+}  // namespace
+
 void mergeSweepShards(const std::vector<std::filesystem::path>& shards, std::ostream& out) {
   if (shards.empty()) throw std::invalid_argument("sweep-merge: give the shard files to merge");
   std::string header;
   std::map<long, std::string> rows;  // point -> row
   std::vector<long> repeated;
   for (const std::filesystem::path& path : shards) {
-    std::ifstream in(path);
+    std::error_code ignored;
+    if (std::filesystem::is_directory(path, ignored)) {
+      throw std::invalid_argument(fmt::format("{}: is a directory; give the shard files (e.g. {}/*.csv)", path.string(),
+                                              path.string()));
+    }
+    std::ifstream in(path, std::ios::binary);
     if (!in) throw std::runtime_error(fmt::format("{}: cannot open the shard", path.string()));
     std::string line;
-    if (!std::getline(in, line)) throw std::runtime_error(fmt::format("{}: empty, not a sweep shard", path.string()));
+    if (!std::getline(in, line)) throw std::invalid_argument(fmt::format("{}: empty, not a sweep shard", path.string()));
+    if (!line.starts_with("point,")) {
+      throw std::invalid_argument(fmt::format("{}: not a sweep shard (its first line does not start with \"point,\")",
+                                              path.string()));
+    }
     if (header.empty()) header = line;
+    if (!endsWithNewline(in)) {
+      throw std::runtime_error(fmt::format("{}: its last row is cut short (no final line break): an unfinished or "
+                                           "damaged shard; run that shard again", path.string()));
+    }
     if (line != header) {
       throw std::runtime_error(fmt::format("{}: its header differs from {}'s: shards of different sweeps", path.string(),
                                            shards.front().string()));
     }
+    const std::size_t headerFields = csvFieldCount(header);
     for (long lineNumber = 2; std::getline(in, line); ++lineNumber) {
       long point = -1;
       const auto comma = line.find(',');
       const auto [end, error] = std::from_chars(line.data(), line.data() + std::min(comma, line.size()), point);
       if (error != std::errc() || comma == std::string::npos || end != line.data() + comma || point < 0) {
         throw std::runtime_error(fmt::format("{}:{}: a row must start with its point number", path.string(), lineNumber));
+      }
+      if (const std::size_t fields = csvFieldCount(line); fields != headerFields) {
+        throw std::runtime_error(fmt::format("{}:{}: {} fields where the header has {}: a damaged shard; run it again",
+                                             path.string(), lineNumber, fields, headerFields));
       }
       if (!rows.emplace(point, line).second) repeated.push_back(point);
     }

@@ -32,7 +32,10 @@ JsonReader::JsonReader(const nlohmann::json& object, std::string path, std::stri
   for (const auto& [key, value] : object_.items()) {
     bool known = false;
     for (std::string_view allowed : allowedKeys) known = known || allowed == key;
-    if (!known) fail(key, fmt::format("unknown key; allowed here: {}", fmt::join(allowedKeys, ", ")));
+    if (!known) {
+      throw SceneError(fmt::format("{}: unknown key; allowed here: {}", where(key), fmt::join(allowedKeys, ", ")),
+                       SceneError::Kind::UnknownKey);
+    }
   }
 }
 

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <numbers>
 
+#include "integrate/solver_config.h"
 #include "scene/json_reader.h"
 
 namespace coinroll::scene {
@@ -26,6 +27,29 @@ std::string nameOf(Formulation formulation) { return std::string(kFormulationNam
 double positive(const JsonReader& r, std::string_view key, std::optional<double> value) {
   if (value && !(*value > 0)) r.fail(key, fmt::format("must be > 0, got {}", *value));
   return value.value_or(0);
+}
+
+// Physical ranges: far wider than any coin, hoop or wheel, narrow enough that squares, products
+// and exponentials of them stay finite in double precision. A value past them (a typo, 1e308)
+// would otherwise reach the integrator as an infinite inertia or energy and fail there with a
+// NaN step size instead of naming the field.
+constexpr double kMinLength = 1e-6, kMaxLength = 1e3;  // m
+constexpr double kMinMass = 1e-9, kMaxMass = 1e9;      // kg
+constexpr double kMaxRate = 1e6;                       // rad/s
+constexpr double kMaxPosition = 1e6;                   // m
+constexpr double kMaxGravity = 1e4;                    // m/s^2
+
+double inRange(const JsonReader& r, std::string_view key, double value, double lower, double upper, std::string_view unit) {
+  if (!(value >= lower && value <= upper)) {
+    r.fail(key, fmt::format("must be in [{:g}, {:g}] {}, got {}", lower, upper, unit, value));
+  }
+  return value;
+}
+
+double rate(const JsonReader& r, std::string_view key) { return inRange(r, key, r.number(key, 0), -kMaxRate, kMaxRate, "rad/s"); }
+
+double position(const JsonReader& r, std::string_view key) {
+  return inRange(r, key, r.number(key, 0), -kMaxPosition, kMaxPosition, "m");
 }
 
 double tiltDegrees(const JsonReader& r, std::string_view key, double fallback) {
@@ -48,12 +72,9 @@ CoinSpec parseCoin(const JsonReader& top) {
   else if (shape == "custom") coin.shape = Shape::Custom;
   else r.fail("shape", fmt::format("must be \"disk\", \"ring\" or \"custom\", got \"{}\"", shape));
 
-  coin.radius = r.requiredNumber("radius");
-  positive(r, "radius", coin.radius);
-  coin.mass = r.requiredNumber("mass");
-  positive(r, "mass", coin.mass);
-  coin.thickness = r.number("thickness", 0.06 * coin.radius);
-  positive(r, "thickness", coin.thickness);
+  coin.radius = inRange(r, "radius", r.requiredNumber("radius"), kMinLength, kMaxLength, "m");
+  coin.mass = inRange(r, "mass", r.requiredNumber("mass"), kMinMass, kMaxMass, "kg");
+  coin.thickness = inRange(r, "thickness", r.number("thickness", 0.06 * coin.radius), kMinLength * 0.06, kMaxLength, "m");
 
   if (r.has("inner_radius") && coin.shape != Shape::Ring) r.fail("inner_radius", "only allowed with shape \"ring\"");
   coin.innerRadius = r.number("inner_radius", coin.radius);
@@ -71,8 +92,10 @@ CoinSpec parseCoin(const JsonReader& top) {
   coin.I_Z = r.optionalNumber("I_Z");
   if (!coin.I_X) r.fail("I_X", "required for shape \"custom\" (moment about a diameter, kg m^2)");
   if (!coin.I_Z) r.fail("I_Z", "required for shape \"custom\" (moment about the symmetry axis, kg m^2)");
-  positive(r, "I_X", coin.I_X);
-  positive(r, "I_Z", coin.I_Z);
+  // Bounded by what the mass and radius ranges allow for any body, with room for long bodies.
+  const double maxInertia = kMaxMass * kMaxLength * kMaxLength, minInertia = kMinMass * kMinLength * kMinLength;
+  inRange(r, "I_X", *coin.I_X, minInertia, maxInertia, "kg m^2");
+  inRange(r, "I_Z", *coin.I_Z, minInertia, maxInertia, "kg m^2");
   // Perpendicular-axis bound: I_Z = sum m (X^2 + Y^2) <= 2 I_X = sum m (X^2 + Y^2 + 2 Z^2);
   // equality is the flat lamina. The relative slack only forgives round-off in the input.
   if (*coin.I_Z > 2 * *coin.I_X * (1 + 1e-12)) {
@@ -103,14 +126,14 @@ InitialSpec parseInitial(const JsonReader& top) {
     if (!needsSpin && r.has("omega_Z")) r.fail("omega_Z", "not allowed for steady \"spin-in-place\" (omega_Z = 0 there)");
     if (r.has("branch") && s.kind != SteadyKind::Circle) r.fail("branch", "only allowed for steady \"circle\"");
     s.theta = tiltDegrees(r, "theta", 0);
-    s.omega_Z = r.number("omega_Z", 0);
+    s.omega_Z = rate(r, "omega_Z");
     const std::string branch = r.optionalString("branch").value_or("+");
     if (branch != "+" && branch != "-") r.fail("branch", fmt::format("must be \"+\" or \"-\", got \"{}\"", branch));
     s.branch = branch == "+" ? 1 : -1;
     s.phi = r.number("phi", 0) * kRadiansPerDegree;
     s.psi = r.number("psi", 0) * kRadiansPerDegree;
-    s.x = r.number("x", 0);
-    s.z = r.number("z", 0);
+    s.x = position(r, "x");
+    s.z = position(r, "z");
     return s;
   }
   const JsonReader r(*node, "initial", "", {"theta", "phi", "psi", "omega_X", "omega_Y", "omega_Z", "x", "z"});
@@ -118,11 +141,11 @@ InitialSpec parseInitial(const JsonReader& top) {
   e.theta = tiltDegrees(r, "theta", 0);
   e.phi = r.number("phi", 0) * kRadiansPerDegree;
   e.psi = r.number("psi", 0) * kRadiansPerDegree;
-  e.omega_X = r.number("omega_X", 0);
-  e.omega_Y = r.number("omega_Y", 0);
-  e.omega_Z = r.number("omega_Z", 0);
-  e.x = r.number("x", 0);
-  e.z = r.number("z", 0);
+  e.omega_X = rate(r, "omega_X");
+  e.omega_Y = rate(r, "omega_Y");
+  e.omega_Z = rate(r, "omega_Z");
+  e.x = position(r, "x");
+  e.z = position(r, "z");
   return e;
 }
 
@@ -305,8 +328,15 @@ physics::Effect parseEffect(const nlohmann::json& node, const std::string& path)
     else r.fail("model", fmt::format("must be \"moffatt\" or \"boundary_layer\", got \"{}\"", model));
     law.viscosity = r.number("viscosity", law.viscosity);
     positive(r, "viscosity", law.viscosity);
+    // Air is 1.8e-5 Pa s; the bound admits glycerine and stops overflow in the couple.
+    inRange(r, "viscosity", law.viscosity, 0, 1e3, "Pa s");
+    if (law.model == physics::AirFlow::Moffatt && r.has("density")) {
+      r.fail("density", "only used by model \"boundary_layer\" (Moffatt's law has no density); remove it or set "
+                        "\"model\": \"boundary_layer\"");
+    }
     law.density = r.number("density", law.density);
     positive(r, "density", law.density);
+    inRange(r, "density", law.density, 0, 1e5, "kg/m^3");
     return law;
   }
   if (type == "rolling_resistance") {
@@ -327,6 +357,21 @@ physics::Effect parseEffect(const nlohmann::json& node, const std::string& path)
   }
   throw SceneError(fmt::format("{}.type: must be \"air_drag\", \"rolling_resistance\" or \"spin_friction\", got \"{}\"",
                                path, type));
+}
+
+// Rolling resistance and pivoting friction are couples N * length whose lever arm lies inside the
+// contact patch, so a length at or past the coin's radius has no meaning (and a huge one only
+// stalls the integrator).
+void refuseLeverArmsPastTheRim(const std::vector<physics::Effect>& effects, double radius) {
+  for (std::size_t i = 0; i < effects.size(); ++i) {
+    double length = 0;
+    if (const auto* rolling = std::get_if<physics::RollingResistance>(&effects[i])) length = rolling->length;
+    else if (const auto* pivoting = std::get_if<physics::SpinFriction>(&effects[i])) length = pivoting->length;
+    if (!(length < radius)) {
+      throw SceneError(fmt::format("effects[{}].length: must be below coin.radius = {} m (the couple's lever arm lies "
+                                   "inside the contact patch), got {}", i, radius, length));
+    }
+  }
 }
 
 std::vector<physics::Effect> parseEffects(const JsonReader& top) {
@@ -358,6 +403,22 @@ std::pair<std::size_t, std::size_t> lineAndColumn(std::string_view text, std::si
   return {line, column};
 }
 
+// nlohmann's parse error without its own position prefix (we give line and column) and with the
+// bytes it quotes from the input made printable: the input may be anything, even not UTF-8.
+std::string parseErrorReason(const nlohmann::json::parse_error& error) {
+  std::string_view what = error.what();
+  if (const auto column = what.find(", column "); column != std::string_view::npos) {
+    if (const auto colon = what.find(": ", column); colon != std::string_view::npos) what.remove_prefix(colon + 2);
+  }
+  std::string reason;
+  for (const char c : what) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte < 0x20 || byte >= 0x7f) reason += fmt::format("\\x{:02x}", byte);
+    else reason += c;
+  }
+  return reason;
+}
+
 }  // namespace
 
 SceneConfig parseScene(const nlohmann::json& document, std::string_view sourceName, const ParseOptions& options) {
@@ -369,13 +430,24 @@ SceneConfig parseScene(const nlohmann::json& document, std::string_view sourceNa
     scene.coin = parseCoin(top);
     scene.gravity = top.number("gravity", scene.gravity);
     positive(top, "gravity", scene.gravity);
+    inRange(top, "gravity", scene.gravity, 0, kMaxGravity, "m/s^2");
     scene.friction = top.optionalNumber("friction");
     if (scene.friction && !(*scene.friction >= 0)) top.fail("friction", fmt::format("must be >= 0, got {}", *scene.friction));
     scene.initial = parseInitial(top);
     scene.duration = top.requiredNumber("duration");
     positive(top, "duration", scene.duration);
     scene.solver = parseSolver(top, options);
+    // A fixed-step run's step count is known now; the integrator would only find it after hours.
+    if (const auto method = integrate::methodFromName(scene.solver.method); method && !integrate::isAdaptive(*method)) {
+      const double steps = scene.duration / scene.solver.dt;
+      if (const long maxSteps = integrate::SolverConfig{}.maxSteps; steps > static_cast<double>(maxSteps)) {
+        throw SceneError(fmt::format("solver.dt: duration / dt = {:.3g} steps of {}, more than the {} a run may take; "
+                                     "raise solver.dt, shorten the duration or use an adaptive method (dop853)",
+                                     steps, scene.solver.method, maxSteps));
+      }
+    }
     scene.effects = parseEffects(top);
+    refuseLeverArmsPastTheRim(scene.effects, scene.coin.radius);
     if (const std::optional<std::string> onInvalid = top.optionalString("on_invalid")) {
       if (*onInvalid == "stop") scene.onInvalid = OnInvalid::Stop;
       else if (*onInvalid == "warn") scene.onInvalid = OnInvalid::Warn;
@@ -387,7 +459,7 @@ SceneConfig parseScene(const nlohmann::json& document, std::string_view sourceNa
     // Readers of nested objects do not know the source name; add it once here.
     const std::string message = e.what();
     if (message.rfind(std::string(sourceName) + ":", 0) == 0) throw;
-    throw SceneError(fmt::format("{}: {}", sourceName, message.substr(message.find_first_not_of(": "))));
+    throw SceneError(fmt::format("{}: {}", sourceName, message.substr(message.find_first_not_of(": "))), e.kind());
   }
 }
 
@@ -416,9 +488,7 @@ nlohmann::json parseSceneText(std::string_view text, std::string_view sourceName
   } catch (const nlohmann::json::parse_error& e) {
     // nlohmann reports the byte just past the offending token; its own text says what was expected.
     const auto [line, column] = lineAndColumn(text, e.byte == 0 ? 0 : e.byte - 1);
-    std::string reason = e.what();
-    if (const auto colon = reason.rfind(": "); colon != std::string::npos) reason = reason.substr(colon + 2);
-    throw SceneError(fmt::format("{}: invalid JSON at line {}, column {}: {}", sourceName, line, column, reason));
+    throw SceneError(fmt::format("{}: invalid JSON at line {}, column {}: {}", sourceName, line, column, parseErrorReason(e)));
   } catch (const nlohmann::json::exception& e) {
     // E.g. a number beyond double range ("1e400"): not finite, so never a valid value.
     std::string reason = e.what();
@@ -439,7 +509,8 @@ void applyOverride(nlohmann::json& document, std::string_view assignment) {
   const std::string_view path = assignment.substr(0, equals);
   if (equals == std::string_view::npos || path.empty() || path.front() == '.' || path.back() == '.' ||
       path.find("..") != std::string_view::npos) {
-    throw SceneError(fmt::format("--set {}: expected KEY.PATH=VALUE, e.g. --set initial.theta=12", assignment));
+    throw SceneError(fmt::format("--set {}: expected KEY.PATH=VALUE, e.g. --set initial.theta=12", assignment),
+                     SceneError::Kind::UnknownKey);
   }
   const std::string text(assignment.substr(equals + 1));
   nlohmann::json value = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
@@ -451,7 +522,7 @@ void applyOverride(nlohmann::json& document, std::string_view assignment) {
     const auto dot = rest.find('.');
     const std::string key(rest.substr(0, dot));
     if (!node->is_object()) {
-      throw SceneError(fmt::format("--set {}: '{}' is not inside an object", assignment, key));
+      throw SceneError(fmt::format("--set {}: '{}' is not inside an object", assignment, key), SceneError::Kind::UnknownKey);
     }
     if (dot == std::string_view::npos) {
       (*node)[key] = std::move(value);

@@ -16,7 +16,14 @@ namespace coinroll::scene {
 
 class SceneError : public std::runtime_error {
  public:
-  using std::runtime_error::runtime_error;
+  // UnknownKey: the document or a --set path names a field the scene format does not have (a
+  // typo, usually), as opposed to a field whose value is wrong; sweeps refuse it before any work.
+  enum class Kind { BadValue, UnknownKey };
+  explicit SceneError(const std::string& message, Kind kind = Kind::BadValue) : std::runtime_error(message), kind_(kind) {}
+  Kind kind() const { return kind_; }
+
+ private:
+  Kind kind_;
 };
 
 struct ParseOptions {

@@ -1,0 +1,946 @@
+#!/usr/bin/python3
+"""Bad inputs and faults against the coinroll binary: one table, one runner.
+
+Every case runs in its own fresh scratch directory (the binary's working directory) and checks
+the exit code, a substring of stderr that names the field or flag, and that nothing but the
+case's own inputs is left in the directory (for cases that must succeed: exactly the outputs they
+name). docs/bad_inputs.md is generated from this table (--markdown).
+
+    /usr/bin/python3 tests/cli/bad_inputs.py --binary build/coinroll [--only ID] [--markdown docs/bad_inputs.md]
+    /usr/bin/python3 tests/cli/bad_inputs.py --binary OLD/coinroll --record-before tests/cli/bad_inputs_before.json
+
+Standard library only: ctest runs it with the system's python3.
+"""
+
+import argparse
+import concurrent.futures
+import copy
+import fnmatch
+import json
+import os
+import re
+import shlex
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+REPO = HERE.parent.parent
+
+# Non-ASCII file names and arguments must reach the binary as UTF-8 bytes whatever the locale
+# ctest runs under; Python's UTF-8 mode makes every str <-> bytes conversion below UTF-8.
+if sys.flags.utf8_mode == 0 and sys.getfilesystemencoding().lower().replace("-", "") != "utf8":
+    os.execv(sys.executable, [sys.executable, "-X", "utf8", *sys.argv])
+
+# ----------------------------------------------------------------------------------------------
+# Inputs
+
+BASE = {"coin": {"shape": "disk", "radius": 0.0375, "mass": 0.4},
+        "initial": {"theta": 10, "omega_Z": 12}, "duration": 0.5}
+DELETE = object()  # in scene(): remove this key from BASE
+
+
+def merged(base, changes):
+    out = copy.deepcopy(base)
+    for key, value in changes.items():
+        if value is DELETE:
+            out.pop(key, None)
+        elif isinstance(value, dict) and isinstance(out.get(key), dict):
+            out[key] = merged(out[key], value)
+        else:
+            out[key] = value
+    return out
+
+
+def scene(**changes):
+    """The valid 0.5 s scene with top-level keys changed (dicts merge, DELETE removes)."""
+    return json.dumps(merged(BASE, changes))
+
+
+VALID = scene()
+SMALL = "--set render.width=64 --set render.height=48"  # renders in well under a second
+HEADER = "point,initial.theta,end,t_end,theta_min,theta_max,energy_start,energy_end"
+
+
+def shard(points):
+    rows = "".join(f"{p},{1 + p / 10},duration,0.5,0.1,0.2,0.3,0.3\n" for p in points)
+    return HEADER + "\n" + rows
+
+
+SHARDS = {"scene.json": VALID, "p1.csv": shard(range(0, 40, 2)), "p2.csv": shard(range(1, 40, 2))}
+LONG = "a" * 251  # + ".csv" / ".png" / ".mp4": 255 bytes, the longest name Linux allows
+
+
+class Dir:
+    """An empty directory among a case's inputs."""
+
+
+def huge_zeros(path):
+    with open(path, "wb") as out:
+        out.truncate(17 << 20)  # sparse zero bytes: past the 16 MiB read limit without 17 MiB of writes
+
+
+def deep_arrays(path):
+    with open(path, "wb") as out:
+        out.write(b"[" * 8_000_000 + b"]" * 8_000_000)  # 16 MB, just under the read limit
+
+
+# ----------------------------------------------------------------------------------------------
+# The table
+
+
+@dataclass
+class Case:
+    id: str
+    cat: str
+    what: str
+    args: str                      # coinroll's arguments, shell-quoted; or a bash command (shell=True)
+    rc: int
+    msg: str | None                # stderr must contain this (today's wording)
+    key: str | None = None         # what an older wording must still name (the field or flag); default msg
+    files: dict = field(default_factory=lambda: {"scene.json": VALID})
+    produces: tuple = ()           # glob patterns of outputs a succeeding case must leave
+    shell: bool = False            # args is a bash command; {bin} is the binary
+    signal: int | None = None      # sent once the long work has started
+    wait_for: str = "partial"      # "partial": a temporary in the directory; "stdout": data; "sleep"
+    timeout: float = 20
+    gtest: tuple = ()              # GoogleTest tests in tests/cli/*.cpp checking the same case
+    na_before: str | None = None   # the feature did not exist at 32cc7d7
+
+
+CASES: list[Case] = []
+
+
+def case(*args, **kwargs):
+    CASES.append(Case(*args, **kwargs))
+
+
+G_SCENES = "CliTest.EveryBadSceneGetsExitTwoANamedKeyAndNoFile"
+G_CMDLINE = "CliTest.BadCommandLinesGetExitTwo"
+G_ABSURD = "CliTest.AbsurdRequestsAreRefusedUpFrontNamingWhatAndTheLimit"
+G_TOL = "CliTest.ToleranceOutsideItsMeaningfulRangeIsRefused"
+G_SAME = "CliTest.AnOutputThatIsTheInputIsRefusedAndTheInputKept"
+G_EFFECTS = "EffectsCliTest.BadEffectsGetExitTwoNameTheKeyAndWriteNothing"
+G_RENDER = "RenderCliTest.BadRequestsExitTwoAndLeaveNothing"
+G_FULL = "RenderCliTest.AFullDiskFailsEveryWriterWithoutLeavingAFile"
+G_SWEEP = "SweepCliTest.BadGridsAndShardsExitTwoWithoutAFile"
+G_MERGE = "SweepCliTest.SameBytesForOneAndTwoThreadsAndForShardsRunByGnuParallel"
+SIM = "simulate scene.json --csv o.csv"
+
+# --- the scene file itself
+C = "scene file"
+case("file-missing", C, "scene file does not exist", "simulate missing.json --csv o.csv", 2,
+     "missing.json: cannot open the scene file (does it exist?)", key="missing.json", gtest=(G_CMDLINE,))
+case("file-directory", C, "a directory given as the scene", "simulate sub --csv o.csv", 2,
+     "sub: is a directory; give a scene file (JSON)", key="sub", files={"sub": Dir}, gtest=(G_ABSURD,))
+case("file-empty", C, "empty scene file (0 bytes)", SIM, 2,
+     "scene.json: invalid JSON at line 1, column 1", key="scene.json", files={"scene.json": ""})
+case("file-blank", C, "scene file of blanks only", SIM, 2,
+     "invalid JSON at line 1, column 4", key="scene.json", files={"scene.json": "   "})
+case("file-dev-null", C, "/dev/null as the scene", "simulate /dev/null --csv o.csv", 2,
+     "/dev/null: invalid JSON at line 1, column 1", key="/dev/null", files={})
+case("file-dev-zero", C, "/dev/zero as the scene (never ends)", "simulate /dev/zero --csv o.csv", 2,
+     "/dev/zero: more than 16777216 bytes", key="/dev/zero", files={}, timeout=10, gtest=(G_ABSURD,))
+case("file-huge", C, "17 MiB scene file", SIM, 2,
+     "scene.json: more than 16777216 bytes; a scene file is a small JSON document", key="scene.json",
+     files={"scene.json": huge_zeros}, timeout=10)
+case("file-binary", C, "binary garbage (NUL, control bytes)", SIM, 2,
+     "scene.json: invalid JSON at line 1, column 1", key="scene.json", files={"scene.json": b"\x00\x01\x02garbage"})
+case("file-not-utf8", C, "Latin-1 byte in a string (not UTF-8)", SIM, 2,
+     "UTF-8", key="UTF-8",
+     files={"scene.json": VALID.encode()[:-1] + b', "name": "caf\xe9"}'})
+case("file-bom", C, "UTF-8 byte-order mark before the JSON (must work)", SIM, 0, None,
+     files={"scene.json": b"\xef\xbb\xbf" + VALID.encode()}, produces=("o.csv",))
+case("file-deep-nesting", C, "8 000 000 nested arrays (16 MB)", SIM, 2,
+     "(top level): must be an object, got an array", key="top level", files={"scene.json": deep_arrays}, timeout=15)
+case("file-deep-in-field", C, "a million nested arrays as render.camera.eye", SIM, 2,
+     "render.camera.eye: must be an array of three finite numbers", key="render.camera.eye",
+     files={"scene.json": VALID[:-1] + ', "render": {"camera": {"eye": ' + "[" * 1_000_000 + "]" * 1_000_000 + "}}}"})
+
+# --- JSON syntax and values
+C = "scene values"
+case("json-trailing-comma", C, "trailing comma after the last member", SIM, 2,
+     "scene.json: invalid JSON at line 1, column", key="line 1", files={"scene.json": VALID[:-1] + ",}"})
+case("json-missing-comma", C, "missing comma, error on line 3", SIM, 2,
+     "invalid JSON at line 3", key="line 3",
+     files={"scene.json": '{\n  "coin": {"radius": 0.0375, "mass": 0.4}\n  "initial": {}, "duration": 1}'})
+case("json-truncated", C, "file cut off before its closing brace", SIM, 2,
+     "unexpected end of input; expected '}'", key="line 1", files={"scene.json": VALID[:-1]})
+case("json-top-array", C, "top level is an array", SIM, 2, "(top level): must be an object, got an array",
+     key="top level", files={"scene.json": "[]"})
+case("json-top-number", C, "top level is a number", SIM, 2, "(top level): must be an object, got 42",
+     key="top level", files={"scene.json": "42"})
+case("json-nan", C, "NaN literal as duration", SIM, 2, "invalid literal", key="invalid literal",
+     files={"scene.json": VALID.replace('"duration": 0.5', '"duration": NaN')})
+case("json-overflow", C, "number beyond double range (1e400)", SIM, 2,
+     "number overflow parsing '1e400' (numbers must be finite doubles)", key="1e400",
+     files={"scene.json": scene(gravity=1.0).replace("1.0", "1e400")}, gtest=(G_SCENES,))
+case("key-unknown", C, "unknown top-level key", SIM, 2,
+     "colour: unknown key; allowed here: name, coin,", key="colour", files={"scene.json": scene(colour="red")},
+     gtest=(G_SCENES,))
+case("key-misspelt", C, "misspelt required key (duraton)", SIM, 2, "duraton: unknown key; allowed here:",
+     key="duraton", files={"scene.json": scene(duration=DELETE, duraton=1)})
+case("key-unknown-nested", C, "unknown key inside coin", SIM, 2,
+     "coin.colour: unknown key; allowed here: shape, radius,", key="coin.colour",
+     files={"scene.json": scene(coin={"colour": "gold"})})
+case("type-duration-string", C, "duration is a string", SIM, 2, 'duration: must be a number, got string "long"',
+     key="duration", files={"scene.json": scene(duration="long")}, gtest=(G_SCENES,))
+case("type-duration-bool", C, "duration is true", SIM, 2, "duration: must be a number, got boolean true",
+     key="duration", files={"scene.json": scene(duration=True)})
+case("type-duration-null", C, "duration is null", SIM, 2, "duration: must be a number, got null",
+     key="duration", files={"scene.json": scene(duration=None)})
+case("type-coin-array", C, "coin is an array", SIM, 2, "coin: must be an object, got an array",
+     key="coin", files={"scene.json": json.dumps({**BASE, "coin": []})})
+case("type-name-number", C, "name is a number", SIM, 2, "name: must be a string, got 5",
+     key="name", files={"scene.json": scene(name=5)})
+case("required-mass", C, "coin.mass missing", SIM, 2, "coin.mass: required (a number)", key="coin.mass",
+     files={"scene.json": json.dumps({**BASE, "coin": {"radius": 0.0375}})})
+case("required-duration", C, "duration missing", SIM, 2, "duration: required (a number)", key="duration",
+     files={"scene.json": scene(duration=DELETE)})
+case("required-initial", C, "initial missing", SIM, 2, "initial", files={"scene.json": scene(initial=DELETE)},
+     gtest=(G_SCENES,))
+case("range-radius", C, "coin.radius -1", SIM, 2, "coin.radius: must be in [1e-06, 1000] m, got -1", key="coin.radius",
+     files={"scene.json": scene(coin={"radius": -1})}, gtest=(G_SCENES,))
+case("range-mass", C, "coin.mass 0", SIM, 2, "coin.mass: must be in [1e-09, 1e+09] kg, got 0", key="coin.mass",
+     files={"scene.json": scene(coin={"mass": 0})}, gtest=(G_SCENES,))
+case("range-gravity", C, "gravity 0", SIM, 2, "gravity: must be > 0, got 0", key="gravity",
+     files={"scene.json": scene(gravity=0)})
+case("range-friction", C, "friction -0.1", SIM, 2, "friction: must be >= 0, got -0.1", key="friction",
+     files={"scene.json": scene(friction=-0.1)})
+case("range-theta", C, "initial.theta 95 degrees", SIM, 2, "initial.theta: must be in (-90, 90) degrees",
+     key="theta", files={"scene.json": scene(initial={"theta": 95})}, gtest=(G_SCENES,))
+case("range-duration", C, "duration -3", SIM, 2, "duration: must be > 0", key="duration",
+     files={"scene.json": scene(duration=-3)}, gtest=(G_SCENES,))
+case("shape-unknown", C, "coin.shape triangle", SIM, 2, "coin.shape", key="shape",
+     files={"scene.json": scene(coin={"shape": "triangle"})}, gtest=(G_SCENES,))
+case("ring-inner-too-big", C, "ring inner_radius > radius", SIM, 2,
+     "coin.inner_radius: must be in [0, radius = 0.0375] m, got 0.05", key="coin.inner_radius",
+     files={"scene.json": scene(coin={"shape": "ring", "inner_radius": 0.05})})
+case("disk-with-inner", C, "inner_radius on a disk", SIM, 2, 'coin.inner_radius: only allowed with shape "ring"',
+     key="coin.inner_radius", files={"scene.json": scene(coin={"inner_radius": 0.01})})
+case("custom-no-inertia", C, "custom coin without I_X", SIM, 2, "coin.I_X", key="I_X",
+     files={"scene.json": scene(coin={"shape": "custom"})}, gtest=(G_SCENES,))
+case("custom-iz-too-big", C, "custom I_Z > 2 I_X", SIM, 2, "coin.I_Z", key="I_Z",
+     files={"scene.json": scene(coin={"shape": "custom", "I_X": 1e-5, "I_Z": 3e-5})}, gtest=(G_SCENES,))
+case("disk-with-inertia", C, "I_X given for a disk", SIM, 2, 'coin.I_X: only allowed with shape "custom"',
+     key="coin.I_X", files={"scene.json": scene(coin={"I_X": 0.01})})
+case("steady-unknown", C, "initial.steady wobble", SIM, 2,
+     'initial.steady: must be "straight", "circle" or "spin-in-place", got "wobble"', key="initial.steady",
+     files={"scene.json": scene(initial={"steady": "wobble", "theta": DELETE, "omega_Z": DELETE})})
+case("steady-no-spin", C, "steady straight without omega_Z", SIM, 2,
+     'initial.omega_Z: required for steady "straight" (rad/s)', key="omega_Z",
+     files={"scene.json": scene(initial={"steady": "straight", "theta": DELETE, "omega_Z": DELETE})})
+case("steady-with-rates", C, "steady circle with omega_X as well", SIM, 2,
+     "initial.omega_X: unknown key; allowed here: steady, theta,", key="omega_X",
+     files={"scene.json": scene(initial={"steady": "circle", "theta": 20, "omega_Z": 10, "omega_X": 3})})
+case("huge-radius", C, "coin.radius 1e308 (finite, absurd)", SIM, 2, "coin.radius", key="coin.radius",
+     files={"scene.json": scene(coin={"radius": 1e308})})
+case("huge-spin", C, "initial.omega_Z 1e300 rad/s", SIM, 2, "initial.omega_Z", key="omega_Z",
+     files={"scene.json": scene(initial={"omega_Z": 1e300})})
+
+# --- the render block
+C = "render block"
+REN = "render scene.json -q -o o.mp4 --set "
+case("fps-zero", C, "render.fps 0", REN + "render.fps=0", 2, "render.fps: must be in [1, 240], got 0", key="render.fps")
+case("fps-high", C, "render.fps 241", REN + "render.fps=241", 2, "render.fps: must be in [1, 240], got 241",
+     key="render.fps")
+case("fps-fraction", C, "render.fps 29.97", REN + "render.fps=29.97", 2, "render.fps: must be an integer, got 29.97",
+     key="render.fps")
+case("width-negative", C, "render.width -5", REN + "render.width=-5", 2, "render.width: must be an even number",
+     key="render.width", gtest=(G_RENDER,))
+case("width-odd", C, "render.width 641 (odd)", REN + "render.width=641", 2,
+     "render.width: must be an even number of pixels in [16, 7680] (H.264 yuv420p needs even sizes), got 641",
+     key="render.width")
+case("width-huge", C, "render.width 8000", REN + "render.width=8000", 2, "render.width: must be an even number",
+     key="render.width")
+case("height-tiny", C, "render.height 8", REN + "render.height=8", 2, "render.height: must be an even number",
+     key="render.height")
+case("msaa", C, "render.msaa 3", REN + "render.msaa=3", 2, "render.msaa: must be 1, 2, 4 or 8 samples, got 3",
+     key="render.msaa", gtest=(G_RENDER,))
+case("time-scale", C, "render.time_scale 0", REN + "render.time_scale=0", 2, "render.time_scale: must be > 0, got 0",
+     key="render.time_scale")
+case("crf", C, "render.video.crf 52", REN + "render.video.crf=52", 2, "render.video.crf: must be in [0, 51], got 52",
+     key="render.video.crf")
+case("x264-threads", C, "render.video.threads 0", REN + "render.video.threads=0", 2,
+     "render.video.threads: must be in [1, 16], got 0", key="render.video.threads")
+case("preset", C, "render.video.preset warp", REN + "render.video.preset=warp", 2,
+     'render.video.preset: must be one of ultrafast,', key="preset", gtest=(G_RENDER,))
+case("camera-mode", C, "render.camera.mode drone", REN + "render.camera.mode=drone", 2,
+     'render.camera.mode: must be "fixed", "orbit" or "follow", got "drone"', key="render.camera.mode")
+case("camera-fov", C, "render.camera.fov 180", REN + "render.camera.fov=180", 2,
+     "render.camera.fov: must be in (1, 170) degrees, got 180", key="render.camera.fov")
+case("camera-eye-2d", C, "render.camera.eye with two numbers", REN + "'render.camera.eye=[1,2]'", 2,
+     "render.camera.eye: must be an array of three finite numbers", key="render.camera.eye")
+case("camera-degenerate", C, "camera eye equal to its target (still)",
+     "still scene.json --time 0.1 -o o.png --set 'render.camera={\"eye\": [0, 0.2, 0], \"target\": [0, 0.2, 0]}'", 2,
+     "render.camera.target", gtest=("CliTest.ADegenerateCameraIsRefused",))
+case("audio-volume", C, "render.audio.volume 2", REN + "render.audio.volume=2", 2,
+     "render.audio.volume: must be in (0, 1], got 2", key="render.audio.volume")
+case("audio-number", C, "render.audio 1", REN + "render.audio=1", 2,
+     "render.audio: must be true, false or an object of options, got 1", key="render.audio")
+case("remap-both", C, "time_remap with spin_rate and precession_rate",
+     REN + "render.time_remap.spin_rate=1 --set render.time_remap.precession_rate=1", 2,
+     "render.time_remap: give exactly one of spin_rate", key="render.time_remap")
+
+# --- solver
+C = "solver"
+SOLV = SIM + " --set solver."
+# The GoogleTest test tries one value below and one above each range (and atol = 0).
+for value, tested in (("0", False), ("1e-15", True), ("0.1", True)):
+    case(f"rtol-{value}", C, f"solver.rtol {value}", SOLV + "rtol=" + value, 2,
+         f"solver.rtol: must be in [1e-14, 1e-2] (default 1e-10), got {value}", key="solver.rtol",
+         gtest=(G_TOL,) if tested else ())
+for value, tested in (("0", True), ("-1e-12", False), ("0.5", True)):
+    case(f"atol-{value}", C, f"solver.atol {value}", SOLV + "atol=" + value, 2,
+         f"solver.atol: must be in (0, 1e-2] (default 1e-12; 0 cannot weigh a state component that is 0), got {value}",
+         key="solver.atol", gtest=(G_TOL,) if tested else ())
+for value, shown, tested in (("0", "0", False), ("1e-8", "1e-08", True), ("2", "2", True)):
+    case(f"dt-{value}", C, f"solver.dt {value} s (rk4)", SOLV + "method=rk4 --set solver.dt=" + value, 2,
+         f"solver.dt: must be in [1e-7, 1] s (default 1e-3), got {shown}", key="solver.dt",
+         gtest=(G_TOL,) if tested else ())
+case("rtol-string", C, 'solver.rtol "1e-9" (a string)', SOLV + "rtol='\"1e-9\"'", 2,
+     'solver.rtol: must be a number, got string "1e-9"', key="solver.rtol")
+case("method-unknown", C, "solver.method RK4 (wrong case)", SOLV + "method=RK4", 2,
+     'solver.method: unknown method "RK4"; available: euler, rk4, dopri5, dop853, gauss4', key="solver.method")
+case("formulation-unknown", C, "solver.formulation matrix", SOLV + "formulation=matrix", 2, "solver.formulation",
+     gtest=(G_SCENES,))
+
+# --- effects
+C = "effects"
+EFF = SIM + " --set 'effects="
+case("effects-object", C, "effects is an object, not a list", EFF + '{"type":"air_drag"}\'', 2,
+     'effects: must be a list of effects, e.g. [{"type": "air_drag"}], got an object', key="effects",
+     gtest=(G_EFFECTS,))
+case("effects-string-entry", C, 'entry is the string "air_drag"', EFF + '["air_drag"]\'', 2,
+     'effects[0]: must be an object with a "type"', key="effects[0]", gtest=(G_EFFECTS,))
+case("effects-null-entry", C, "entry is null", EFF + "[null]'", 2,
+     'effects[0]: must be an object with a "type": "air_drag", "rolling_resistance" or "spin_friction", got null',
+     key="effects[0]")
+case("effects-no-type", C, "entry without a type", EFF + '[{"model":"moffatt"}]\'', 2,
+     'effects[0]: must be an object with a "type"', key="effects[0]")
+case("effects-type-unknown", C, "type magnetism", EFF + '[{"type":"magnetism"}]\'', 2,
+     'effects[0].type: must be "air_drag", "rolling_resistance" or "spin_friction", got "magnetism"',
+     key="effects[0].type", gtest=(G_EFFECTS,))
+case("effects-type-case", C, "type Air_Drag (wrong case)", EFF + '[{"type":"Air_Drag"}]\'', 2,
+     'effects[0].type: must be "air_drag", "rolling_resistance" or "spin_friction", got "Air_Drag"',
+     key="effects[0].type")
+case("effects-model", C, "air_drag model turbulent", EFF + '[{"type":"air_drag","model":"turbulent"}]\'', 2,
+     "effects[0].model", gtest=(G_EFFECTS,))
+case("effects-viscosity", C, "air_drag viscosity -1", EFF + '[{"type":"air_drag","viscosity":-1}]\'', 2,
+     "effects[0].viscosity: must be > 0, got -1", key="effects[0].viscosity", gtest=(G_EFFECTS,))
+case("effects-unknown-param", C, "air_drag temperature 20", EFF + '[{"type":"air_drag","temperature":20}]\'', 2,
+     "effects[0].temperature", gtest=(G_EFFECTS,))
+case("effects-density-moffatt", C, "density given to Moffatt's model (boundary layer only)",
+     EFF + '[{"type":"air_drag","model":"moffatt","density":1.2}]\'', 2, "effects[0].density")
+case("effects-length-negative", C, "rolling_resistance length -2e-6",
+     EFF + '[{"type":"rolling_resistance","length":-2e-6}]\'', 2, "effects[0].length", gtest=(G_EFFECTS,))
+case("effects-load-exponent", C, "rolling_resistance load_exponent 2.5",
+     EFF + '[{"type":"rolling_resistance","load_exponent":2.5}]\'', 2,
+     "effects[0].load_exponent: must be in (0, 2]", key="effects[0].load_exponent")
+case("effects-length-string", C, 'spin_friction length "5um"', EFF + '[{"type":"spin_friction","length":"5um"}]\'', 2,
+     'effects[0].length: must be a number, got string "5um"', key="effects[0].length")
+case("effects-length-huge", C, "spin_friction length 1e300 m", EFF + '[{"type":"spin_friction","length":1e300}]\'', 2,
+     "effects[0].length")
+case("effects-duplicate", C, "rolling_resistance twice",
+     EFF + '[{"type":"rolling_resistance"},{"type":"rolling_resistance"}]\'', 2,
+     'effects[1]: a second "rolling_resistance"; each law may appear once', key="effects[1]", gtest=(G_EFFECTS,))
+case("on-invalid", C, "on_invalid ignore", SIM + " --set on_invalid=ignore", 2,
+     'on_invalid: must be "stop" or "warn", got "ignore"', key="on_invalid", gtest=(G_EFFECTS,))
+
+# --- --set
+C = "--set"
+case("set-negative", C, "--set coin.radius=-1", SIM + " --set coin.radius=-1", 2,
+     "scene.json: coin.radius: must be in [1e-06, 1000] m, got -1", key="coin.radius")
+case("set-unknown-key", C, "--set nosuch=1", SIM + " --set nosuch=1", 2, "nosuch: unknown key; allowed here:",
+     key="nosuch")
+case("set-unknown-nested", C, "--set coin.nosuch=1", SIM + " --set coin.nosuch=1", 2,
+     "coin.nosuch: unknown key; allowed here: shape,", key="coin.nosuch")
+case("set-empty-value", C, "--set coin.radius= (empty value)", SIM + " --set coin.radius=", 2,
+     'coin.radius: must be a number, got string ""', key="coin.radius")
+case("set-no-key", C, "--set =3", SIM + " --set =3", 2,
+     "--set =3: expected KEY.PATH=VALUE, e.g. --set initial.theta=12", key="--set")
+case("set-no-equals", C, "--set coin (no =)", SIM + " --set coin", 2,
+     "--set coin: expected KEY.PATH=VALUE", key="--set")
+case("set-leading-dot", C, "--set .coin.radius=1", SIM + " --set .coin.radius=1", 2,
+     "--set .coin.radius=1: expected KEY.PATH=VALUE", key="--set")
+case("set-through-number", C, "--set duration.x=1 (duration is a number)", SIM + " --set duration.x=1", 2,
+     "--set duration.x=1: 'x' is not inside an object", key="duration.x")
+case("set-nan", C, "--set duration=NaN", SIM + " --set duration=NaN", 2,
+     'duration: must be a number, got string "NaN"', key="duration")
+case("set-overflow", C, "--set duration=1e999", SIM + " --set duration=1e999", 2,
+     'duration: must be a number, got string "1e999"', key="duration")
+case("set-wrong-type", C, "--set initial=[1,2]", SIM + " --set 'initial=[1,2]'", 2,
+     "initial: must be an object, got an array", key="initial")
+case("set-range", C, "--set initial.theta=100", SIM + " --set initial.theta=100", 2, "initial.theta: must be in",
+     key="theta", gtest=(G_CMDLINE,))
+
+# --- the command line
+C = "command line"
+case("cmd-none", C, "no command", "", 2, "A subcommand is required", key="subcommand")
+case("cmd-unknown", C, "unknown command frobnicate", "frobnicate", 2,
+     "unknown command 'frobnicate'; the commands are simulate, steady, render, still, sweep, sweep-merge",
+     key="frobnicate", gtest=(G_CMDLINE,))
+case("cmd-misspelt", C, "misspelt command simulat", "simulat scene.json", 2,
+     "unknown command 'simulat'; the commands are simulate,", key="simulat", gtest=(G_ABSURD,))
+case("cmd-case", C, "command in capitals (Simulate)", "Simulate scene.json --csv o.csv", 2,
+     "unknown command 'Simulate'", key="Simulate")
+case("flag-unknown", C, "unknown flag --bogus", SIM + " --bogus", 2,
+     "The following argument was not expected: --bogus", key="--bogus")
+case("flag-fps", C, "render --fps 30 (fps is render.fps in the scene)", "render scene.json -o o.mp4 --fps 30", 2,
+     "The following arguments were not expected: 30 --fps", key="--fps")
+case("flag-size", C, "render --size 64x48 (the size is render.width/height)",
+     "render scene.json -o o.mp4 --size 64x48", 2,
+     "The following arguments were not expected: 64x48 --size", key="--size")
+case("csv-missing", C, "simulate without --csv", "simulate scene.json", 2, "--csv is required", gtest=(G_CMDLINE,))
+case("extra-positional", C, "two scene files", "simulate scene.json scene.json --csv o.csv", 2,
+     "The following argument was not expected: scene.json", key="scene.json")
+for value, shown in (("0", "0"), ("-1", "-1"), ("nan", "nan"), ("inf", "inf")):
+    case(f"sample-dt-{value}", C, f"--sample-dt {value}", SIM + " --sample-dt " + value, 2,
+         f"--sample-dt: must be a finite number > 0 s, got {shown}", key="--sample-dt",
+         gtest=(G_CMDLINE,) if value == "0" else ())
+case("sample-dt-text", C, "--sample-dt abc", SIM + " --sample-dt abc", 2, "Could not convert: --sample-dt = abc",
+     key="--sample-dt")
+case("max-rows-negative", C, "--max-rows -5", SIM + " --max-rows -5", 2, "--max-rows",
+     na_before="no --max-rows before")
+case("max-rows-small", C, "--max-rows 10 for a 51-row run", SIM + " --max-rows 10", 2,
+     "gives 51 rows, more than the limit 10; raise --sample-dt, or the limit with --max-rows", key="--max-rows",
+     na_before="no --max-rows before")
+case("max-frames-small", C, "--max-frames 10 for a 16-frame clip", REN.replace("--set ", "") + "--max-frames 10", 2,
+     "gives 16 frames, more than the limit 10;", key="--max-frames", gtest=(G_ABSURD,),
+     na_before="no --max-frames before")
+case("max-frames-negative", C, "--max-frames -1", REN.replace("--set ", "") + "--max-frames -1 " + SMALL, 2,
+     "--max-frames", na_before="no --max-frames before")
+case("max-frames-text", C, "--max-frames abc", REN.replace("--set ", "") + "--max-frames abc", 2,
+     "--max-frames: must be a whole number >= 1, got abc", key="--max-frames", na_before="no --max-frames before")
+case("render-avi", C, "render -o o.avi", "render scene.json -o o.avi", 2,
+     "o.avi: unknown output kind: expected a video ending in .mp4", key=".mp4", gtest=(G_RENDER,))
+case("render-two-patterns", C, "PNG pattern with two %d", "render scene.json -o o_%d_%d.png", 2,
+     "o_%d_%d.png: bad PNG sequence pattern: more than one % conversion", key="%")
+case("render-pattern-s", C, "PNG pattern with %s", "render scene.json -o o_%s.png", 2,
+     "o_%s.png: bad PNG sequence pattern: only %d and %0Nd are supported", key="%")
+case("still-time-late", C, "still --time 7 past a 0.5 s run", "still scene.json --time 7 -o o.png", 2,
+     "--time: must be within the scene's duration, 0 to 0.5 s, got 7", key="--time", gtest=(G_RENDER,))
+case("still-time-negative", C, "still --time -1", "still scene.json --time -1 -o o.png", 2,
+     "--time: must be within the scene's duration", key="--time")
+case("still-time-nan", C, "still --time nan", "still scene.json --time nan -o o.png", 2,
+     "--time: must be within the scene's duration, 0 to 0.5 s, got nan", key="--time")
+case("still-no-time", C, "still without --time", "still scene.json -o o.png", 2, "--time is required")
+case("still-jpg", C, "still -o o.jpg", "still scene.json --time 0.1 -o o.jpg", 2,
+     'a still is written as PNG; give a name ending in .png, got "o.jpg"', key=".png")
+case("strobe-negative", C, "still --strobe -3", "still scene.json --time 0.1 -o o.png --strobe -3", 2,
+     "--strobe: must be 0 to 500 copies, got -3", key="--strobe")
+case("strobe-from-late", C, "--strobe-from after --time",
+     "still scene.json --time 0.3 -o o.png --strobe 4 --strobe-from 0.4", 2,
+     "--strobe-from: must be at least 0 and before --time (0.3 s), got 0.4", key="--strobe-from")
+case("steady-kind", C, "steady --kind wobble", "steady --kind wobble", 2,
+     "--kind: wobble not in {straight,circle,spin-in-place}", key="--kind")
+case("steady-no-kind", C, "steady --theta without --kind", "steady --theta 20", 2,
+     "--theta, --omega-Z and --branch describe a steady state: give --kind too", key="--kind",
+     gtest=("CliTest.SteadyReportsKAndAVerdict",))
+case("steady-theta", C, "steady --theta 95", "steady --kind circle --theta 95 --omega-Z 10", 2,
+     "initial.theta: must be in (-90, 90) degrees", key="theta")
+case("steady-branch", C, "steady --branch x", "steady --kind circle --theta 20 --omega-Z 10 --branch x", 2,
+     "--branch: x not in {+,-}", key="--branch")
+
+# --- sweep and sweep-merge
+C = "sweep"
+SW = "sweep scene.json -q -o o.csv "
+case("grid-missing", C, "sweep without --grid", "sweep scene.json -o o.csv", 2, "--grid is required")
+case("grid-no-count", C, "--grid initial.theta=5:40", SW + "--grid initial.theta=5:40", 2,
+     "--grid initial.theta=5:40: expected KEY.PATH=START:STOP:COUNT", key="--grid", gtest=(G_SWEEP,))
+case("grid-count-zero", C, "COUNT 0", SW + "--grid initial.theta=5:40:0", 2,
+     '--grid initial.theta=5:40:0: COUNT must be a whole number >= 1, got "0"', key="--grid", gtest=(G_SWEEP,))
+case("grid-count-fraction", C, "COUNT 2.5", SW + "--grid initial.theta=5:40:2.5", 2,
+     'COUNT must be a whole number >= 1, got "2.5"', key="--grid")
+case("grid-no-key", C, "--grid =5:40:3", SW + "--grid =5:40:3", 2, "--grid =5:40:3: expected KEY.PATH=START:STOP:COUNT",
+     key="--grid", gtest=(G_SWEEP,))
+case("grid-start-text", C, "START a", SW + "--grid initial.theta=a:40:3", 2,
+     '--grid initial.theta=a:40:3: START must be a finite number, got "a"', key="--grid", gtest=(G_SWEEP,))
+case("grid-start-nan", C, "START nan", SW + "--grid initial.theta=nan:40:3", 2,
+     'START must be a finite number, got "nan"', key="--grid")
+case("grid-repeated-key", C, "the same key on two --grid axes",
+     SW + "--grid initial.theta=1:2:2 --grid initial.theta=3:4:2", 2, "initial.theta")
+case("grid-unknown-key", C, "--grid over a key the scene does not have", SW + "--grid nosuch.key=1:2:3", 2,
+     "nosuch")
+case("grid-too-many", C, "10^12 points", SW + "--grid initial.theta=1:2:1000000 --grid initial.omega_Z=1:2:1000000", 2,
+     "--grid: the grid has more than 10000000 points (--max-points); raise it if you mean it", key="--max-points",
+     timeout=10)
+case("max-points-small", C, "--max-points 2 for 3 points", SW + "--grid initial.theta=1:2:3 --max-points 2", 2,
+     "the grid has more than 2 points (--max-points)", key="--max-points", gtest=(G_SWEEP,))
+case("max-points-zero", C, "--max-points 0", SW + "--grid initial.theta=1:2:3 --max-points 0", 2, "--max-points")
+case("max-points-negative", C, "--max-points -1", SW + "--grid initial.theta=1:2:3 --max-points -1", 2,
+     "--max-points: must be a whole number >= 1, got -1", key="--max-points")
+for value, gt in (("4/3", True), ("0/3", True), ("1/0", False), ("x", False)):
+    case(f"shard-{value.replace('/', 'of')}", C, f"--shard {value}",
+         SW + "--grid initial.theta=1:2:3 --shard " + value, 2,
+         f"--shard {value}: expected K/N with 1 <= K <= N, e.g. --shard 2/8", key="--shard",
+         gtest=(G_SWEEP,) if gt else ())
+case("threads-negative", C, "--threads -1", SW + "--grid initial.theta=1:2:3 --threads -1", 2,
+     "--threads: must be 1 to 1024 (0: every hardware thread), got -1", key="--threads", gtest=(G_SWEEP,))
+case("threads-huge", C, "--threads 100000", SW + "--grid initial.theta=1:2:3 --threads 100000", 2,
+     "--threads: must be 1 to 1024", key="--threads")
+MERGE = "sweep-merge -o m.csv "
+case("merge-missing-point", C, "sweep-merge of one shard of two", MERGE + "p1.csv", 1,
+     "sweep-merge: points missing: 1, 3, 5", key="missing", files=SHARDS, gtest=(G_MERGE,))
+case("merge-repeated", C, "sweep-merge with a shard given twice", MERGE + "p1.csv p2.csv p2.csv", 1,
+     "sweep-merge: points repeated: 1, 3, 5", key="repeated", files=SHARDS, gtest=(G_MERGE,))
+case("merge-no-file", C, "sweep-merge of a shard that does not exist", MERGE + "p1.csv p3.csv", 1,
+     "p3.csv: cannot open the shard", key="p3.csv", files=SHARDS)
+case("merge-other-sweep", C, "shards of different sweeps (headers differ)", MERGE + "p1.csv q2.csv", 1,
+     "q2.csv: its header differs from p1.csv's: shards of different sweeps", key="q2.csv",
+     files={**SHARDS, "q2.csv": shard(range(1, 40, 2)).replace("initial.theta", "initial.omega_Z")})
+case("merge-empty", C, "an empty shard file", MERGE + "e.csv", 2, "e.csv: empty, not a sweep shard", key="e.csv",
+     files={"e.csv": ""})
+case("merge-directory", C, "a directory as a shard", MERGE + "sub", 2, "sub: is a directory", key="sub",
+     files={"sub": Dir})
+case("merge-scene", C, "a scene JSON given as a shard", MERGE + "scene.json", 2, "scene.json: not a sweep shard")
+case("merge-truncated", C, "a shard cut off mid-row", MERGE + "p1.csv p2.csv", 1, "p2.csv",
+     files={**SHARDS, "p2.csv": shard(range(1, 40, 2))[:-20]})
+case("merge-no-point", C, "a row without its point number", MERGE + "bad.csv", 1,
+     "bad.csv:2: a row must start with its point number", key="bad.csv", files={"bad.csv": "point,a\nx,1\n"})
+
+# --- output paths
+C = "output paths"
+case("out-no-dir-csv", C, "--csv into a directory that does not exist", "simulate scene.json --csv nodir/o.csv", 1,
+     "nodir/o.csv: cannot write: directory 'nodir' does not exist", key="nodir",
+     gtest=("CliTest.UnwritableOutputFailsWithoutLeavingFiles",))
+case("out-no-dir-png", C, "still -o into a missing directory", "still scene.json --time 0.1 -o nodir/o.png " + SMALL, 1,
+     "nodir/o.png: cannot write: directory 'nodir' does not exist", key="nodir")
+case("out-no-dir-mp4", C, "render -o into a missing directory", "render scene.json -q -o nodir/o.mp4 " + SMALL, 1,
+     "nodir/o.mp4: cannot write: directory 'nodir' does not exist", key="nodir", gtest=(G_RENDER,))
+case("out-no-dir-seq", C, "PNG sequence into a missing directory",
+     "render scene.json -q -o nodir/f_%03d.png " + SMALL, 1,
+     "nodir/f_%03d.png: cannot write: directory 'nodir' does not exist", key="nodir")
+case("out-no-dir-sweep", C, "sweep -o into a missing directory", SW.replace("o.csv", "nodir/o.csv") +
+     "--grid initial.theta=1:2:2", 1, "nodir/o.csv: cannot write: directory 'nodir' does not exist", key="nodir")
+case("out-is-input", C, "--csv the scene itself", "simulate scene.json --csv scene.json", 2,
+     "--csv scene.json: that is the input scene.json; choose another output name", key="input", gtest=(G_SAME,))
+case("out-is-input-dot", C, "--csv ./scene.json", "simulate scene.json --csv ./scene.json", 2,
+     "that is the input scene.json", key="input", gtest=(G_SAME,))
+case("out-is-input-link", C, "--csv a symlink to the scene", "simulate scene.json --csv link.json", 2,
+     "--csv link.json: that is the input scene.json", key="input",
+     files={"scene.json": VALID, "link.json": ("symlink", "scene.json")})
+case("out-is-input-render", C, "render -o the scene", "render scene.json -o scene.json", 2,
+     "-o scene.json: that is the input scene.json", key="scene.json")
+case("out-is-input-mp4", C, "render -o its scene, named scene.mp4", "render scene.mp4 -q -o scene.mp4", 2,
+     "-o scene.mp4: that is the input scene.mp4; choose another output name", key="input",
+     files={"scene.mp4": VALID})
+case("out-is-input-still", C, "still -o its scene, named scene.png",
+     f"still scene.png --time 0.1 {SMALL} -o scene.png", 2,
+     "-o scene.png: that is the input scene.png; choose another output name", key="input",
+     files={"scene.png": VALID}, gtest=(G_SAME,))
+case("out-is-input-seq", C, "PNG sequence whose frame 0 is the scene (f_000.png)",
+     f"render f_000.png -q {SMALL} --set duration=0.1 -o f_%03d.png", 2, "one of its frames would be the input f_000.png", key="input",
+     files={"f_000.png": VALID})
+case("out-is-input-sweep", C, "sweep -o the scene", "sweep scene.json --grid initial.theta=1:2:2 -o scene.json", 2,
+     "that is the input scene.json", key="input", gtest=(G_SAME,))
+case("out-is-input-merge", C, "sweep-merge -o one of its shards", "sweep-merge -o p1.csv p1.csv p2.csv", 2,
+     "-o p1.csv: that is the input p1.csv; choose another output name", key="input", files=SHARDS)
+for command, name in (("simulate scene.json --csv", "o.csv"), ("still scene.json --time 0.1 " + SMALL + " -o", "o.png"),
+                      ("render scene.json -q " + SMALL + " -o", "o.mp4"),
+                      ("sweep scene.json --grid initial.theta=1:2:2 -q -o", "s.csv")):
+    case(f"out-is-dir-{name.split('.')[1]}{'-sweep' if command.startswith('sweep') else ''}", C,
+         f"{command.split()[0]} output {name} is an existing directory", f"{command} {name}", 1,
+         f"{name}: cannot write: exists and is not a regular file", key=name, files={"scene.json": VALID, name: Dir})
+UNI = "out dir/"
+SPACED = {"scene.json": VALID, "out dir": Dir, "out dir/scène 1.json": VALID}
+case("unicode-csv", C, "scene and CSV with spaces and non-ASCII names",
+     f"simulate '{UNI}scène 1.json' --csv '{UNI}résultat ü.csv'", 0, None, files=SPACED,
+     produces=("out dir/résultat ü.csv",))
+case("unicode-png", C, "still named 'Bild ü.png' in 'out dir'",
+     f"still '{UNI}scène 1.json' --time 0.1 {SMALL} -o '{UNI}Bild ü.png'", 0, None, files=SPACED,
+     produces=("out dir/Bild ü.png",))
+case("unicode-mp4", C, "MP4 named 'vidéo 1.mp4'",
+     f"render '{UNI}scène 1.json' -q {SMALL} -o '{UNI}vidéo 1.mp4'", 0, None,
+     files=SPACED, produces=("out dir/vidéo 1.mp4",))
+case("unicode-seq", C, "PNG sequence 'фрейм %03d.png'",
+     f"render '{UNI}scène 1.json' -q {SMALL} --set duration=0.1 -o '{UNI}фрейм %03d.png'", 0, None,
+     files=SPACED, produces=("out dir/фрейм 00[0-3].png",))
+case("unicode-sweep", C, "sweep to 'süß 1.csv'",
+     f"sweep '{UNI}scène 1.json' -q --grid initial.theta=1:2:2 -o '{UNI}süß 1.csv'",
+     0, None, files=SPACED, produces=("out dir/süß 1.csv",))
+case("unicode-merge", C, "sweep-merge to 'zusammen ü.csv'", "sweep-merge -o 'zusammen ü.csv' p1.csv p2.csv", 0, None,
+     files=SHARDS, produces=("zusammen ü.csv",))
+case("unicode-default-name", C, "render without -o, scene named 'mön coin'",
+     f"render scene.json -q {SMALL} --set duration=0.1 --set 'name=\"mön coin\"'", 0, None, produces=("*.mp4",))
+case("name-255-csv", C, "255-byte CSV name", f"simulate scene.json --csv {LONG}.csv", 0, None,
+     produces=(LONG + ".csv",), gtest=("CliTest.ALegalLongFileNameIsWritten",))
+case("name-255-png", C, "255-byte PNG name", f"still scene.json --time 0.1 {SMALL} -o {LONG}.png", 0, None,
+     produces=(LONG + ".png",))
+case("name-255-mp4", C, "255-byte MP4 name", f"render scene.json -q {SMALL} -o {LONG}.mp4", 0, None,
+     produces=(LONG + ".mp4",))
+case("name-255-seq", C, "PNG sequence whose names are 255 bytes",
+     f"render scene.json -q {SMALL} --set duration=0.1 -o {'a' * 245}_%05d.png", 0, None,
+     produces=("a" * 245 + "_0000[0-3].png",))
+case("name-255-utf8", C, "255-byte name of two-byte characters",
+     f"simulate scene.json --csv {'é' * 125}a.csv", 0, None, produces=("é" * 125 + "a.csv",))
+case("name-256", C, "256-byte CSV name (one past the limit)", f"simulate scene.json --csv a{LONG}.csv", 1,
+     "cannot move the finished output into place: File name too long", key="File name too long")
+
+# --- full disk: /dev/full, and a 512-byte file-size limit with SIGXFSZ ignored (writes fail with EFBIG)
+C = "full disk"
+FULL = "ulimit -f 1; trap '' XFSZ; exec {bin} "
+case("dev-full-csv", C, "--csv /dev/full", "simulate scene.json --csv /dev/full", 1,
+     "/dev/full: cannot write: exists and is not a regular file", key="/dev/full")
+case("dev-full-stdout", C, "--csv - with stdout on /dev/full", "exec {bin} simulate scene.json --csv - >/dev/full", 1,
+     "writing the CSV to stdout failed: No space left on device", key="No space left on device", shell=True,
+     gtest=("CliTest.AFailedWriteToStdoutIsAnError",))
+case("dev-full-steady", C, "steady with stdout on /dev/full",
+     "exec {bin} steady --kind straight --omega-Z 5 >/dev/full", 1,
+     "No space left on device", shell=True)
+case("ulimit-csv", C, "CSV past a 512-byte file-size limit", FULL + "simulate scene.json --csv o.csv", 1,
+     "coinroll: error: o.csv: writing the CSV failed: File too large", key="o.csv", shell=True, gtest=(G_FULL,))
+case("ulimit-png", C, "PNG still past the limit", FULL + f"still scene.json --time 0.1 {SMALL} -o o.png", 1,
+     "coinroll: error: o.png: writing the PNG failed: File too large", key="o.png", shell=True, gtest=(G_FULL,))
+case("ulimit-mp4", C, "MP4 past the limit", FULL + f"render scene.json -q {SMALL} -o o.mp4", 1,
+     "coinroll: error: o.mp4: writing the MP4", key="o.mp4", shell=True, gtest=(G_FULL,))
+case("ulimit-seq", C, "PNG sequence past the limit", FULL + f"render scene.json -q {SMALL} -o f_%03d.png", 1,
+     "coinroll: error: f_000.png: writing the PNG failed: File too large", key="f_000.png", shell=True, gtest=(G_FULL,))
+case("ulimit-sweep", C, "sweep past the limit", FULL + "sweep scene.json -q --grid initial.theta=1:20:40 -o o.csv", 1,
+     "coinroll: error: o.csv: writing the sweep failed: File too large", key="o.csv", shell=True, gtest=(G_FULL,))
+case("ulimit-merge", C, "sweep-merge past the limit", FULL + "sweep-merge -o m.csv p1.csv p2.csv", 1,
+     "m.csv", shell=True, files=SHARDS)
+
+# --- pipes
+C = "pipes"
+case("stdout-closed", C, "--csv - with stdout closed", "exec {bin} simulate scene.json --csv - >&-", 1,
+     "writing the CSV to stdout failed: Bad file descriptor", key="stdout", shell=True)
+case("stdout-reader-gone", C, "--csv - into a reader that quits (SIGPIPE ignored)",
+     "trap '' PIPE; {bin} simulate scene.json --csv - --set duration=50 | head -c 10 >/dev/null; exit ${PIPESTATUS[0]}",
+     1, "writing the CSV to stdout failed: Broken pipe", key="stdout", shell=True)
+case("steady-stdout-closed", C, "steady with stdout closed", "exec {bin} steady --kind straight --omega-Z 5 >&-", 1,
+     "Bad file descriptor", shell=True)
+
+# --- signals: sent once the run is writing its temporary (or producing data), so the work is under way
+C = "signals"
+LONG_SIM = "simulate scene.json --csv o.csv --sample-dt 0.001 --set duration=1e4"
+LONG_RENDER = f"render scene.json {SMALL} --set duration=60 -o "
+INTERRUPTED = "interrupted; nothing was written to "
+G_INT_SIM = "CliTest.InterruptedSimulateExitsOneAndLeavesNothing"
+case("sigint-simulate", C, "SIGINT during a long simulate", LONG_SIM, 1, INTERRUPTED + "o.csv", key="interrupted",
+     signal=signal.SIGINT, gtest=(G_INT_SIM,))
+case("sigterm-simulate", C, "SIGTERM during a long simulate", LONG_SIM, 1, INTERRUPTED + "o.csv", key="interrupted",
+     signal=signal.SIGTERM, gtest=(G_INT_SIM,))
+case("sigint-simulate-stdout", C, "SIGINT during a long simulate to stdout", LONG_SIM.replace("o.csv", "-"), 1,
+     "interrupted", signal=signal.SIGINT, wait_for="stdout")
+case("sigint-render", C, "SIGINT during an MP4 render", LONG_RENDER + "o.mp4", 1, INTERRUPTED + "o.mp4",
+     key="interrupted", signal=signal.SIGINT, gtest=("RenderCliTest.InterruptLeavesNoFileAndExitsOne",))
+case("sigterm-render", C, "SIGTERM during an MP4 render", LONG_RENDER + "o.mp4", 1, INTERRUPTED + "o.mp4",
+     key="interrupted", signal=signal.SIGTERM)
+case("sigint-sequence", C, "SIGINT during a PNG sequence over earlier frames of the same names",
+     LONG_RENDER + "f_%03d.png", 1, INTERRUPTED + "f_%03d.png", key="interrupted", signal=signal.SIGINT,
+     files={"scene.json": VALID, "f_000.png": "earlier frame, must survive"})
+case("sigterm-still", C, "SIGTERM while a still frames a long run",
+     f"still scene.json --time 0.1 -o o.png {SMALL} --set duration=400 --set solver.method=rk4 --set solver.dt=1e-5", 1,
+     INTERRUPTED + "o.png", key="interrupted", signal=signal.SIGTERM, wait_for="sleep")
+case("sigint-sweep", C, "SIGINT during a sweep", "sweep scene.json --grid initial.theta=1:20:100000 -o o.csv", 1,
+     INTERRUPTED + "o.csv", key="interrupted", signal=signal.SIGINT)
+case("sigterm-sweep", C, "SIGTERM during a sweep", "sweep scene.json --grid initial.theta=1:20:100000 -o o.csv", 1,
+     INTERRUPTED + "o.csv", key="interrupted", signal=signal.SIGTERM)
+
+# --- absurd sizes: refused up front, not after hours of work (a short timeout is the check)
+C = "absurd sizes"
+case("rows-absurd", C, "--sample-dt 1e-10: 5e9 rows", SIM + " --sample-dt 1e-10", 2,
+     "more than the limit 1000000000; raise --sample-dt, or the limit with --max-rows", key="rows", timeout=5,
+     gtest=(G_ABSURD,))
+case("frames-absurd", C, "render 1e7 s at 240 fps: 2.4e9 frames",
+     "render scene.json -o o.mp4 --set duration=1e7 --set render.fps=240", 2,
+     "2.4e+09 frames, more than the limit 1000000", key="frames", timeout=5, gtest=(G_ABSURD,))
+case("steps-absurd", C, "rk4 at dt 1e-7 for 1000 s: 1e10 fixed steps",
+     SIM + " --sample-dt 1 --set solver.method=rk4 --set solver.dt=1e-7 --set duration=1000", 2, "solver.dt", timeout=5)
+case("points-absurd", C, "one grid axis of 10^9 points", SW + "--grid initial.theta=1:2:1000000000", 2,
+     "the grid has more than 10000000 points (--max-points)", key="--max-points", timeout=5)
+case("strobe-absurd", C, "still --strobe 100000000", f"still scene.json --time 0.1 -o o.png --strobe 100000000", 2,
+     "--strobe: must be 0 to 500 copies, got 100000000", key="--strobe", timeout=5)
+
+
+# ----------------------------------------------------------------------------------------------
+# The runner
+
+
+@dataclass
+class Result:
+    case: Case
+    ok: bool
+    why: str
+    rc: int | None
+    stderr: str
+    seconds: float
+
+
+def populate(directory: Path, files: dict):
+    for name, content in files.items():
+        path = directory / name
+        path.parent.mkdir(parents=True, exist_ok=True)
+        if content is Dir:
+            path.mkdir(exist_ok=True)
+        elif callable(content):
+            content(path)
+        elif isinstance(content, tuple) and content[0] == "symlink":
+            path.symlink_to(content[1])
+        else:
+            path.write_bytes(content if isinstance(content, bytes) else content.encode())
+
+
+def snapshot(directory: Path) -> dict:
+    """Every entry under the directory, with a file's size and modification time (contents may be 17 MiB)."""
+    state = {}
+    for root, dirs, names in os.walk(directory):
+        for name in dirs + names:
+            path = Path(root) / name
+            rel = str(path.relative_to(directory))
+            if path.is_symlink():
+                state[rel] = ("link", os.readlink(path))
+            elif path.is_dir():
+                state[rel] = ("dir",)
+            else:
+                info = path.stat()
+                small = path.read_bytes() if info.st_size < 1 << 20 else None
+                state[rel] = ("file", info.st_size, info.st_mtime_ns, small)
+    return state
+
+
+def short(name: str) -> str:
+    return name if len(name) <= 40 else name[:16] + "…" + name[-16:]
+
+
+def check_directory(c: Case, before: dict, after: dict) -> str | None:
+    problems = []
+    new = sorted(set(after) - set(before))
+    problems += [f"did not write {short(pattern)}" for pattern in c.produces
+                 if not any(fnmatch.fnmatchcase(name, pattern) for name in new)]
+    left = [name for name in new if not any(fnmatch.fnmatchcase(name, p) for p in c.produces)]
+    if left:
+        problems.append("left " + ", ".join(map(short, left[:3])) + (" ..." if len(left) > 3 else ""))
+    problems += [f"removed its input {short(name)}" for name in sorted(set(before) - set(after))]
+    problems += [f"changed its input {short(name)}" for name in before if name in after and before[name] != after[name]]
+    return "; ".join(problems) or None
+
+
+class Drain(threading.Thread):
+    """Reads a pipe to its end: a child blocked on a full pipe would never see its signal."""
+
+    def __init__(self, pipe):
+        super().__init__(daemon=True)
+        self.pipe, self.data = pipe, bytearray()
+
+    def run(self):
+        for chunk in iter(lambda: self.pipe.read1(65536), b""):
+            self.data += chunk
+
+
+def command_of(c: Case, binary: str) -> list[str]:
+    if c.shell:
+        return ["bash", "-c", c.args.replace("{bin}", shlex.quote(binary))]
+    return [binary, *shlex.split(c.args)]
+
+
+def run_process(c: Case, binary: str, directory: Path):
+    """Returns (exit code or None on timeout, stderr text, problem found while running or None)."""
+    process = subprocess.Popen(command_of(c, binary), cwd=directory, stdin=subprocess.DEVNULL,
+                               stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    out, err = Drain(process.stdout), Drain(process.stderr)
+    out.start()
+    err.start()
+    problem = None
+    if c.signal is not None:
+        deadline = time.monotonic() + 10
+        started = lambda: (any(".partial" in p.name for p in directory.iterdir()) if c.wait_for == "partial"
+                           else len(out.data) > 0 if c.wait_for == "stdout" else False)
+        while c.wait_for != "sleep" and process.poll() is None and not started() and time.monotonic() < deadline:
+            time.sleep(0.01)
+        time.sleep(0.3 if c.wait_for != "sleep" else 1.0)  # well into the work, past any setup
+        if process.poll() is not None:
+            problem = "finished before the signal (make the run longer)"
+        else:
+            process.send_signal(c.signal)
+    try:
+        rc = process.wait(timeout=c.timeout)
+    except subprocess.TimeoutExpired:
+        process.kill()
+        process.wait()
+        rc, problem = None, problem or f"still running after {c.timeout:g} s (killed)"
+    out.join()
+    err.join()
+    return rc, err.data.decode("utf-8", "replace"), problem
+
+
+def run_case(c: Case, binary: str, lenient: bool = False) -> Result:
+    """lenient: an older wording passes if it names c.key (for the 'before' column)."""
+    directory = Path(tempfile.mkdtemp(prefix=f"coinroll_bad_{c.id}_"))
+    start = time.monotonic()
+    try:
+        populate(directory, c.files)
+        before = snapshot(directory)
+        rc, stderr, problem = run_process(c, binary, directory)
+        seconds = time.monotonic() - start
+        after = snapshot(directory)
+        why = problem
+        if why is None and rc is not None and rc < 0:
+            why = f"killed by {signal.Signals(-rc).name}"
+        if why is None and rc != c.rc:
+            why = f"exit {rc}, expected {c.rc}"
+        wanted = (c.key or c.msg) if lenient else c.msg
+        if why is None and wanted is not None and wanted not in stderr:
+            why = f"stderr lacks {wanted!r}: {first_line(stderr) or '(nothing)'}"
+        # After our own SIGKILL a temporary is expected: the timeout is the finding, not the leftover.
+        directory_problem = check_directory(c, before, after) if rc is not None else None
+        if directory_problem:
+            why = directory_problem if why is None else f"{why}; {directory_problem}"
+        return Result(c, why is None, why or "", rc, stderr, seconds)
+    finally:
+        shutil.rmtree(directory, ignore_errors=True)
+
+
+def first_line(stderr: str, containing: str | None = None) -> str:
+    lines = [line.strip() for line in re.split(r"[\r\n]+", stderr) if line.strip()]
+    for line in lines:
+        if containing and containing in line:
+            return line
+    return lines[0] if lines else ""
+
+
+# ----------------------------------------------------------------------------------------------
+# The document
+
+
+def gtest_names() -> set[str]:
+    names = set()
+    for source in (HERE).glob("*.cpp"):
+        for suite, test in re.findall(r"TEST(?:_F)?\(\s*(\w+)\s*,\s*(\w+)\s*\)", source.read_text(errors="replace")):
+            names.add(f"{suite}.{test}")
+    return names
+
+
+def cell(text: str, limit: int = 110) -> str:
+    text = text.replace("|", "\\|").replace("\n", " ").strip()
+    text = text if len(text) <= limit else text[: limit - 1] + "…"
+    return text
+
+
+def write_markdown(path: Path, results: list[Result], before: dict, seconds: float):
+    known = gtest_names()
+    wrong_before = sum(1 for r in results if before.get(r.case.id, "").startswith("wrong"))
+    na_before = sum(1 for r in results if before.get(r.case.id) == "n/a")
+    failing = [r for r in results if not r.ok]
+    categories = list(dict.fromkeys(r.case.cat for r in results))
+    lines = [
+        "# Bad inputs and faults",
+        "",
+        "<!-- Generated by tests/cli/bad_inputs.py --markdown docs/bad_inputs.md; edit the table there. -->",
+        "",
+        "What coinroll does with bad scenes, bad command lines, unwritable or full outputs, broken pipes and "
+        "signals: one row per case of `tests/cli/bad_inputs.py`, which runs each against the binary in its own "
+        "scratch directory and checks the exit code (0 ok, 1 runtime failure, 2 bad input), that stderr names the "
+        "field or flag, and that nothing is left in the directory (a case that must succeed leaves exactly its "
+        "output). Run it with",
+        "",
+        "    /usr/bin/python3 tests/cli/bad_inputs.py --binary build/coinroll            # --only ID for one case",
+        "",
+        "ctest runs it as `cli_bad_inputs`. This page is its `--markdown docs/bad_inputs.md` output.",
+        "",
+        f"**{len(results)} cases** in {len(categories)} categories; against today's binary {len(results) - len(failing)} "
+        f"pass and {len(failing)} fail (column *now*), in {seconds:.0f} s. Against the build of commit 32cc7d7, the "
+        f"last before the reliability work, **{wrong_before} were wrong** and {na_before} n/a (the feature did not exist "
+        "then); column *before*. There the message only had to name the field or flag, not match today's wording. "
+        "That column comes from `tests/cli/bad_inputs_before.json`, recorded with",
+        "",
+        "    git worktree add /tmp/coinroll_before 32cc7d7",
+        "    cmake -S /tmp/coinroll_before -B /tmp/coinroll_before/build -DCOINROLL_BENCHMARKS=OFF",
+        "    cmake --build /tmp/coinroll_before/build -j2 --target coinroll",
+        "    /usr/bin/python3 tests/cli/bad_inputs.py --binary /tmp/coinroll_before/build/coinroll \\",
+        "        --record-before tests/cli/bad_inputs_before.json",
+        "",
+        "| category | cases | fail now | wrong before | n/a before |",
+        "|---|---|---|---|---|",
+        *[f"| {cat} | {sum(r.case.cat == cat for r in results)} | "
+          f"{sum(r.case.cat == cat and not r.ok for r in results)} | "
+          f"{sum(r.case.cat == cat and before.get(r.case.id, '').startswith('wrong') for r in results)} | "
+          f"{sum(r.case.cat == cat and before.get(r.case.id) == 'n/a' for r in results)} |" for cat in categories],
+        "",
+        "*Exit* is the expected exit code; *message* the first line of stderr that holds what the case checks, "
+        "as today's binary prints it; *now* whether today's binary passes; *tests* the GoogleTest tests in "
+        "`tests/cli/*.cpp` that check the same case, besides bad_inputs.py.",
+        "",
+    ]
+    for category in categories:
+        rows = [r for r in results if r.case.cat == category]
+        lines += [f"## {category} ({len(rows)})", "",
+                  "| case | input / fault | exit | message | now | tests | before |",
+                  "|---|---|---|---|---|---|---|"]
+        for r in rows:
+            c = r.case
+            tests = ["bad_inputs.py"] + [g for g in c.gtest if g in known]
+            message = first_line(r.stderr, c.msg) if c.msg or r.stderr.strip() else ""
+            lines.append(f"| `{c.id}` | {cell(c.what)} | {c.rc} | {cell(message) if message else '(none)'} | "
+                         f"{'ok' if r.ok else 'FAILS: ' + cell(r.why, 90)} | {', '.join(tests)} | "
+                         f"{cell(before.get(c.id, '?'), 80)} |")
+        lines.append("")
+    path.write_text("\n".join(lines))
+
+
+# ----------------------------------------------------------------------------------------------
+
+
+def main() -> int:
+    signal.signal(signal.SIGPIPE, signal.SIG_DFL)  # `| head` ends the listing quietly; children get SIG_DFL anyway
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--binary", default=str(REPO / "build" / "coinroll"),
+                        help="the coinroll binary (default: ../../build/coinroll beside this script)")
+    parser.add_argument("--only", help="run this case id only")
+    parser.add_argument("--markdown", help="write the table as Markdown to this file")
+    parser.add_argument("--before-results", default=str(HERE / "bad_inputs_before.json"),
+                        help="the --record-before file the Markdown's 'before' column reads")
+    parser.add_argument("--record-before", metavar="FILE",
+                        help="run against an older binary and record per case ok / wrong: why / n/a")
+    parser.add_argument("--jobs", type=int, default=2, help="cases run at once (default 2; each has its own directory)")
+    options = parser.parse_args()
+
+    binary = str(Path(options.binary).resolve())
+    if not os.access(binary, os.X_OK):
+        print(f"bad_inputs.py: {binary}: not an executable (build it, or give --binary)", file=sys.stderr)
+        return 2
+    ids = [c.id for c in CASES]
+    assert len(ids) == len(set(ids)), "case ids must be unique"
+    cases = [c for c in CASES if options.only in (None, c.id)]
+    if not cases:
+        print(f"bad_inputs.py: no case {options.only!r}", file=sys.stderr)
+        return 2
+
+    start = time.monotonic()
+    pool = concurrent.futures.ThreadPoolExecutor(max(1, options.jobs))
+    if options.record_before:
+        verdicts = {}
+        runnable = [c for c in cases if not c.na_before]
+        for r in pool.map(lambda c: run_case(c, binary, lenient=True), runnable):
+            verdicts[r.case.id] = "ok" if r.ok else "wrong: " + r.why
+        verdicts = {c.id: verdicts.get(c.id, "n/a") for c in cases}
+        for case_id, verdict in verdicts.items():
+            print(f"{case_id}: {verdict}")
+        Path(options.record_before).write_text(json.dumps(verdicts, indent=1, ensure_ascii=False) + "\n")
+        return 0
+
+    results = []
+    for r in pool.map(lambda c: run_case(c, binary), cases):  # in table order, as they finish
+        results.append(r)
+        print(f"{'PASS' if r.ok else 'FAIL'} {r.case.id} ({r.case.cat}; {r.seconds:.1f} s)"
+              f"{': ' + r.why if not r.ok else ''}", flush=True)
+    seconds = time.monotonic() - start
+    failed = [r for r in results if not r.ok]
+    print(f"{len(results)} cases, {len(results) - len(failed)} passed, {len(failed)} failed, {seconds:.1f} s")
+
+    if options.markdown:
+        path = Path(options.before_results)
+        before = json.loads(path.read_text()) if path.exists() else {}
+        write_markdown(Path(options.markdown), results, before, seconds)
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -7,7 +7,9 @@ cd "$(dirname "$0")/.."
 build=build-sanitize
 
 # -O1 keeps the build and the sanitized tests quick; the physics tests' tolerances hold at any -O.
-cmake -B "$build" -DCOINROLL_SANITIZE=ON -DCOINROLL_BENCHMARKS=OFF -DCMAKE_COMPILE_WARNING_AS_ERROR=ON \
+# Warnings are errors in the main build only: GCC 12 at -O1 with ASan reports maybe-uninitialized
+# inside libstdc++'s <regex>, a known false positive.
+cmake -B "$build" -DCOINROLL_SANITIZE=ON -DCOINROLL_BENCHMARKS=OFF -DCMAKE_COMPILE_WARNING_AS_ERROR=OFF \
       -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-O1 -DNDEBUG" >/dev/null
 cmake --build "$build" -j"$(nproc)"
 

@@ -41,10 +41,7 @@ scene::SceneConfig benchScene(const std::string& cameraMode, int encoderThreads)
   return scene::parseScene(doc, "pipeline_bench", {.solverMethods = integrate::methodNames()});
 }
 
-video::Mp4Options encoding(const scene::SceneConfig& s) {
-  return {.width = s.render.width, .height = s.render.height, .fps = s.render.fps, .crf = s.render.video.crf,
-          .preset = s.render.video.preset, .threads = s.render.video.threads, .audio = false};
-}
+video::Mp4Options encoding(const scene::SceneConfig& s) { return s.render.mp4Options(); }  // no render.audio: no track
 
 class DiscardSink final : public video::FrameSink {
  public:

@@ -61,9 +61,9 @@ double encodeSeconds(const std::vector<Image>& distinctFrames, int threads, cons
   options.width = kWidth;
   options.height = kHeight;
   options.fps = kFps;
-  options.crf = 18;
-  options.preset = "veryfast";
-  options.threads = threads;
+  options.x264.crf = 18;
+  options.x264.preset = "veryfast";
+  options.x264.threads = threads;
   const Clock::time_point start = Clock::now();
   coinroll::video::Mp4Sink sink(path, options);
   for (int i = 0; i < kFrames; ++i) sink.push(distinctFrames[static_cast<std::size_t>(i)]);

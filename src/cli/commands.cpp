@@ -23,6 +23,8 @@
 
 #include "cli/exit_codes.h"
 #include "cli/interrupts.h"
+#include "image/compare.h"
+#include "image/image.h"
 #include "integrate/solver_config.h"
 #include "io/atomic_file.h"
 #include "physics/observables.h"
@@ -275,7 +277,7 @@ void runStill(const StillOptions& options) {
     std::cerr << fmt::format("coinroll: the run stopped early, so the still shows t = {:.6f} s: {}\n", result.shownTime,
                              *result.stopDescription);
   }
-  std::cerr << fmt::format("coinroll: wrote {} ({}x{}, t = {:.6g} s)\n", options.output, scene.render.width, scene.render.height,
+  std::cerr << fmt::format("coinroll: wrote {} ({}x{}, t = {:.6g} s)\n", options.output, scene.render.picture.width, scene.render.picture.height,
                            result.shownTime);
 }
 
@@ -285,16 +287,9 @@ void runRender(const RenderOptions& options) {
   const std::filesystem::path output = options.output ? std::filesystem::path(*options.output)
                                                       : std::filesystem::path(fileNameFrom(scene.name) + ".mp4");
   refuseOverwritingInput("-o", output, inputsOf(options.scene));
-  const video::Mp4Options encoding{.width = scene.render.width,
-                                   .height = scene.render.height,
-                                   .fps = scene.render.fps,
-                                   .crf = scene.render.video.crf,
-                                   .preset = scene.render.video.preset,
-                                   .threads = scene.render.video.threads,
-                                   .audio = scene.render.audio.has_value()};
   std::unique_ptr<video::FrameSink> sink;
   try {
-    sink = std::make_unique<video::AsyncSink>(video::makeSinkForPath(output, encoding));
+    sink = std::make_unique<video::AsyncSink>(video::makeSinkForPath(output, scene.render.mp4Options()));
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
@@ -317,7 +312,7 @@ void runRender(const RenderOptions& options) {
   if (!options.quiet) {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::cerr << fmt::format("coinroll: wrote {} ({} frames, {}x{} at {} fps, {:.2f} s of video) in {:.1f} s\n",
-                             output.string(), result.frames, scene.render.width, scene.render.height, scene.render.fps,
+                             output.string(), result.frames, scene.render.picture.width, scene.render.picture.height, scene.render.fps,
                              static_cast<double>(result.frames) / scene.render.fps, seconds);
   }
 }
@@ -403,6 +398,115 @@ void runSweepMerge(const SweepMergeOptions& options) {
     if (!out) throw std::runtime_error(options.output + ": writing the merged sweep failed: " + std::strerror(errno));
   }
   file.commit();
+}
+
+namespace {
+
+// A picture to compare, or a UsageError that names the file and says what to give instead.
+image::Image readComparedPng(const std::string& name) {
+  const std::filesystem::path path(name);
+  std::error_code error;
+  if (!std::filesystem::exists(path, error)) {
+    throw UsageError(fmt::format("{}: no such file; give the path of a PNG to compare", name));
+  }
+  if (!std::filesystem::is_regular_file(path, error)) {
+    throw UsageError(fmt::format("{}: not a regular file; give the path of a PNG to compare", name));
+  }
+  // stb would also decode JPEG, BMP, GIF, ...: a golden in another format is a mistake to name.
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw UsageError(fmt::format("{}: cannot open: {}", name, std::strerror(errno)));
+  constexpr unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  char head[8] = {};
+  in.read(head, sizeof head);
+  if (in.gcount() != sizeof head || std::memcmp(head, kSignature, sizeof head) != 0) {
+    throw UsageError(fmt::format("{}: not a PNG file (no PNG signature); compare the PNGs coinroll still or render wrote",
+                                 name));
+  }
+  try {
+    return image::readPng(path);
+  } catch (const std::runtime_error& e) {
+    throw UsageError(fmt::format("{} (a damaged or truncated PNG?)", e.what()));
+  }
+}
+
+}  // namespace
+
+int runCompare(const CompareOptions& options) {
+  // Exit 1 means "the pictures differ" here, so every failure to compare is exit 2 (cmp(1)'s
+  // convention), whatever its kind: a CI must never read a broken comparison as a verdict.
+  try {
+    if (options.channelTolerance < 0 || options.channelTolerance > 255) {
+      throw UsageError(fmt::format("--channel-tolerance: must be a whole number 0..255, got {}", options.channelTolerance));
+    }
+    if (options.maxDifferingPixels && *options.maxDifferingPixels < 0) {
+      throw UsageError(fmt::format("--max-differing-pixels: must be >= 0, got {}", *options.maxDifferingPixels));
+    }
+    if (options.maxDifferingFraction && !(*options.maxDifferingFraction >= 0 && *options.maxDifferingFraction <= 1)) {
+      throw UsageError(fmt::format("--max-differing-fraction: must be in [0, 1] (0.01 is 1 % of the pixels), got {}",
+                                   *options.maxDifferingFraction));
+    }
+    if (options.minPsnr && std::isnan(*options.minPsnr)) throw UsageError("--min-psnr: must be a number of dB, got nan");
+    if (options.diff) {
+      if (std::filesystem::path(*options.diff).extension() != ".png") {
+        throw UsageError(fmt::format("--diff: the diff image is a PNG; give a name ending in .png, got \"{}\"", *options.diff));
+      }
+      refuseOverwritingInput("--diff", *options.diff, {options.a, options.b});
+    }
+    const image::Image a = readComparedPng(options.a);
+    const image::Image b = readComparedPng(options.b);
+    if (a.width != b.width || a.height != b.height) {
+      throw UsageError(fmt::format("{} is {}x{} but {} is {}x{}: compare pictures of the same size (render them with the same "
+                                   "render.width and render.height)",
+                                   options.a, a.width, a.height, options.b, b.width, b.height));
+    }
+    const image::CompareThresholds thresholds{.maxDifferingPixels = options.maxDifferingPixels,
+                                              .maxDifferingFraction = options.maxDifferingFraction,
+                                              .channelTolerance = options.channelTolerance,
+                                              .minPsnr = options.minPsnr};
+    const image::ImageComparison result = image::compareImages(a, b, thresholds.channelTolerance);
+    const bool pass = image::withinThresholds(result, thresholds);
+    if (options.diff) {
+      if (interruptRequested()) throw std::runtime_error(fmt::format("interrupted; nothing was written to {}", *options.diff));
+      image::writeDifferenceImage(a, b, thresholds.channelTolerance, *options.diff);
+    }
+
+    // The verdict names the limits broken, or when a difference passes, the limits it was held to.
+    const long maxPixels = options.maxDifferingPixels.value_or(options.maxDifferingFraction ? result.pixels : 0);
+    std::string broken, heldTo;
+    const auto add = [](std::string& list, const std::string& item) { list += (list.empty() ? "" : ", ") + item; };
+    if (options.channelTolerance > 0) add(heldTo, fmt::format("--channel-tolerance {}", options.channelTolerance));
+    if (options.maxDifferingPixels || !options.maxDifferingFraction) {
+      add(heldTo, fmt::format("--max-differing-pixels {}", maxPixels));
+      if (result.differingPixels > maxPixels) add(broken, fmt::format("{} > --max-differing-pixels {}", result.differingPixels, maxPixels));
+    }
+    if (options.maxDifferingFraction) {
+      add(heldTo, fmt::format("--max-differing-fraction {}", *options.maxDifferingFraction));
+      if (result.differingFraction() > *options.maxDifferingFraction) {
+        add(broken, fmt::format("{:.6g} > --max-differing-fraction {}", result.differingFraction(), *options.maxDifferingFraction));
+      }
+    }
+    if (options.minPsnr) {
+      add(heldTo, fmt::format("--min-psnr {}", *options.minPsnr));
+      if (!(result.psnr >= *options.minPsnr)) add(broken, fmt::format("{:.2f} dB < --min-psnr {}", result.psnr, *options.minPsnr));
+    }
+    const std::string verdict = !pass                              ? fmt::format("DIFFERENT ({})", broken)
+                                : result.maxChannelDifference == 0 ? std::string("SAME (identical pixels)")
+                                                                   : fmt::format("SAME within {}", heldTo);
+    fmt::print("PSNR {:.2f} dB, {} of {} pixels differ ({:.4g} %, channel tolerance {}), max channel difference {}: {}\n",
+               result.psnr, result.differingPixels, result.pixels, 100 * result.differingFraction(), options.channelTolerance,
+               result.maxChannelDifference, verdict);
+    errno = 0;
+    std::fflush(stdout);
+    if (std::ferror(stdout)) {
+      throw std::runtime_error(fmt::format("writing to standard output failed: {}",
+                                           errno != 0 ? std::strerror(errno) : "the stream reported an error"));
+    }
+    return pass ? kExitSuccess : kExitFailure;
+  } catch (const UsageError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw UsageError(e.what());
+  }
 }
 
 }  // namespace coinroll::cli

@@ -69,4 +69,19 @@ struct SweepMergeOptions {
 };
 void runSweepMerge(const SweepMergeOptions& options);
 
+// `coinroll compare A.png B.png`: the golden tests' rule (image/compare.h) for a user's CI.
+struct CompareOptions {
+  std::string a, b;                            // PNG paths; A is the reference the diff image is drawn from
+  std::optional<long> maxDifferingPixels;      // absent and no fraction: 0 (exact)
+  std::optional<double> maxDifferingFraction;  // [0, 1]
+  int channelTolerance = 0;                    // 0..255
+  std::optional<double> minPsnr;               // dB
+  std::optional<std::string> diff;             // diff PNG to write, whatever the verdict
+};
+// Prints one line (PSNR, differing pixels, max channel difference, verdict) on stdout and returns
+// the exit code: 0 within the thresholds, 1 outside. Any trouble (a missing or unreadable file,
+// not a PNG, different sizes, a bad threshold, a diff that cannot be written) throws UsageError,
+// exit 2, as cmp(1) does, so a CI can tell "differs" from "could not compare".
+int runCompare(const CompareOptions& options);
+
 }  // namespace coinroll::cli

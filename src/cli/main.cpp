@@ -148,6 +148,40 @@ int main(int argc, char** argv) {
   sweepMergeCommand->add_option("shards", sweepMerge.shards, "Shard CSV files (any order)")->required();
   sweepMergeCommand->footer("Fails, naming the points, if a point is missing or repeated.");
 
+  CompareOptions compare;
+  CLI::App* compareCommand = app.add_subcommand(
+      "compare", "Compare two PNGs with the rule of coinroll's golden tests: PSNR, differing pixels, exit 0 same / 1 different");
+  compareCommand->add_option("a", compare.a, "Reference PNG (e.g. the committed golden); the diff image is drawn from it")
+      ->required();
+  compareCommand->add_option("b", compare.b, "PNG to check against it")->required();
+  compareCommand->add_option("--max-differing-pixels", compare.maxDifferingPixels,
+                             "Pass with at most N differing pixels (default 0 unless --max-differing-fraction is given)")
+      ->type_name("N");
+  compareCommand->add_option("--max-differing-fraction", compare.maxDifferingFraction,
+                             "Pass with at most this fraction of the pixels differing, 0..1 (0.01 = 1 %)")
+      ->type_name("F");
+  compareCommand->add_option("--channel-tolerance", compare.channelTolerance,
+                             "A pixel differs only when a channel (R, G, B, A) differs by more than T levels, 0..255")
+      ->type_name("T")
+      ->capture_default_str();
+  compareCommand->add_option("--min-psnr", compare.minPsnr, "Pass only with a PSNR (over R, G, B) of at least DB decibels")
+      ->type_name("DB");
+  compareCommand->add_option("--diff", compare.diff,
+                             "Write a diff PNG here (written atomically, whatever the verdict): equal pixels dim grey of A, "
+                             "differing pixels red (brighter = larger), off by no more than --channel-tolerance amber")
+      ->type_name("PATH.png");
+  compareCommand->footer(
+      "The default is an exact match; every limit given must hold. One line on stdout, e.g.\n"
+      "  PSNR 47.31 dB, 12 of 57600 pixels differ (0.02083 %, channel tolerance 0), max channel difference 9: "
+      "DIFFERENT (12 > --max-differing-pixels 0)\n"
+      "PSNR is inf for identical pixels. Exit: 0 within the limits, 1 outside them, 2 could not compare (a missing file,\n"
+      "not a PNG, different sizes, a bad limit, the diff not written).\n"
+      "  coinroll compare golden.png new.png                (exact: the same Mesa and llvmpipe code path, or a pinned one)\n"
+      "  coinroll compare golden.png new.png --max-differing-fraction 0.001 --min-psnr 60 --diff diff.png\n"
+      "      (a CI runner with another x86-64 CPU and the same Mesa, where llvmpipe's shader code rounds a few pixels\n"
+      "       differently: the rule of coinroll's own golden tests under COINROLL_GOLDEN_TOLERANT=1; measured in\n"
+      "       docs/snapshot_testing.md, which also gives the environment that makes the bytes identical instead)");
+
   // CLI11 reports a misspelt command only as "a subcommand is required": name it and the choices.
   std::string commands;
   bool known = false;
@@ -169,6 +203,7 @@ int main(int argc, char** argv) {
 
   // Before any command can create an output (docs in cli/interrupts.h).
   const InterruptGuard interrupts;
+  int exitCode = kExitSuccess;  // compare's verdict: 1 when the pictures differ
   try {
     if (*simulateCommand) runSimulate(simulate);
     if (*steadyCommand) runSteady(steady);
@@ -176,6 +211,7 @@ int main(int argc, char** argv) {
     if (*renderCommand) runRender(render);
     if (*sweepCommand) runSweep(sweep);
     if (*sweepMergeCommand) runSweepMerge(sweepMerge);
+    if (*compareCommand) exitCode = runCompare(compare);
     // Reports printed to stdout (steady, summaries) are output too: a full device or a closed
     // stdout must not pass as success.
     errno = 0;
@@ -184,7 +220,7 @@ int main(int argc, char** argv) {
       throw std::runtime_error(fmt::format("writing to standard output failed: {}",
                                            errno != 0 ? std::strerror(errno) : "the stream reported an error"));
     }
-    return kExitSuccess;
+    return exitCode;
   } catch (const coinroll::scene::SceneError& e) {
     std::cerr << "coinroll: error: " << e.what() << '\n';
     return kExitBadInput;

@@ -6,7 +6,8 @@
 //
 // Why Newton and not fixed-point iteration: fixed point contracts only for h L < ~1 (L the
 // Lipschitz constant), which is the explicit methods' step limit again; simplified Newton keeps
-// the A-stable method usable at steps where RK4 has blown up (tests/integrate/stability_test).
+// the A-stable method usable at steps where RK4 has blown up (tests/physics/stability_test.cpp,
+// Gauss4.StaysBoundedAtTwiceRk4sStepLimit).
 // The Jacobian comes from forward differences (N right-hand-side evaluations, counted) and,
 // with the LU of the iteration matrix, is reused across steps while Newton contracts fast:
 // the step is fixed, so only a slow contraction says the Jacobian has gone stale.

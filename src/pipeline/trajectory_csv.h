@@ -19,7 +19,9 @@ inline constexpr const char* kCsvHeader =
 inline constexpr const char* kCsvDissipationColumns = ",power,dissipated";
 
 // Number of rows for a duration and sample step: k = 0 .. floor(duration / S). The quotient is
-// nudged by a relative 1e-9 so 5.0 / 0.01 counts 501 rows despite 5.0 / 0.01 = 499.99999...
+// nudged by a relative 1e-9 so a duration that is a whole number of steps keeps its last row
+// despite round-off: 2.3 / 0.01 is 229.99999999999997 in binary, which alone would give 230 rows
+// instead of 231.
 long sampleCount(double duration, double sampleDt);
 
 struct CsvRunResult {

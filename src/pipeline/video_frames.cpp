@@ -13,14 +13,17 @@
 #include "physics/observables.h"
 #include "pipeline/coin_run.h"
 #include "pipeline/coin_sound.h"
-#include "pipeline/framing.h"
+#include "pipeline/motion_survey.h"
 #include "pipeline/simulation.h"
+#include "pipeline/snapshot.h"
 #include "render/renderer.h"
 
 namespace coinroll::pipeline {
 
 long frameCount(double simulatedSeconds, double timeScale, int fps) {
-  // The relative nudge makes 2 s at 30 fps give 61 frames despite 2 * 30 = 59.99999... in binary.
+  // The nudge keeps a frame that falls on the end despite round-off: 0.3 s at time_scale 0.1 and
+  // 30 fps is 90 frame intervals, but 0.3 / 0.1 * 30 is 89.99999999999999 in binary (0.3 and 0.1
+  // are both rounded), which alone would give 90 frames instead of 91.
   return static_cast<long>(std::floor(simulatedSeconds / timeScale * fps * (1 + 1e-12) + 1e-9)) + 1;
 }
 
@@ -113,61 +116,35 @@ VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& si
   }
   Simulation simulation = buildSimulation(scene);
   simulation.cancel = options.cancel;
-  render::RenderSettings settings = renderSettings(scene);
+  render::RenderSettings settings = scene.render.picture;
   settings.reuseStaticBackground = options.reuseStaticBackground;
   render::Renderer renderer(settings);
   const MotionSurvey survey = surveyMotion(simulation);
-  const CameraRig rig(scene.render.camera, survey, simulation.model, scene.render.width, scene.render.height);
-  const physics::CoinModel& model = simulation.model;
 
   VideoRunResult result;
   result.simulatedSeconds = survey.endTime;
   if (survey.stoppedBy) result.stopDescription = describeStop(*survey.stoppedBy);
   const std::vector<double> times = frameTimes(scene, simulation, survey.endTime, options.maxFrames);
   const long total = static_cast<long>(times.size());
-  const double traceDt = traceInterval(scene.duration);
 
-  CoinRun trajectory(simulation);
-  render::FrameSnapshot snapshot;
-  snapshot.showContact = scene.render.trace;
+  SnapshotMaker snapshots(scene, simulation, survey);
   image::Image frame;
-  long nextTracePoint = 0;
   std::optional<SoundTrack> sound;
   if (scene.render.audio) sound.emplace(*scene.render.audio, scene.render.fps);
   for (long k = 0; k < total; ++k) {
     if (options.cancel != nullptr && options.cancel->load()) throw Cancelled();
     const double t = times[static_cast<std::size_t>(k)];
-    if (scene.render.trace) {
-      // Trace points strictly before t; the current contact point is appended per frame below.
-      if (!snapshot.trace.empty()) snapshot.trace.pop_back();
-      for (; static_cast<double>(nextTracePoint) * traceDt < t; ++nextTracePoint) {
-        const std::optional<physics::CoinState> y = trajectory.stateAt(static_cast<double>(nextTracePoint) * traceDt);
-        if (!y) break;
-        const Eigen::Vector2d c = contactOnFloor(model, *y);
-        snapshot.trace.emplace_back(static_cast<float>(c.x()), static_cast<float>(c.y()));
-      }
-    }
-    const std::optional<physics::CoinState> y = trajectory.stateAt(t);
-    if (!y) throw std::logic_error("render: the trajectory ended before the survey said it would");
-    const physics::CoinState state = *y;
     // Simulated seconds per video second at this frame, from the frame times.
     const double step = k + 1 < total ? times[static_cast<std::size_t>(k) + 1] - t : scene.render.timeScale / scene.render.fps;
     const double playbackRate = step * scene.render.fps;
-    if (sound) sound->reachFrame(k, state, playbackRate, sink);
-    if (scene.render.trace) {
-      const Eigen::Vector2d c = contactOnFloor(model, state);
-      snapshot.trace.emplace_back(static_cast<float>(c.x()), static_cast<float>(c.y()));
-    }
-    snapshot.coin = coinPose(model, state);
-    snapshot.camera = rig.at(t, state);
-    snapshot.traceWidth = traceWidthFor(snapshot.camera, scene.render.height, model.a);
+    std::vector<std::string> speed;
     if (scene.render.hud) {
       const double slowdown = 1 / playbackRate;
-      std::vector<std::string> extra;
-      if (slowdown > 1 + 1e-9) extra.push_back(fmt::format("slow motion x{:.3g}", slowdown));
-      if (slowdown < 1 - 1e-9) extra.push_back(fmt::format("fast forward x{:.3g}", 1 / slowdown));
-      snapshot.hudLines = hudLines(model, state, t, extra);
+      if (slowdown > 1 + 1e-9) speed.push_back(fmt::format("slow motion x{:.3g}", slowdown));
+      if (slowdown < 1 - 1e-9) speed.push_back(fmt::format("fast forward x{:.3g}", 1 / slowdown));
     }
+    const render::FrameSnapshot& snapshot = snapshots.makeSnapshot(t, speed);
+    if (sound) sound->reachFrame(k, snapshots.state(), playbackRate, sink);
     renderer.draw(snapshot, frame);
     sink.push(frame);
     result.frames = k + 1;

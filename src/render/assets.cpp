@@ -15,8 +15,6 @@ image::Image loadAssetImage(std::string_view name) {
   if (const char* dir = std::getenv("COINROLL_ASSET_DIR"); dir != nullptr && *dir != '\0') {
     return image::readPng(std::filesystem::path(dir) / name);
   }
-  const std::filesystem::path sourceTree = std::filesystem::path(COINROLL_ASSET_SOURCE_DIR) / name;
-  if (std::error_code ec; std::filesystem::is_regular_file(sourceTree, ec)) return image::readPng(sourceTree);
   const std::optional<std::span<const std::uint8_t>> embedded = embeddedAsset(name);
   if (!embedded) throw std::runtime_error(fmt::format("asset: no asset named {}", name));
   return image::decodePng(*embedded, fmt::format("embedded:{}", name));

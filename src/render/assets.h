@@ -1,6 +1,7 @@
 #pragma once
-// Images the renderer draws with, from assets/: read at run time from $COINROLL_ASSET_DIR when
-// set, else the source tree's assets/ when present, else the copies embedded at build time.
+// Images the renderer draws with, from assets/: the copies embedded at build time, so a binary
+// draws the same pixels wherever it runs; $COINROLL_ASSET_DIR, when set, names a directory to
+// read them from instead.
 
 #include <string_view>
 

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "render/render_settings.h"
+
 namespace coinroll::render {
 
 // Which surface a coin vertex belongs to; the coin shader paints each differently.
@@ -15,12 +17,6 @@ struct CoinVertex {
   glm::vec3 position;  // m, body frame: the coin plane is body XY, its normal body Z
   glm::vec3 normal;
   float part;          // a CoinPart, as float for the vertex attribute
-};
-
-struct CoinShape {
-  float radius = 0.0375f;     // m
-  float innerRadius = 0.0f;   // m, 0 for a solid disk
-  float thickness = 0.00225f; // m
 };
 
 // Triangles (three vertices each) of the coin with `segments` facets around the rim.

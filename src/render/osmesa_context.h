@@ -1,7 +1,7 @@
 #pragma once
 // An off-screen OpenGL 3.3 core context on Mesa's software rasteriser (llvmpipe): no display, no
-// GPU. Rendering goes to framebuffer objects (framebuffer.h); the context's own buffer is a 1x1
-// placeholder that OSMesaMakeCurrent requires.
+// GPU. Rendering goes to framebuffer objects (the Renderer's, made with gl_handles.h's
+// makeFramebuffer); the context's own buffer is a 1x1 placeholder that OSMesaMakeCurrent requires.
 
 #include <array>
 #include <cstdint>

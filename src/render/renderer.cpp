@@ -9,6 +9,7 @@
 #include <numbers>
 #include <optional>
 #include <stdexcept>
+#include <utility>
 
 #include "render/assets.h"
 #include "render/camera.h"
@@ -31,10 +32,13 @@ const glm::vec4 kShadowColour(0.0f, 0.0f, 0.0f, 0.45f);
 const glm::vec4 kContactColour(0.85f, 0.1f, 0.08f, 1.0f);
 
 void validate(const RenderSettings& s) {
-  if (s.width < 16 || s.width > 8192) throw std::invalid_argument(fmt::format("render.width: must be 16..8192 pixels, got {}", s.width));
-  if (s.height < 16 || s.height > 8192) throw std::invalid_argument(fmt::format("render.height: must be 16..8192 pixels, got {}", s.height));
-  if (s.msaa != 1 && s.msaa != 2 && s.msaa != 4 && s.msaa != 8 && s.antialiasing == Antialiasing::Msaa) {
-    throw std::invalid_argument(fmt::format("render.msaa: must be 1, 2, 4 or 8 samples, got {}", s.msaa));
+  for (const auto& [field, side] : {std::pair{"width", s.width}, std::pair{"height", s.height}}) {
+    if (side < kMinImageSide || side > kMaxImageSide) {
+      throw std::invalid_argument(fmt::format("render.{}: must be {}..{} pixels, got {}", field, kMinImageSide, kMaxImageSide, side));
+    }
+  }
+  if (!isMsaaSampleCount(s.msaa) && s.antialiasing == Antialiasing::Msaa) {
+    throw std::invalid_argument(fmt::format("render.msaa: must be one of {} samples, got {}", fmt::join(kMsaaSampleCounts, ", "), s.msaa));
   }
   if (!(s.coin.radius > 0) || !(s.coin.thickness > 0) || !(s.coin.innerRadius >= 0 && s.coin.innerRadius < s.coin.radius)) {
     throw std::invalid_argument(fmt::format("coin: radius {} m, inner radius {} m and thickness {} m cannot be drawn",

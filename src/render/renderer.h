@@ -8,24 +8,9 @@
 #include "image/image.h"
 #include "render/frame_snapshot.h"
 #include "render/meshes.h"
+#include "render/render_settings.h"
 
 namespace coinroll::render {
-
-// Msaa: `msaa` samples per pixel, resolved by a blit. Fxaa: one sample per pixel and a fast
-// approximate anti-aliasing pass over the picture (shaders/fxaa.frag); `msaa` is ignored.
-enum class Antialiasing { Msaa, Fxaa };
-
-struct RenderSettings {
-  int width = 1280, height = 720;  // pixels
-  Antialiasing antialiasing = Antialiasing::Msaa;
-  int msaa = 4;                    // samples per pixel: 1 (none), 2, 4 or 8
-  CoinShape coin;
-  bool showShadow = true;
-  // When a frame's camera equals the previous frame's, the sky and the floor are copied from the
-  // first such frame instead of shaded again (the largest part of a frame on llvmpipe). The bytes
-  // are the same either way; off only to measure or test the saving.
-  bool reuseStaticBackground = true;
-};
 
 class Renderer {
  public:

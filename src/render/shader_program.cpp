@@ -55,8 +55,6 @@ ShaderSource loadShaderSource(std::string_view name) {
     const std::filesystem::path path = std::filesystem::path(dir) / name;
     return {readFile(path), path.string()};
   }
-  const std::filesystem::path sourceTree = std::filesystem::path(COINROLL_SHADER_SOURCE_DIR) / name;
-  if (std::error_code ec; std::filesystem::is_regular_file(sourceTree, ec)) return {readFile(sourceTree), sourceTree.string()};
   const std::optional<std::string_view> embedded = embeddedShader(name);
   if (!embedded) throw std::runtime_error(fmt::format("shader: no shader named {}", name));
   return {std::string(*embedded), fmt::format("embedded:{}", name)};

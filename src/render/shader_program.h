@@ -1,7 +1,8 @@
 #pragma once
-// GLSL programs built from the files in shaders/ (one file per stage). Sources come from
-// $COINROLL_SHADER_DIR when set, else the source tree's shaders/ when present (edit and rerun,
-// no rebuild), else the copies embedded at build time, so the binary works from anywhere.
+// GLSL programs built from the files in shaders/ (one file per stage). Sources are the copies
+// embedded at build time, so a binary draws the same pixels wherever it runs and whether or not
+// its checkout still exists; $COINROLL_SHADER_DIR, when set, names a directory to read them from
+// instead (edit and rerun, no rebuild).
 
 #include <glm/glm.hpp>
 #include <string>
@@ -17,7 +18,8 @@ struct ShaderSource {
   std::string origin;  // a path, or "embedded:<name>"
 };
 
-// Throws std::runtime_error if the file is named but unreadable, or `name` is unknown.
+// Throws std::runtime_error if $COINROLL_SHADER_DIR is set and the file there is unreadable, or
+// if `name` is not embedded.
 ShaderSource loadShaderSource(std::string_view name);
 
 class ShaderProgram {

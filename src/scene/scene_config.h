@@ -1,16 +1,21 @@
 #pragma once
 // A scene as the program uses it: validated, defaults filled in, SI units and radians
 // (the file's degrees are converted once, in scene_loader.cpp). Field names follow the JSON keys
-// of INTERFACE.md; README "Scene format" lists each with unit and default.
+// of INTERFACE.md; README "Scene format" lists each with unit and default. What the renderer and
+// the encoder are built with is held in their own types (render/render_settings.h,
+// video/mp4_options.h), whose defaults and limits are the scene's: defined there, once.
 
 #include <array>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <variant>
 #include <vector>
 
 #include "physics/effects.h"
 #include "physics/formulation.h"
+#include "render/render_settings.h"
+#include "video/mp4_options.h"
 
 namespace coinroll::scene {
 
@@ -21,7 +26,7 @@ struct CoinSpec {
   double radius = 0;       // m, required, > 0
   double mass = 0;         // kg, required, > 0
   double innerRadius = 0;  // m, ring only: hole radius b in [0, radius]; default radius (thin hoop)
-  double thickness = 0;    // m, rendering only, > 0; default 0.06 * radius
+  // coin.thickness is for drawing only: it is held, with the radii as drawn, in RenderSpec::picture.
   std::optional<double> I_X, I_Z;  // kg m^2, custom only (required there)
 };
 
@@ -55,21 +60,20 @@ struct SolverSpec {
   double dt = 1e-3;     // s, fixed-step methods
 };
 
+enum class CameraMode {
+  Fixed,   // frames the whole motion from one place
+  Orbit,   // circles the motion once per orbit period
+  Follow,  // keeps the coin in the middle at a fixed offset
+};
+// render.camera.mode's names in the scene file, in the order of CameraMode.
+inline constexpr std::array<std::string_view, 3> kCameraModeNames = {"fixed", "orbit", "follow"};
+
 struct CameraSpec {
-  std::string mode = "fixed";  // fixed | orbit | follow
+  CameraMode mode = CameraMode::Fixed;
   std::optional<std::array<double, 3>> eye, target;  // m; absent = framed from the motion
   double fovDegrees = 35;        // vertical field of view
   double orbitPeriod = 10;       // s of simulated time per revolution (orbit)
   double elevationDegrees = 30;  // camera elevation above the floor for automatic framing
-};
-
-struct VideoSpec {
-  int crf = 18;                    // x264 constant rate factor, 0..51
-  std::string preset = "veryfast"; // x264 preset
-  // x264 threads, fixed so the bytes are reproducible. One: the renderer already keeps both cores
-  // of the reference machine busy, and a second encoder thread only competes with it
-  // (bench/pipeline_bench: 8.85 s vs 9.04 s end to end for the orbiting 10 s clip).
-  int threads = 1;
 };
 
 // render.time_remap: which rate drives the slow motion.
@@ -99,18 +103,25 @@ struct AudioSpec {
 };
 
 struct RenderSpec {
-  int width = 1280, height = 720;  // pixels, even
-  int fps = 30;                    // frames per second of video
-  std::string antialiasing = "msaa";  // msaa (render.msaa samples per pixel) | fxaa (one sample, then FXAA)
-  int msaa = 4;                    // samples per pixel: 1, 2, 4 or 8
+  // What the Renderer is built with: render.width and height (even, for H.264's yuv420p),
+  // render.antialiasing and msaa, and the coin as drawn (coin.thickness; a ring's hole narrowed
+  // so a thin hoop still shows as a band).
+  render::RenderSettings picture;
+  int fps = video::Mp4Options{}.fps;  // frames per second of video, 1..240; the encoder's default
   double timeScale = 1.0;          // video seconds per simulated second
   // When set, playback slows further whenever the chosen rate exceeds its limit, so that rate seen
   // on screen never exceeds the limit times time_scale (an Euler's disk stays readable).
   std::optional<TimeRemap> timeRemap;
   CameraSpec camera;
   bool trace = true, hud = true;
-  VideoSpec video;
+  video::X264Options video;        // render.video
   std::optional<AudioSpec> audio;  // absent: no sound track
+
+  // The encoder's options for these pictures: the same size and frame rate, render.video, and an
+  // audio track when render.audio asks for one.
+  video::Mp4Options mp4Options() const {
+    return {.width = picture.width, .height = picture.height, .fps = fps, .x264 = video, .audio = audio.has_value()};
+  }
 };
 
 // What the validity events lift-off and slip do (INTERFACE.md "Dissipation").

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <fstream>
 #include <numbers>
+#include <string>
 
 #include "integrate/solver_config.h"
 #include "scene/json_reader.h"
@@ -16,11 +17,33 @@ namespace coinroll::scene {
 namespace {
 
 constexpr double kRadiansPerDegree = std::numbers::pi / 180;
-constexpr std::array<std::string_view, 10> kX264Presets = {"ultrafast", "superfast", "veryfast", "faster", "fast",
-                                                           "medium",    "slow",      "slower",   "veryslow", "placebo"};
 
 // In the order of the Formulation enum.
 constexpr std::array<std::string_view, 2> kFormulationNames = {"euler-angles", "quaternion"};
+// In the order of the render::Antialiasing enum.
+constexpr std::array<std::string_view, 2> kAntialiasingNames = {"msaa", "fxaa"};
+constexpr int kMaxFps = 240;
+
+// "a, b or c" (each item through `show`) for the rule of a message.
+template <class T, std::size_t N, class Show>
+std::string alternatives(const std::array<T, N>& items, Show show) {
+  std::string text;
+  for (std::size_t i = 0; i < N; ++i) text += (i == 0 ? "" : i + 1 == N ? " or " : ", ") + show(items[i]);
+  return text;
+}
+
+// The enum value named at `key` (`fallback` when absent); `names` are the file's names in enum order.
+template <class Enum, std::size_t N>
+Enum enumValue(const JsonReader& r, std::string_view key, const std::array<std::string_view, N>& names, Enum fallback) {
+  const std::optional<std::string> name = r.optionalString(key);
+  if (!name) return fallback;
+  const auto found = std::find(names.begin(), names.end(), *name);
+  if (found == names.end()) {
+    r.fail(key, fmt::format("must be {}, got \"{}\"", alternatives(names, [](std::string_view n) { return fmt::format("\"{}\"", n); }),
+                            *name));
+  }
+  return static_cast<Enum>(found - names.begin());
+}
 
 std::string nameOf(Formulation formulation) { return std::string(kFormulationNames.at(static_cast<std::size_t>(formulation))); }
 
@@ -61,7 +84,8 @@ double tiltDegrees(const JsonReader& r, std::string_view key, double fallback) {
   return degrees * kRadiansPerDegree;
 }
 
-CoinSpec parseCoin(const JsonReader& top) {
+// The coin block: its physics into the returned CoinSpec, its shape as drawn into `drawn`.
+CoinSpec parseCoin(const JsonReader& top, render::CoinShape& drawn) {
   const nlohmann::json* node = top.child("coin");
   if (node == nullptr) top.fail("coin", "required (an object with shape, radius, mass)");
   const JsonReader r(*node, "coin", "", {"shape", "radius", "mass", "inner_radius", "thickness", "I_X", "I_Z"});
@@ -74,12 +98,19 @@ CoinSpec parseCoin(const JsonReader& top) {
 
   coin.radius = inRange(r, "radius", r.requiredNumber("radius"), kMinLength, kMaxLength, "m");
   coin.mass = inRange(r, "mass", r.requiredNumber("mass"), kMinMass, kMaxMass, "kg");
-  coin.thickness = inRange(r, "thickness", r.number("thickness", 0.06 * coin.radius), kMinLength * 0.06, kMaxLength, "m");
+  const double thickness = inRange(r, "thickness", r.number("thickness", 0.06 * coin.radius), kMinLength * 0.06, kMaxLength, "m");
 
   if (r.has("inner_radius") && coin.shape != Shape::Ring) r.fail("inner_radius", "only allowed with shape \"ring\"");
   coin.innerRadius = r.number("inner_radius", coin.radius);
   if (coin.shape == Shape::Ring && !(coin.innerRadius >= 0 && coin.innerRadius <= coin.radius)) {
     r.fail("inner_radius", fmt::format("must be in [0, radius = {}] m, got {}", coin.radius, coin.innerRadius));
+  }
+  drawn.radius = static_cast<float>(coin.radius);
+  drawn.thickness = static_cast<float>(thickness);
+  if (coin.shape == Shape::Ring) {
+    // A thin hoop (b = a) is drawn as a band as wide as it is thick, so it stays visible.
+    const double band = std::max(thickness, 0.04 * coin.radius);
+    drawn.innerRadius = static_cast<float>(std::min(coin.innerRadius, coin.radius - band));
   }
 
   if (coin.shape != Shape::Custom) {
@@ -199,10 +230,7 @@ CameraSpec parseCamera(const JsonReader& render) {
   const nlohmann::json* node = render.child("camera");
   if (node == nullptr) return camera;
   const JsonReader r(*node, "render.camera", "", {"mode", "eye", "target", "fov", "orbit_period", "elevation"});
-  camera.mode = r.optionalString("mode").value_or(camera.mode);
-  if (camera.mode != "fixed" && camera.mode != "orbit" && camera.mode != "follow") {
-    r.fail("mode", fmt::format("must be \"fixed\", \"orbit\" or \"follow\", got \"{}\"", camera.mode));
-  }
+  camera.mode = enumValue(r, "mode", kCameraModeNames, camera.mode);
   if (r.has("eye")) camera.eye = parsePoint(r, "eye");
   if (r.has("target")) camera.target = parsePoint(r, "target");
   if (camera.eye && camera.target) {
@@ -257,21 +285,21 @@ RenderSpec parseRender(const JsonReader& top) {
   const nlohmann::json* node = top.child("render");
   if (node == nullptr) return render;
   const JsonReader r(*node, "render", "", {"width", "height", "fps", "antialiasing", "msaa", "time_scale", "time_remap", "camera", "trace", "hud", "video", "audio"});
-  for (auto [key, field] : {std::pair{"width", &render.width}, std::pair{"height", &render.height}}) {
+  render::RenderSettings& picture = render.picture;
+  for (auto [key, field] : {std::pair{"width", &picture.width}, std::pair{"height", &picture.height}}) {
     *field = r.integer(key, *field);
-    if (*field < 16 || *field > 7680 || *field % 2 != 0) {
-      r.fail(key, fmt::format("must be an even number of pixels in [16, 7680] (H.264 yuv420p needs even sizes), got {}", *field));
+    if (*field < render::kMinImageSide || *field > render::kMaxImageSide || *field % 2 != 0) {
+      r.fail(key, fmt::format("must be an even number of pixels in [{}, {}] (H.264 yuv420p needs even sizes), got {}",
+                              render::kMinImageSide, render::kMaxImageSide, *field));
     }
   }
   render.fps = r.integer("fps", render.fps);
-  if (render.fps < 1 || render.fps > 240) r.fail("fps", fmt::format("must be in [1, 240], got {}", render.fps));
-  render.antialiasing = r.optionalString("antialiasing").value_or(render.antialiasing);
-  if (render.antialiasing != "msaa" && render.antialiasing != "fxaa") {
-    r.fail("antialiasing", fmt::format("must be \"msaa\" or \"fxaa\", got \"{}\"", render.antialiasing));
-  }
-  render.msaa = r.integer("msaa", render.msaa);
-  if (render.msaa != 1 && render.msaa != 2 && render.msaa != 4 && render.msaa != 8) {
-    r.fail("msaa", fmt::format("must be 1, 2, 4 or 8 samples, got {}", render.msaa));
+  if (render.fps < 1 || render.fps > kMaxFps) r.fail("fps", fmt::format("must be in [1, {}], got {}", kMaxFps, render.fps));
+  picture.antialiasing = enumValue(r, "antialiasing", kAntialiasingNames, picture.antialiasing);
+  picture.msaa = r.integer("msaa", picture.msaa);
+  if (!render::isMsaaSampleCount(picture.msaa)) {
+    r.fail("msaa", fmt::format("must be {} samples, got {}",
+                               alternatives(render::kMsaaSampleCounts, [](int n) { return std::to_string(n); }), picture.msaa));
   }
   render.timeScale = r.number("time_scale", render.timeScale);
   positive(r, "time_scale", render.timeScale);
@@ -292,15 +320,16 @@ RenderSpec parseRender(const JsonReader& top) {
   render.hud = r.boolean("hud", render.hud);
   if (const nlohmann::json* video = r.child("video")) {
     const JsonReader v(*video, "render.video", "", {"crf", "preset", "threads"});
-    render.video.crf = v.integer("crf", render.video.crf);
-    if (render.video.crf < 0 || render.video.crf > 51) v.fail("crf", fmt::format("must be in [0, 51], got {}", render.video.crf));
-    render.video.preset = v.optionalString("preset").value_or(render.video.preset);
-    if (std::find(kX264Presets.begin(), kX264Presets.end(), render.video.preset) == kX264Presets.end()) {
-      v.fail("preset", fmt::format("must be one of {}, got \"{}\"", fmt::join(kX264Presets, ", "), render.video.preset));
+    video::X264Options& x264 = render.video;
+    x264.crf = v.integer("crf", x264.crf);
+    if (x264.crf < 0 || x264.crf > video::kMaxCrf) v.fail("crf", fmt::format("must be in [0, {}], got {}", video::kMaxCrf, x264.crf));
+    x264.preset = v.optionalString("preset").value_or(x264.preset);
+    if (std::find(video::kX264Presets.begin(), video::kX264Presets.end(), x264.preset) == video::kX264Presets.end()) {
+      v.fail("preset", fmt::format("must be one of {}, got \"{}\"", fmt::join(video::kX264Presets, ", "), x264.preset));
     }
-    render.video.threads = v.integer("threads", render.video.threads);
-    if (render.video.threads < 1 || render.video.threads > 16) {
-      v.fail("threads", fmt::format("must be in [1, 16], got {}", render.video.threads));
+    x264.threads = v.integer("threads", x264.threads);
+    if (x264.threads < 1 || x264.threads > video::kMaxX264Threads) {
+      v.fail("threads", fmt::format("must be in [1, {}], got {}", video::kMaxX264Threads, x264.threads));
     }
   }
   render.audio = parseAudio(r);
@@ -427,7 +456,8 @@ SceneConfig parseScene(const nlohmann::json& document, std::string_view sourceNa
                          {"name", "coin", "gravity", "friction", "initial", "duration", "solver", "effects", "on_invalid", "render"});
     SceneConfig scene;
     scene.name = top.optionalString("name").value_or(scene.name);
-    scene.coin = parseCoin(top);
+    render::CoinShape drawnCoin;
+    scene.coin = parseCoin(top, drawnCoin);
     scene.gravity = top.number("gravity", scene.gravity);
     positive(top, "gravity", scene.gravity);
     inRange(top, "gravity", scene.gravity, 0, kMaxGravity, "m/s^2");
@@ -454,6 +484,7 @@ SceneConfig parseScene(const nlohmann::json& document, std::string_view sourceNa
       else top.fail("on_invalid", fmt::format("must be \"stop\" or \"warn\", got \"{}\"", *onInvalid));
     }
     scene.render = parseRender(top);
+    scene.render.picture.coin = drawnCoin;
     return scene;
   } catch (const SceneError& e) {
     // Readers of nested objects do not know the source name; add it once here.

@@ -1,8 +1,8 @@
 #include "video/mp4_sink.h"
 
 #include <algorithm>
-#include <array>
 #include <stdexcept>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -22,12 +22,6 @@ using namespace detail;
 
 namespace {
 
-// x264's own list (x264_preset_names); checked here so a typo is reported by name before any file
-// is created, instead of as libx264's generic "Invalid argument" from avcodec_open2.
-constexpr std::array<std::string_view, 10> kX264Presets = {"ultrafast", "superfast", "veryfast", "faster", "fast",
-                                                           "medium",    "slow",      "slower",   "veryslow", "placebo"};
-constexpr int kMaxThreads = 16;
-
 std::string mp4OptionError(const std::string& field, const std::string& rule, const std::string& value) {
   return "Mp4Options." + field + ": " + rule + ", got " + value;
 }
@@ -44,18 +38,18 @@ void validate(const Mp4Options& options) {
   requireEvenPositive("width", options.width);
   requireEvenPositive("height", options.height);
   if (options.fps <= 0) throw std::invalid_argument(mp4OptionError("fps", "must be > 0", std::to_string(options.fps)));
-  if (options.crf < 0 || options.crf > 51) {
-    throw std::invalid_argument(mp4OptionError("crf", "must be in 0..51", std::to_string(options.crf)));
+  const X264Options& x264 = options.x264;
+  if (x264.crf < 0 || x264.crf > kMaxCrf) {
+    throw std::invalid_argument(mp4OptionError("x264.crf", "must be in 0.." + std::to_string(kMaxCrf), std::to_string(x264.crf)));
   }
-  if (std::find(kX264Presets.begin(), kX264Presets.end(), options.preset) == kX264Presets.end()) {
-    throw std::invalid_argument(mp4OptionError(
-        "preset", "must be an x264 preset (ultrafast, superfast, veryfast, faster, fast, medium, slow, slower, "
-                  "veryslow, placebo)",
-        "'" + options.preset + "'"));
+  if (std::find(kX264Presets.begin(), kX264Presets.end(), x264.preset) == kX264Presets.end()) {
+    std::string presets;
+    for (const std::string_view preset : kX264Presets) presets += (presets.empty() ? "" : ", ") + std::string(preset);
+    throw std::invalid_argument(mp4OptionError("x264.preset", "must be an x264 preset (" + presets + ")", "'" + x264.preset + "'"));
   }
-  if (options.threads < 1 || options.threads > kMaxThreads) {
+  if (x264.threads < 1 || x264.threads > kMaxX264Threads) {
     throw std::invalid_argument(
-        mp4OptionError("threads", "must be in 1.." + std::to_string(kMaxThreads), std::to_string(options.threads)));
+        mp4OptionError("x264.threads", "must be in 1.." + std::to_string(kMaxX264Threads), std::to_string(x264.threads)));
   }
 }
 
@@ -106,15 +100,15 @@ Mp4Sink::Encoder::Encoder(const std::filesystem::path& destination, const Mp4Opt
   codec->pix_fmt = AV_PIX_FMT_YUV420P;
   codec->time_base = AVRational{1, options.fps};
   codec->framerate = AVRational{options.fps, 1};
-  codec->thread_count = options.threads;
+  codec->thread_count = options.x264.threads;
   codec->color_primaries = AVCOL_PRI_BT709;
   codec->color_trc = AVCOL_TRC_BT709;
   codec->colorspace = AVCOL_SPC_BT709;
   codec->color_range = AVCOL_RANGE_MPEG;
   codec->flags |= AV_CODEC_FLAG_BITEXACT;
   if ((format->oformat->flags & AVFMT_GLOBALHEADER) != 0) codec->flags |= AV_CODEC_FLAG_GLOBAL_HEADER;
-  checkAv(av_opt_set(codec->priv_data, "preset", options.preset.c_str(), 0), context + "setting x264 preset");
-  checkAv(av_opt_set_double(codec->priv_data, "crf", options.crf, 0), context + "setting x264 crf");
+  checkAv(av_opt_set(codec->priv_data, "preset", options.x264.preset.c_str(), 0), context + "setting x264 preset");
+  checkAv(av_opt_set_double(codec->priv_data, "crf", options.x264.crf, 0), context + "setting x264 crf");
   checkAv(avcodec_open2(codec.get(), x264, nullptr), context + "opening the libx264 encoder");
 
   stream = checkAllocated(avformat_new_stream(format.get(), nullptr), context + "adding the video stream");

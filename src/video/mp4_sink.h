@@ -5,24 +5,11 @@
 #include <filesystem>
 #include <memory>
 #include <span>
-#include <string>
 
 #include "video/frame_sink.h"
+#include "video/mp4_options.h"
 
 namespace coinroll::video {
-
-struct Mp4Options {
-  int width = 1280;                // pixels, even (4:2:0 chroma is subsampled by 2 each way)
-  int height = 720;                // pixels, even
-  int fps = 30;                    // frames per second, > 0; timestamps are frame index / fps
-  int crf = 18;                    // x264 constant rate factor, 0 (lossless) .. 51; lower is better
-  std::string preset = "veryfast"; // an x264 preset name, ultrafast .. placebo
-  // Encoder threads, 1..16. Fixed, never "auto": x264's output depends on its thread count, so a
-  // count taken from the machine would make the same render differ between machines.
-  int threads = 1;
-  // Adds a mono AAC track (FFmpeg's own encoder, 48 kHz, 128 kbit/s) fed by pushAudio().
-  bool audio = false;
-};
 
 // Throws std::invalid_argument naming the field, the rule and the value if `options` is unusable.
 void validate(const Mp4Options& options);

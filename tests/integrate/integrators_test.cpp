@@ -1,9 +1,14 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
+#include <stdexcept>
+#include <vector>
 
 #include "integrate/dop853.h"
+#include "integrate/event_location.h"
 #include "integrate/gauss_legendre.h"
 #include "integrate/steppers.h"
 #include "integrate/trajectory.h"
@@ -188,6 +193,81 @@ TEST(Events, NonTerminalEventsAreRecordedAndTheRunGoesOn) {
   ASSERT_EQ(trajectory.nonTerminalHits().size(), 3u);  // pi/2, 5 pi/2, 9 pi/2 < 20 < 13 pi/2
   for (std::size_t k = 0; k < 3; ++k) {
     EXPECT_TRUE(isNear(trajectory.nonTerminalHits()[k].t, std::numbers::pi / 2 + 2 * std::numbers::pi * k, 1e-10));
+  }
+}
+
+TEST(Events, DirectionZeroCatchesARisingCrossing) {
+  // y = -cos t rises through 0 at pi/2; an event of either direction must stop there.
+  std::vector<Event<2>> events{{.name = "zero", .g = [](double, const V2& y) { return y[0]; }, .direction = 0}};
+  Trajectory trajectory(Oscillator{}, 0.0, V2(-1, 0), SolverConfig{.rtol = 1e-13, .atol = 1e-15}, events);
+  EXPECT_FALSE(trajectory.stateAt(3.0).has_value());
+  ASSERT_TRUE(trajectory.stoppedBy().has_value());
+  EXPECT_TRUE(isNear(trajectory.stoppedBy()->t, std::numbers::pi / 2, 1e-10));
+}
+
+TEST(Events, TheEarliestOfTwoTerminalRootsInOneStepStopsTheRun) {
+  // One RK4 step of 1 s holds both roots, t = 0.7 (listed first) and t = 0.3: the run ends at 0.3.
+  std::vector<Event<2>> events{{.name = "late", .g = [](double t, const V2&) { return 0.7 - t; }, .direction = -1},
+                               {.name = "early", .g = [](double t, const V2&) { return 0.3 - t; }, .direction = -1}};
+  Trajectory trajectory(Oscillator{}, 0.0, V2(0, 1), SolverConfig{.method = Method::Rk4, .dt = 1.0}, events);
+  EXPECT_FALSE(trajectory.stateAt(1.0).has_value());
+  ASSERT_TRUE(trajectory.stoppedBy().has_value());
+  EXPECT_EQ(trajectory.stoppedBy()->name, "early");
+  EXPECT_TRUE(isNear(trajectory.stoppedBy()->t, 0.3, 1e-14));
+}
+
+TEST(EventRoot, IllinoisConvergesSuperlinearlyWhicheverEndRegulaFalsiWouldStickAt) {
+  // Plain regula falsi keeps one end of the bracket for good on a convex or concave g and
+  // converges linearly (here at 0.75 per iteration, over 100 evaluations to 1e-14); the Illinois
+  // modification converges with order 1.44 (Dowell & Jarratt 1971): a dozen evaluations or so.
+  struct Case {
+    const char* name;
+    double (*g)(double);
+    double a, b, root;
+  };
+  const Case cases[] = {
+      {"exp(t) - 2 (convex, rising)", [](double t) { return std::exp(t) - 2; }, 0.0, 3.0, std::log(2.0)},
+      {"2 - exp(t) (concave, falling)", [](double t) { return 2 - std::exp(t); }, 0.0, 3.0, std::log(2.0)},
+      {"t^3 - 0.001 (convex)", [](double t) { return t * t * t - 0.001; }, 0.0, 2.0, 0.1},
+      {"log(t) (concave)", [](double t) { return std::log(t); }, 0.05, 20.0, 1.0},
+  };
+  for (const Case& c : cases) {
+    int evaluations = 0;
+    const double root = locateRoot([&](double t) { ++evaluations; return c.g(t); }, c.a, c.g(c.a), c.b, c.g(c.b));
+    EXPECT_TRUE(isNear(root, c.root, 1e-13 * std::max(1.0, c.root))) << c.name;
+    EXPECT_LE(evaluations, 30) << c.name;
+  }
+}
+
+TEST(Trajectory, ANonFiniteInitialStateIsRefused) {
+  for (const double bad : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+    for (const Method method : {Method::Rk4, Method::Dopri5, Method::Dop853}) {
+      EXPECT_THROW(Trajectory(Oscillator{}, 0.0, V2(bad, 1), SolverConfig{.method = method}), std::invalid_argument)
+          << nameOf(method) << " from " << bad;
+    }
+  }
+}
+
+// The Riccati problem of the fixed-step tests as `copies` identical, uncoupled components.
+template <int N>
+struct RiccatiCopies {
+  Vec<N> operator()(double t, const Vec<N>& y) const { return (-2 * t * y.array().square()).matrix(); }
+};
+
+TEST(Trajectory, AdaptiveStepsAreTheSameForAProblemAndItsDuplicate) {
+  // HNW's error norm is a root mean square over the components: solving the same equation twice
+  // over, as identical uncoupled components, leaves every error norm and so every step unchanged.
+  for (const Method method : {Method::Dopri5, Method::Dop853}) {
+    const SolverConfig config{.method = method, .rtol = 1e-9, .atol = 1e-12};
+    Trajectory single(RiccatiCopies<1>{}, 0.0, Vec<1>(1.0), config);
+    Trajectory doubled(RiccatiCopies<2>{}, 0.0, V2(1.0, 1.0), config);
+    const double y1 = (*single.stateAt(10.0))[0];
+    const V2 y2 = *doubled.stateAt(10.0);
+    EXPECT_EQ(single.stats().acceptedSteps, doubled.stats().acceptedSteps) << nameOf(method);
+    EXPECT_EQ(single.stats().rejectedSteps, doubled.stats().rejectedSteps) << nameOf(method);
+    EXPECT_EQ(y2[0], y1) << nameOf(method);
+    EXPECT_EQ(y2[1], y1) << nameOf(method);
+    EXPECT_TRUE(isNear(y1, Riccati::exact(10.0), 1e-7)) << nameOf(method);
   }
 }
 

@@ -76,6 +76,21 @@ TEST(EffectLoads, RollingAndPivotingCouplesHaveNoPartAlongE_X) {
   EXPECT_TRUE(isNear(again.power, d.loads.power, 1e-15 * d.loads.power));
 }
 
+TEST(EffectLoads, LoadDependentCouplesVanishWithoutLoad) {
+  // Rolling resistance and pivoting friction come from the contact patch: no normal force, no
+  // patch, no couple and no power (a lift-off is an event, not a negative load).
+  const CoinState s{.theta = 0.7, .phi = 0.3, .omega_X = 2, .omega_Y = -3, .omega_Z = 9};
+  for (const double N : {0.0, -1.0, -1e-3}) {
+    const ContactKinematics k = contactKinematics(kToy, s, N);
+    for (const Effect& law : {Effect{RollingResistance{}}, Effect{RollingResistance{.length = 3e-6, .loadExponent = 0.7}},
+                              Effect{SpinFriction{}}}) {
+      const Loads l = loadsOf(law, k);
+      EXPECT_EQ(l.torque, Eigen::Vector3d::Zero()) << typeName(law) << " at N = " << N;
+      EXPECT_EQ(l.power, 0.0) << typeName(law) << " at N = " << N;
+    }
+  }
+}
+
 // Quasi-steady spin near flat: the closed forms of docs/euler_disk.md (2.3), (2.7), §2 (c), (3.8).
 // They hold to O(alpha^2), 3e-4 relative at 1 degree; 1 % is the bound.
 constexpr double kClosedForm = 0.01;

@@ -5,6 +5,7 @@
 #include <Eigen/Eigenvalues>
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
 #include <vector>
 
 #include "physics/dynamics.h"
@@ -74,6 +75,32 @@ TEST(SteadyStates, DiskMatchesTheSeedsDimensionlessFormulas) {
     EXPECT_TRUE(isNear(spinInPlace(unit, theta).omega_Y, 2 * std::sqrt(std::cos(theta)), 1e-15));
   }
   EXPECT_TRUE(isNear(criticalSpin(unit), 1 / std::sqrt(3.0), 1e-15));
+}
+
+TEST(SteadyStates, CircleWithoutSpinIsSpinningInPlace) {
+  // omega_Z = 0 leaves I_X tan(theta) omega_Y^2 = M g a sin(theta): omega_Y = +-sqrt(M g a cos(theta) / I_X),
+  // the "+ sqrt" root f+ being spin-in-place's (seed steady state 2) for theta > 0 and f- its mirror.
+  for (const CoinModel& m : coins()) {
+    for (double thetaDeg : {1.0, 30.0, 80.0}) {
+      const double expected = std::sqrt(m.M * m.g * m.a * std::cos(thetaDeg * kDeg) / m.I_X);
+      EXPECT_TRUE(isNear(steadyCircle(m, thetaDeg * kDeg, 0.0, +1).omega_Y, expected, 1e-13 * expected)) << thetaDeg;
+      EXPECT_TRUE(isNear(steadyCircle(m, thetaDeg * kDeg, 0.0, -1).omega_Y, -expected, 1e-13 * expected)) << thetaDeg;
+      EXPECT_TRUE(isNear(steadyCircle(m, thetaDeg * kDeg, 0.0, +1).omega_Y, spinInPlace(m, thetaDeg * kDeg).omega_Y,
+                         1e-13 * expected));
+    }
+  }
+}
+
+TEST(SteadyStates, TiltsOfNinetyDegreesAndBeyondAreRefused) {
+  // The contract of steady.h: |theta| >= pi/2 throws, pi/2 itself included (flat: tan and
+  // 1 / cos theta blow up).
+  const CoinModel m = diskModel(0.4, 0.0375, 9.81);
+  for (const double theta : {std::numbers::pi / 2, -std::numbers::pi / 2, 1.6, -2.0}) {
+    EXPECT_THROW(steadyCircle(m, theta, 10.0, +1), std::invalid_argument) << theta;
+    EXPECT_THROW(steadyCircle(m, theta, 10.0, -1), std::invalid_argument) << theta;
+    EXPECT_THROW(spinInPlace(m, theta), std::invalid_argument) << theta;
+  }
+  EXPECT_NO_THROW(steadyCircle(m, std::nextafter(std::numbers::pi / 2, 0.0), 10.0, +1));
 }
 
 TEST(SteadyStates, BranchesSwapUnderReversedSpin) {

@@ -5,10 +5,15 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <cmath>
+#include <numbers>
+#include <span>
+#include <vector>
 
 #include "physics/observables.h"
 #include "pipeline/coin_run.h"
-#include "pipeline/framing.h"
+#include "pipeline/coin_sound.h"
+#include "pipeline/motion_survey.h"
 #include "pipeline/video_frames.h"
 #include "scene/scene_loader.h"
 
@@ -37,9 +42,61 @@ scene::SceneConfig toyScene(double duration, double timeScale) {
 
 TEST(FrameCount, CoversTheClipIncludingBothEnds) {
   EXPECT_EQ(pipeline::frameCount(2.0, 1.0, 30), 61);   // 2 s at 30 fps: t = 0, 1/30, ..., 2
-  EXPECT_EQ(pipeline::frameCount(5.0, 1.0, 30), 151);  // 5 * 30 = 149.99999... in binary
+  EXPECT_EQ(pipeline::frameCount(0.29, 1.0, 100), 30);  // 0.29 * 100 = 28.999999999999996 in binary
+  EXPECT_EQ(pipeline::frameCount(0.3, 0.1, 10), 31);   // 0.3 / 0.1 = 2.9999999999999996: 3 s of video
   EXPECT_EQ(pipeline::frameCount(1.0, 0.5, 24), 49);   // slowed down twice: 2 s of video
   EXPECT_EQ(pipeline::frameCount(0.01, 1.0, 30), 1);
+}
+
+// floor(d / ts * fps) + 1 for a duration d = dNum / dDen s and a time scale ts = tsNum / tsDen, in
+// integers: the count the decimal numbers a scene file holds ask for, free of binary rounding.
+long exactFrameCount(long dNum, long dDen, long tsNum, long tsDen, long fps) {
+  return dNum * tsDen * fps / (dDen * tsNum) + 1;
+}
+
+TEST(FrameCount, MatchesExactRationalArithmeticWhereTheProductRoundsBelowAWholeNumber) {
+  // Every duration 0.01 .. 30 s in steps of 0.01 s against common time scales and frame rates. In
+  // hundreds of these the double d / ts * fps lands just below the whole number it stands for
+  // (0.29 s at 100 fps is 28.999999999999996): the rounding nudge must restore the frame.
+  struct Ratio {
+    long num, den;
+  };
+  int roundedBelow = 0, failures = 0;
+  for (long n = 1; n <= 3000; ++n) {
+    for (const Ratio ts : {Ratio{1, 1}, Ratio{1, 2}, Ratio{1, 4}, Ratio{1, 10}, Ratio{3, 10}, Ratio{2, 1}}) {
+      for (const long fps : {7, 10, 24, 25, 30, 60, 100, 120}) {
+        const double d = static_cast<double>(n) / 100, timeScale = static_cast<double>(ts.num) / static_cast<double>(ts.den);
+        const long expected = exactFrameCount(n, 100, ts.num, ts.den, fps);
+        const long actual = pipeline::frameCount(d, timeScale, static_cast<int>(fps));
+        if (actual != expected && ++failures <= 10) {
+          ADD_FAILURE() << "frameCount(" << n << " / 100 s, time scale " << ts.num << "/" << ts.den << ", " << fps
+                        << " fps) = " << actual << ", exactly " << expected;
+        }
+        const bool whole = n * ts.den * fps % (100 * ts.num) == 0;
+        if (whole && d / timeScale * static_cast<double>(fps) < static_cast<double>(expected - 1)) ++roundedBelow;
+      }
+    }
+  }
+  EXPECT_EQ(failures, 0);
+  EXPECT_GT(roundedBelow, 100);  // the cases the nudge exists for are really among them
+}
+
+TEST(FrameCount, LongClipsWhoseProductFallsShortByMoreThanAnAbsoluteNudge) {
+  // Near 16 400 s at 1000 fps a product 1.6e7 may round short of its whole number by 1.9e-9, more
+  // than any fixed absolute nudge of 1e-9: the nudge must be relative too.
+  int shortByMoreThan1e9 = 0, failures = 0;
+  for (long n = 163000; n < 165000; ++n) {  // d = n / 10 s
+    const double d = static_cast<double>(n) / 10;
+    const long expected = exactFrameCount(n, 10, 1, 1, 1000);
+    const long actual = pipeline::frameCount(d, 1.0, 1000);
+    if (actual != expected && ++failures <= 10) {
+      ADD_FAILURE() << "frameCount(" << n << " / 10 s, 1000 fps) = " << actual << ", exactly " << expected;
+    }
+    // Exact: both are within a few ulps of each other (Sterbenz).
+    if (static_cast<double>(expected - 1) - d * 1000 > 1e-9) ++shortByMoreThan1e9;
+  }
+  EXPECT_EQ(failures, 0);
+  EXPECT_GT(shortByMoreThan1e9, 0);
 }
 
 TEST(FrameTimes, RemapHoldsTheOnScreenSpinRateAtTheLimit) {
@@ -96,6 +153,85 @@ TEST(RenderVideo, AFrameDependsOnlyOnItsTimeNotOnTheFrameRate) {
   ASSERT_EQ(five.frames.size(), 6u);
   // The HUD shows the same t; the trace holds the same points up to t; the pose is the same.
   for (std::size_t k = 0; k < five.frames.size(); ++k) EXPECT_EQ(five.frames[k].rgba, ten.frames[2 * k].rgba) << "frame " << k;
+}
+
+// Keeps the sound track and counts the frames.
+class AudioRecordingSink final : public video::FrameSink {
+ public:
+  void push(const image::Image&) override { ++frames; }
+  void pushAudio(std::span<const float> block) override { samples.insert(samples.end(), block.begin(), block.end()); }
+  void finish() override {}
+  long frames = 0;
+  std::vector<float> samples;
+};
+
+scene::SceneConfig sceneWithSound(int fps) {
+  scene::SceneConfig scene = toyScene(1.0, 1.0);
+  scene.render.fps = fps;
+  scene.render.audio = scene::AudioSpec{};  // clicks: a click at full volume at phase 0, the very first sample
+  return scene;
+}
+
+TEST(RenderVideo, TheSoundTrackLastsExactlyAsLongAsTheVideo) {
+  // N frames at fps play for N / fps s: floor(N * 48000 / fps) samples in exact integer arithmetic,
+  // also when fps does not divide 48000 (7 fps: 6857.14... samples per frame).
+  for (const int fps : {7, 10, 30}) {
+    AudioRecordingSink sink;
+    pipeline::renderVideo(sceneWithSound(fps), sink);
+    ASSERT_EQ(sink.frames, fps + 1) << fps << " fps";  // 1 s at time scale 1, both ends
+    EXPECT_EQ(static_cast<long>(sink.samples.size()), sink.frames * video::kAudioSampleRate / fps) << fps << " fps";
+  }
+}
+
+TEST(RenderVideo, TheSoundTrackFadesInFromAndOutToSilence) {
+  // Raised-cosine fades of kFadeSeconds at both ends (docs/sound.md): sample i of the fade is at
+  // most volume (1 - cos(pi i / L)) / 2, so the track starts and ends at exactly 0, without the
+  // click at phase 0 the clicks timbre would otherwise begin with.
+  AudioRecordingSink sink;
+  const scene::SceneConfig scene = sceneWithSound(10);
+  pipeline::renderVideo(scene, sink);
+  const auto fade = static_cast<std::size_t>(pipeline::kFadeSeconds * video::kAudioSampleRate);
+  ASSERT_GT(sink.samples.size(), 2 * fade);
+  const double volume = scene.render.audio->volume;
+  for (std::size_t i = 0; i < fade; ++i) {
+    const double ramp = 0.5 - 0.5 * std::cos(std::numbers::pi * static_cast<double>(i) / static_cast<double>(fade));
+    EXPECT_LE(std::abs(sink.samples[i]), volume * ramp + 1e-6) << "sample " << i;
+    EXPECT_LE(std::abs(sink.samples[sink.samples.size() - 1 - i]), volume * ramp + 1e-6) << "sample " << i << " from the end";
+  }
+  EXPECT_EQ(sink.samples.front(), 0.0f);
+  EXPECT_EQ(sink.samples.back(), 0.0f);
+}
+
+scene::SceneConfig fallingScene(double duration) {
+  // A coin let go at 60 degrees with a slow spin falls to the Euler angles' coin-flat stop (89 deg).
+  nlohmann::json doc = {
+      {"coin", {{"radius", 0.0375}, {"mass", 0.4}}},
+      {"initial", {{"theta", 60}, {"omega_Z", 0.1}}},
+      {"duration", duration},
+      {"render", {{"width", 96}, {"height", 64}, {"fps", 10}, {"msaa", 1}}},
+  };
+  const std::vector<std::string_view> methods = {"dop853"};
+  return scene::parseScene(doc, "test", {.solverMethods = methods});
+}
+
+TEST(SurveyMotion, FindsAStopInTheLastTraceIntervalOfTheRun) {
+  // Where the run stops is known from the trajectory itself; a scene whose duration ends a
+  // microsecond after that stop must still be surveyed as stopping there, and render to it.
+  pipeline::CoinRun free(pipeline::buildSimulation(fallingScene(1.0)));
+  ASSERT_FALSE(free.stateAt(1.0).has_value());
+  ASSERT_TRUE(free.stoppedBy().has_value());
+  const double stop = free.stoppedBy()->t;
+  ASSERT_EQ(free.stoppedBy()->name, "coin-flat");
+
+  const scene::SceneConfig scene = fallingScene(stop + 1e-6);
+  const pipeline::MotionSurvey survey = pipeline::surveyMotion(pipeline::buildSimulation(scene));
+  ASSERT_TRUE(survey.stoppedBy.has_value());
+  EXPECT_EQ(survey.stoppedBy->name, "coin-flat");
+  EXPECT_DOUBLE_EQ(survey.endTime, stop);
+  RecordingSink sink;
+  const pipeline::VideoRunResult result = pipeline::renderVideo(scene, sink);
+  EXPECT_TRUE(result.stopDescription.has_value());
+  EXPECT_EQ(result.frames, pipeline::frameCount(stop, 1.0, 10));
 }
 
 TEST(RenderVideo, CancellationLeavesTheSinkUnfinished) {

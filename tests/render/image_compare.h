@@ -1,26 +1,14 @@
 #pragma once
-// Snapshot comparison for render tests: exact pixels first; on a mismatch, how far off (largest
-// channel difference, PSNR) and a diff image to look at.
+// Image measurements for render tests and benchmarks only. The comparison rule itself (differing
+// pixels, PSNR, thresholds, the diff image) is the library's, src/image/compare.h, shared with
+// `coinroll compare`.
 
 #include <cstdint>
-#include <filesystem>
-#include <string>
 #include <vector>
 
 #include "image/image.h"
 
 namespace coinroll::testing {
-
-struct ImageDifference {
-  int differingPixels = 0;
-  int maxChannelDifference = 0;  // 0..255
-  double psnr = 0;               // dB over RGB; infinity when identical
-};
-
-ImageDifference compareImages(const image::Image& actual, const image::Image& expected);
-
-// |actual - expected| per channel, amplified x8 so small differences show, alpha opaque.
-image::Image differenceImage(const image::Image& actual, const image::Image& expected);
 
 // The picture `scale` times smaller, each pixel the mean of a scale x scale block (RGB, doubles):
 // a supersampled reference for anti-aliasing measurements.

@@ -12,8 +12,8 @@
 #include <numbers>
 #include <optional>
 
+#include "image/compare.h"
 #include "render/assets.h"
-#include "render/camera.h"
 #include "render/embedded_assets.h"
 #include "render/image_compare.h"
 #include "render/meshes.h"
@@ -24,7 +24,9 @@
 namespace {
 
 namespace fs = std::filesystem;
+using coinroll::image::CompareThresholds;
 using coinroll::image::Image;
+using coinroll::image::ImageComparison;
 using namespace coinroll::render;
 using coinroll::testing::isBelow;
 using coinroll::testing::isNear;
@@ -78,12 +80,20 @@ fs::path goldenPath(const std::string& name) { return fs::path(COINROLL_SOURCE_D
 
 class GoldenTest : public ::testing::TestWithParam<std::string> {};
 
-// Exact pixels are the claim on one machine. llvmpipe compiles its rasteriser for the CPU it
-// runs on, so another CPU may round a few edge pixels differently: such a run still passes when
-// the difference is at rounding level (PSNR >= 45 dB, under 1 % of pixels), says so, and writes
-// the diff for inspection. Anything larger fails with the numbers and the diff.
+// Exact pixels are the rule: llvmpipe draws a snapshot as the same bytes every time on one
+// machine. It compiles its rasteriser for the CPU it runs on, so another CPU may round a few edge
+// pixels differently; COINROLL_GOLDEN_TOLERANT=1 opts into the rule for that case,
+// image::otherCpuThresholds() (what `coinroll compare --max-differing-fraction 0.001 --min-psnr 60`
+// applies; docs/snapshot_testing.md), and a mismatch it lets pass is still reported. Any
+// mismatch writes the diff image and the actual picture beside the build.
 TEST_P(GoldenTest, MatchesGolden) {
   const std::string name = GetParam();
+  const char* tolerantSetting = std::getenv("COINROLL_GOLDEN_TOLERANT");
+  const std::string tolerant = tolerantSetting == nullptr ? "" : tolerantSetting;
+  ASSERT_TRUE(tolerant.empty() || tolerant == "0" || tolerant == "1")
+      << "COINROLL_GOLDEN_TOLERANT must be 1 (rounding-level differences pass, for another CPU) or 0/unset (exact), got '"
+      << tolerant << "'";
+  const CompareThresholds thresholds = tolerant == "1" ? coinroll::image::otherCpuThresholds() : CompareThresholds{};
   Renderer renderer(smallSettings());
   const Image actual = renderer.draw(goldenSnapshot(name));
   const fs::path golden = goldenPath(name);
@@ -93,23 +103,48 @@ TEST_P(GoldenTest, MatchesGolden) {
   }
   ASSERT_TRUE(fs::exists(golden)) << golden << " is missing; run with COINROLL_UPDATE_GOLDEN=1 to create it";
   const Image expected = coinroll::image::readPng(golden);
-  const coinroll::testing::ImageDifference d = coinroll::testing::compareImages(actual, expected);
-  if (d.differingPixels == 0) return;
+  ASSERT_TRUE(actual.width == expected.width && actual.height == expected.height)
+      << golden << " is " << expected.width << "x" << expected.height << ", the render " << actual.width << "x" << actual.height;
+  const ImageComparison d = coinroll::image::compareImages(actual, expected, thresholds.channelTolerance);
+  if (actual.rgba == expected.rgba) return;
   const fs::path diffPath = fs::path(COINROLL_BINARY_DIR) / ("golden_diff_" + name + ".png");
   const fs::path actualPath = fs::path(COINROLL_BINARY_DIR) / ("golden_actual_" + name + ".png");
-  coinroll::image::writePng(coinroll::testing::differenceImage(actual, expected), diffPath);
+  coinroll::image::writeDifferenceImage(actual, expected, thresholds.channelTolerance, diffPath);
   coinroll::image::writePng(actual, actualPath);
-  const double differingFraction = double(d.differingPixels) / (actual.width * actual.height);
   const std::string report = "checksum " + std::to_string(coinroll::testing::pixelChecksum(actual)) + " vs golden " +
                              std::to_string(coinroll::testing::pixelChecksum(expected)) + ": " +
-                             std::to_string(d.differingPixels) + " pixels differ, max channel difference " +
+                             std::to_string(d.differingPixels) + " pixels differ (" +
+                             std::to_string(100 * d.differingFraction()) + " %), max channel difference " +
                              std::to_string(d.maxChannelDifference) + ", PSNR " + std::to_string(d.psnr) + " dB; diff " +
                              diffPath.string() + ", actual " + actualPath.string();
-  EXPECT_TRUE(d.psnr >= 45 && differingFraction < 0.01) << report;
-  std::cerr << "note: " << name << " is not bit-exact on this machine: " << report << '\n';
+  const bool passes = coinroll::image::withinThresholds(d, thresholds);
+  EXPECT_TRUE(passes) << report
+                      << (tolerant == "1" ? ""
+                                          : "; exact match required. On a CPU other than the goldens' (llvmpipe rounds "
+                                            "edge pixels per CPU), COINROLL_GOLDEN_TOLERANT=1 accepts rounding-level "
+                                            "differences (docs/snapshot_testing.md)");
+  if (passes) std::cerr << "note: " << name << " is not bit-exact on this machine (passing: COINROLL_GOLDEN_TOLERANT=1): " << report << '\n';
 }
 
 INSTANTIATE_TEST_SUITE_P(Snapshots, GoldenTest, ::testing::Values("upright", "tilted30", "spun90", "circle_trace"));
+
+// The oracle for where the coin should appear: a pinhole camera written here from the camera's
+// definition (eye, target, floor +y up, vertical field of view, square pixels), in doubles,
+// without the renderer's matrices (render/camera.h), so a mistake there cannot cancel out.
+// Pixel coordinates: x right, y down, origin at the top-left corner of the top-left pixel (so
+// pixel (i, j) covers [i, i+1) x [j, j+1) and its centre is (i + 0.5, j + 0.5)).
+glm::dvec2 pinholePixel(const CameraView& camera, int width, int height, const glm::dvec3& world) {
+  const glm::dvec3 eye(camera.eye), target(camera.target);
+  // Look-at basis: forward towards the target, right = forward x up, the camera's up completes it.
+  const glm::dvec3 forward = glm::normalize(target - eye);
+  const glm::dvec3 right = glm::normalize(glm::cross(forward, glm::dvec3(0, 1, 0)));
+  const glm::dvec3 up = glm::cross(right, forward);
+  const glm::dvec3 d = world - eye;
+  const double depth = glm::dot(d, forward);
+  // Focal length in pixels: half the image height subtends half the vertical field of view.
+  const double focal = 0.5 * height / std::tan(0.5 * double(camera.fovYDegrees) * kPi / 180);
+  return {0.5 * width + focal * glm::dot(d, right) / depth, 0.5 * height - focal * glm::dot(d, up) / depth};
+}
 
 // Pixels where the coin is: those that differ from the same view without the coin.
 struct Silhouette {
@@ -196,31 +231,39 @@ TEST(RenderSemantics, SilhouetteSitsWhereTheCameraProjectsTheCoin) {
   const RenderSettings settings = coinOnlySettings(640, 360);
   Renderer renderer(settings);
   const CameraView camera{{0.05f, 0.12f, 0.30f}, {0.0f, 0.02f, 0.0f}, 35.0f};
-  // The silhouette's extent in the image must match the extremes of the projected rim circles
-  // (both faces, computed from the pose alone) to a pixel: placement, size and orientation.
+  // The silhouette's extent in the image must match the extremes of the rim circles of both
+  // faces (computed from the pose alone) through the pinhole above: placement, size, orientation.
+  double worst = 0;
   for (const CoinPose& coin : {pose(0, 0, 0), pose(0.4, 0.7, 0, {0.04f, -0.02f}), pose(0.9, -1.2, 2.0, {-0.05f, 0.03f})}) {
     const FrameSnapshot s = bareSnapshot(coin, camera);
     const PixelBox drawn = changedPixels(renderer.draw(s), withoutCoin(renderer, s));
-    PixelBox projected;
+    double minX = 1e9, maxX = -1e9, minY = 1e9, maxY = -1e9;
+    const glm::dquat attitude(coin.attitude);
     for (int i = 0; i < 720; ++i) {
       const double angle = 2 * kPi * i / 720;
-      for (float side : {-0.5f, 0.5f}) {
-        const glm::vec3 body(kRadius * std::cos(angle), kRadius * std::sin(angle), side * settings.coin.thickness);
-        const glm::vec2 p = pixelFromWorld(camera, settings.width, settings.height, coin.centre + coin.attitude * body);
-        projected.minX = std::min(projected.minX, p.x);
-        projected.maxX = std::max(projected.maxX, p.x);
-        projected.minY = std::min(projected.minY, p.y);
-        projected.maxY = std::max(projected.maxY, p.y);
+      for (double side : {-0.5, 0.5}) {
+        const glm::dvec3 body(kRadius * std::cos(angle), kRadius * std::sin(angle), side * settings.coin.thickness);
+        const glm::dvec2 p = pinholePixel(camera, settings.width, settings.height, glm::dvec3(coin.centre) + attitude * body);
+        minX = std::min(minX, p.x);
+        maxX = std::max(maxX, p.x);
+        minY = std::min(minY, p.y);
+        maxY = std::max(maxY, p.y);
       }
     }
     ASSERT_GT(drawn.count, 300);
-    // Pixel centres inside the silhouette lie within half a pixel of its true edge; one pixel
-    // of slack covers the 128-facet rim and anti-aliasing.
-    EXPECT_TRUE(isNear(drawn.minX, projected.minX, 1.0)) << "left edge";
-    EXPECT_TRUE(isNear(drawn.maxX, projected.maxX, 1.0)) << "right edge";
-    EXPECT_TRUE(isNear(drawn.minY, projected.minY, 1.0)) << "top edge";
-    EXPECT_TRUE(isNear(drawn.maxY, projected.maxY, 1.0)) << "bottom edge";
+    // The extreme counted pixel is one whose 4 MSAA samples (0.125 and 0.375 px from its centre)
+    // see enough of the coin: its centre may lie 0.375 px outside the edge or up to about
+    // 0.6 px inside it, more where the rim curves away from the tangent point. Measured on these
+    // poses: -0.79 to +0.45 px (largest |error| 0.79 px). Bound: one pixel, the grid's pitch.
+    constexpr double kEdgePixels = 1.0;
+    EXPECT_TRUE(isNear(drawn.minX, minX, kEdgePixels)) << "left edge";
+    EXPECT_TRUE(isNear(drawn.maxX, maxX, kEdgePixels)) << "right edge";
+    EXPECT_TRUE(isNear(drawn.minY, minY, kEdgePixels)) << "top edge";
+    EXPECT_TRUE(isNear(drawn.maxY, maxY, kEdgePixels)) << "bottom edge";
+    worst = std::max({worst, std::abs(drawn.minX - minX), std::abs(drawn.maxX - maxX), std::abs(drawn.minY - minY),
+                      std::abs(drawn.maxY - maxY)});
   }
+  std::cerr << "silhouette: largest edge error " << worst << " px\n";
 }
 
 TEST(RenderSemantics, TiltSeenEdgeOnIsTheTiltAngle) {
@@ -229,14 +272,20 @@ TEST(RenderSemantics, TiltSeenEdgeOnIsTheTiltAngle) {
   // Looking along -x at the coin's height, a coin at tilt theta (rotated about floor x) is a thin
   // slab leaning theta from the vertical, its top towards +z (e_Y = (0, cos, sin) at phi = 0), which is
   // image left seen from +x: the major axis runs down and to the right at +theta from vertical.
+  double worst = 0;
   for (double degrees : {0.0, 15.0, 30.0, 50.0}) {
     const CoinPose coin = pose(degrees * kPi / 180, 0, 0);
     const CameraView camera{coin.centre + glm::vec3(0.35f, 0.0f, 0.0f), coin.centre, 30.0f};
     const FrameSnapshot s = bareSnapshot(coin, camera);
     const Silhouette sil = silhouette(renderer.draw(s), withoutCoin(renderer, s));
     ASSERT_GT(sil.count, 100);
-    EXPECT_TRUE(isNear(sil.axisAngleFromVertical * 180 / kPi, degrees, 1.0)) << "tilt " << degrees;
+    // Measured: at most 0.046 deg off over these tilts. Bound: 0.1 deg, about twice that.
+    constexpr double kTiltDegrees = 0.1;
+    const double seen = sil.axisAngleFromVertical * 180 / kPi;
+    EXPECT_TRUE(isNear(seen, degrees, kTiltDegrees)) << "tilt " << degrees;
+    worst = std::max(worst, std::abs(seen - degrees));
   }
+  std::cerr << "tilt seen edge-on: largest error " << worst << " deg\n";
 }
 
 TEST(RenderSemantics, SpinMarkerTurnsWithPsi) {
@@ -248,9 +297,9 @@ TEST(RenderSemantics, SpinMarkerTurnsWithPsi) {
     const CoinPose coin = pose(0, 0, degrees * kPi / 180);
     const CameraView camera{coin.centre + glm::vec3(0.0f, 0.0f, 0.25f), coin.centre, 30.0f};
     const Image picture = renderer.draw(bareSnapshot(coin, camera));
-    const glm::vec2 centre = pixelFromWorld(camera, settings.width, settings.height, coin.centre);
-    const float radiusPixels =
-        glm::length(pixelFromWorld(camera, settings.width, settings.height, coin.centre + glm::vec3(kRadius, 0, 0)) - centre);
+    const glm::dvec2 centre = pinholePixel(camera, settings.width, settings.height, coin.centre);
+    const double radiusPixels =
+        glm::length(pinholePixel(camera, settings.width, settings.height, coin.centre + glm::vec3(kRadius, 0, 0)) - centre);
     // The bar reaches 0.78 a from the centre, the dot only 0.68 a: blue beyond 0.72 a is the
     // bar's tip alone, and its mean direction is the bar's.
     glm::dvec2 sum(0);

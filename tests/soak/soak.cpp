@@ -49,13 +49,8 @@ SceneConfig smallScene() {
 }
 
 void renderClip(const SceneConfig& scene, const fs::path& output) {
-  const coinroll::video::Mp4Options encoding{.width = scene.render.width,
-                                             .height = scene.render.height,
-                                             .fps = scene.render.fps,
-                                             .crf = scene.render.video.crf,
-                                             .preset = scene.render.video.preset,
-                                             .threads = scene.render.video.threads,
-                                             .audio = output.extension() == ".mp4"};
+  coinroll::video::Mp4Options encoding = scene.render.mp4Options();
+  encoding.audio = output.extension() == ".mp4";
   coinroll::video::AsyncSink sink(coinroll::video::makeSinkForPath(output, encoding));
   coinroll::pipeline::renderVideo(scene, sink);
 }

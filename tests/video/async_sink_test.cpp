@@ -3,9 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
+#include <condition_variable>
 #include <fstream>
 #include <iterator>
+#include <mutex>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 #include "synthetic_frames.h"
@@ -79,6 +83,76 @@ TEST(AsyncSink, WorkerExceptionIsRethrownByALaterCall) {
     EXPECT_STREQ(error.what(), "disk full at frame 3");
   }
   EXPECT_FALSE(finished);
+}
+
+TEST(AsyncSink, AnErrorOnTheLastFrameIsRethrownByFinish) {
+  // Every push returns before the worker reaches the failing last frame; only finish() is left
+  // to report it, and the inner sink must then stay unfinished.
+  std::atomic<int> pushed = 0;
+  bool finished = false;
+  AsyncSink sink(std::make_unique<RecordingSink>(pushed, finished, 4), 8);
+  for (int i = 0; i < 5; ++i) sink.push(numberedFrame(i));
+  try {
+    sink.finish();
+    FAIL() << "the worker's exception was lost";
+  } catch (const std::runtime_error& error) {
+    EXPECT_STREQ(error.what(), "disk full at frame 4");
+  }
+  EXPECT_FALSE(finished);
+  EXPECT_EQ(pushed, 4);
+}
+
+// Holds the worker inside push() until released, counting the frames it has been handed.
+class GatedSink final : public FrameSink {
+ public:
+  void push(const Image&) override {
+    std::unique_lock lock(mutex_);
+    ++entered_;
+    changed_.notify_all();
+    changed_.wait(lock, [this] { return open_; });
+  }
+  void finish() override {}
+  void open() {
+    {
+      std::lock_guard lock(mutex_);
+      open_ = true;
+    }
+    changed_.notify_all();
+  }
+  bool waitUntilEntered(int count) {
+    std::unique_lock lock(mutex_);
+    return changed_.wait_for(lock, std::chrono::seconds(30), [&] { return entered_ >= count; });
+  }
+
+ private:
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  int entered_ = 0;
+  bool open_ = false;
+};
+
+TEST(AsyncSink, AtMostCapacityFramesWaitBesideTheOneBeingWritten) {
+  // The memory bound of async_sink.h: with the worker busy on one frame, `capacity` more fit in
+  // the queue and the next push blocks until a slot frees.
+  constexpr int kCapacity = 3;
+  auto gated = std::make_unique<GatedSink>();
+  GatedSink& inner = *gated;
+  AsyncSink sink(std::move(gated), kCapacity);
+  std::atomic<int> returned = 0;
+  std::thread producer([&] {
+    for (int i = 0; i < kCapacity + 3; ++i) {
+      sink.push(numberedFrame(i));
+      ++returned;
+    }
+  });
+  ASSERT_TRUE(inner.waitUntilEntered(1));  // the worker holds frame 0
+  for (int i = 0; i < 200 && returned < kCapacity + 1; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));  // time for a push that should block to return
+  EXPECT_EQ(returned, kCapacity + 1);  // frame 0 in hand, frames 1..capacity queued
+  inner.open();
+  producer.join();
+  sink.finish();
+  EXPECT_EQ(returned, kCapacity + 3);
 }
 
 TEST(AsyncSink, DestroyedWithoutFinishLeavesNoOutput) {

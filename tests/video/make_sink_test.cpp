@@ -21,6 +21,16 @@ TEST(MakeSinkForPath, ChoosesBySuffixOrPattern) {
   EXPECT_EQ(directory.fileCount(), 0);
 }
 
+TEST(MakeSinkForPath, AnEscapedPercentInAVideoNameIsNoPattern) {
+  // "%%" is a literal percent sign, not a conversion: this is a video, not a PNG sequence.
+  ScratchDirectory directory;
+  EXPECT_NE(dynamic_cast<coinroll::video::Mp4Sink*>(makeSinkForPath(directory / "100%%.mp4", Mp4Options{}).get()),
+            nullptr);
+  EXPECT_NE(dynamic_cast<coinroll::video::PngSequenceSink*>(
+                makeSinkForPath(directory / "100%%_%d.png", Mp4Options{}).get()),
+            nullptr);
+}
+
 TEST(MakeSinkForPath, UnknownKindNamesThePathAndBothForms) {
   ScratchDirectory directory;
   const std::filesystem::path path = directory / "clip.avi";

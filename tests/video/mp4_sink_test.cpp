@@ -2,6 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <span>
 #include <fstream>
 #include <functional>
 #include <iterator>
@@ -29,8 +33,8 @@ Mp4Options smallOptions() {
   options.width = kWidth;
   options.height = kHeight;
   options.fps = kFps;
-  options.crf = 18;
-  options.preset = "veryfast";
+  options.x264.crf = 18;
+  options.x264.preset = "veryfast";
   return options;
 }
 
@@ -77,6 +81,59 @@ TEST(Mp4Sink, WritesConstantRateH264WithBt709TagsAndMoovFirst) {
   EXPECT_EQ(directory.fileCount(), 1) << "a temporary file was left beside the video";
 }
 
+// One line per entry, "key=value", as FFmpeg's own command-line reader ffprobe (tools/setup.sh
+// installs it with ffmpeg) reads the file: a second demuxer, independent of video_probe.
+std::string ffprobe(const fs::path& path, const std::string& stream, const std::string& entries) {
+  const std::string command = "ffprobe -v error -select_streams " + stream + " -show_entries " + entries +
+                              " -of default=noprint_wrappers=1 '" + path.string() + "' 2>&1";
+  std::string output;
+  if (FILE* pipe = popen(command.c_str(), "r")) {
+    char buffer[256];
+    while (fgets(buffer, sizeof buffer, pipe) != nullptr) output += buffer;
+    pclose(pipe);
+  }
+  return output;
+}
+
+TEST(Mp4Sink, FramesStartAtZeroAndTheLastLastsOneFramePeriod) {
+  // N frames at fps: shown from t = 0, the last until N / fps exactly, as a player reads the file.
+  ScratchDirectory directory;
+  const fs::path path = directory / "clip.mp4";
+  encodeMovingSquare(path, kFrames);
+  EXPECT_EQ(ffprobe(path, "v:0", "stream=start_time,duration"), "start_time=0.000000\nduration=2.000000\n");
+  EXPECT_TRUE(isNear(coinroll::video::readVideoInfo(path).durationSeconds, static_cast<double>(kFrames) / kFps, 1e-9));
+}
+
+TEST(Mp4Sink, AudioTrackHoldsEverySamplePushedUpToTheLastShortBlock) {
+  // AAC codes blocks of 1024 samples; 10 frames at 30 fps carry 16 000 samples, 15 whole blocks
+  // and 640 over. A 1 kHz tone decoded back (the encoder's priming dropped) must keep all 16 000,
+  // the last ones at the pushed amplitude too.
+  constexpr int kSamples = 16000, kPerFrame = kSamples / 10;
+  ScratchDirectory directory;
+  const fs::path path = directory / "clip.mp4";
+  Mp4Options options = smallOptions();
+  options.audio = true;
+  std::vector<float> tone(kSamples);
+  for (int i = 0; i < kSamples; ++i) tone[i] = static_cast<float>(0.5 * std::sin(2 * std::numbers::pi * 1000.0 * i / 48000));
+  {
+    Mp4Sink sink(path, options);
+    for (int frame = 0; frame < 10; ++frame) {
+      sink.push(movingSquareFrame(kWidth, kHeight, frame));
+      sink.pushAudio(std::span<const float>(tone).subspan(static_cast<std::size_t>(frame) * kPerFrame, kPerFrame));
+    }
+    sink.finish();
+  }
+  const coinroll::video::DecodedAudio audio = coinroll::video::decodeAudio(path);
+  EXPECT_EQ(audio.sampleRate, 48000);
+  // The decoder returns whole blocks: every pushed sample, then at most one block's padding.
+  ASSERT_GE(audio.samples.size(), static_cast<std::size_t>(kSamples));
+  EXPECT_LT(audio.samples.size(), static_cast<std::size_t>(kSamples + 1024));
+  // The last 400 samples (beyond the 15 whole blocks) still carry the tone: RMS 0.5 / sqrt 2.
+  double squares = 0;
+  for (int i = kSamples - 400; i < kSamples; ++i) squares += audio.samples[i] * audio.samples[i];
+  EXPECT_TRUE(isNear(std::sqrt(squares / 400), 0.5 / std::sqrt(2.0), 0.05));
+}
+
 TEST(Mp4Sink, SameFramesGiveByteIdenticalFiles) {
   ScratchDirectory directory;
   encodeMovingSquare(directory / "first.mp4", 20);
@@ -109,7 +166,7 @@ TEST(Mp4Sink, PrimaryColoursDecodeToThemselves) {
   ScratchDirectory directory;
   const fs::path path = directory / "colours.mp4";
   Mp4Options options = smallOptions();
-  options.crf = 0;  // lossless, so only the colour conversion is being tested
+  options.x264.crf = 0;  // lossless, so only the colour conversion is being tested
   {
     Mp4Sink sink(path, options);
     for (const Colour& c : colours) sink.push(solidFrame(kWidth, kHeight, c.r, c.g, c.b));
@@ -144,10 +201,11 @@ TEST(Mp4Sink, BadOptionsAreRefusedNamingTheField) {
   EXPECT_NE(messageFor([](Mp4Options& o) { o.width = 321; }).find("width"), std::string::npos);
   EXPECT_NE(messageFor([](Mp4Options& o) { o.height = 0; }).find("height"), std::string::npos);
   EXPECT_NE(messageFor([](Mp4Options& o) { o.fps = 0; }).find("fps"), std::string::npos);
-  EXPECT_NE(messageFor([](Mp4Options& o) { o.crf = 52; }).find("crf"), std::string::npos);
-  EXPECT_NE(messageFor([](Mp4Options& o) { o.threads = 0; }).find("threads"), std::string::npos);
-  EXPECT_NE(messageFor([](Mp4Options& o) { o.preset = "speedy"; }).find("'speedy'"), std::string::npos);
-  EXPECT_NE(messageFor([](Mp4Options& o) { o.crf = -1; }).find("crf"), std::string::npos);
+  EXPECT_NE(messageFor([](Mp4Options& o) { o.x264.crf = 52; }).find("crf"), std::string::npos);
+  EXPECT_NE(messageFor([](Mp4Options& o) { o.x264.threads = 0; }).find("threads"), std::string::npos);
+  EXPECT_NE(messageFor([](Mp4Options& o) { o.x264.threads = 17; }).find("threads"), std::string::npos);  // 1..16
+  EXPECT_NE(messageFor([](Mp4Options& o) { o.x264.preset = "speedy"; }).find("'speedy'"), std::string::npos);
+  EXPECT_NE(messageFor([](Mp4Options& o) { o.x264.crf = -1; }).find("crf"), std::string::npos);
   EXPECT_EQ(directory.fileCount(), 0);
 }
 
@@ -161,6 +219,8 @@ TEST(Mp4Sink, FrameOfTheWrongSizeIsRefused) {
   ScratchDirectory directory;
   Mp4Sink sink(directory / "clip.mp4", smallOptions());
   EXPECT_THROW(sink.push(movingSquareFrame(kWidth * 2, kHeight, 0)), std::invalid_argument);
+  EXPECT_THROW(sink.push(movingSquareFrame(kWidth, kHeight * 2, 0)), std::invalid_argument);
+  EXPECT_THROW(sink.push(movingSquareFrame(kWidth, kHeight / 2, 0)), std::invalid_argument);
 }
 
 TEST(Mp4Sink, FinishWithoutFramesThrowsAndLeavesNoFile) {

@@ -30,6 +30,30 @@ TEST(PngSequenceSink, PlainPercentDAndEscapedPercentAreHonoured) {
   EXPECT_EQ(sink.pathOfFrame(12), directory / "100%_12.png");
 }
 
+TEST(PngSequenceSink, ZeroPaddingWidthsOneToTenAreHonoured) {
+  // The pattern's contract: %0Nd with N = 1..10 pads the frame number with zeros to N digits.
+  ScratchDirectory directory;
+  for (int width = 1; width <= 10; ++width) {
+    const std::string conversion = "%0" + std::to_string(width) + "d";
+    PngSequenceSink sink(directory / ("f_" + conversion + ".png"));
+    const std::string number = std::to_string(42);
+    const std::string padded = std::string(width > 2 ? width - 2 : 0, '0') + number;
+    EXPECT_EQ(sink.pathOfFrame(42), directory / ("f_" + padded + ".png")) << conversion;
+  }
+}
+
+TEST(PngSequenceSink, OnlyAnUnescapedPercentMakesASequencePattern) {
+  // "%%" is a literal percent sign: names holding only escapes are plain files.
+  using coinroll::video::looksLikeSequencePattern;
+  EXPECT_TRUE(looksLikeSequencePattern("frame_%05d.png"));
+  EXPECT_TRUE(looksLikeSequencePattern("100%%_%d.png"));
+  EXPECT_TRUE(looksLikeSequencePattern("%%%d.png"));
+  EXPECT_FALSE(looksLikeSequencePattern("100%%.mp4"));
+  EXPECT_FALSE(looksLikeSequencePattern("a%%b%%c.png"));
+  EXPECT_FALSE(looksLikeSequencePattern("%%"));
+  EXPECT_FALSE(looksLikeSequencePattern("clip.mp4"));
+}
+
 TEST(PngSequenceSink, PercentInTheDirectoryIsLiteral) {
   ScratchDirectory directory;
   fs::create_directory(directory / "50%d");
@@ -70,7 +94,7 @@ TEST(PngSequenceSink, EarlierFilesOfTheSameNamesSurviveAnUnfinishedRunAndAreRepl
 TEST(PngSequenceSink, MalformedPatternsAreRefusedNamingThePattern) {
   ScratchDirectory directory;
   for (const char* pattern : {"frame.png", "a_%d_%d.png", "frame_%s.png", "frame_%5d.png", "frame_%05d.jpg",
-                              "frame_%0d.png", "frame_%d"}) {
+                              "frame_%0d.png", "frame_%d", "frame_%00d.png", "frame_%011d.png", "frame_%099d.png"}) {
     const fs::path path = directory / pattern;
     try {
       PngSequenceSink sink(path);

@@ -1,13 +1,10 @@
-#include "pipeline/framing.h"
-
-#include <fmt/format.h>
+#include "pipeline/camera_rig.h"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 
 #include "physics/observables.h"
-#include "pipeline/coin_run.h"
 
 namespace coinroll::pipeline {
 
@@ -45,63 +42,6 @@ double fittingDistance(const Eigen::Vector3d& lower, const Eigen::Vector3d& uppe
 
 }  // namespace
 
-render::CoinPose coinPose(const physics::CoinModel& model, const physics::CoinState& state) {
-  const Eigen::Quaterniond q = physics::attitude(state);
-  return {toGlm(physics::centreOfMass(model, state)),
-          glm::quat(static_cast<float>(q.w()), static_cast<float>(q.x()), static_cast<float>(q.y()), static_cast<float>(q.z()))};
-}
-
-Eigen::Vector2d contactOnFloor(const physics::CoinModel& model, const physics::CoinState& state) {
-  const Eigen::Vector3d c = physics::contactPoint(model, state);
-  return {c.x(), c.z()};
-}
-
-std::vector<std::string> hudLines(const physics::CoinModel& model, const physics::CoinState& state, double time,
-                                  const std::vector<std::string>& extra) {
-  // Near flat psi-dot grows with the contact point's rate while the face itself turns slowly, so
-  // the overlay names what it shows: Omega = phi-dot (the contact point round the floor, in Hz,
-  // what the ear hears and the eye follows) and the face's own turning omega_Z = psi-dot - phi-dot sin(theta).
-  std::vector<std::string> lines = {
-      fmt::format("t        {:9.3f} s", time),
-      fmt::format("tilt     {:9.2f} deg above floor", 90 - std::abs(state.theta) * 180 / std::numbers::pi),
-      fmt::format("contact  {:9.2f} Hz round the floor", std::abs(physics::precessionRate(state)) / (2 * std::numbers::pi)),
-      fmt::format("face     {:9.2f} rad/s about its axis", state.omega_Z),
-      fmt::format("E        {:9.5f} J", physics::energy(model, state)),
-  };
-  if (!model.effects.empty()) {
-    lines.push_back(fmt::format("P        {:9.3f} mW dissipated", 1e3 * physics::dynamics(model, state).loads.power));
-  }
-  lines.insert(lines.end(), extra.begin(), extra.end());
-  return lines;
-}
-
-double traceInterval(double duration) { return std::max(1.0 / 240, duration / 20000); }
-
-MotionSurvey surveyMotion(const Simulation& simulation) {
-  CoinRun trajectory(simulation);
-  const physics::CoinModel& model = simulation.model;
-  MotionSurvey survey;
-  survey.lower = survey.upper = physics::centreOfMass(model, simulation.initial);
-  const double dt = traceInterval(simulation.duration);
-  const long samples = static_cast<long>(std::floor(simulation.duration / dt));
-  survey.endTime = simulation.duration;
-  for (long k = 0; k <= samples + 1; ++k) {
-    const double t = std::min(static_cast<double>(k) * dt, simulation.duration);
-    const std::optional<physics::CoinState> y = trajectory.stateAt(t);
-    if (!y) break;
-    const physics::CoinState s = *y;
-    for (const Eigen::Vector3d& p : {physics::centreOfMass(model, s), physics::contactPoint(model, s)}) {
-      survey.lower = survey.lower.cwiseMin(p);
-      survey.upper = survey.upper.cwiseMax(p);
-    }
-  }
-  if (trajectory.stoppedBy()) {
-    survey.stoppedBy = trajectory.stoppedBy();
-    survey.endTime = trajectory.stoppedBy()->t;
-  }
-  return survey;
-}
-
 CameraRig::CameraRig(const scene::CameraSpec& spec, const MotionSurvey& survey, const physics::CoinModel& model,
                      int width, int height)
     : spec_(spec), model_(model) {
@@ -116,7 +56,7 @@ CameraRig::CameraRig(const scene::CameraSpec& spec, const MotionSurvey& survey, 
   const double tanHalfX = tanHalfY * width / height;
   const double elevation = radians(spec.elevationDegrees);
   // An orbit sees the box from every side: fit it from 16 azimuths and keep the farthest.
-  const int azimuths = spec.mode == "orbit" ? 16 : 1;
+  const int azimuths = spec.mode == scene::CameraMode::Orbit ? 16 : 1;
   distance_ = 0;
   for (int i = 0; i < azimuths; ++i) {
     const double azimuth = radians(kDefaultAzimuthDegrees) + 2 * std::numbers::pi * i / azimuths;
@@ -131,7 +71,7 @@ render::CameraView CameraRig::at(double time, const physics::CoinState& state) c
   view.fovYDegrees = static_cast<float>(spec_.fovDegrees);
   const double elevation = radians(spec_.elevationDegrees);
   const double azimuth = radians(kDefaultAzimuthDegrees);
-  if (spec_.mode == "follow") {
+  if (spec_.mode == scene::CameraMode::Follow) {
     const Eigen::Vector3d centre = physics::centreOfMass(model_, state);
     const Eigen::Vector3d offset = spec_.eye && spec_.target
                                        ? Eigen::Vector3d(spec_.eye->at(0) - spec_.target->at(0), spec_.eye->at(1) - spec_.target->at(1),
@@ -142,7 +82,7 @@ render::CameraView CameraRig::at(double time, const physics::CoinState& state) c
     return view;
   }
   view.target = toGlm(target_);
-  if (spec_.mode == "orbit") {
+  if (spec_.mode == scene::CameraMode::Orbit) {
     const double turn = 2 * std::numbers::pi * time / spec_.orbitPeriod;
     double radius = distance_ * std::cos(elevation), height = distance_ * std::sin(elevation), start = azimuth;
     if (spec_.eye) {
@@ -158,28 +98,6 @@ render::CameraView CameraRig::at(double time, const physics::CoinState& state) c
   view.eye = spec_.eye ? glm::vec3(spec_.eye->at(0), spec_.eye->at(1), spec_.eye->at(2))
                        : toGlm(target_ + distance_ * viewDirection(azimuth, elevation));
   return view;
-}
-
-float traceWidthFor(const render::CameraView& view, int height, double coinRadius) {
-  const float metresPerPixel =
-      2.0f * glm::length(view.eye - view.target) * std::tan(glm::radians(0.5f * view.fovYDegrees)) / static_cast<float>(height);
-  return std::max(2.5f * metresPerPixel, 0.05f * static_cast<float>(coinRadius));
-}
-
-render::RenderSettings renderSettings(const scene::SceneConfig& scene) {
-  render::RenderSettings settings;
-  settings.width = scene.render.width;
-  settings.height = scene.render.height;
-  settings.msaa = scene.render.msaa;
-  settings.antialiasing = scene.render.antialiasing == "fxaa" ? render::Antialiasing::Fxaa : render::Antialiasing::Msaa;
-  settings.coin.radius = static_cast<float>(scene.coin.radius);
-  settings.coin.thickness = static_cast<float>(scene.coin.thickness);
-  if (scene.coin.shape == scene::Shape::Ring) {
-    // A thin hoop (b = a) is drawn as a band as wide as it is thick, so it stays visible.
-    const double band = std::max(scene.coin.thickness, 0.04 * scene.coin.radius);
-    settings.coin.innerRadius = static_cast<float>(std::min(scene.coin.innerRadius, scene.coin.radius - band));
-  }
-  return settings;
 }
 
 }  // namespace coinroll::pipeline

@@ -1,0 +1,32 @@
+#pragma once
+// The scene's render.camera turned into a view per time, placed from the motion survey.
+
+#include <Eigen/Core>
+
+#include "physics/coin_model.h"
+#include "physics/coin_state.h"
+#include "pipeline/motion_survey.h"
+#include "render/frame_snapshot.h"
+#include "scene/scene_config.h"
+
+namespace coinroll::pipeline {
+
+// Fixed frames the survey box; orbit keeps the same distance and circles the box once per orbit
+// period; follow tracks the coin. An eye or target given in the scene overrides the framing.
+class CameraRig {
+ public:
+  // `width` x `height`: the picture in pixels, whose aspect ratio the framing fits.
+  CameraRig(const scene::CameraSpec& spec, const MotionSurvey& survey, const physics::CoinModel& model, int width,
+            int height);
+  // The view at simulated `time` (s) with the coin at `state`.
+  render::CameraView at(double time, const physics::CoinState& state) const;
+
+ private:
+  scene::CameraSpec spec_;
+  physics::CoinModel model_;
+  Eigen::Vector3d target_;
+  double distance_ = 1;        // m
+  double followDistance_ = 1;  // m
+};
+
+}  // namespace coinroll::pipeline

@@ -1,0 +1,48 @@
+#pragma once
+// What a Renderer is built with: picture size, anti-aliasing, the coin's drawn shape. Plain data
+// and std only, so src/scene can hold these settings (and validate a scene file into them)
+// without seeing OpenGL: the one definition of each default and limit.
+
+#include <algorithm>
+#include <array>
+
+namespace coinroll::render {
+
+// Picture sides, pixels. The lower bound keeps the overlay and the grid legible; the upper is 8K
+// UHD's width: one 7680 x 4320 picture with 4x MSAA already takes about 1 GiB of colour and
+// depth-stencil samples in llvmpipe, so a larger number is a typo rather than a wish.
+inline constexpr int kMinImageSide = 16;
+inline constexpr int kMaxImageSide = 7680;
+
+// The MSAA sample counts a scene may ask for; the Renderer also refuses more than its OpenGL's
+// GL_MAX_SAMPLES (llvmpipe's is 4 on Debian 12).
+inline constexpr std::array<int, 4> kMsaaSampleCounts = {1, 2, 4, 8};
+
+inline constexpr bool isMsaaSampleCount(int samples) {
+  return std::find(kMsaaSampleCounts.begin(), kMsaaSampleCounts.end(), samples) != kMsaaSampleCounts.end();
+}
+
+// Msaa: `msaa` samples per pixel, resolved by a blit. Fxaa: one sample per pixel and a fast
+// approximate anti-aliasing pass over the picture (shaders/fxaa.frag); `msaa` is ignored.
+enum class Antialiasing { Msaa, Fxaa };
+
+// The coin as drawn: a closed cylinder, an annulus when it has a hole.
+struct CoinShape {
+  float radius = 0.0375f;     // m
+  float innerRadius = 0.0f;   // m, 0 for a solid disk
+  float thickness = 0.00225f; // m
+};
+
+struct RenderSettings {
+  int width = 1280, height = 720;  // pixels, in [kMinImageSide, kMaxImageSide]
+  Antialiasing antialiasing = Antialiasing::Msaa;
+  int msaa = 4;                    // samples per pixel, one of kMsaaSampleCounts (1: none)
+  CoinShape coin;
+  bool showShadow = true;
+  // When a frame's camera equals the previous frame's, the sky and the floor are copied from the
+  // first such frame instead of shaded again (the largest part of a frame on llvmpipe). The bytes
+  // are the same either way; off only to measure or test the saving.
+  bool reuseStaticBackground = true;
+};
+
+}  // namespace coinroll::render

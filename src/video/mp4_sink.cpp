@@ -177,8 +177,10 @@ void Mp4Sink::Encoder::encode(AVCodecContext& encoder, AVStream& target, const A
     const int received = avcodec_receive_packet(&encoder, packet.get());
     if (received == AVERROR(EAGAIN) || received == AVERROR_EOF) return;
     checkAv(received, context + "receiving a packet from " + what);
-    // Every video frame lasts one tick of 1/fps; without this the last frame has no duration and
-    // the file is one frame short. (The AAC encoder sets its packets' durations itself.)
+    // Every video frame lasts one tick of 1/fps. libx264 leaves the duration 0 and FFmpeg 5.1's
+    // muxer then guesses it from the stream's frame rate, which gives the same tick; saying it here
+    // keeps the last frame's length (and so the file's) from resting on that guess. (The AAC
+    // encoder sets its packets' durations itself.)
     if (&encoder == codec.get()) packet->duration = 1;
     av_packet_rescale_ts(packet.get(), encoder.time_base, target.time_base);
     packet->stream_index = target.index;

@@ -159,6 +159,30 @@ std::string fileNameFrom(const std::string& sceneName) {
 
 }  // namespace
 
+namespace {
+
+// Runs `write` into `path`: standard output for "-", otherwise a temporary file that takes the name
+// only once `write` and the close have succeeded. `what` names the content in errors ("CSV").
+void writeTextOutput(const std::string& path, std::string_view what, const std::function<void(std::ostream&)>& write) {
+  if (path == "-") {
+    write(std::cout);
+    std::cout.flush();
+    // A full device, a closed stdout or a reader gone while SIGPIPE is ignored: the stream says so.
+    if (!std::cout) throw std::runtime_error(fmt::format("writing the {} to stdout failed: {}", what, std::strerror(errno)));
+    return;
+  }
+  io::AtomicOutputFile file(path);
+  {
+    std::ofstream out(file.temporaryPath());
+    write(out);
+    out.close();
+    if (!out) throw std::runtime_error(fmt::format("{}: writing the {} failed: {}", path, what, std::strerror(errno)));
+  }
+  file.commit();
+}
+
+}  // namespace
+
 void runSimulate(const SimulateOptions& options) {
   if (!(options.sampleDt > 0) || !std::isfinite(options.sampleDt)) {
     throw UsageError(fmt::format("--sample-dt: must be a finite number > 0 s, got {}", options.sampleDt));
@@ -176,22 +200,9 @@ void runSimulate(const SimulateOptions& options) {
 
   ProgressLine noProgress(false);
   const pipeline::CsvRunResult result = withProgress(noProgress, options.csvPath, [&] {
-    if (options.csvPath == "-") {
-      const pipeline::CsvRunResult r = pipeline::writeTrajectoryCsv(simulation, options.sampleDt, std::cout);
-      std::cout.flush();
-      // A full device, a closed stdout or a reader gone while SIGPIPE is ignored: the stream says so.
-      if (!std::cout) throw std::runtime_error(std::string("writing the CSV to stdout failed: ") + std::strerror(errno));
-      return r;
-    }
-    io::AtomicOutputFile file(options.csvPath);
     pipeline::CsvRunResult r;
-    {
-      std::ofstream out(file.temporaryPath());
-      r = pipeline::writeTrajectoryCsv(simulation, options.sampleDt, out);
-      out.close();
-      if (!out) throw std::runtime_error(options.csvPath + ": writing the CSV failed: " + std::strerror(errno));
-    }
-    file.commit();
+    writeTextOutput(options.csvPath, "CSV",
+                    [&](std::ostream& out) { r = pipeline::writeTrajectoryCsv(simulation, options.sampleDt, out); });
     return r;
   });
   reportStop(result);
@@ -341,7 +352,7 @@ void refuseMisnamedAxes(const pipeline::SweepSpec& spec) {
 }
 
 void runSweep(const SweepOptions& options) {
-  refuseOverwritingInput("-o", options.output, inputsOf(options.scene));
+  if (options.output != "-") refuseOverwritingInput("-o", options.output, inputsOf(options.scene));
   pipeline::SweepSpec spec;
   std::tie(spec.scene, spec.sourceName) = loadSceneDocument(options.scene);
   spec.parseOptions = {.solverMethods = integrate::methodNames()};
@@ -361,43 +372,34 @@ void runSweep(const SweepOptions& options) {
   }
   spec.threads = options.threads > 0 ? options.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 
-  io::AtomicOutputFile file(options.output);
   ProgressLine progress(!options.quiet && isatty(STDERR_FILENO) == 1);
   const auto start = std::chrono::steady_clock::now();
-  // The temporary file goes with `file` when an exception leaves this function.
   const pipeline::SweepResult result = withProgress(progress, options.output, [&] {
-    std::ofstream out(file.temporaryPath());
-    const pipeline::SweepResult r =
-        pipeline::runSweep(spec, out, [&](long done, long total) { progress.update(done, total); }, &interruptRequested());
-    out.close();
-    if (!out) throw std::runtime_error(options.output + ": writing the sweep failed: " + std::strerror(errno));
+    pipeline::SweepResult r;
+    writeTextOutput(options.output, "sweep", [&](std::ostream& out) {
+      r = pipeline::runSweep(spec, out, [&](long done, long total) { progress.update(done, total); }, &interruptRequested());
+    });
     return r;
   });
-  file.commit();
   if (!options.quiet) {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::cerr << fmt::format("coinroll: wrote {} ({} points{}, {} failed; {:.1f} s, {:.0f} points/s on {} threads)\n",
-                             options.output, result.points,
+                             options.output == "-" ? "standard output" : options.output, result.points,
                              spec.shard.count > 1 ? fmt::format(", shard {}/{}", spec.shard.index, spec.shard.count) : "",
                              result.failed, seconds, result.points / std::max(seconds, 1e-9), spec.threads);
   }
 }
 
 void runSweepMerge(const SweepMergeOptions& options) {
-  refuseOverwritingInput("-o", options.output, {options.shards.begin(), options.shards.end()});
-  io::AtomicOutputFile file(options.output);
-  {
-    std::ofstream out(file.temporaryPath());
-    std::vector<std::filesystem::path> shards(options.shards.begin(), options.shards.end());
+  const std::vector<std::filesystem::path> shards(options.shards.begin(), options.shards.end());
+  if (options.output != "-") refuseOverwritingInput("-o", options.output, shards);
+  writeTextOutput(options.output, "merged sweep", [&](std::ostream& out) {
     try {
       pipeline::mergeSweepShards(shards, out);
     } catch (const std::invalid_argument& e) {
       throw UsageError(e.what());
     }
-    out.close();
-    if (!out) throw std::runtime_error(options.output + ": writing the merged sweep failed: " + std::strerror(errno));
-  }
-  file.commit();
+  });
 }
 
 namespace {

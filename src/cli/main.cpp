@@ -127,7 +127,7 @@ int main(int argc, char** argv) {
                            "(degrees for angles); repeatable, the last axis runs fastest")
       ->required()
       ->type_name("KEY=START:STOP:COUNT");
-  sweepCommand->add_option("-o,--output", sweep.output, "Output CSV path (written atomically)")->required();
+  sweepCommand->add_option("-o,--output", sweep.output, "Output CSV path (written atomically), or - for standard output")->required();
   sweepCommand->add_option("--shard", sweep.shard, "Compute only the points p with p mod N = K - 1 (K/N, 1 <= K <= N)")
       ->type_name("K/N");
   sweepCommand->add_option("--threads", sweep.threads, "Worker threads (default 0: every hardware thread)");
@@ -144,7 +144,7 @@ int main(int argc, char** argv) {
   SweepMergeOptions sweepMerge;
   CLI::App* sweepMergeCommand = app.add_subcommand(
       "sweep-merge", "Merge the shard files of one sweep into the file the unsharded sweep writes");
-  sweepMergeCommand->add_option("-o,--output", sweepMerge.output, "Output CSV path (written atomically)")->required();
+  sweepMergeCommand->add_option("-o,--output", sweepMerge.output, "Output CSV path (written atomically), or - for standard output")->required();
   sweepMergeCommand->add_option("shards", sweepMerge.shards, "Shard CSV files (any order)")->required();
   sweepMergeCommand->footer("Fails, naming the points, if a point is missing or repeated.");
 

@@ -31,6 +31,14 @@ AtomicOutputFile::AtomicOutputFile(std::filesystem::path destination)
     throw std::runtime_error(destination_.string() + ": cannot write: directory '" + directory.string() +
                              "' does not exist");
   }
+  // A name longer than the file system holds would fail only at the final rename, after the work.
+  const long nameLimit = ::pathconf(directory.c_str(), _PC_NAME_MAX);
+  const std::size_t maxNameBytes = nameLimit > 0 ? static_cast<std::size_t>(nameLimit) : kMaxNameBytes;
+  if (const std::size_t nameBytes = destination_.filename().string().size(); nameBytes > maxNameBytes) {
+    throw std::runtime_error(destination_.string() + ": cannot write: " + std::strerror(ENAMETOOLONG) + " (" +
+                             std::to_string(nameBytes) + " bytes; this file system allows " +
+                             std::to_string(maxNameBytes) + ")");
+  }
   // Renaming onto /dev/null or a FIFO would replace the special file itself.
   if (std::filesystem::exists(destination_, ec) && !std::filesystem::is_regular_file(destination_, ec)) {
     throw std::runtime_error(destination_.string() + ": cannot write: exists and is not a regular file");

@@ -596,8 +596,8 @@ case("name-255-seq", C, "PNG sequence whose names are 255 bytes",
      produces=("a" * 245 + "_0000[0-3].png",))
 case("name-255-utf8", C, "255-byte name of two-byte characters",
      f"simulate scene.json --csv {'é' * 125}a.csv", 0, None, produces=("é" * 125 + "a.csv",))
-case("name-256", C, "256-byte CSV name (one past the limit)", f"simulate scene.json --csv a{LONG}.csv", 1,
-     "cannot move the finished output into place: File name too long", key="File name too long")
+case("name-256", C, "256-byte CSV name (one past the limit), refused before the run", f"simulate scene.json --csv a{LONG}.csv", 1,
+     "cannot write: File name too long (256 bytes; this file system allows 255)", key="File name too long (256 bytes")
 
 # --- full disk: /dev/full, and a 512-byte file-size limit with SIGXFSZ ignored (writes fail with EFBIG)
 C = "full disk"
@@ -607,6 +607,14 @@ case("dev-full-csv", C, "--csv /dev/full", "simulate scene.json --csv /dev/full"
 case("dev-full-stdout", C, "--csv - with stdout on /dev/full", "exec {bin} simulate scene.json --csv - >/dev/full", 1,
      "writing the CSV to stdout failed: No space left on device", key="No space left on device", shell=True,
      gtest=("CliTest.AFailedWriteToStdoutIsAnError",))
+case("dev-full-sweep-stdout", C, "sweep -o - with stdout on /dev/full",
+     "exec {bin} sweep scene.json -q --grid initial.theta=1:20:4 -o - >/dev/full", 1,
+     "writing the sweep to stdout failed: No space left on device", key="No space left on device", shell=True,
+     na_before="no -o - for sweep before")
+case("dev-full-merge-stdout", C, "sweep-merge -o - with stdout on /dev/full",
+     "exec {bin} sweep-merge -o - p1.csv p2.csv >/dev/full", 1,
+     "writing the merged sweep to stdout failed: No space left on device", key="No space left on device", shell=True,
+     files=SHARDS, na_before="no -o - for sweep-merge before")
 case("dev-full-steady", C, "steady with stdout on /dev/full",
      "exec {bin} steady --kind straight --omega-Z 5 >/dev/full", 1,
      "No space left on device", shell=True)

@@ -76,6 +76,22 @@ TEST_F(SweepCliTest, SameBytesForOneAndTwoThreadsAndForShardsRunByGnuParallel) {
   EXPECT_FALSE(fs::exists(refused));
 }
 
+TEST_F(SweepCliTest, DashWritesTheSameBytesToStandardOutputAndNoFile) {
+  const fs::path file = dir_ / "file.csv", piped = dir_ / "piped.csv", merged = dir_ / "merged.csv";
+  ASSERT_EQ(runCoinroll("sweep " + scene().string() + kGrid + " -q -o " + file.string()).exitCode, 0);
+  ASSERT_EQ(runCoinroll("sweep " + scene().string() + kGrid + " -q -o - > " + piped.string()).exitCode, 0);
+  EXPECT_EQ(slurp(piped), slurp(file));
+  for (const char* shard : {"1", "2"}) {
+    ASSERT_EQ(runCoinroll("sweep " + scene().string() + kGrid + " -q --shard " + shard + "/2 -o " +
+                          (dir_ / (std::string("part") + shard + ".csv")).string()).exitCode, 0);
+  }
+  ASSERT_EQ(runCoinroll("sweep-merge -o - " + (dir_ / "part1.csv").string() + " " + (dir_ / "part2.csv").string() + " > " +
+                        merged.string()).exitCode, 0);
+  EXPECT_EQ(slurp(merged), slurp(file));
+  EXPECT_FALSE(fs::exists(dir_ / "-"));
+  EXPECT_FALSE(fs::exists(fs::current_path() / "-"));
+}
+
 TEST_F(SweepCliTest, RowsFollowTheGridLastAxisFastestAndMatchTheTrajectoryCsv) {
   const fs::path sweep = dir_ / "sweep.csv";
   ASSERT_EQ(runCoinroll("sweep " + scene().string() + kGrid + " -q -o " + sweep.string()).exitCode, 0);

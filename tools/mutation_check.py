@@ -381,7 +381,7 @@ class Runner:
     def baseline(self):
         passed, failed, seconds, out = self.ctest()
         if not passed and not failed[0].startswith("(ctest exit"):
-            passed, failed2, _, _ = self.ctest(only=failed)
+            passed, _, _, _ = self.ctest(only=failed)
             if passed:
                 log(f"baseline: {', '.join(failed)} failed once and passed when run again (flaky)")
         if not passed:

@@ -157,10 +157,6 @@ std::string fileNameFrom(const std::string& sceneName) {
   return name;
 }
 
-}  // namespace
-
-namespace {
-
 // Runs `write` into `path`: standard output for "-", otherwise a temporary file that takes the name
 // only once `write` and the close have succeeded. `what` names the content in errors ("CSV").
 void writeTextOutput(const std::string& path, std::string_view what, const std::function<void(std::ostream&)>& write) {

@@ -42,18 +42,16 @@ Measurement measure(const pipeline::Simulation& simulation) {
     m.seconds = std::min(m.seconds, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     m.evaluations = run.stats().rhsEvaluations;
     m.steps = run.stats().acceptedSteps;
-    physics::CoinState endState = last->state;
     double dissipated = last->dissipated;
     m.end = simulation.duration;
+    double endEnergy = last->forward.energy;
     if (const auto hit = run.stoppedBy()) {
-      endState = physics::toState(hit->y);
       m.end = hit->t;
-      // The hit's dissipated energy: sample just before the stop through a fresh run.
-      pipeline::CoinRun again(simulation);
-      dissipated = again.sampleAt(std::nextafter(hit->t, 0.0))->dissipated;
+      endEnergy = hit->forward.energy;
+      dissipated = hit->dissipated;
     }
     const double E0 = physics::energy(simulation.model, simulation.initial);
-    m.budget = std::abs(physics::energy(simulation.model, endState) + dissipated - E0) / E0;
+    m.budget = std::abs(endEnergy + dissipated - E0) / E0;
   }
   return m;
 }

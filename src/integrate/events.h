@@ -10,7 +10,8 @@ namespace coinroll::integrate {
 
 template <int N>
 struct Event {
-  std::string name;                                    // e.g. "lift-off"
+  std::string name;                                    // e.g. "lift-off", for messages
+  int id = 0;            // the caller's own identity for the event (an enum's value): compared, never the name
   std::function<double(double t, const Vec<N>& y)> g;  // the event is a root of g
   int direction = 0;     // 0 any crossing, +1 only g rising through 0, -1 only falling
   bool terminal = true;  // stop the run at the root
@@ -19,6 +20,7 @@ struct Event {
 template <int N>
 struct EventHit {
   std::string name;
+  int id = 0;
   double t = 0;  // s
   Vec<N> y;
 };

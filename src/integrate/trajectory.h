@@ -216,7 +216,7 @@ class Trajectory {
       if (!((e.direction >= 0 && rising) || (e.direction <= 0 && falling))) continue;
       const double tRoot = locateRoot(
           [&](double t) { return e.g(t, interval().at(t)); }, tStart, gStart, t_, gEnd);
-      EventHit<N> hit{e.name, tRoot, interval().at(tRoot)};
+      EventHit<N> hit{e.name, e.id, tRoot, interval().at(tRoot)};
       if (!e.terminal) {
         nonTerminalHits_.push_back(hit);
       } else if (!earliestTerminal || tRoot < earliestTerminal->t) {

@@ -8,7 +8,7 @@ namespace coinroll::physics {
 Loads loads(const AirDrag& law, const ContactKinematics& k) {
   const Eigen::Vector3d rocking = horizontalAngularVelocity(k);
   const double alpha = tiltAboveFloor(k);
-  const double a = k.a, mu = law.viscosity;
+  const double a = k.faceRadius, mu = law.viscosity;
   // Moffatt's P = pi mu a^3 Omega^2 / (4 alpha) with Omega = |omega_h| / alpha (eqs. 2.2-2.3);
   // the boundary layer multiplies it by the gap over the Stokes layer, a alpha / sqrt(nu / Omega) (2.6).
   double resistance = std::numbers::pi * mu * a * a * a / (4 * alpha * alpha * alpha);  // N m s

@@ -6,15 +6,17 @@
 #include <vector>
 
 #include "physics/effects.h"
+#include "physics/rim.h"
 
 namespace coinroll::physics {
 
 struct CoinModel {
   double M = 0;    // kg, mass
-  double a = 0;    // m, radius (centre to rim, where the coin touches the floor)
+  double a = 0;    // m, outer radius
   double g = 0;    // m/s^2, gravitational acceleration
   double I_X = 0;  // kg m^2, moment about a diameter (I_X = I_Y by symmetry)
   double I_Z = 0;  // kg m^2, moment about the symmetry axis
+  Rim rim;         // thickness 0 (the default): the seed's thin coin, bit for bit
   std::vector<Effect> effects;  // empty: the seed's ideal rolling, energy conserved
 };
 

@@ -15,7 +15,7 @@ struct ContactKinematics {
   Eigen::Vector3d e_Y;    // coin axis: in the coin plane, from the contact point towards the centre
   Eigen::Vector3d e_Z;    // coin axis: the face normal
   Eigen::Vector3d omega;  // rad/s, angular velocity
-  double a = 0;           // m, radius: the contact point is a from the centre, along -e_Y
+  double faceRadius = 0;  // m, radius of the flat face the air gap lies under: a - rho (docs/rim.md §6)
   double N = 0;           // N, normal force of the floor (the model needs N > 0)
 };
 

@@ -23,33 +23,51 @@ Eigen::Quaterniond attitude(const CoinState& s) {
 }
 
 double energy(const CoinModel& m, const CoinState& s) {
-  const double Ma2 = m.M * m.a * m.a;
   const double wX2 = s.omega_X * s.omega_X, wY2 = s.omega_Y * s.omega_Y, wZ2 = s.omega_Z * s.omega_Z;
-  return 0.5 * Ma2 * (wX2 + wZ2) + 0.5 * (m.I_X * (wX2 + wY2) + m.I_Z * wZ2) +
-         m.M * m.g * m.a * std::cos(s.theta);
+  const double rotation = 0.5 * (m.I_X * (wX2 + wY2) + m.I_Z * wZ2);
+  if (m.rim.thin()) {
+    const double Ma2 = m.M * m.a * m.a;
+    return 0.5 * Ma2 * (wX2 + wZ2) + rotation + m.M * m.g * m.a * std::cos(s.theta);
+  }
+  return 0.5 * m.M * centreOfMassVelocity(m, s).squaredNorm() + rotation + m.M * m.g * centreOfMass(m, s).y();  // (4.4)
 }
 
 Eigen::Vector3d centreOfMass(const CoinModel& m, const CoinState& s) {
-  return {s.x, m.a * std::cos(s.theta), s.z};
+  const double sinTheta = std::sin(s.theta), cosTheta = std::cos(s.theta);
+  if (m.rim.thin()) return {s.x, m.a * cosTheta, s.z};
+  return {s.x, centreHeight(contactOffset(m.rim, m.a, sinTheta, cosTheta), sinTheta, cosTheta), s.z};
+}
+
+Eigen::Vector3d contactVector(const CoinModel& m, const CoinState& s) {
+  const Eigen::Matrix3d axes = coinAxesInFloor(s);
+  if (m.rim.thin()) return -m.a * axes.row(1).transpose();
+  const ContactOffset o = contactOffset(m.rim, m.a, std::sin(s.theta), std::cos(s.theta));
+  return (-o.reach * axes.row(1) + o.lift * axes.row(2)).transpose();  // (1.3)
 }
 
 Eigen::Vector3d centreOfMassVelocity(const CoinModel& m, const CoinState& s) {
-  // v = a (-omega_Z e_X + omega_X e_Z), e_X and e_Z the rows of coinAxesInFloor.
   const Eigen::Matrix3d axes = coinAxesInFloor(s);
-  const Eigen::Vector3d v = m.a * (-s.omega_Z * axes.row(0) + s.omega_X * axes.row(2)).transpose();
-  return v;
+  if (m.rim.thin()) {
+    // v = a (-omega_Z e_X + omega_X e_Z), e_X and e_Z the rows of coinAxesInFloor.
+    return m.a * (-s.omega_Z * axes.row(0) + s.omega_X * axes.row(2)).transpose();
+  }
+  const Eigen::Vector3d omega = axes.transpose() * Eigen::Vector3d(s.omega_X, s.omega_Y, s.omega_Z);
+  return -omega.cross(contactVector(m, s));  // no slip at the material contact point (1.6)
 }
 
 Eigen::Vector3d contactPoint(const CoinModel& m, const CoinState& s) {
-  // r_c = r - a e_Y.
-  const Eigen::Vector3d eY = coinAxesInFloor(s).row(1).transpose();
-  return centreOfMass(m, s) - m.a * eY;
+  if (m.rim.thin()) {
+    // r_c = r - a e_Y.
+    const Eigen::Vector3d eY = coinAxesInFloor(s).row(1).transpose();
+    return centreOfMass(m, s) - m.a * eY;
+  }
+  return centreOfMass(m, s) + contactVector(m, s);
 }
 
 double spinRate(const CoinState& s) { return s.omega_Z + std::tan(s.theta) * s.omega_Y; }
 
 double precessionRate(const CoinState& s) { return s.omega_Y / std::cos(s.theta); }
 
-Reaction reaction(const CoinModel& m, const CoinState& s) { return dynamics(m, s).reaction; }
+Reaction reaction(const CoinModel& m, const CoinState& s) { return forward(m, s).reaction; }
 
 }  // namespace coinroll::physics

@@ -1,13 +1,15 @@
 #pragma once
-// Quantities derived from one state (seed section 4): energy, positions and velocities, the
-// floor's reaction, the attitude quaternion. Floor frame xyz has y up; the floor is y = 0.
+// Quantities derived from one state in the seed's variables (seed section 4): energy, positions
+// and velocities, the attitude quaternion, for the thin coin and for a coin with a rim (docs/rim.md
+// §1, §4). Floor frame xyz has y up; the floor is y = 0. A run reads them through its formulation's
+// forward pass (forward.h); these serve the Euler-angle one, steady states and the command line.
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
 #include "physics/coin_model.h"
 #include "physics/coin_state.h"
-#include "physics/dynamics.h"
+#include "physics/forward.h"
 
 namespace coinroll::physics {
 
@@ -18,27 +20,30 @@ Eigen::Matrix3d coinAxesInFloor(const CoinState& state);
 // (ERRATA, "Conventions"). For psi = 0 it maps e_x, e_y, e_z onto the rows of R(theta, phi).
 Eigen::Quaterniond attitude(const CoinState& state);
 
-// Total mechanical energy, J: kinetic (translation + rotation) plus potential M g a cos(theta).
+// Total mechanical energy, J: kinetic (translation + rotation) plus potential M g y_G.
 double energy(const CoinModel& model, const CoinState& state);
 
-// Centre of mass, m: (x, a cos theta, z).
+// Centre of mass, m: (x, a cos theta, z) for the thin coin; the rim's height (docs/rim.md eq. 1.4).
 Eigen::Vector3d centreOfMass(const CoinModel& model, const CoinState& state);
 
-// Centre-of-mass velocity, m/s, from the no-slip condition v = a (-omega_Z e_X + omega_X e_Z).
+// c, m: from the centre of mass to the contact point, floor components (docs/rim.md eq. 1.3).
+Eigen::Vector3d contactVector(const CoinModel& model, const CoinState& state);
+
+// Centre-of-mass velocity, m/s, from the no-slip condition v = -omega x c
+// (thin coin: v = a (-omega_Z e_X + omega_X e_Z)).
 Eigen::Vector3d centreOfMassVelocity(const CoinModel& model, const CoinState& state);
 
 // The point of the rim touching the floor, m (y = 0 up to round-off).
 Eigen::Vector3d contactPoint(const CoinModel& model, const CoinState& state);
 
-// psi-dot, rad/s: the rate at which the rim rolls over the floor (eq. 19). The contact point
-// moves at speed a |psi-dot|.
+// psi-dot, rad/s: the rate at which the contact point runs round the rim (eq. 19).
 double spinRate(const CoinState& state);
 
 // phi-dot, rad/s: rate of change of heading (eq. 18).
 double precessionRate(const CoinState& state);
 
 // The floor's reaction with its normal force N and friction force F, including the effects'
-// couples: dynamics(model, state).reaction.
+// couples: forward(model, state).reaction.
 Reaction reaction(const CoinModel& model, const CoinState& state);
 
 }  // namespace coinroll::physics

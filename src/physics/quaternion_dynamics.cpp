@@ -11,13 +11,16 @@ namespace coinroll::physics {
 
 namespace {
 
-// What the attitude alone fixes, in material-frame components (docs/quaternion_formulation.md §2).
+// What the attitude alone fixes, in material-frame components (docs/quaternion_formulation.md §2,
+// docs/rim.md §3).
 struct ContactGeometry {
   Eigen::Matrix3d floorFromBody;  // columns: the material axes b1, b2, b3 in floor components
   Eigen::Vector3d up;             // e_y, the floor's upward normal
   Eigen::Vector3d e_X, e_Y;       // the seed's in-plane axes: e_Y points up the coin plane (eq. 2.1)
+  double sinTheta = 0;            // -e_y . e_Z: positive when the e_Z face is the lower one
   double cosTheta = 0;            // |e_y minus its normal part|, = cos(theta) >= 0
-  Eigen::Vector3d c;              // m, from the centre of mass to the contact point, -a e_Y (eq. 2.2)
+  Eigen::Vector3d c;              // m, from the centre of mass to the contact point (eq. 2.2; rim.md eq. 3.1)
+  ContactOffset offset;           // the rim's c = -reach e_Y + lift e_Z (unused for the thin coin)
 };
 
 ContactGeometry contactGeometry(const CoinModel& m, const Eigen::Quaterniond& unitQ) {
@@ -25,31 +28,44 @@ ContactGeometry contactGeometry(const CoinModel& m, const Eigen::Quaterniond& un
   geo.floorFromBody = unitQ.toRotationMatrix();
   geo.up = geo.floorFromBody.row(1).transpose();
   geo.cosTheta = std::hypot(geo.up.x(), geo.up.y());
+  geo.sinTheta = -geo.up.z();
   geo.e_Y = Eigen::Vector3d(geo.up.x(), geo.up.y(), 0) / geo.cosTheta;
   geo.e_X = Eigen::Vector3d(geo.e_Y.y(), -geo.e_Y.x(), 0);  // e_Y x e_Z
-  geo.c = -m.a * geo.e_Y;
+  if (m.rim.thin()) {
+    geo.c = -m.a * geo.e_Y;
+  } else {
+    geo.offset = contactOffset(m.rim, m.a, geo.sinTheta, geo.cosTheta);
+    geo.c = -geo.offset.reach * geo.e_Y + Eigen::Vector3d(0, 0, geo.offset.lift);  // docs/rim.md eq. 3.1
+  }
   return geo;
 }
 
-// dc/dt in material components: the contact point runs round the rim at psi-dot (eq. 2.4).
 // psi-dot = e_X . (e_y x omega) / cos(theta) is the one place 1 / cos(theta) remains; it is the
 // physical rolling rate, finite along every finite-energy motion short of flat.
-Eigen::Vector3d contactDrift(const CoinModel& m, const ContactGeometry& geo, const Eigen::Vector3d& omega) {
-  const double psiDot = geo.e_X.dot(geo.up.cross(omega)) / geo.cosTheta;
-  return -m.a * psiDot * geo.e_X;
+double spinRateOf(const ContactGeometry& geo, const Eigen::Vector3d& omega) {
+  return geo.e_X.dot(geo.up.cross(omega)) / geo.cosTheta;
 }
 
-// The ideal path adds no couple, so a scene without effects integrates exactly as before.
+// dc/dt in material components: the contact point runs round the rim at psi-dot (eq. 2.4); with
+// a rim, reach and lift also change with the tilt at theta-dot = omega . e_X (docs/rim.md eq. 3.2).
+Eigen::Vector3d contactDrift(const CoinModel& m, const ContactGeometry& geo, const Eigen::Vector3d& omega) {
+  const double psiDot = spinRateOf(geo, omega);
+  if (m.rim.thin()) return -m.a * psiDot * geo.e_X;
+  const double thetaDot = omega.dot(geo.e_X);
+  return -geo.offset.reach * psiDot * geo.e_X - geo.offset.dReach * thetaDot * geo.e_Y +
+         Eigen::Vector3d(0, 0, geo.offset.dLift * thetaDot);
+}
+
+// (3.4): [I_G + M (|c|^2 1 - c c^t)] omega-dot = -omega x I_G omega - M c x (omega x c-dot + omega x (omega x c))
+//                                                + M g c x e_y + tau
 Eigen::Vector3d angularAcceleration(const CoinModel& m, const ContactGeometry& geo, const Eigen::Vector3d& omega,
-                                    const Eigen::Vector3d* torqueBody = nullptr) {
+                                    const Eigen::Vector3d& cDot, const Eigen::Vector3d* torqueBody = nullptr) {
   const Eigen::Vector3d inertia(m.I_X, m.I_X, m.I_Z);  // principal moments about G, material frame
   const Eigen::Vector3d& c = geo.c;
-  const Eigen::Vector3d cDot = contactDrift(m, geo, omega);
-  // (3.4): [I_G + M (a^2 1 - c c^t)] omega-dot = -omega x I_G omega - M c x (omega x c-dot + omega x (omega x c))
-  //                                              + M g c x e_y
   const Eigen::Matrix3d A = Eigen::Matrix3d(inertia.asDiagonal()) +
                             m.M * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
-  // A couple adds to b (docs/euler_disk.md eq. 1.3).
+  // A couple adds to b (docs/euler_disk.md eq. 1.3); the ideal path adds none, so a scene without
+  // effects integrates exactly as before.
   Eigen::Vector3d b = -omega.cross(inertia.cwiseProduct(omega)) -
                       m.M * c.cross(omega.cross(cDot) + omega.cross(omega.cross(c))) + m.M * m.g * c.cross(geo.up);
   if (torqueBody != nullptr) b += *torqueBody;
@@ -60,11 +76,11 @@ Eigen::Vector3d centreOfMassVelocityBody(const ContactGeometry& geo, const Eigen
   return -omega.cross(geo.c);  // no slip, seed eq. (3)
 }
 
-Reaction reactionFrom(const CoinModel& m, const QuaternionState& s, const ContactGeometry& geo, const Eigen::Vector3d& dw) {
+Reaction reactionFrom(const CoinModel& m, const QuaternionState& s, const ContactGeometry& geo, const Eigen::Vector3d& cDot,
+                      const Eigen::Vector3d& dw) {
   const Eigen::Vector3d& w = s.omegaBody;
   // (5.2): dv/dt of v = -omega x c, with c-dot the contact's drift round the rim and the frame's turn.
-  const Eigen::Vector3d accelerationBody =
-      -(dw.cross(geo.c) + w.cross(contactDrift(m, geo, w))) + w.cross(centreOfMassVelocityBody(geo, w));
+  const Eigen::Vector3d accelerationBody = -(dw.cross(geo.c) + w.cross(cDot)) + w.cross(centreOfMassVelocityBody(geo, w));
   Reaction r;
   r.R = m.M * geo.floorFromBody * accelerationBody + Eigen::Vector3d(0, m.M * m.g, 0);
   r.N = r.R.y();
@@ -77,25 +93,48 @@ ContactKinematics contactKinematics(const CoinModel& m, const QuaternionState& s
           .e_Y = geo.floorFromBody * geo.e_Y,
           .e_Z = geo.floorFromBody.col(2),
           .omega = geo.floorFromBody * s.omegaBody,
-          .a = m.a,
+          .faceRadius = m.a - m.rim.edgeRadius,
           .N = N};
 }
 
-QuaternionDynamics dynamicsAt(const CoinModel& m, const QuaternionState& s, const ContactGeometry& geo) {
-  QuaternionDynamics d;
-  d.dOmegaBody = angularAcceleration(m, geo, s.omegaBody);
-  d.reaction = reactionFrom(m, s, geo, d.dOmegaBody);
-  // Two passes, exact for the same reason as in the Euler angles (docs/euler_disk.md eq. 1.8).
-  if (m.effects.empty()) return d;
-  ContactKinematics kinematics = contactKinematics(m, s, geo, d.reaction.N);  // only N changes per pass
+// The angular acceleration and reaction with the effects' couples: two passes, exact for the same
+// reason as in the Euler angles (docs/rim.md eq. 4.3). `f` holds the ideal ones on entry.
+void addEffects(const CoinModel& m, const QuaternionState& s, const ContactGeometry& geo, const Eigen::Vector3d& cDot,
+                Forward& f) {
+  ContactKinematics kinematics = contactKinematics(m, s, geo, f.reaction.N);  // only N changes per pass
   for (int pass = 0; pass < 2; ++pass) {
-    kinematics.N = d.reaction.N;
-    d.loads = totalLoads(m.effects, kinematics);
-    const Eigen::Vector3d torqueBody = geo.floorFromBody.transpose() * d.loads.torque;
-    d.dOmegaBody = angularAcceleration(m, geo, s.omegaBody, &torqueBody);
-    d.reaction = reactionFrom(m, s, geo, d.dOmegaBody);
+    kinematics.N = f.reaction.N;
+    f.loads = totalLoads(m.effects, kinematics);
+    const Eigen::Vector3d torqueBody = geo.floorFromBody.transpose() * f.loads.torque;
+    f.dOmega = angularAcceleration(m, geo, s.omegaBody, cDot, &torqueBody);
+    f.reaction = reactionFrom(m, s, geo, cDot, f.dOmega);
   }
-  return d;
+}
+
+Forward forwardAt(const CoinModel& m, const QuaternionState& s, const ContactGeometry& geo) {
+  const Eigen::Vector3d cDot = contactDrift(m, geo, s.omegaBody);
+  Forward f;
+  f.dOmega = angularAcceleration(m, geo, s.omegaBody, cDot);
+  f.reaction = reactionFrom(m, s, geo, cDot, f.dOmega);
+  if (!m.effects.empty()) addEffects(m, s, geo, cDot, f);
+  const Eigen::Matrix3d& R = geo.floorFromBody;
+  f.theta = thetaOf(s.q);
+  // Rows e_X, e_Y, e_Z in floor components.
+  f.axes.row(0) = (R * geo.e_X).transpose();
+  f.axes.row(1) = (R * geo.e_Y).transpose();
+  f.axes.row(2) = R.col(2).transpose();
+  f.omega = R * s.omegaBody;
+  f.contactVector = R * geo.c;
+  f.centre = Eigen::Vector3d(s.x, -geo.c.dot(geo.up), s.z);  // (2.3)
+  f.velocity = R * centreOfMassVelocityBody(geo, s.omegaBody);
+  f.contactPoint = f.centre + f.contactVector;
+  f.spinRate = spinRateOf(geo, s.omegaBody);
+  // omega = theta-dot e_X + phi-dot e_y + psi-dot e_Z with e_X . e_y = 0 and e_Z . e_y = -sin(theta).
+  f.precessionRate = s.omegaBody.dot(geo.up) + f.spinRate * geo.sinTheta;
+  const Eigen::Vector3d inertia(m.I_X, m.I_X, m.I_Z);
+  f.energy = 0.5 * m.M * f.velocity.squaredNorm() + 0.5 * s.omegaBody.dot(inertia.cwiseProduct(s.omegaBody)) +
+             m.M * m.g * f.centre.y();
+  return f;
 }
 
 }  // namespace
@@ -129,7 +168,7 @@ CoinState toEulerState(const QuaternionState& s, const CoinState& continuation) 
     return angle + 2 * std::numbers::pi * std::round((reference - angle) / (2 * std::numbers::pi));
   };
   CoinState e;
-  e.theta = std::atan2(-normal.y(), std::hypot(normal.x(), normal.z()));          // (1.4)
+  e.theta = thetaOf(s.q);
   e.phi = nearest(std::atan2(normal.x(), normal.z()), continuation.phi);
   e.psi = nearest(std::atan2(up.x(), up.y()), continuation.psi);                  // e_Y = (sin psi, cos psi, 0)
   const double c = std::cos(e.psi), sn = std::sin(e.psi);
@@ -142,9 +181,13 @@ CoinState toEulerState(const QuaternionState& s, const CoinState& continuation) 
   return e;
 }
 
-QuaternionDynamics quaternionDynamics(const CoinModel& model, const QuaternionState& s) {
-  return dynamicsAt(model, s, contactGeometry(model, s.q));
+double thetaOf(const Eigen::Quaterniond& unitQ) {
+  const Eigen::Matrix3d floorFromBody = unitQ.toRotationMatrix();
+  const Eigen::Vector3d normal = floorFromBody.col(2);
+  return std::atan2(-normal.y(), std::hypot(normal.x(), normal.z()));  // (1.4)
 }
+
+Forward forward(const CoinModel& model, const QuaternionState& s) { return forwardAt(model, s, contactGeometry(model, s.q)); }
 
 QuaternionRates quaternionRates(const CoinModel& model, const QuaternionStateVec& y) {
   const Eigen::Quaterniond stored(y[kQw], y[kQx], y[kQy], y[kQz]);
@@ -165,12 +208,17 @@ QuaternionRates quaternionRates(const CoinModel& model, const QuaternionStateVec
   dy[kQx] = 0.5 * spin.x() + restoring * q.x();
   dy[kQy] = 0.5 * spin.y() + restoring * q.y();
   dy[kQz] = 0.5 * spin.z() + restoring * q.z();
+  const Eigen::Vector3d cDot = contactDrift(model, geo, omega);
   if (model.effects.empty()) {
-    dy.segment<3>(kOmegaBody1) = angularAcceleration(model, geo, omega);           // (3.4)
+    dy.segment<3>(kOmegaBody1) = angularAcceleration(model, geo, omega, cDot);           // (3.4)
   } else {
-    const QuaternionDynamics d = dynamicsAt(model, {.q = q, .omegaBody = omega, .x = y[kCentreX], .z = y[kCentreZ]}, geo);
-    dy.segment<3>(kOmegaBody1) = d.dOmegaBody;
-    rates.power = d.loads.power;
+    const QuaternionState s{.q = q, .omegaBody = omega, .x = y[kCentreX], .z = y[kCentreZ]};
+    Forward f;
+    f.dOmega = angularAcceleration(model, geo, omega, cDot);
+    f.reaction = reactionFrom(model, s, geo, cDot, f.dOmega);
+    addEffects(model, s, geo, cDot, f);
+    dy.segment<3>(kOmegaBody1) = f.dOmega;
+    rates.power = f.loads.power;
   }
   dy[kCentreX] = velocity.x();
   dy[kCentreZ] = velocity.z();

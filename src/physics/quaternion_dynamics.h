@@ -10,7 +10,7 @@
 
 #include "physics/coin_model.h"
 #include "physics/coin_state.h"
-#include "physics/dynamics.h"
+#include "physics/forward.h"
 
 namespace coinroll::physics {
 
@@ -42,15 +42,13 @@ QuaternionState fromEulerState(const CoinState& state);
 // Precondition: not flat (|theta| < 90 degrees), where phi and psi are defined.
 CoinState toEulerState(const QuaternionState& state, const CoinState& continuation);
 
-// Everything the equations give at one state: the body-frame angular acceleration (eq. 3.4 with
-// the effects' couple added to b), the floor's reaction (eq. 5.2) and the effects' loads.
-struct QuaternionDynamics {
-  Eigen::Vector3d dOmegaBody = Eigen::Vector3d::Zero();  // rad/s^2, material components
-  Reaction reaction;
-  Loads loads;  // zero without effects
-};
+// The seed's theta of an attitude, as toEulerState computes it (eq. 1.4): cheap, for the flat events.
+double thetaOf(const Eigen::Quaterniond& unitQ);
 
-QuaternionDynamics quaternionDynamics(const CoinModel& model, const QuaternionState& state);
+// The forward pass of this formulation at one state, read from the attitude and the material-frame
+// rates alone (no Euler angles): Forward::dOmega is d(omega)/dt in material components (eq. 3.4
+// with the effects' couple added to b), the reaction is eq. 5.2.
+Forward forward(const CoinModel& model, const QuaternionState& state);
 
 // dy/dt and the power the effects dissipate, W.
 struct QuaternionRates {

@@ -2,24 +2,34 @@
 
 #include <cmath>
 
-#include "physics/observables.h"
-
 namespace coinroll::physics {
 
-double flatTiltFor(const CoinModel& model, bool quaternionFormulation) {
-  if (!model.effects.empty()) return kSpinDownFlatTilt;
-  return quaternionFormulation ? kQuaternionFlatTilt : kFlatTilt;
+std::string_view eventName(ModelEvent event) {
+  switch (event) {
+    case ModelEvent::CoinFlat: return "coin-flat";
+    case ModelEvent::FaceDown: return "face-down";
+    case ModelEvent::CornerSwitch: return "corner-switch";
+    case ModelEvent::LiftOff: return "lift-off";
+    case ModelEvent::Slip: return "slip";
+  }
+  return "event";
 }
 
-double liftOffMargin(const CoinModel& model, const CoinState& state) {
-  return reaction(model, state).N / (model.M * model.g);
+FlatStop flatStopFor(const CoinModel& model, Formulation formulation) {
+  // Only the quaternion reaches a thick coin's landing; the Euler angles stop where they must.
+  if (!model.rim.thin() && formulation == Formulation::Quaternion) return {ModelEvent::FaceDown, kFaceDownTilt};
+  if (!model.effects.empty()) return {ModelEvent::CoinFlat, kSpinDownFlatTilt};
+  return {ModelEvent::CoinFlat, formulation == Formulation::Quaternion ? kQuaternionFlatTilt : kFlatTilt};
 }
 
-double slipMargin(const CoinModel& model, const CoinState& state, double mu) {
-  const Reaction r = reaction(model, state);
-  return (mu * r.N - r.F) / (model.M * model.g);
+bool hasCorners(const CoinModel& model) { return !model.rim.thin() && !model.rim.fullyRounded(); }
+
+double liftOffMargin(const CoinModel& model, const Forward& f) { return f.reaction.N / (model.M * model.g); }
+
+double slipMargin(const CoinModel& model, const Forward& f, double mu) {
+  return (mu * f.reaction.N - f.reaction.F) / (model.M * model.g);
 }
 
-double flatMargin(const CoinState& state, double flatTilt) { return flatTilt - std::abs(state.theta); }
+double flatMargin(double theta, double flatTilt) { return flatTilt - std::abs(theta); }
 
 }  // namespace coinroll::physics

@@ -44,7 +44,7 @@ double fittingDistance(const Eigen::Vector3d& lower, const Eigen::Vector3d& uppe
 
 CameraRig::CameraRig(const scene::CameraSpec& spec, const MotionSurvey& survey, const physics::CoinModel& model,
                      int width, int height)
-    : spec_(spec), model_(model) {
+    : spec_(spec) {
   // The box of all centres and contact points, widened by the coin itself, from the floor up.
   const Eigen::Vector3d margin(model.a, 0, model.a);
   Eigen::Vector3d lower = survey.lower - margin, upper = survey.upper + margin;
@@ -66,13 +66,12 @@ CameraRig::CameraRig(const scene::CameraSpec& spec, const MotionSurvey& survey, 
   followDistance_ = 4.0 * model.a / std::min(tanHalfX, tanHalfY);
 }
 
-render::CameraView CameraRig::at(double time, const physics::CoinState& state) const {
+render::CameraView CameraRig::at(double time, const Eigen::Vector3d& centre) const {
   render::CameraView view;
   view.fovYDegrees = static_cast<float>(spec_.fovDegrees);
   const double elevation = radians(spec_.elevationDegrees);
   const double azimuth = radians(kDefaultAzimuthDegrees);
   if (spec_.mode == scene::CameraMode::Follow) {
-    const Eigen::Vector3d centre = physics::centreOfMass(model_, state);
     const Eigen::Vector3d offset = spec_.eye && spec_.target
                                        ? Eigen::Vector3d(spec_.eye->at(0) - spec_.target->at(0), spec_.eye->at(1) - spec_.target->at(1),
                                                          spec_.eye->at(2) - spec_.target->at(2))

@@ -19,11 +19,10 @@ class CameraRig {
   CameraRig(const scene::CameraSpec& spec, const MotionSurvey& survey, const physics::CoinModel& model, int width,
             int height);
   // The view at simulated `time` (s) with the coin at `state`.
-  render::CameraView at(double time, const physics::CoinState& state) const;
+  render::CameraView at(double time, const Eigen::Vector3d& centreOfMass) const;
 
  private:
   scene::CameraSpec spec_;
-  physics::CoinModel model_;
   Eigen::Vector3d target_;
   double distance_ = 1;        // m
   double followDistance_ = 1;  // m

@@ -65,7 +65,7 @@ struct RunTraits<integrate::Trajectory<N, physics::CoinRhs<F>>> {
 
 CoinRun::CoinRun(const Simulation& simulation)
     : trajectory_(startEither<decltype(trajectory_)>(simulation)), lastState_(simulation.initial),
-      cancel_(simulation.cancel), duration_(simulation.duration) {}
+      model_(simulation.model), cancel_(simulation.cancel), duration_(simulation.duration) {}
 
 std::optional<RunSample> CoinRun::sampleAt(double t) {
   throwIfCancelled(cancel_);
@@ -88,52 +88,70 @@ std::optional<RunSample> CoinRun::sampleOf(Run<F, N>& run, double t) {
   if constexpr (F == Formulation::EulerAngles) {
     const std::optional<integrate::Vec<N>> y = run.stateAt(t);
     if (!y) return std::nullopt;
-    return RunSample{seedState<F, N>(*y), dissipatedOf<F, N>(*y)};
+    return RunSample{seedState<F, N>(*y), forwardOf<F, N>(model_, *y), dissipatedOf<F, N>(*y)};
   } else {
     if (t < lastTime_) {
       throw std::logic_error(fmt::format("CoinRun::stateAt: queries must not go back in time ({} after {})", t, lastTime_));
     }
+    bool moved = false;
+    std::optional<integrate::Vec<N>> y;
     while (lastTime_ < t) {
       throwIfCancelled(cancel_);
       const double turnRate = std::max(std::abs(physics::precessionRate(lastState_)), std::abs(physics::spinRate(lastState_)));
       const double next = turnRate > 0 ? std::min(t, lastTime_ + kUnwrapTurn / turnRate) : t;
-      const std::optional<integrate::Vec<N>> y = run.stateAt(next);
+      y = run.stateAt(next);
       if (!y) return std::nullopt;
       lastState_ = seedState<F, N>(*y, lastState_);
       lastDissipated_ = dissipatedOf<F, N>(*y);
       lastTime_ = next;
+      moved = true;
     }
-    return RunSample{lastState_, lastDissipated_};
+    if (moved) {
+      lastForward_ = forwardOf<F, N>(model_, *y);
+    } else if (!lastForwardValid_) {
+      const std::optional<integrate::Vec<N>> now = run.stateAt(lastTime_);
+      if (!now) return std::nullopt;
+      lastForward_ = forwardOf<F, N>(model_, *now);
+    }
+    lastForwardValid_ = true;
+    return RunSample{lastState_, lastForward_, lastDissipated_};
   }
 }
 
-std::optional<integrate::EventHit<physics::kStateSize>> CoinRun::stoppedBy() const {
+std::optional<RunEvent> CoinRun::stoppedBy() const {
   return std::visit(
-      [this](const auto& run) -> std::optional<integrate::EventHit<physics::kStateSize>> {
+      [this](const auto& run) -> std::optional<RunEvent> {
         using Traits = RunTraits<std::decay_t<decltype(run)>>;
         const auto& hit = run.stoppedBy();
         // A fixed step may end past the duration and find an event there: not this run's.
         if (!hit || hit->t > duration_) return std::nullopt;
         // The hit lies within one unwrap interval of the last sample, so lastState_ continues it.
-        const physics::CoinState s = seedState<Traits::kFormulation, Traits::kSize>(hit->y, lastState_);
-        return integrate::EventHit<physics::kStateSize>{hit->name, hit->t, physics::toVector(s)};
+        return eventOf<Traits::kFormulation, Traits::kSize>(*hit, lastState_);
       },
       trajectory_);
 }
 
-std::vector<integrate::EventHit<physics::kStateSize>> CoinRun::warnings() const {
+std::vector<RunEvent> CoinRun::warnings() const {
   return std::visit(
       [this](const auto& run) {
         using Traits = RunTraits<std::decay_t<decltype(run)>>;
-        std::vector<integrate::EventHit<physics::kStateSize>> hits;
+        std::vector<RunEvent> hits;
         for (const auto& hit : run.nonTerminalHits()) {
           if (hit.t > duration_) break;
-          const physics::CoinState s = seedState<Traits::kFormulation, Traits::kSize>(hit.y);
-          hits.push_back({hit.name, hit.t, physics::toVector(s)});
+          hits.push_back(eventOf<Traits::kFormulation, Traits::kSize>(hit, physics::CoinState{}));
         }
         return hits;
       },
       trajectory_);
+}
+
+template <Formulation F, int N>
+RunEvent CoinRun::eventOf(const integrate::EventHit<N>& hit, const physics::CoinState& continuation) const {
+  return {.event = static_cast<physics::ModelEvent>(hit.id),
+          .t = hit.t,
+          .state = seedState<F, N>(hit.y, continuation),
+          .forward = forwardOf<F, N>(model_, hit.y),
+          .dissipated = dissipatedOf<F, N>(hit.y)};
 }
 
 integrate::Stats CoinRun::stats() const {

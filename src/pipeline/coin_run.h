@@ -13,14 +13,18 @@
 #include "integrate/trajectory.h"
 #include "physics/coin_rhs.h"
 #include "physics/coin_state.h"
+#include "physics/forward.h"
+#include "physics/validity.h"
+#include "pipeline/run_event.h"
 #include "pipeline/simulation.h"
 
 namespace coinroll::pipeline {
 
 // One sample of a run.
 struct RunSample {
-  physics::CoinState state;
-  double dissipated = 0;  // J, energy the effects have dissipated since t = 0
+  physics::CoinState state;  // the seed's variables
+  physics::Forward forward;  // the integrating formulation's forward pass at this state
+  double dissipated = 0;     // J, energy the effects have dissipated since t = 0
 };
 
 class CoinRun {
@@ -34,11 +38,11 @@ class CoinRun {
   std::optional<RunSample> sampleAt(double t);
   std::optional<physics::CoinState> stateAt(double t);
 
-  // The event that ended the run before its duration, its state in the seed's variables.
-  std::optional<integrate::EventHit<physics::kStateSize>> stoppedBy() const;
+  // The event that ended the run before its duration.
+  std::optional<RunEvent> stoppedBy() const;
 
   // Lift-off and slip crossings the run went on past (on_invalid "warn"), in time order so far.
-  std::vector<integrate::EventHit<physics::kStateSize>> warnings() const;
+  std::vector<RunEvent> warnings() const;
 
   integrate::Stats stats() const;
 
@@ -53,10 +57,16 @@ class CoinRun {
   template <physics::Formulation F, int N>
   std::optional<RunSample> sampleOf(Run<F, N>& run, double t);
 
+  template <physics::Formulation F, int N>
+  RunEvent eventOf(const integrate::EventHit<N>& hit, const physics::CoinState& continuation) const;
+
   std::variant<EulerRun, EulerDissipativeRun, QuaternionRun, QuaternionDissipativeRun> trajectory_;
   double lastTime_ = 0;             // s, time of lastState_
   physics::CoinState lastState_;    // the latest sample: the continuation for phi and psi
+  physics::Forward lastForward_;    // at lastTime_, once lastForwardValid_
+  bool lastForwardValid_ = false;
   double lastDissipated_ = 0;       // J, at lastTime_
+  physics::CoinModel model_;
   const std::atomic<bool>* cancel_ = nullptr;
   double duration_ = 0;             // s; events found past it (by a fixed step's overshoot) are not reported
 };

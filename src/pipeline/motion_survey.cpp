@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "physics/observables.h"
 #include "pipeline/coin_run.h"
 
 namespace coinroll::pipeline {
@@ -12,18 +11,16 @@ double traceInterval(double duration) { return std::max(1.0 / 240, duration / 20
 
 MotionSurvey surveyMotion(const Simulation& simulation) {
   CoinRun trajectory(simulation);
-  const physics::CoinModel& model = simulation.model;
   MotionSurvey survey;
-  survey.lower = survey.upper = physics::centreOfMass(model, simulation.initial);
+  survey.lower = survey.upper = trajectory.sampleAt(0)->forward.centre;
   const double dt = traceInterval(simulation.duration);
   const long samples = static_cast<long>(std::floor(simulation.duration / dt));
   survey.endTime = simulation.duration;
   for (long k = 0; k <= samples + 1; ++k) {
     const double t = std::min(static_cast<double>(k) * dt, simulation.duration);
-    const std::optional<physics::CoinState> y = trajectory.stateAt(t);
-    if (!y) break;
-    const physics::CoinState s = *y;
-    for (const Eigen::Vector3d& p : {physics::centreOfMass(model, s), physics::contactPoint(model, s)}) {
+    const std::optional<RunSample> sample = trajectory.sampleAt(t);
+    if (!sample) break;
+    for (const Eigen::Vector3d& p : {sample->forward.centre, sample->forward.contactPoint}) {
       survey.lower = survey.lower.cwiseMin(p);
       survey.upper = survey.upper.cwiseMax(p);
     }

@@ -7,6 +7,7 @@
 
 #include "integrate/events.h"
 #include "physics/coin_state.h"
+#include "pipeline/run_event.h"
 #include "pipeline/simulation.h"
 
 namespace coinroll::pipeline {
@@ -19,7 +20,7 @@ double traceInterval(double duration);
 struct MotionSurvey {
   Eigen::Vector3d lower, upper;  // m, box around every centre of mass and contact point
   double endTime = 0;            // s, the duration, or when a validity event stopped the run
-  std::optional<integrate::EventHit<physics::kStateSize>> stoppedBy;
+  std::optional<RunEvent> stoppedBy;
 };
 
 // Samples the run every traceInterval and at its end.

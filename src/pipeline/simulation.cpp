@@ -8,7 +8,9 @@
 #include <variant>
 
 #include "physics/observables.h"
+#include "physics/dynamics.h"
 #include "physics/quaternion_dynamics.h"
+#include "physics/solid_inertia.h"
 #include "physics/steady.h"
 #include "physics/validity.h"
 #include "scene/scene_loader.h"
@@ -18,20 +20,44 @@ namespace coinroll::pipeline {
 namespace {
 
 physics::CoinModel modelFrom(const scene::CoinSpec& coin, double g) {
+  physics::CoinModel model;
   switch (coin.shape) {
-    case scene::Shape::Disk: return physics::diskModel(coin.mass, coin.radius, g);
-    case scene::Shape::Ring: return physics::ringModel(coin.mass, coin.radius, coin.innerRadius, g);
+    case scene::Shape::Disk: model = physics::diskModel(coin.mass, coin.radius, g); break;
+    case scene::Shape::Ring: model = physics::ringModel(coin.mass, coin.radius, coin.innerRadius, g); break;
     case scene::Shape::Custom:
-      return {.M = coin.mass, .a = coin.radius, .g = g, .I_X = coin.I_X.value(), .I_Z = coin.I_Z.value(), .effects = {}};
+      model = {.M = coin.mass, .a = coin.radius, .g = g, .I_X = coin.I_X.value(), .I_Z = coin.I_Z.value(), .rim = {}, .effects = {}};
+      break;
   }
-  throw std::logic_error("unhandled coin shape");
+  if (!coin.thickness) return model;
+  model.rim = {.thickness = *coin.thickness, .edgeRadius = coin.edgeRadius};
+  if (coin.shape != scene::Shape::Custom) {
+    // The solid as drawn (docs/rim_inertia.md); custom keeps the moments the scene gives.
+    const double hole = coin.shape == scene::Shape::Ring ? coin.innerRadius : 0.0;
+    const physics::PrincipalMoments moments =
+        physics::filletedCylinderInertia(coin.mass, coin.radius, hole, *coin.thickness, coin.edgeRadius);
+    model.I_X = moments.I_X;
+    model.I_Z = moments.I_Z;
+  }
+  return model;
+}
+
+physics::Formulation formulationFor(const scene::SceneConfig& scene) {
+  const bool landing = scene.coin.thickness && !scene.effects.empty();
+  if (!scene.solver.formulation) return landing ? physics::Formulation::Quaternion : physics::Formulation::EulerAngles;
+  if (landing && *scene.solver.formulation == physics::Formulation::EulerAngles) {
+    throw scene::SceneError(
+        "solver.formulation: \"euler-angles\" cannot carry a coin with thickness and effects to its landing (face-down at "
+        "0.05 deg above the floor; the Euler angles are singular at flat and stop at 0.5 deg): use \"quaternion\", the "
+        "default for such a scene");
+  }
+  return *scene.solver.formulation;
 }
 
 physics::CoinState steadyState(const physics::CoinModel& model, const scene::SteadyInitial& steady) {
   physics::CoinState s;
   try {
     switch (steady.kind) {
-      case scene::SteadyKind::Straight: s = physics::straightRolling(steady.omega_Z); break;
+      case scene::SteadyKind::Straight: s = physics::straightRolling(model, steady.omega_Z); break;
       case scene::SteadyKind::Circle: s = physics::steadyCircle(model, steady.theta, steady.omega_Z, steady.branch); break;
       case scene::SteadyKind::SpinInPlace: s = physics::spinInPlace(model, steady.theta); break;
     }
@@ -51,15 +77,28 @@ physics::CoinState initialFrom(const physics::CoinModel& model, const scene::Ini
   return {e.theta, e.phi, e.psi, e.omega_X, e.omega_Y, e.omega_Z, e.x, e.z};
 }
 
+// The forward pass of the formulation that will integrate the run, at its start.
+physics::Forward startForward(const Simulation& sim) {
+  if (sim.formulation == physics::Formulation::Quaternion) return physics::forward(sim.model, physics::fromEulerState(sim.initial));
+  return physics::forward(sim.model, sim.initial);
+}
+
 // Events fire on crossings, so a start already outside the model would go unnoticed: refuse it.
 void requireValidStart(const Simulation& sim) {
-  const physics::Reaction r = physics::reaction(sim.model, sim.initial);
-  if (physics::liftOffMargin(sim.model, sim.initial) <= 0) {
+  if (physics::hasCorners(sim.model) && sim.initial.theta == 0) {
+    throw scene::SceneError(
+        "initial.theta: a coin whose rim has corners (coin.edge_radius < thickness / 2) cannot start upright: it stands on "
+        "two corners at once and which one it rolls on is not defined (the corner-switch impact is not modelled); tilt it "
+        "or round the rim fully (edge_radius = thickness / 2)");
+  }
+  const physics::Forward f = startForward(sim);
+  const physics::Reaction& r = f.reaction;
+  if (physics::liftOffMargin(sim.model, f) <= 0) {
     throw scene::SceneError(fmt::format(
         "initial: the floor would have to pull the coin down (normal force N = {:.4g} N <= 0): the coin lifts off at "
         "once; lower the spin or the tilt", r.N));
   }
-  if (sim.friction && physics::slipMargin(sim.model, sim.initial, *sim.friction) < 0) {
+  if (sim.friction && physics::slipMargin(sim.model, f, *sim.friction) < 0) {
     throw scene::SceneError(fmt::format(
         "initial: the contact needs friction F = {:.4g} N > mu N = {:.4g} N: the coin slips at once; raise friction or "
         "lower the rates", r.F, *sim.friction * r.N));
@@ -78,7 +117,7 @@ Simulation buildSimulation(const scene::SceneConfig& scene) {
   sim.solver.rtol = scene.solver.rtol;
   sim.solver.atol = scene.solver.atol;
   sim.solver.dt = scene.solver.dt;
-  sim.formulation = scene.solver.formulation;
+  sim.formulation = formulationFor(scene);
   sim.model.effects = scene.effects;
   sim.friction = scene.friction;
   sim.validityIsTerminal = scene.onInvalid == scene::OnInvalid::Stop;
@@ -93,18 +132,29 @@ std::string steadyStartNote(const scene::SceneConfig& scene) {
          "motion that slows down";
 }
 
-std::string describeStop(const integrate::EventHit<physics::kStateSize>& hit) {
-  const std::string flat = fmt::format(
-      "the coin is nearly flat; an ideal run stops at {} deg in the Euler-angle formulation and {} deg in the quaternion "
-      "one (solver.formulation), a run with effects at {} deg",
-      physics::kFlatTilt * 180 / std::numbers::pi, physics::kQuaternionFlatTilt * 180 / std::numbers::pi,
-      physics::kSpinDownFlatTilt * 180 / std::numbers::pi);
-  const std::string meaning = hit.name == "coin-flat" ? flat
-                              : hit.name == "lift-off" ? "the normal force reached zero; the coin would leave the floor"
-                              : hit.name == "slip"     ? "friction reached mu N; the contact would start slipping"
-                                                       : "event";
-  return fmt::format("{} at t = {:.9f} s (theta = {:.4f} deg): {}", hit.name, hit.t,
-                     hit.y[physics::kTheta] * 180 / std::numbers::pi, meaning);
+std::string describeStop(const RunEvent& hit) {
+  using physics::ModelEvent;
+  const auto degrees = [](double radians) { return radians * 180 / std::numbers::pi; };
+  std::string meaning;
+  switch (hit.event) {
+    case ModelEvent::CoinFlat:
+      meaning = fmt::format(
+          "the coin is nearly flat; an ideal run stops at {} deg in the Euler-angle formulation and {} deg in the quaternion "
+          "one (solver.formulation), a thin coin's run with effects at {} deg",
+          degrees(physics::kFlatTilt), degrees(physics::kQuaternionFlatTilt), degrees(physics::kSpinDownFlatTilt));
+      break;
+    case ModelEvent::FaceDown:
+      meaning = fmt::format("the coin lies on its face (tilt above the floor below {} deg)", physics::kFaceDownDegrees);
+      break;
+    case ModelEvent::CornerSwitch:
+      meaning = "the coin passed upright, where the contact jumps from one corner of the rim to the other (an impact the "
+                "model leaves out; coin.edge_radius = thickness / 2 rolls through upright)";
+      break;
+    case ModelEvent::LiftOff: meaning = "the normal force reached zero; the coin would leave the floor"; break;
+    case ModelEvent::Slip: meaning = "friction reached mu N; the contact would start slipping"; break;
+  }
+  return fmt::format("{} at t = {:.9f} s (theta = {:.4f} deg): {}", physics::eventName(hit.event), hit.t,
+                     degrees(hit.state.theta), meaning);
 }
 
 }  // namespace coinroll::pipeline

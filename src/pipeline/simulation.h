@@ -11,6 +11,7 @@
 #include "physics/coin_model.h"
 #include "physics/coin_state.h"
 #include "physics/formulation.h"
+#include "pipeline/run_event.h"
 #include "scene/scene_config.h"
 
 namespace coinroll::pipeline {
@@ -38,6 +39,6 @@ std::string steadyStartNote(const scene::SceneConfig& scene);
 
 // "coin-flat at t = 1.234567 s (theta = 89.0 deg): ..."-style description of why a run stopped
 // or where the model was left.
-std::string describeStop(const integrate::EventHit<physics::kStateSize>& hit);
+std::string describeStop(const RunEvent& hit);
 
 }  // namespace coinroll::pipeline

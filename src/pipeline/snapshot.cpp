@@ -7,6 +7,7 @@
 #include <numbers>
 #include <optional>
 #include <stdexcept>
+#include <utility>
 
 #include "physics/observables.h"
 
@@ -14,36 +15,35 @@ namespace coinroll::pipeline {
 
 namespace {
 
-render::CoinPose coinPose(const physics::CoinModel& model, const physics::CoinState& state) {
-  const Eigen::Quaterniond q = physics::attitude(state);
-  const Eigen::Vector3d centre = physics::centreOfMass(model, state);
+render::CoinPose coinPose(const RunSample& sample) {
+  const Eigen::Quaterniond q = physics::attitude(sample.state);
+  const Eigen::Vector3d& centre = sample.forward.centre;
   return {glm::vec3(static_cast<float>(centre.x()), static_cast<float>(centre.y()), static_cast<float>(centre.z())),
           glm::quat(static_cast<float>(q.w()), static_cast<float>(q.x()), static_cast<float>(q.y()), static_cast<float>(q.z()))};
 }
 
 // The contact point on the floor as (x, z).
-glm::vec2 contactOnFloor(const physics::CoinModel& model, const physics::CoinState& state) {
-  const Eigen::Vector3d c = physics::contactPoint(model, state);
-  return {static_cast<float>(c.x()), static_cast<float>(c.z())};
+glm::vec2 contactOnFloor(const physics::Forward& forward) {
+  return {static_cast<float>(forward.contactPoint.x()), static_cast<float>(forward.contactPoint.z())};
 }
 
 // Overlay lines: time, tilt, the contact point's rate, the face's spin, energy (and power
 // dissipated), then `extra`.
-std::vector<std::string> hudLines(const physics::CoinModel& model, const physics::CoinState& state, double time,
+std::vector<std::string> hudLines(const physics::CoinModel& model, const RunSample& sample, double time,
                                   const std::vector<std::string>& extra) {
+  const physics::CoinState& state = sample.state;
+  const physics::Forward& f = sample.forward;
   // Near flat psi-dot grows with the contact point's rate while the face itself turns slowly, so
   // the overlay names what it shows: Omega = phi-dot (the contact point round the floor, in Hz,
   // what the ear hears and the eye follows) and the face's own turning omega_Z = psi-dot - phi-dot sin(theta).
   std::vector<std::string> lines = {
       fmt::format("t        {:9.3f} s", time),
       fmt::format("tilt     {:9.2f} deg above floor", 90 - std::abs(state.theta) * 180 / std::numbers::pi),
-      fmt::format("contact  {:9.2f} Hz round the floor", std::abs(physics::precessionRate(state)) / (2 * std::numbers::pi)),
+      fmt::format("contact  {:9.2f} Hz round the floor", std::abs(f.precessionRate) / (2 * std::numbers::pi)),
       fmt::format("face     {:9.2f} rad/s about its axis", state.omega_Z),
-      fmt::format("E        {:9.5f} J", physics::energy(model, state)),
+      fmt::format("E        {:9.5f} J", f.energy),
   };
-  if (!model.effects.empty()) {
-    lines.push_back(fmt::format("P        {:9.3f} mW dissipated", 1e3 * physics::dynamics(model, state).loads.power));
-  }
+  if (!model.effects.empty()) lines.push_back(fmt::format("P        {:9.3f} mW dissipated", 1e3 * f.loads.power));
   lines.insert(lines.end(), extra.begin(), extra.end());
   return lines;
 }
@@ -65,15 +65,14 @@ SnapshotMaker::SnapshotMaker(const scene::SceneConfig& scene, const Simulation& 
       traceDt_(traceInterval(simulation.duration)),
       showTrace_(scene.render.trace),
       showHud_(scene.render.hud),
-      height_(scene.render.picture.height),
-      state_(simulation.initial) {
+      height_(scene.render.picture.height) {
   snapshot_.showContact = showTrace_;
 }
 
-physics::CoinState SnapshotMaker::stateAt(double time) {
-  const std::optional<physics::CoinState> y = run_.stateAt(time);
-  if (!y) throw std::logic_error(fmt::format("snapshots: the run ended before t = {} s, where the survey said it goes on", time));
-  return *y;
+RunSample SnapshotMaker::sampleAt(double time) {
+  std::optional<RunSample> sample = run_.sampleAt(time);
+  if (!sample) throw std::logic_error(fmt::format("snapshots: the run ended before t = {} s, where the survey said it goes on", time));
+  return std::move(*sample);
 }
 
 void SnapshotMaker::extendTraceTo(double time) {
@@ -82,26 +81,26 @@ void SnapshotMaker::extendTraceTo(double time) {
   if (traceEndsWithNow_) snapshot_.trace.pop_back();
   traceEndsWithNow_ = false;
   for (; static_cast<double>(nextTracePoint_) * traceDt_ < time; ++nextTracePoint_) {
-    snapshot_.trace.push_back(contactOnFloor(model_, stateAt(static_cast<double>(nextTracePoint_) * traceDt_)));
+    snapshot_.trace.push_back(contactOnFloor(sampleAt(static_cast<double>(nextTracePoint_) * traceDt_).forward));
   }
 }
 
 void SnapshotMaker::addGhost(double time) {
   extendTraceTo(time);  // the run streams: earlier trace points first
-  snapshot_.ghosts.push_back(coinPose(model_, stateAt(time)));
+  snapshot_.ghosts.push_back(coinPose(sampleAt(time)));
 }
 
 const render::FrameSnapshot& SnapshotMaker::makeSnapshot(double time, const std::vector<std::string>& extraHudLines) {
   extendTraceTo(time);
-  state_ = stateAt(time);
+  sample_ = sampleAt(time);
   if (showTrace_) {
-    snapshot_.trace.push_back(contactOnFloor(model_, state_));
+    snapshot_.trace.push_back(contactOnFloor(sample_.forward));
     traceEndsWithNow_ = true;
   }
-  snapshot_.coin = coinPose(model_, state_);
-  snapshot_.camera = rig_.at(time, state_);
+  snapshot_.coin = coinPose(sample_);
+  snapshot_.camera = rig_.at(time, sample_.forward.centre);
   snapshot_.traceWidth = traceWidthFor(snapshot_.camera, height_, model_.a);
-  if (showHud_) snapshot_.hudLines = hudLines(model_, state_, time, extraHudLines);
+  if (showHud_) snapshot_.hudLines = hudLines(model_, sample_, time, extraHudLines);
   return snapshot_;
 }
 

@@ -32,10 +32,11 @@ class SnapshotMaker {
   const render::FrameSnapshot& makeSnapshot(double time, const std::vector<std::string>& extraHudLines = {});
 
   // The coin at the time of the last snapshot.
-  const physics::CoinState& state() const { return state_; }
+  const physics::CoinState& state() const { return sample_.state; }
+  const physics::Forward& forward() const { return sample_.forward; }
 
  private:
-  physics::CoinState stateAt(double time);
+  RunSample sampleAt(double time);
   // Appends the trace points strictly before `time`.
   void extendTraceTo(double time);
 
@@ -48,7 +49,7 @@ class SnapshotMaker {
   bool showTrace_, showHud_;
   int height_;           // pixels, for the trace's width on screen
   render::FrameSnapshot snapshot_;
-  physics::CoinState state_;
+  RunSample sample_;
 };
 
 }  // namespace coinroll::pipeline

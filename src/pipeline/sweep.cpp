@@ -11,7 +11,6 @@
 #include <stdexcept>
 #include <thread>
 
-#include "physics/observables.h"
 #include "pipeline/cancelled.h"
 #include "pipeline/coin_run.h"
 #include "pipeline/simulation.h"
@@ -65,25 +64,29 @@ PointSummary summarize(const Simulation& simulation) {
     summary.thetaMin = std::min(summary.thetaMin, s.theta);
     summary.thetaMax = std::max(summary.thetaMax, s.theta);
   };
-  physics::CoinState last = simulation.initial;
   const long samples = sampleCount(simulation.duration, kSummarySampleDt);
+  std::optional<RunSample> first;
   for (long k = 0; k < samples; ++k) {
-    const std::optional<physics::CoinState> s = run.stateAt(static_cast<double>(k) * kSummarySampleDt);
+    const std::optional<RunSample> s = run.sampleAt(static_cast<double>(k) * kSummarySampleDt);
     if (!s) break;
-    include(last = *s);
+    if (!first) first = s;
+    include(s->state);
   }
+  double energyEnd = 0;
   if (const auto hit = run.stoppedBy()) {
-    last = physics::toState(hit->y);
-    summary.end = hit->name;
+    summary.end = physics::eventName(hit->event);
     summary.tEnd = hit->t;
+    include(hit->state);
+    energyEnd = hit->forward.energy;
   } else {
-    last = *run.stateAt(simulation.duration);
+    const RunSample last = *run.sampleAt(simulation.duration);
     summary.end = "duration";
     summary.tEnd = simulation.duration;
+    include(last.state);
+    energyEnd = last.forward.energy;
   }
-  include(last);
-  summary.energyStart = physics::energy(simulation.model, simulation.initial);
-  summary.energyEnd = physics::energy(simulation.model, last);
+  summary.energyStart = first->forward.energy;  // t = 0 always has a sample: events are crossings after it
+  summary.energyEnd = energyEnd;
   return summary;
 }
 

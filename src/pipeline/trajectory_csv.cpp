@@ -5,7 +5,6 @@
 #include <cmath>
 #include <iterator>
 
-#include "physics/observables.h"
 #include "pipeline/coin_run.h"
 #include "pipeline/singular_time.h"
 
@@ -28,11 +27,11 @@ CsvRunResult writeTrajectoryCsv(const Simulation& simulation, double sampleDt, s
     const std::optional<RunSample> sample = run.sampleAt(t);
     if (!sample) break;
     const physics::CoinState& s = sample->state;
-    const Eigen::Vector3d centre = physics::centreOfMass(simulation.model, s);
-    const Eigen::Vector3d contact = physics::contactPoint(simulation.model, s);
-    const physics::Dynamics d = physics::dynamics(simulation.model, s);
-    const physics::Reaction& r = d.reaction;
-    const double energy = physics::energy(simulation.model, s);
+    const physics::Forward& f = sample->forward;
+    const Eigen::Vector3d& centre = f.centre;
+    const Eigen::Vector3d& contact = f.contactPoint;
+    const physics::Reaction& r = f.reaction;
+    const double energy = f.energy;
     line.clear();
     // 17 significant digits round-trip every double: the CSV is a faithful copy of the state.
     fmt::format_to(std::back_inserter(line), "{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},",
@@ -40,19 +39,19 @@ CsvRunResult writeTrajectoryCsv(const Simulation& simulation, double sampleDt, s
     fmt::format_to(std::back_inserter(line), "{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}",
                    centre.y(), s.z, contact.x(), contact.z(), energy, r.N, r.F);
     if (dissipative) {
-      fmt::format_to(std::back_inserter(line), ",{:.17g},{:.17g}", d.loads.power, sample->dissipated);
-      singularTime.add(t, energy, d.loads.power);
+      fmt::format_to(std::back_inserter(line), ",{:.17g},{:.17g}", f.loads.power, sample->dissipated);
+      singularTime.add(t, energy, f.loads.power);
     }
     line.push_back('\n');
     out.write(line.data(), static_cast<std::streamsize>(line.size()));
     ++result.rows;
   }
   result.stoppedBy = run.stoppedBy();
-  if (dissipative && result.stoppedBy && result.stoppedBy->name == "coin-flat") {
+  const bool flat = result.stoppedBy && (result.stoppedBy->event == physics::ModelEvent::CoinFlat ||
+                                         result.stoppedBy->event == physics::ModelEvent::FaceDown);
+  if (dissipative && flat) {
     // The stop itself is the sample nearest the singularity; the fit needs it most.
-    const physics::CoinState end = physics::toState(result.stoppedBy->y);
-    singularTime.add(result.stoppedBy->t, physics::energy(simulation.model, end),
-                     physics::dynamics(simulation.model, end).loads.power);
+    singularTime.add(result.stoppedBy->t, result.stoppedBy->forward.energy, result.stoppedBy->forward.loads.power);
     result.singularTime = singularTime.estimate();
   }
   result.warnings = run.warnings();

@@ -7,6 +7,7 @@
 
 #include "integrate/events.h"
 #include "physics/coin_state.h"
+#include "pipeline/run_event.h"
 #include "pipeline/simulation.h"
 #include "pipeline/singular_time.h"
 
@@ -26,9 +27,9 @@ long sampleCount(double duration, double sampleDt);
 
 struct CsvRunResult {
   long rows = 0;
-  std::optional<integrate::EventHit<physics::kStateSize>> stoppedBy;
-  std::vector<integrate::EventHit<physics::kStateSize>> warnings;  // on_invalid "warn": crossings gone past
-  std::optional<SingularTimeEstimate> singularTime;  // a spin-down that reached coin-flat
+  std::optional<RunEvent> stoppedBy;
+  std::vector<RunEvent> warnings;  // on_invalid "warn": crossings gone past
+  std::optional<SingularTimeEstimate> singularTime;  // a spin-down that reached coin-flat or face-down
   integrate::Stats stats;
 };
 

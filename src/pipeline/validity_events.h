@@ -1,9 +1,12 @@
 #pragma once
-// The events that end the rolling model's validity, written once for both formulations and for
-// states with or without the dissipated-energy component: each reads the integrated vector as the
-// seed's CoinState and asks physics/validity.h.
+// The events that end the model's validity, written once for both formulations and for states
+// with or without the dissipated-energy component: each reads the forward pass of the formulation
+// that integrates the run (physics/forward.h) and asks physics/validity.h.
 
+#include <functional>
 #include <optional>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "integrate/events.h"
@@ -11,6 +14,7 @@
 #include "physics/coin_model.h"
 #include "physics/coin_rhs.h"
 #include "physics/coin_state.h"
+#include "physics/dynamics.h"
 #include "physics/formulation.h"
 #include "physics/quaternion_dynamics.h"
 #include "physics/validity.h"
@@ -29,29 +33,57 @@ physics::CoinState seedState(const integrate::Vec<N>& y, const physics::CoinStat
   }
 }
 
-// coin-flat (|theta| reaches physics::flatTiltFor), lift-off (N falls through 0) and, when mu is
-// given, slip (F rises through mu N). coin-flat always ends the run; lift-off and slip end it
-// when `validityIsTerminal`, else they are recorded and the run goes on.
+// The forward pass of formulation F at an integrated state y.
+template <physics::Formulation F, int N>
+physics::Forward forwardOf(const physics::CoinModel& model, const integrate::Vec<N>& y) {
+  if constexpr (F == physics::Formulation::EulerAngles) {
+    return physics::forward(model, physics::toState(y.template head<physics::kStateSize>()));
+  } else {
+    return physics::forward(model, physics::toQuaternionState(y.template head<physics::kQuaternionStateSize>()));
+  }
+}
+
+// theta alone, without a whole forward pass: the flat and corner events need nothing else.
+template <physics::Formulation F, int N>
+double thetaOf(const integrate::Vec<N>& y) {
+  if constexpr (F == physics::Formulation::EulerAngles) {
+    return y[physics::kTheta];
+  } else {
+    return physics::thetaOf(physics::toQuaternionState(y.template head<physics::kQuaternionStateSize>()).q);
+  }
+}
+
+template <int N>
+integrate::Event<N> modelEvent(physics::ModelEvent kind, std::function<double(double, const integrate::Vec<N>&)> g,
+                               int direction, bool terminal) {
+  return {.name = std::string(physics::eventName(kind)), .id = static_cast<int>(kind), .g = std::move(g),
+          .direction = direction, .terminal = terminal};
+}
+
+// coin-flat or face-down (|theta| reaches physics::flatStopFor), corner-switch (a cornered rim
+// passes upright), lift-off (N falls through 0) and, when mu is given, slip (F rises through
+// mu N). The flat and corner events always end the run; lift-off and slip end it when
+// `validityIsTerminal`, else they are recorded and the run goes on.
 template <physics::Formulation F, int N>
 std::vector<integrate::Event<N>> validityEvents(const physics::CoinModel& model, std::optional<double> friction,
                                                 bool validityIsTerminal) {
   using Y = integrate::Vec<N>;
-  const double flatTilt = physics::flatTiltFor(model, F == physics::Formulation::Quaternion);
+  using physics::ModelEvent;
+  const physics::FlatStop flat = physics::flatStopFor(model, F);
   std::vector<integrate::Event<N>> events;
-  events.push_back({.name = "coin-flat",
-                    .g = [flatTilt](double, const Y& y) { return physics::flatMargin(seedState<F, N>(y), flatTilt); },
-                    .direction = -1});
-  events.push_back({.name = "lift-off",
-                    .g = [model](double, const Y& y) { return physics::liftOffMargin(model, seedState<F, N>(y)); },
-                    .direction = -1,
-                    .terminal = validityIsTerminal});
+  events.push_back(modelEvent<N>(
+      flat.event, [tilt = flat.tilt](double, const Y& y) { return physics::flatMargin(thetaOf<F, N>(y), tilt); }, -1, true));
+  if (physics::hasCorners(model)) {
+    events.push_back(modelEvent<N>(ModelEvent::CornerSwitch, [](double, const Y& y) { return thetaOf<F, N>(y); }, 0, true));
+  }
+  events.push_back(modelEvent<N>(
+      ModelEvent::LiftOff, [model](double, const Y& y) { return physics::liftOffMargin(model, forwardOf<F, N>(model, y)); },
+      -1, validityIsTerminal));
   if (friction) {
-    events.push_back({.name = "slip",
-                      .g = [model, mu = *friction](double, const Y& y) {
-                        return physics::slipMargin(model, seedState<F, N>(y), mu);
-                      },
-                      .direction = -1,
-                      .terminal = validityIsTerminal});
+    events.push_back(modelEvent<N>(
+        ModelEvent::Slip,
+        [model, mu = *friction](double, const Y& y) { return physics::slipMargin(model, forwardOf<F, N>(model, y), mu); },
+        -1, validityIsTerminal));
   }
   return events;
 }

@@ -54,10 +54,10 @@ std::vector<double> frameTimes(const scene::SceneConfig& scene, const Simulation
   for (double t = 0; t <= endTime * (1 + 1e-12);) {
     if (static_cast<long>(times.size()) == maxFrames) refuseFrames(scene, maxFrames, "more than that");
     times.push_back(std::min(t, endTime));
-    const std::optional<physics::CoinState> y = trajectory.stateAt(t);
+    const std::optional<RunSample> y = trajectory.sampleAt(t);
     if (!y) break;
     const scene::TimeRemap& remap = *scene.render.timeRemap;
-    const double rate = std::abs(remap.rate == scene::TimeRemap::Rate::Spin ? physics::spinRate(*y) : physics::precessionRate(*y));
+    const double rate = std::abs(remap.rate == scene::TimeRemap::Rate::Spin ? y->forward.spinRate : y->forward.precessionRate);
     t += perFrame * std::min(1.0, remap.limit / rate);
   }
   return times;
@@ -72,17 +72,27 @@ class SoundTrack {
  public:
   SoundTrack(const scene::AudioSpec& spec, int fps) : spec_(spec), fps_(fps), synth_(spec, video::kAudioSampleRate) {}
 
-  void reachFrame(long k, const physics::CoinState& state, double playbackRate, video::FrameSink& sink) {
+  // `landing`: frame k is the coin's landing, where the sound fades out to the silence of the hold.
+  void reachFrame(long k, const physics::Forward& forward, double playbackRate, video::FrameSink& sink, bool landing) {
     // Omega = |phi-dot|, the contact point's rate round the floor; with pitch "video" the sound is
     // played at the picture's speed, so its frequency scales with simulated seconds per video second.
     const double rate = spec_.pitch == scene::AudioSpec::Pitch::Video ? playbackRate : 1.0;
-    const double f = spec_.frequencyScale * std::abs(physics::precessionRate(state)) / (2 * std::numbers::pi) * rate;
-    if (k > 0) emit(k, f, sink, false);
+    const double f = spec_.frequencyScale * std::abs(forward.precessionRate) / (2 * std::numbers::pi) * rate;
+    if (k > 0) emit(k, f, sink, landing);
     frequency_ = f;
   }
 
+  // The block up to frame k of a coin lying still: silence.
+  void rest(long k, video::FrameSink& sink) {
+    block_.assign(static_cast<std::size_t>(sampleAt(k) - sampleAt(k - 1)), 0.0f);
+    sink.pushAudio(block_);
+  }
+
   // The last frame's block, so the track lasts exactly as long as the video.
-  void finish(long frames, video::FrameSink& sink) { emit(frames, frequency_, sink, true); }
+  void finish(long frames, video::FrameSink& sink, bool resting) {
+    if (resting) rest(frames, sink);
+    else emit(frames, frequency_, sink, true);
+  }
 
  private:
   // Sample index at which frame k starts: k * rate / fps, exact in integers.
@@ -125,7 +135,11 @@ VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& si
   result.simulatedSeconds = survey.endTime;
   if (survey.stoppedBy) result.stopDescription = describeStop(*survey.stoppedBy);
   const std::vector<double> times = frameTimes(scene, simulation, survey.endTime, options.maxFrames);
-  const long total = static_cast<long>(times.size());
+  const long simulatedFrames = static_cast<long>(times.size());
+  // A coin that landed on its face lies still for a while before the clip ends, so the end is seen.
+  const bool landed = survey.stoppedBy && survey.stoppedBy->event == physics::ModelEvent::FaceDown;
+  const long holdFrames = landed ? std::lround(kLandingHoldSeconds * scene.render.fps) : 0;
+  const long total = simulatedFrames + holdFrames;
 
   SnapshotMaker snapshots(scene, simulation, survey);
   image::Image frame;
@@ -133,9 +147,17 @@ VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& si
   if (scene.render.audio) sound.emplace(*scene.render.audio, scene.render.fps);
   for (long k = 0; k < total; ++k) {
     if (options.cancel != nullptr && options.cancel->load()) throw Cancelled();
+    if (k >= simulatedFrames) {  // the hold: the landing's picture again, in silence
+      if (sound) sound->rest(k, sink);
+      sink.push(frame);
+      result.frames = k + 1;
+      if (options.onFrame) options.onFrame({k + 1, total});
+      continue;
+    }
     const double t = times[static_cast<std::size_t>(k)];
     // Simulated seconds per video second at this frame, from the frame times.
-    const double step = k + 1 < total ? times[static_cast<std::size_t>(k) + 1] - t : scene.render.timeScale / scene.render.fps;
+    const double step = k + 1 < simulatedFrames ? times[static_cast<std::size_t>(k) + 1] - t
+                                                : scene.render.timeScale / scene.render.fps;
     const double playbackRate = step * scene.render.fps;
     std::vector<std::string> speed;
     if (scene.render.hud) {
@@ -144,13 +166,13 @@ VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& si
       if (slowdown < 1 - 1e-9) speed.push_back(fmt::format("fast forward x{:.3g}", 1 / slowdown));
     }
     const render::FrameSnapshot& snapshot = snapshots.makeSnapshot(t, speed);
-    if (sound) sound->reachFrame(k, snapshots.state(), playbackRate, sink);
+    if (sound) sound->reachFrame(k, snapshots.forward(), playbackRate, sink, landed && k + 1 == simulatedFrames);
     renderer.draw(snapshot, frame);
     sink.push(frame);
     result.frames = k + 1;
     if (options.onFrame) options.onFrame({k + 1, total});
   }
-  if (sound) sound->finish(total, sink);
+  if (sound) sound->finish(total, sink, landed);
   sink.finish();
   return result;
 }

@@ -25,6 +25,10 @@ namespace coinroll::pipeline {
 inline constexpr long kDefaultMaxFrames = 1'000'000;
 inline constexpr double kUpFrontFrameFactor = 1000;
 
+// s of video. A clip whose coin lands on its face (event face-down) holds the landing's picture
+// this long after its last simulated frame, in silence.
+inline constexpr double kLandingHoldSeconds = 1.5;
+
 // Frames in a clip of `simulatedSeconds` at `fps` and `timeScale`: k = 0 .. floor(video length * fps).
 long frameCount(double simulatedSeconds, double timeScale, int fps);
 

@@ -1,6 +1,7 @@
 #pragma once
 // CPU-side geometry, built without a GL context (so tests can check it): the coin as a closed
-// cylinder (an annulus when it has a hole), the trace ribbon and the overlay text.
+// cylinder (an annulus when it has a hole) whose outer rim may be rounded with the edge radius, the
+// trace ribbon and the overlay text.
 
 #include <glm/glm.hpp>
 #include <string>

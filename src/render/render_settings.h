@@ -26,11 +26,16 @@ inline constexpr bool isMsaaSampleCount(int samples) {
 // approximate anti-aliasing pass over the picture (shaders/fxaa.frag); `msaa` is ignored.
 enum class Antialiasing { Msaa, Fxaa };
 
-// The coin as drawn: a closed cylinder, an annulus when it has a hole.
+// The coin as drawn: a closed cylinder, an annulus when it has a hole, whose two outer edges may
+// be rounded. In the (r, z) half-plane its cross-section is [innerRadius, radius] x [-h/2, h/2]
+// with the outer corners replaced by quarter circles of radius edgeRadius centred at
+// (radius - edgeRadius, +-(h/2 - edgeRadius)): the physics' torus rim (physics/rim.h).
 struct CoinShape {
   float radius = 0.0375f;     // m
   float innerRadius = 0.0f;   // m, 0 for a solid disk
   float thickness = 0.00225f; // m
+  float edgeRadius = 0.0f;    // m, rho: the fillet rounding the outer rim, in [0, min(thickness/2, radius - innerRadius)];
+                              // 0 a sharp-edged cylinder, thickness/2 a fully rounded (half-torus) rim
 };
 
 struct RenderSettings {

@@ -44,6 +44,15 @@ void validate(const RenderSettings& s) {
     throw std::invalid_argument(fmt::format("coin: radius {} m, inner radius {} m and thickness {} m cannot be drawn",
                                             s.coin.radius, s.coin.innerRadius, s.coin.thickness));
   }
+  // The fillet must fit the cross-section: at most half the thickness (a half-torus rim) and at
+  // most the rim's width (the flat face then shrinks to the hole's edge or the centre).
+  const float maxEdgeRadius = std::min(0.5f * s.coin.thickness, s.coin.radius - s.coin.innerRadius);
+  if (!(s.coin.edgeRadius >= 0 && s.coin.edgeRadius <= maxEdgeRadius)) {
+    throw std::invalid_argument(fmt::format("coin: edge radius {} m cannot be drawn: must be 0..{} m (at most half the "
+                                            "thickness {} m and the width radius - inner radius {} m)",
+                                            s.coin.edgeRadius, maxEdgeRadius, s.coin.thickness,
+                                            s.coin.radius - s.coin.innerRadius));
+  }
 }
 
 glm::mat4 modelMatrix(const CoinPose& pose) { return glm::translate(glm::mat4(1.0f), pose.centre) * glm::mat4_cast(pose.attitude); }
@@ -344,7 +353,9 @@ void Renderer::draw(const FrameSnapshot& snapshot, image::Image& out) {
   gl.coinProgram.set("viewProjection", viewProjection);
   gl.coinProgram.set("eye", snapshot.camera.eye);
   gl.coinProgram.set("lightDirection", kLightDirection);
-  gl.coinProgram.set("radius", coinRadius);
+  // The face pattern spans the flat part of each face, inside the fillets (radius - rho); with a
+  // sharp rim that is the whole radius, exactly as before fillets existed.
+  gl.coinProgram.set("radius", coinRadius - settings_.coin.edgeRadius);
   gl.coinProgram.set("face", 0);
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, gl.coinFace.get());

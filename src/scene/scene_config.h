@@ -26,7 +26,10 @@ struct CoinSpec {
   double radius = 0;       // m, required, > 0
   double mass = 0;         // kg, required, > 0
   double innerRadius = 0;  // m, ring only: hole radius b in [0, radius]; default radius (thin hoop)
-  // coin.thickness is for drawing only: it is held, with the radii as drawn, in RenderSpec::picture.
+  // m, coin.thickness: when given the coin is a solid of that thickness in the dynamics (INTERFACE.md
+  // "The coin's rim"); absent, the seed's thin coin (drawn 0.06 radius thick, in RenderSpec::picture).
+  std::optional<double> thickness;
+  double edgeRadius = 0;  // m, coin.edge_radius rho in [0, min(h/2, radius - inner radius)]; default h/2 (capped)
   std::optional<double> I_X, I_Z;  // kg m^2, custom only (required there)
 };
 
@@ -52,8 +55,9 @@ using physics::Formulation;
 
 struct SolverSpec {
   // README "Formulations": the Euler angles are the more accurate per unit of time on every
-  // example; the quaternion is for runs that must go nearer flat than 89 degrees.
-  Formulation formulation = Formulation::EulerAngles;
+  // example; the quaternion is for runs that must go nearer flat than 89 degrees. Absent: the Euler
+  // angles, except for a coin with thickness and effects, whose landing only the quaternion reaches.
+  std::optional<Formulation> formulation;
   std::string method = "dop853";
   double rtol = 1e-10;  // adaptive methods
   double atol = 1e-12;  // adaptive methods

@@ -45,7 +45,6 @@ Enum enumValue(const JsonReader& r, std::string_view key, const std::array<std::
   return static_cast<Enum>(found - names.begin());
 }
 
-std::string nameOf(Formulation formulation) { return std::string(kFormulationNames.at(static_cast<std::size_t>(formulation))); }
 
 double positive(const JsonReader& r, std::string_view key, std::optional<double> value) {
   if (value && !(*value > 0)) r.fail(key, fmt::format("must be > 0, got {}", *value));
@@ -88,7 +87,7 @@ double tiltDegrees(const JsonReader& r, std::string_view key, double fallback) {
 CoinSpec parseCoin(const JsonReader& top, render::CoinShape& drawn) {
   const nlohmann::json* node = top.child("coin");
   if (node == nullptr) top.fail("coin", "required (an object with shape, radius, mass)");
-  const JsonReader r(*node, "coin", "", {"shape", "radius", "mass", "inner_radius", "thickness", "I_X", "I_Z"});
+  const JsonReader r(*node, "coin", "", {"shape", "radius", "mass", "inner_radius", "thickness", "edge_radius", "I_X", "I_Z"});
   CoinSpec coin;
   const std::string shape = r.optionalString("shape").value_or("disk");
   if (shape == "disk") coin.shape = Shape::Disk;
@@ -104,6 +103,20 @@ CoinSpec parseCoin(const JsonReader& top, render::CoinShape& drawn) {
   coin.innerRadius = r.number("inner_radius", coin.radius);
   if (coin.shape == Shape::Ring && !(coin.innerRadius >= 0 && coin.innerRadius <= coin.radius)) {
     r.fail("inner_radius", fmt::format("must be in [0, radius = {}] m, got {}", coin.radius, coin.innerRadius));
+  }
+  if (r.has("thickness")) coin.thickness = thickness;
+  if (r.has("edge_radius") && !coin.thickness) {
+    r.fail("edge_radius", "only allowed with coin.thickness (a thin coin has no rim to round)");
+  }
+  if (coin.thickness) {
+    const double hole = coin.shape == Shape::Ring ? coin.innerRadius : 0.0;
+    const double largest = std::min(0.5 * thickness, coin.radius - hole);
+    coin.edgeRadius = r.number("edge_radius", largest);
+    if (!(coin.edgeRadius >= 0 && coin.edgeRadius <= largest)) {
+      r.fail("edge_radius", fmt::format("must be in [0, {}] m (at most half the thickness and the width of the rim), got {}",
+                                        largest, coin.edgeRadius));
+    }
+    drawn.edgeRadius = static_cast<float>(coin.edgeRadius);
   }
   drawn.radius = static_cast<float>(coin.radius);
   drawn.thickness = static_cast<float>(thickness);
@@ -185,12 +198,14 @@ SolverSpec parseSolver(const JsonReader& top, const ParseOptions& options) {
   const nlohmann::json* node = top.child("solver");
   if (node == nullptr) return solver;
   const JsonReader r(*node, "solver", "", {"formulation", "method", "rtol", "atol", "dt"});
-  const std::string formulation = r.optionalString("formulation").value_or(nameOf(solver.formulation));
-  const auto known = std::find(kFormulationNames.begin(), kFormulationNames.end(), formulation);
-  if (known == kFormulationNames.end()) {
-    r.fail("formulation", fmt::format("unknown formulation \"{}\"; available: {}", formulation, fmt::join(kFormulationNames, ", ")));
+  if (const std::optional<std::string> formulation = r.optionalString("formulation")) {
+    const auto known = std::find(kFormulationNames.begin(), kFormulationNames.end(), *formulation);
+    if (known == kFormulationNames.end()) {
+      r.fail("formulation",
+             fmt::format("unknown formulation \"{}\"; available: {}", *formulation, fmt::join(kFormulationNames, ", ")));
+    }
+    solver.formulation = static_cast<Formulation>(known - kFormulationNames.begin());
   }
-  solver.formulation = static_cast<Formulation>(known - kFormulationNames.begin());
   solver.method = r.optionalString("method").value_or(solver.method);
   if (std::find(options.solverMethods.begin(), options.solverMethods.end(), solver.method) == options.solverMethods.end()) {
     r.fail("method", fmt::format("unknown method \"{}\"; available: {}", solver.method, fmt::join(options.solverMethods, ", ")));

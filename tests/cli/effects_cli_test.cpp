@@ -50,10 +50,9 @@ std::vector<std::vector<double>> readRows(const fs::path& csv, std::string& head
   return rows;
 }
 
-TEST_F(EffectsCliTest, SpinDownRunsToCoinFlatWithItsEnergyBudgetT0AndWarnings) {
-  const fs::path csv = dir_ / "spin_down.csv";
-  const RunResult r = runCoinroll("simulate " + example("euler_disk") + " --csv " + csv.string() + " --sample-dt 0.05");
-  ASSERT_EQ(r.exitCode, 0) << r.output;
+// The CSV of a spin-down: its columns, power >= 0, and energy + dissipated = the initial energy;
+// most of the energy above `restingEnergy` (the coin lying still) spent by the end.
+void expectClosedEnergyBudget(const fs::path& csv, double restingEnergy, double spentFraction) {
   std::string header;
   const std::vector<std::vector<double>> rows = readRows(csv, header);
   EXPECT_EQ(header,
@@ -66,14 +65,38 @@ TEST_F(EffectsCliTest, SpinDownRunsToCoinFlatWithItsEnergyBudgetT0AndWarnings) {
     EXPECT_GE(row[15], 0);                                // power
     EXPECT_LE(std::abs(row[12] + row[16] - E0), 1e-9 * E0);  // energy + dissipated
   }
-  EXPECT_GT(rows.back()[16], 0.9 * E0);  // nearly all of it spent by the end
-  EXPECT_NE(r.output.find("stopped early: coin-flat at t = "), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("89.5000 deg"), std::string::npos) << r.output;
+  EXPECT_GT(rows.back()[16], spentFraction * (E0 - restingEnergy));
+  EXPECT_GT(rows.back()[12], restingEnergy);
+}
+
+TEST_F(EffectsCliTest, TheThickToySpinsDownToFaceDownWithItsEnergyBudgetT0AndWarnings) {
+  const fs::path csv = dir_ / "spin_down.csv";
+  const RunResult r = runCoinroll("simulate " + example("euler_disk") + " --csv " + csv.string() + " --sample-dt 0.05");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  // Lying on its face the 0.449 kg, 13 mm toy keeps M g h / 2; the face spin the rolling constraint
+  // pumps up (docs/euler_disk.md) keeps a third of the rest at the landing.
+  expectClosedEnergyBudget(csv, 0.449 * 9.81 * 0.013 / 2, 0.5);
+  EXPECT_NE(r.output.find("stopped early: face-down at t = "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("89.9500 deg"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("singular time t0 = "), std::string::npos) << r.output;
   // on_invalid "warn": the slip crossing is reported and the run goes on to flat.
   EXPECT_NE(r.output.find("warning: the ideal contact fails here (on_invalid: warn, going on): slip at t = "),
             std::string::npos) << r.output;
   EXPECT_NE(r.output.find("note: initial.steady is a steady motion of the ideal model"), std::string::npos) << r.output;
+}
+
+TEST_F(EffectsCliTest, AThinCoinSpinsDownToCoinFlatAtHalfADegree) {
+  // The seed's thin coin (no thickness) has no face to land on: its spin-down ends at coin-flat.
+  const fs::path scene = dir_ / "thin.json", csv = dir_ / "thin.csv";
+  std::ofstream(scene) << R"({"coin": {"shape": "disk", "radius": 0.0375, "mass": 0.4},
+    "initial": {"steady": "spin-in-place", "theta": 60}, "duration": 200, "on_invalid": "warn",
+    "effects": [{"type": "air_drag", "model": "boundary_layer"}, {"type": "rolling_resistance", "length": 3.75e-6}]})";
+  const RunResult r = runCoinroll("simulate " + scene.string() + " --csv " + csv.string() + " --sample-dt 0.05");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  expectClosedEnergyBudget(csv, 0, 0.9);
+  EXPECT_NE(r.output.find("stopped early: coin-flat at t = "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("89.5000 deg"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("singular time t0 = "), std::string::npos) << r.output;
 }
 
 TEST_F(EffectsCliTest, OnInvalidStopEndsTheSpinDownAtSlip) {
@@ -82,7 +105,7 @@ TEST_F(EffectsCliTest, OnInvalidStopEndsTheSpinDownAtSlip) {
                                   " --sample-dt 0.5 --set on_invalid=stop");
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("stopped early: slip at t = "), std::string::npos) << r.output;
-  EXPECT_EQ(r.output.find("coin-flat"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("face-down"), std::string::npos) << r.output;
 }
 
 TEST_F(EffectsCliTest, BadEffectsGetExitTwoNameTheKeyAndWriteNothing) {
@@ -115,8 +138,12 @@ struct Recorded {
 };
 
 TEST_F(EffectsCliTest, ScenesWithoutEffectsGiveTheBytesTheyGaveBeforeEffectsExisted) {
+  // falling_flat integrates the quaternion formulation, whose CSV reads its own forward pass since
+  // issue 19 (it had read the Euler-angle equations): its state columns are those of before, its
+  // derived columns (y, contact, energy, N, F) differ in the last digits, at most 7e-12 of the weight
+  // in N where the Euler angles' tan(theta) had amplified round-off. Its still and clip are unchanged.
   const Recorded recorded[] = {
-      {"falling_flat", 0xd25578aef8fd97c0ull, 0x436ef6ecaf639248ull, 0x1c4a44623c32bcd1ull},
+      {"falling_flat", 0xecf06bcb75b7138bull, 0x436ef6ecaf639248ull, 0x1c4a44623c32bcd1ull},
       {"perturbed_circle", 0xbcab92c1507693e1ull, 0x04837bcbd4409935ull, 0xb61a918036a79a66ull},
       {"ring", 0x99f21397fcf14070ull, 0x5212aea8d6b58f97ull, 0x74cd5db057595741ull},
       {"spin_in_place", 0x686069e8237da8ddull, 0x3c5e1486f6cd31beull, 0x5853b88ecb56a8d4ull},

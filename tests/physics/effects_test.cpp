@@ -69,9 +69,9 @@ TEST(EffectLoads, RollingAndPivotingCouplesHaveNoPartAlongE_X) {
     EXPECT_TRUE(isBelow(std::abs(l.torque.dot(k.e_X)), 1e-15 * l.torque.norm())) << typeName(law);
   }
   const CoinModel m = toyWith({AirDrag{}, RollingResistance{}, SpinFriction{}});
-  const Dynamics d = dynamics(m, s);
+  const Forward d = forward(m, s);
   // The loads were evaluated at the normal force they produce.
-  EXPECT_TRUE(isNear(dynamics(m, s).reaction.N, d.reaction.N, 0));
+  EXPECT_TRUE(isNear(forward(m, s).reaction.N, d.reaction.N, 0));
   const Loads again = totalLoads(m.effects, contactKinematics(m, s, d.reaction.N));
   EXPECT_TRUE(isNear(again.power, d.loads.power, 1e-15 * d.loads.power));
 }
@@ -100,8 +100,8 @@ TEST(AirDrag, QuasiSteadyPowerIsMoffattsAndBildstensClosedForm) {
   const double mu = moffatt.viscosity, rho = moffatt.density, g = kToy.g, a = kToy.a;
   for (const double alpha : {0.5 * kDeg, 1 * kDeg, 2 * kDeg}) {
     const CoinState s = spinInPlaceAt(kToy, alpha);
-    const double moffattPower = dynamics(toyWith({moffatt}), s).loads.power;
-    const double bildstenPower = dynamics(toyWith({boundaryLayer}), s).loads.power;
+    const double moffattPower = forward(toyWith({moffatt}), s).loads.power;
+    const double bildstenPower = forward(toyWith({boundaryLayer}), s).loads.power;
     EXPECT_TRUE(isNear(moffattPower / (std::numbers::pi * mu * g * a * a / (alpha * alpha)), 1, kClosedForm));
     const double bildsten = std::sqrt(2) * std::numbers::pi * std::sqrt(mu * rho) * std::pow(g, 1.25) * std::pow(a, 2.75) *
                             std::pow(alpha, -1.25);
@@ -113,15 +113,15 @@ TEST(RollingResistance, QuasiSteadyPowerIsDeltaMgOmega) {
   const RollingResistance law{.length = 3.75e-6};
   for (const double alpha : {0.5 * kDeg, 2 * kDeg}) {
     const CoinState s = spinInPlaceAt(kToy, alpha);
-    const double power = dynamics(toyWith({law}), s).loads.power;
+    const double power = forward(toyWith({law}), s).loads.power;
     EXPECT_TRUE(isNear(power / (law.length * kToy.M * kToy.g * Omega(s)), 1, kClosedForm));
   }
   // A sublinear load law: the couple grows as N^0.7, so doubling the mass multiplies it by 2^0.7.
   const RollingResistance sublinear{.length = 3.75e-6, .loadExponent = 0.7};
   CoinModel light = toyWith({sublinear}), heavy = diskModel(0.8, 0.0375, 9.81);
   heavy.effects = {sublinear};
-  const double ratio = dynamics(heavy, spinInPlaceAt(heavy, kDeg)).loads.power /
-                       dynamics(light, spinInPlaceAt(light, kDeg)).loads.power;
+  const double ratio = forward(heavy, spinInPlaceAt(heavy, kDeg)).loads.power /
+                       forward(light, spinInPlaceAt(light, kDeg)).loads.power;
   EXPECT_TRUE(isNear(ratio, std::pow(2, 0.7), 1e-12));
 }
 
@@ -130,7 +130,7 @@ TEST(SpinFriction, QuasiSteadyPowerIsLMgOmegaSinSquaredAlpha) {
   const double alpha = 2 * kDeg;
   const CoinState s = spinInPlaceAt(kToy, alpha);
   const double expected = law.length * kToy.M * kToy.g * Omega(s) * std::pow(std::sin(alpha), 2);
-  EXPECT_TRUE(isNear(dynamics(toyWith({law}), s).loads.power / expected, 1, kClosedForm));
+  EXPECT_TRUE(isNear(forward(toyWith({law}), s).loads.power / expected, 1, kClosedForm));
 }
 
 // ---- Whole spin-downs -------------------------------------------------------------------------
@@ -230,7 +230,7 @@ LogLogRun runTowardsFlat(const CoinModel& m, double alpha0, double endAlpha) {
   run.samples = runSpinDown<Formulation::Quaternion>(m, start, endAlpha, timesBefore(run.tFlat, 0.9 * run.tFlat, 1e-7 * run.tFlat, 1500)).samples;
   run.samples.pop_back();  // the stop, beyond the last requested time
   pipeline::SingularTimeFit fit;
-  for (const SpinDownSample& s : run.samples) fit.add(s.t, energy(m, s.state), dynamics(m, s.state).loads.power);
+  for (const SpinDownSample& s : run.samples) fit.add(s.t, energy(m, s.state), forward(m, s.state).loads.power);
   run.t0 = fit.estimate().value().t0;
   return run;
 }
@@ -313,7 +313,7 @@ TEST(SpinDownCrossover, RollingResistanceEarlyAirDragLateAtThePredictedTime) {
   // Simulated crossover: the first sample at which the air's power exceeds the rolling's.
   double simulatedCrossover = 0;
   for (const SpinDownSample& s : run.samples) {
-    const ContactKinematics k = contactKinematics(m, s.state, dynamics(m, s.state).reaction.N);
+    const ContactKinematics k = contactKinematics(m, s.state, forward(m, s.state).reaction.N);
     if (loadsOf(air, k).power > loadsOf(rolling, k).power) {
       simulatedCrossover = run.t0 - s.t;
       break;

@@ -68,7 +68,7 @@ TEST(QuaternionRhs, EqualsTheSeedRhsAtRandomStatesAwayFromFlat) {
   std::uniform_real_distribution<double> tilt(-80 * kDeg, 80 * kDeg), angle(-7, 7), rate(-20, 20), position(-1, 1);
   int checked = 0;
   for (const CoinModel& m : {diskModel(0.4, 0.0375, 9.81), ringModel(0.4, 0.0375, 0.03, 9.81),
-                             CoinModel{.M = 2, .a = 0.1, .g = 3, .I_X = 0.004, .I_Z = 0.0065, .effects = {}}}) {
+                             CoinModel{.M = 2, .a = 0.1, .g = 3, .I_X = 0.004, .I_Z = 0.0065, .rim = {}, .effects = {}}}) {
     for (int i = 0; i < 1000; ++i) {
       const CoinState s{tilt(random), angle(random), angle(random), rate(random), rate(random), rate(random),
                         position(random), position(random)};
@@ -80,6 +80,37 @@ TEST(QuaternionRhs, EqualsTheSeedRhsAtRandomStatesAwayFromFlat) {
     }
   }
   EXPECT_EQ(checked, 3000);
+}
+
+// Coins with a rim (docs/rim.md §2-3): the Euler-angle form (2.7) in XYZ and the material-frame form
+// (3.3) are two derivations of one motion; on both sides of upright for the cornered rims.
+TEST(QuaternionRhs, EqualsTheSeedRhsForCoinsWithARim) {
+  std::mt19937 random(20261201);
+  std::uniform_real_distribution<double> tilt(-80 * kDeg, 80 * kDeg), angle(-7, 7), rate(-20, 20), position(-1, 1);
+  const auto thick = [](double h, double rho) {
+    CoinModel m = diskModel(0.4, 0.0375, 9.81);
+    m.I_X += 0.4 * h * h / 12;
+    m.rim = {.thickness = h, .edgeRadius = rho};
+    return m;
+  };
+  for (const CoinModel& m : {thick(0.013, 0.0065), thick(0.013, 0.0016), thick(0.013, 0.0), thick(0.002, 0.001)}) {
+    for (int i = 0; i < 500; ++i) {
+      const CoinState s{tilt(random), angle(random), angle(random), rate(random), rate(random), rate(random),
+                        position(random), position(random)};
+      const QuaternionStateVec expected = seedRateInQuaternionVariables(m, s);
+      const QuaternionStateVec actual = quaternionRhs(m, 0.0, toVector(fromEulerState(s)));
+      EXPECT_TRUE(isBelow((actual - expected).cwiseAbs().maxCoeff() / expected.cwiseAbs().maxCoeff(), kRhsTolerance))
+          << "theta " << s.theta << ", rho " << m.rim.edgeRadius;
+      const QuaternionState q = fromEulerState(s);
+      const Forward euler = forward(m, s), quaternion = forward(m, q);
+      EXPECT_TRUE(isBelow((quaternion.reaction.R - euler.reaction.R).norm() / euler.reaction.R.norm(), kRhsTolerance));
+      EXPECT_TRUE(isNear(quaternion.energy / euler.energy, 1, kRhsTolerance));
+      EXPECT_TRUE(isBelow((quaternion.contactPoint - euler.contactPoint).norm(), 1e-15));
+      EXPECT_TRUE(isBelow(std::abs(quaternion.contactPoint.y()), 1e-15));
+      EXPECT_TRUE(isNear(quaternion.precessionRate, euler.precessionRate, kRhsTolerance * std::abs(euler.precessionRate) + 1e-12));
+      EXPECT_TRUE(isNear(quaternion.spinRate, euler.spinRate, kRhsTolerance * std::abs(euler.spinRate) + 1e-12));
+    }
+  }
 }
 
 TEST(QuaternionConversion, RoundTripsAndUnwrapsTheAngles) {
@@ -94,7 +125,7 @@ TEST(QuaternionDynamics, ReactionMatchesTheSeedFormulas) {
   const CoinModel m = ringModel(0.4, 0.0375, 0.02, 9.81);
   const CoinState s{.theta = 0.6, .phi = -1.1, .psi = 2.3, .omega_X = 0.7, .omega_Y = -1.9, .omega_Z = 5.2, .x = 0.1, .z = -0.2};
   const QuaternionState q = fromEulerState(s);
-  EXPECT_TRUE(isBelow((quaternionDynamics(m, q).reaction.R - dynamics(m, s).reaction.R).norm(), 1e-14));
+  EXPECT_TRUE(isBelow((forward(m, q).reaction.R - forward(m, s).reaction.R).norm(), 1e-14));
   EXPECT_TRUE(isNear(tiltMagnitude(q), 0.6, 1e-15));
 }
 
@@ -162,10 +193,10 @@ TEST(NearFlat, EulerAnglesStopAtTheCoinFlatEventWhileTheQuaternionContinues) {
   const CoinModel m = diskModel(0.4, 0.0375, 9.81);
   const CoinState start = fallingNearlyFlat();
   std::vector<integrate::Event<kStateSize>> eulerFlat{
-      {.name = "coin-flat", .g = [](double, const StateVec& y) { return flatMargin(toState(y), kFlatTilt); }, .direction = -1}};
+      {.name = "coin-flat", .g = [](double, const StateVec& y) { return flatMargin(toState(y).theta, kFlatTilt); }, .direction = -1}};
   std::vector<integrate::Event<kQuaternionStateSize>> quaternionFlat{
       {.name = "coin-flat",
-       .g = [](double, const QuaternionStateVec& y) { return flatMargin(seed(toQuaternionState(y)), kQuaternionFlatTilt); },
+       .g = [](double, const QuaternionStateVec& y) { return flatMargin(seed(toQuaternionState(y)).theta, kQuaternionFlatTilt); },
        .direction = -1}};
   integrate::Trajectory euler(SeedRhs{m}, 0.0, toVector(start), kTight, eulerFlat);
   integrate::Trajectory quaternion(QuaternionRhs{m}, 0.0, toVector(fromEulerState(start)), kTight, quaternionFlat);
@@ -197,7 +228,7 @@ TEST(NearFlat, PlanarFallRunsToTheQuaternionFlatStopWithTheEnergyIntegralsRate) 
   const CoinState start{.theta = 60 * kDeg};
   std::vector<integrate::Event<kQuaternionStateSize>> flat{
       {.name = "coin-flat",
-       .g = [](double, const QuaternionStateVec& y) { return flatMargin(seed(toQuaternionState(y)), kQuaternionFlatTilt); },
+       .g = [](double, const QuaternionStateVec& y) { return flatMargin(seed(toQuaternionState(y)).theta, kQuaternionFlatTilt); },
        .direction = -1}};
   integrate::Trajectory quaternion(QuaternionRhs{m}, 0.0, toVector(fromEulerState(start)), kTight, flat);
   EXPECT_FALSE(quaternion.stateAt(1.0).has_value());
@@ -208,7 +239,7 @@ TEST(NearFlat, PlanarFallRunsToTheQuaternionFlatStopWithTheEnergyIntegralsRate) 
   const double expectedRate = std::sqrt(2 * m.M * m.g * m.a * (std::cos(start.theta) - std::cos(kQuaternionFlatTilt)) / (m.I_X + Ma2));
   EXPECT_TRUE(isNear(s.omegaBody.norm(), expectedRate, 1e-9 * naturalRate(m)));
   EXPECT_TRUE(isNear(energy(m, seed(s)), energy(m, start), 1e-12 * energy(m, start)));
-  EXPECT_GT(quaternionDynamics(m, s).reaction.N, 0);  // still on the floor: the stop is the geometry's, not lift-off
+  EXPECT_GT(forward(m, s).reaction.N, 0);  // still on the floor: the stop is the geometry's, not lift-off
 }
 
 // The same comparison in coordinate-free terms, every 1 ms. Near flat phi and psi are

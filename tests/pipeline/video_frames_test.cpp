@@ -221,12 +221,12 @@ TEST(SurveyMotion, FindsAStopInTheLastTraceIntervalOfTheRun) {
   ASSERT_FALSE(free.stateAt(1.0).has_value());
   ASSERT_TRUE(free.stoppedBy().has_value());
   const double stop = free.stoppedBy()->t;
-  ASSERT_EQ(free.stoppedBy()->name, "coin-flat");
+  ASSERT_EQ(free.stoppedBy()->event, physics::ModelEvent::CoinFlat);
 
   const scene::SceneConfig scene = fallingScene(stop + 1e-6);
   const pipeline::MotionSurvey survey = pipeline::surveyMotion(pipeline::buildSimulation(scene));
   ASSERT_TRUE(survey.stoppedBy.has_value());
-  EXPECT_EQ(survey.stoppedBy->name, "coin-flat");
+  EXPECT_EQ(survey.stoppedBy->event, physics::ModelEvent::CoinFlat);
   EXPECT_DOUBLE_EQ(survey.endTime, stop);
   RecordingSink sink;
   const pipeline::VideoRunResult result = pipeline::renderVideo(scene, sink);

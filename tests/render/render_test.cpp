@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -320,6 +321,96 @@ TEST(RenderSemantics, SpinMarkerTurnsWithPsi) {
   }
 }
 
+// A thick coin resting on its rim, as the physics poses it (docs/rim.md eq. 1.3), written out
+// here as the independent truth. Tilt theta about floor x (phi = psi = 0): the coin's normal is
+// e_Z = (0, -sin, cos) and e_Y = (0, cos, sin) lies in its plane, pointing up towards the centre.
+// The contact point is the lowest point of the torus rim, at
+//   c = -(a - rho) e_Y + (h/2 - rho) e_Z - rho y_hat
+// from the centre of mass, so the centre of mass stands (a - rho) cos(theta) + (h/2 - rho) sin(theta)
+// + rho above the floor, straight above floor (x, z) = (0, 0).
+struct RestingCoin {
+  CoinPose pose;
+  glm::dvec3 contact;  // m, floor frame
+};
+
+RestingCoin restingOnTorusRim(double a, double h, double rho, double theta) {
+  const glm::dvec3 eY(0, std::cos(theta), std::sin(theta)), eZ(0, -std::sin(theta), std::cos(theta)), yHat(0, 1, 0);
+  const glm::dvec3 c = -(a - rho) * eY + (h / 2 - rho) * eZ - rho * yHat;
+  const glm::dvec3 centre(0, (a - rho) * std::cos(theta) + (h / 2 - rho) * std::sin(theta) + rho, 0);
+  const CoinPose coin{glm::vec3(centre), pose(theta, 0, 0).attitude};
+  return {coin, centre + c};
+}
+
+// Seen from the floor itself, a thick coin tilted 30 degrees and resting on its rounded rim must
+// touch the floor line and not cross it, and its lowest pixel must be where the camera projects
+// the contact point. The eye sits ON the floor plane (y = 0), looking slightly up at the centre
+// of mass along the coin's plane (from +x, where the lowest point is a rounded corner rather than
+// the long flat curve of the rim): the whole floor then projects to one image line, the horizon,
+// and a pixel below it can only be a part of the coin under the floor.
+// Coin pixels: those that differ from the same view with the coin moved out of sight. The floor
+// is seen edge-on and covers no pixel, the shadow, trace, marker and overlay are off, so both
+// pictures are the plain sky colour but for the coin; a low threshold (24, summed over RGB, as in
+// changedPixels) counts the edge pixels the coin covers only in part (one MSAA sample of four).
+// The old drawing, a sharp 13 mm cylinder centred at a cos(theta), reached (h/2) sin(theta) =
+// 3.25 mm under the floor: seen by this test's camera for rho = h/2 it lit 113 pixels lying wholly
+// below the floor line, the deepest pixel centre 10.1 px below it (measured once, not tested).
+TEST(RenderSemantics, RoundedRimRestsOnTheFloorAtItsContactPoint) {
+  constexpr double a = 0.0375, h = 0.013, theta = 30 * kPi / 180;
+  for (const double rho : {h / 2, h / 4}) {
+    RenderSettings settings = coinOnlySettings(640, 480);
+    settings.coin = {float(a), 0.0f, float(h), float(rho)};
+    Renderer renderer(settings);
+    const RestingCoin resting = restingOnTorusRim(a, h, rho, theta);
+    ASSERT_TRUE(isNear(resting.contact.y, 0.0, 1e-12)) << "the contact point must lie on the floor";
+    const glm::dvec3 normal = glm::dquat(resting.pose.attitude) * glm::dvec3(0, 0, 1);
+    ASSERT_TRUE(isNear(normal.y, -std::sin(theta), 1e-6)) << "e_Z must lean down by theta";
+    const CameraView camera{glm::vec3(resting.contact + glm::dvec3(0.3, 0.0, 0.0)), resting.pose.centre, 30.0f};
+    const FrameSnapshot s = bareSnapshot(resting.pose, camera);
+    const std::vector<glm::dvec2> coinPixels = changedPixelCentres(renderer.draw(s), withoutCoin(renderer, s), 24);
+    ASSERT_GT(coinPixels.size(), 1000u) << "rho " << rho;
+
+    // The floor line: the image of any two floor points (all of them lie on it).
+    const glm::dvec2 left = pinholePixel(camera, settings.width, settings.height, resting.contact + glm::dvec3(0, 0, 0.05));
+    const glm::dvec2 right = pinholePixel(camera, settings.width, settings.height, resting.contact - glm::dvec3(0, 0, 0.05));
+    auto floorLineY = [&](double x) { return left.y + (right.y - left.y) * (x - left.x) / (right.x - left.x); };
+    const glm::dvec2 contact = pinholePixel(camera, settings.width, settings.height, resting.contact);
+
+    // A pixel whose centre lies half a pixel or more below the line lies wholly under the floor;
+    // one whose centre lies less than that below may rightly show the coin in its upper samples.
+    double deepest = -1e9;  // px, how far the lowest coin pixel centre lies below the floor line
+    int whollyBelow = 0;
+    double lowestY = -1e9;
+    for (const glm::dvec2& p : coinPixels) {
+      const double depth = p.y - floorLineY(p.x);
+      deepest = std::max(deepest, depth);
+      whollyBelow += depth >= 0.5 ? 1 : 0;
+      lowestY = std::max(lowestY, p.y);
+    }
+    // The lowest coin pixels: the bottom row of the silhouette, centred on the rounded corner.
+    double sumX = 0, countX = 0;
+    for (const glm::dvec2& p : coinPixels) {
+      if (p.y == lowestY) {
+        sumX += p.x;
+        countX += 1;
+      }
+    }
+    const glm::dvec2 lowest(sumX / countX, lowestY);
+    // A coin at or above the floor covers no sample below the line, so its pixel centres end at
+    // most half a pixel below it. Bound: the centre at most one pixel below (rasterisation slack).
+    // Measured: 0.07 px below (rho = h/2) and 0.50 px above (rho = h/4); none wholly below.
+    EXPECT_TRUE(isBelow(deepest, 1.0)) << "rho " << rho << ": " << whollyBelow << " coin pixels wholly below the floor line";
+    // The lowest pixel row touches the line at the contact point, and across the rounded corner
+    // its run is symmetric about it. Measured: at most 0.44 px off horizontally and 0.50 px
+    // vertically (the row's centre is half a pixel above a line on a pixel edge). Bound: 1 px.
+    EXPECT_TRUE(isNear(lowest.x, contact.x, 1.0)) << "rho " << rho << " horizontally";
+    EXPECT_TRUE(isNear(lowest.y, contact.y, 1.0)) << "rho " << rho << " vertically";
+    std::cerr << "rho " << rho * 1000 << " mm: contact (" << contact.x << ", " << contact.y << ") px on the floor line, lowest "
+              << "coin pixel (" << lowest.x << ", " << lowest.y << ") px (mean of " << countX << " in its row), deepest coin "
+              << "pixel centre " << deepest << " px below the line, " << whollyBelow << " pixels wholly below, "
+              << coinPixels.size() << " coin pixels\n";
+  }
+}
+
 TEST(RenderAntialiasing, EdgesApproachASupersampledReference) {
   // Reference: the same view drawn 8x larger with one sample and box-averaged (64 samples/pixel).
   FrameSnapshot s = goldenSnapshot("circle_trace");
@@ -399,6 +490,25 @@ TEST(RenderErrors, BadSettingsNameTheField) {
   EXPECT_THROW(Renderer{s}, std::invalid_argument);
 }
 
+TEST(RenderErrors, EdgeRadiusMustFitTheCrossSection) {
+  // At most half the thickness (a half-torus rim) and at most the rim's width radius - inner.
+  auto settingsWith = [](float inner, float edgeRadius) {
+    RenderSettings s = smallSettings();
+    s.coin = {kRadius, inner, 0.013f, edgeRadius};
+    return s;
+  };
+  for (const auto& [inner, edgeRadius] : {std::pair{0.0f, -0.001f}, {0.0f, 0.0066f}, {0.035f, 0.0026f}, {0.0f, std::nanf("")}}) {
+    try {
+      Renderer renderer(settingsWith(inner, edgeRadius));
+      FAIL() << "edge radius " << edgeRadius << " with inner radius " << inner << " accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("edge radius"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_NO_THROW(Renderer{settingsWith(0.0f, 0.5f * 0.013f)}) << "a fully rounded rim";
+  EXPECT_NO_THROW(Renderer{settingsWith(0.035f, kRadius - 0.035f)}) << "a fillet as wide as the rim";
+}
+
 TEST(RenderErrors, ShaderCompileErrorsGiveFileAndLine) {
   const coinroll::testing::ScratchDirectory scratch;
   const fs::path dir = scratch / "shaders";
@@ -442,6 +552,81 @@ TEST(CoinMesh, IsClosedWithOutwardNormals) {
     }
     const double polygonArea = 0.5 * 64 * std::sin(2 * kPi / 64) * (double(kRadius) * kRadius - double(inner) * inner);
     EXPECT_TRUE(isNear(signedVolume / (polygonArea * 0.003), 1.0, 1e-5)) << "inner " << inner;
+  }
+}
+
+// The filleted rim (CoinShape::edgeRadius) against the solid it stands for: in the (r, z)
+// half-plane the rectangle [inner, a] x [-h/2, h/2] with its outer corners rounded by quarter
+// circles of radius rho about (a - rho, +-(h/2 - rho)).
+TEST(CoinMesh, FilletedRimStaysInsideTheRoundedSolid) {
+  constexpr double a = 0.0375, h = 0.013, tol = 1e-6;  // m
+  // The last hole leaves a rim 6.5 mm wide: at rho = h/2 the flat faces shrink to nothing.
+  for (const double inner : {0.0, 0.01, a - h / 2}) {
+    for (const double rho : {h / 4, h / 2}) {
+      const std::vector<CoinVertex> triangles = coinTriangles({float(a), float(inner), float(h), float(rho)}, 128);
+      const double zc = h / 2 - rho;  // the tube centres' height; 0 for a fully rounded rim
+      double maxR = 0;
+      for (const CoinVertex& v : triangles) maxR = std::max(maxR, glm::length(glm::dvec2(v.position)));
+      EXPECT_TRUE(isNear(maxR, a, tol)) << "the rim must reach the radius";
+      bool bandTop = false, bandBottom = false;
+      for (const CoinVertex& v : triangles) {
+        const glm::dvec3 p(v.position);
+        const double r = glm::length(glm::dvec2(p)), z = p.z;
+        // Inside the rounded rectangle.
+        ASSERT_TRUE(r >= inner - tol && r <= a + tol && std::abs(z) <= h / 2 + tol) << "r " << r << ", z " << z;
+        if (r > a - rho && std::abs(z) > zc) {
+          ASSERT_TRUE(isBelow(std::hypot(r - (a - rho), std::abs(z) - zc), rho + tol))
+              << "outside the fillet: r " << r << ", z " << z;
+        }
+        // Only the straight band |z| <= h/2 - rho reaches the radius (only z = 0 when rho = h/2).
+        if (r >= a - tol) {
+          ASSERT_TRUE(isBelow(std::abs(z), zc + tol)) << "rho " << rho << ": at r = a, z " << z;
+          bandTop |= std::abs(z - zc) <= tol;
+          bandBottom |= std::abs(z + zc) <= tol;
+        }
+        if (v.part == float(CoinPart::OuterRim)) {
+          // The normal is the torus' (radial on the band): unit, and along the line from the
+          // tube's centre (a - rho) r_hat at height clamp(z, -zc, zc) through the vertex, outward.
+          const glm::dvec3 rHat = glm::normalize(glm::dvec3(p.x, p.y, 0));
+          const glm::dvec3 tubeCentre = (a - rho) * rHat + glm::dvec3(0, 0, std::clamp(z, -zc, zc));
+          const glm::dvec3 n(v.normal);
+          ASSERT_TRUE(isNear(glm::length(p - tubeCentre), rho, tol)) << "off the torus: r " << r << ", z " << z;
+          ASSERT_TRUE(isNear(glm::length(n), 1.0, 1e-6)) << "normal not unit at r " << r << ", z " << z;
+          ASSERT_TRUE(isNear(glm::dot(n, (p - tubeCentre) / rho), 1.0, 1e-5)) << "normal not outward at r " << r << ", z " << z;
+        } else if (v.part != float(CoinPart::InnerRim)) {
+          ASSERT_TRUE(isNear(std::abs(z), h / 2, tol) && r <= a - rho + tol) << "face vertex at r " << r << ", z " << z;
+        }
+      }
+      EXPECT_TRUE(bandTop && bandBottom) << "rho " << rho << ": the rim must reach r = a at z = +-(h/2 - rho)";
+    }
+  }
+}
+
+// Closed and outward as the sharp coin (IsClosedWithOutwardNormals): its signed volume is that of
+// the rounded solid swept round a 64-gon instead of a circle. Pappus on the cross-section:
+// integral of r^2 dz = 2 zc a^2 + 2 (rc^2 rho + pi rc rho^2 / 2 + 2 rho^3 / 3) with rc = a - rho,
+// zc = h/2 - rho, and the 64-gon sweeps 32 sin(2 pi / 64) times that, less inner^2 h.
+TEST(CoinMesh, FilletedIsClosedWithOutwardNormals) {
+  constexpr double a = 0.0375, h = 0.013;
+  constexpr int kSegments = 64;
+  for (const double inner : {0.0, 0.01}) {
+    for (const double rho : {h / 4, h / 2}) {
+      const std::vector<CoinVertex> triangles = coinTriangles({float(a), float(inner), float(h), float(rho)}, kSegments);
+      const double rc = a - rho, zc = h / 2 - rho;
+      double signedVolume = 0;
+      for (std::size_t i = 0; i < triangles.size(); i += 3) {
+        const glm::dvec3 p = triangles[i].position, q = triangles[i + 1].position, t = triangles[i + 2].position;
+        signedVolume += glm::dot(p, glm::cross(q, t)) / 6;
+        EXPECT_GE(glm::dot(glm::cross(q - p, t - p), glm::dvec3(triangles[i].normal)), 0)
+            << "triangle " << i / 3 << " winds inwards";
+      }
+      const double r2dz =
+          2 * zc * a * a + 2 * (rc * rc * rho + kPi * rc * rho * rho / 2 + 2 * rho * rho * rho / 3) - inner * inner * h;
+      const double expected = 0.5 * kSegments * std::sin(2 * kPi / kSegments) * r2dz;
+      // The fillets' chords (8 per quarter circle) cut 0.19 % off the volume at rho = h/2 (0.05 %
+      // at h/4); leaving out any one ring of facets cuts 0.8 % or more.
+      EXPECT_TRUE(isNear(signedVolume / expected, 1.0, 3e-3)) << "rho " << rho << ", inner " << inner;
+    }
   }
 }
 

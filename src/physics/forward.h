@@ -1,0 +1,43 @@
+#pragma once
+// Everything one state of the motion fixes, computed once by the formulation that integrates the
+// run (MuJoCo's mj_forward): its right-hand side, the validity margins, the CSV row, the overlay,
+// the trace, sweeps and the sound all read this struct, so a new contact geometry or contact force
+// changes the formulation's forward pass and nothing downstream. Floor frame xyz, y up.
+
+#include <Eigen/Core>
+
+#include "physics/contact_kinematics.h"
+
+namespace coinroll::physics {
+
+// The floor's reaction R = M dv/dt + M g e_y (the effects are couples and add no force), with its
+// vertical part N and horizontal size F.
+struct Reaction {
+  Eigen::Vector3d R = Eigen::Vector3d::Zero();  // N, floor components
+  double N = 0;                                 // N, normal force R_y (the model needs N > 0)
+  double F = 0;                                 // N, friction force sqrt(R_x^2 + R_z^2) (ERRATA)
+};
+
+struct Forward {
+  double theta = 0;  // rad, the seed's tilt from vertical, signed (positive: the e_Z face is the lower one)
+  Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();  // rows: e_X, e_Y, e_Z in floor components
+  Eigen::Vector3d omega = Eigen::Vector3d::Zero();     // rad/s, floor components
+  Eigen::Vector3d contactVector = Eigen::Vector3d::Zero();  // m, c: centre of mass to contact point
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();         // m, centre of mass
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();       // m/s, centre of mass
+  Eigen::Vector3d contactPoint = Eigen::Vector3d::Zero();   // m, on the floor (y = 0 up to round-off)
+  double spinRate = 0;        // rad/s, psi-dot: the contact point running round the rim
+  double precessionRate = 0;  // rad/s, phi-dot = Omega: the contact point going round the floor
+  Eigen::Vector3d dOmega = Eigen::Vector3d::Zero();  // rad/s^2, in the formulation's own components
+  Reaction reaction;
+  Loads loads;        // the effects' couple and dissipated power; zero without effects
+  double energy = 0;  // J, kinetic plus potential
+};
+
+// alpha, rad: the coin plane's tilt above the floor, pi/2 - |theta|, from e_Y's rise and e_Z's, so it
+// stays accurate near flat where pi/2 - |theta| would cancel.
+inline double tiltAboveFloor(const Forward& f) {
+  return std::atan2(f.axes(1, 1), std::abs(f.axes(2, 1)));
+}
+
+}  // namespace coinroll::physics

@@ -235,8 +235,25 @@ void runSteady(const SteadyOptions& options) {
 
   fmt::print("coin: M = {} kg, a = {} m, g = {} m/s^2, I_X = {:.6g} kg m^2, I_Z = {:.6g} kg m^2\n", m.M, m.a, m.g,
              m.I_X, m.I_Z);
-  fmt::print("natural rate sqrt(g/a) = {:.6g} rad/s; critical spin for straight rolling omega_c = {:.6g} rad/s "
-             "({:.6f} sqrt(g/a))\n\n", rateUnit, physics::criticalSpin(m), physics::criticalSpin(m) / rateUnit);
+  const bool thick = !m.rim.thin(), cornered = thick && !m.rim.fullyRounded();
+  if (thick) {
+    // The thin coin's lines stay byte for byte what they were; a thick one says which solid it is.
+    fmt::print("rim: thickness h = {} m, edge radius rho = {} m ({})\n", m.rim.thickness, m.rim.edgeRadius,
+               cornered ? fmt::format("rho < h/2: corners {:.6g} m either side of the mid-plane", m.rim.cornerOffset())
+                        : std::string("rho = h/2: fully rounded, it rolls through upright"));
+    fmt::print("inertia used: I_X, I_Z above, {}\n",
+               scene.coin.shape == scene::Shape::Custom
+                   ? "as the scene gives them (custom)"
+                   : "those of the uniform solid of thickness h with this rim (docs/rim_inertia.md)");
+  }
+  if (cornered) {
+    fmt::print("natural rate sqrt(g/a) = {:.6g} rad/s; straight rolling is not a steady motion of a coin whose rim has "
+               "corners (it switches corners at upright), so there is no critical spin (docs/rim.md eq. 5.4)\n\n", rateUnit);
+  } else {
+    const double omega_c = physics::criticalSpin(m);
+    fmt::print("natural rate sqrt(g/a) = {:.6g} rad/s; critical spin for straight rolling omega_c = {:.6g} rad/s "
+               "({:.6f} sqrt(g/a){})\n\n", rateUnit, omega_c, omega_c / rateUnit, thick ? "; docs/rim.md eq. 5.9" : "");
+  }
   fmt::print("initial conditions (scene units):\n");
   fmt::print("  \"initial\": {{\"theta\": {:.12g}, \"phi\": {:.12g}, \"psi\": {:.12g}, \"omega_X\": {:.12g}, "
              "\"omega_Y\": {:.12g}, \"omega_Z\": {:.12g}, \"x\": {:.12g}, \"z\": {:.12g}}}\n",
@@ -248,7 +265,8 @@ void runSteady(const SteadyOptions& options) {
              radii.contact);
   const physics::Reaction r = physics::reaction(m, s);
   fmt::print("  floor reaction: N = {:.6g} N, F = {:.6g} N (needs mu >= {:.4g})\n\n", r.N, r.F, r.N > 0 ? r.F / r.N : INFINITY);
-  fmt::print("stability (docs/derivations.md eq. 3.6): K = {:.9g} 1/s^2 ({:.9g} in units g/a)\n", K, K / (rateUnit * rateUnit));
+  fmt::print("stability ({}): K = {:.9g} 1/s^2 ({:.9g} in units g/a)\n",
+             thick ? "docs/rim.md eq. 5.8" : "docs/derivations.md eq. 3.6", K, K / (rateUnit * rateUnit));
   if (K > 0) {
     fmt::print("verdict: STABLE: a small tilt perturbation wobbles at {:.9g} rad/s (period {:.9g} s)\n", std::sqrt(K),
                2 * std::numbers::pi / std::sqrt(K));

@@ -80,7 +80,11 @@ int main(int argc, char** argv) {
   steadyCommand->add_option("--omega-Z", steady.omega_Z, "Spin about the coin normal, rad/s (straight, circle)");
   steadyCommand->add_option("--branch", steady.branch, "Circle root: + (f+, default) or - (f-)")
       ->check(CLI::IsMember({"+", "-"}));
-  steadyCommand->footer("Without a scene file the built-in default coin is used.");
+  steadyCommand->footer(
+      "Without a scene file the built-in default coin is used. With coin.thickness (and coin.edge_radius) the coin\n"
+      "is a solid with a rounded rim (docs/rim.md §5): its steady states and K follow the rim, e.g.\n"
+      "  coinroll steady --kind straight --omega-Z 12 --set coin.thickness=0.013\n"
+      "A rim with corners (edge_radius < thickness / 2) switches corners at upright, so it has no straight rolling.");
 
   RenderOptions render;
   CLI::App* renderCommand = app.add_subcommand(

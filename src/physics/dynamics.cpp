@@ -136,10 +136,13 @@ ContactKinematics contactKinematics(const CoinModel& model, const CoinState& s, 
   return kinematicsFrom(model, s, coinAxesInFloor(s), N);
 }
 
-Forward forward(const CoinModel& model, const CoinState& s) {
-  const double sinTheta = std::sin(s.theta), cosTheta = std::cos(s.theta);
+namespace {
+
+// The part of the forward pass the right-hand side needs: axes, omega, the angular acceleration, the
+// reaction and the effects' loads; `rim` is left holding the rim's terms (empty for the thin coin).
+Forward accelerations(const CoinModel& model, const CoinState& s, double sinTheta, double cosTheta,
+                      std::optional<RimTerms>& rim) {
   const Eigen::Vector3d omega(s.omega_X, s.omega_Y, s.omega_Z);
-  std::optional<RimTerms> rim;
   Eigen::Vector3d ideal;  // without the effects' couple
   if (model.rim.thin()) {
     ideal = thinAngularAcceleration(model, sinTheta, cosTheta, s.omega_X, s.omega_Y, s.omega_Z);
@@ -169,6 +172,16 @@ Forward forward(const CoinModel& model, const CoinState& s) {
       f.reaction = reactionFrom(model, f.axes, centreAcceleration(model, s, rim, omega, f.dOmega));
     }
   }
+  return f;
+}
+
+}  // namespace
+
+Forward forward(const CoinModel& model, const CoinState& s) {
+  const double sinTheta = std::sin(s.theta), cosTheta = std::cos(s.theta);
+  const Eigen::Vector3d omega(s.omega_X, s.omega_Y, s.omega_Z);
+  std::optional<RimTerms> rim;
+  Forward f = accelerations(model, s, sinTheta, cosTheta, rim);
   const Eigen::Vector3d e_X = f.axes.row(0).transpose(), e_Y = f.axes.row(1).transpose(), e_Z = f.axes.row(2).transpose();
   if (rim) {
     f.contactVector = f.axes.transpose() * rim->c;  // (1.3)
@@ -203,9 +216,10 @@ Rates rates(const CoinModel& model, const StateVec& y) {
     const Eigen::Vector3d velocity = coinAxesInFloor(toState(y)).transpose() * rim.v;
     return {.dy = packRim(y, sinTheta, cosTheta, dOmega, velocity), .power = 0};
   }
-  const Forward f = forward(model, toState(y));
-  if (model.rim.thin()) return {.dy = packThin(model, y, sinTheta, cosTheta, f.dOmega), .power = f.loads.power};
-  return {.dy = packRim(y, sinTheta, cosTheta, f.dOmega, f.velocity), .power = f.loads.power};
+  std::optional<RimTerms> rim;
+  const Forward f = accelerations(model, toState(y), sinTheta, cosTheta, rim);
+  if (!rim) return {.dy = packThin(model, y, sinTheta, cosTheta, f.dOmega), .power = f.loads.power};
+  return {.dy = packRim(y, sinTheta, cosTheta, f.dOmega, f.axes.transpose() * rim->v), .power = f.loads.power};
 }
 
 StateVec rhs(const CoinModel& model, double /*t*/, const StateVec& y) { return rates(model, y).dy; }

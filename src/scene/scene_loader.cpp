@@ -113,8 +113,13 @@ CoinSpec parseCoin(const JsonReader& top, render::CoinShape& drawn) {
     const double largest = std::min(0.5 * thickness, coin.radius - hole);
     coin.edgeRadius = r.number("edge_radius", largest);
     if (!(coin.edgeRadius >= 0 && coin.edgeRadius <= largest)) {
-      r.fail("edge_radius", fmt::format("must be in [0, {}] m (at most half the thickness and the width of the rim), got {}",
-                                        largest, coin.edgeRadius));
+      // Name the bound that holds; {:.15g}: 0.0375 - 0.037 would print as 0.0005000000000000004.
+      const std::string widthBound =
+          coin.shape == Shape::Ring        ? fmt::format(" and radius - inner_radius = {:.15g} m, the ring's width", coin.radius - hole)
+          : coin.radius < 0.5 * thickness ? fmt::format(" and radius = {:.15g} m", coin.radius)
+                                          : std::string();
+      r.fail("edge_radius", fmt::format("must be in [0, {:.15g}] m (at most thickness / 2 = {:.15g} m{}), got {}", largest,
+                                        0.5 * thickness, widthBound, coin.edgeRadius));
     }
     drawn.edgeRadius = static_cast<float>(coin.edgeRadius);
   }

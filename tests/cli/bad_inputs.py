@@ -260,6 +260,76 @@ case("huge-radius", C, "coin.radius 1e308 (finite, absurd)", SIM, 2, "coin.radiu
 case("huge-spin", C, "initial.omega_Z 1e300 rad/s", SIM, 2, "initial.omega_Z", key="omega_Z",
      files={"scene.json": scene(initial={"omega_Z": 1e300})})
 
+# --- the coin's rim: coin.thickness makes the coin a solid, coin.edge_radius rounds its rim (INTERFACE.md "The coin's rim")
+C = "coin's rim"
+NO_RIM = "no coin.edge_radius (thickness drawn only) before"
+CORNERED = {"thickness": 0.013, "edge_radius": 0.001}  # rho < h/2: two corners meet at upright
+G_THICK = "CliTest.SteadyOfAFullyRoundedThickCoinPrintsItsRimAndALowerCriticalSpin"
+G_CORNERED = "CliTest.SteadyOfACorneredRimHasAVerdictButNoCriticalSpin"
+case("rim-edge-without-thickness", C, "coin.edge_radius without coin.thickness", SIM, 2,
+     "coin.edge_radius: only allowed with coin.thickness (a thin coin has no rim to round)", key="coin.edge_radius",
+     files={"scene.json": scene(coin={"edge_radius": 0.001})}, na_before=NO_RIM)
+case("rim-edge-negative", C, "coin.edge_radius -0.001", SIM, 2,
+     "coin.edge_radius: must be in [0, 0.0065] m (at most thickness / 2 = 0.0065 m), got -0.001", key="coin.edge_radius",
+     files={"scene.json": scene(coin={"thickness": 0.013, "edge_radius": -0.001})}, na_before=NO_RIM)
+case("rim-edge-past-half", C, "coin.edge_radius 0.007 > thickness / 2 = 0.0065", SIM, 2,
+     "coin.edge_radius: must be in [0, 0.0065] m (at most thickness / 2 = 0.0065 m), got 0.007", key="coin.edge_radius",
+     files={"scene.json": scene(coin={"thickness": 0.013, "edge_radius": 0.007})}, na_before=NO_RIM)
+case("rim-edge-past-ring-width", C, "ring: coin.edge_radius 0.001 > radius - inner_radius = 0.0005", SIM, 2,
+     "coin.edge_radius: must be in [0, 0.0005] m (at most thickness / 2 = 0.0065 m and radius - inner_radius = 0.0005 m, "
+     "the ring's width), got 0.001", key="coin.edge_radius",
+     files={"scene.json": scene(coin={"shape": "ring", "inner_radius": 0.037, "thickness": 0.013, "edge_radius": 0.001})},
+     na_before=NO_RIM)
+case("rim-thickness-zero", C, "coin.thickness 0", SIM, 2, "coin.thickness: must be in [6e-08, 1000] m, got 0",
+     key="coin.thickness", files={"scene.json": scene(coin={"thickness": 0})})
+case("rim-thickness-negative", C, "coin.thickness -0.013", SIM, 2, "coin.thickness: must be in [6e-08, 1000] m, got -0.013",
+     key="coin.thickness", files={"scene.json": scene(coin={"thickness": -0.013})})
+case("rim-thickness-string", C, 'coin.thickness "13mm" (a string)', SIM, 2,
+     'coin.thickness: must be a number, got string "13mm"', key="coin.thickness",
+     files={"scene.json": scene(coin={"thickness": "13mm"})})
+case("rim-edge-nan", C, "--set coin.edge_radius=NaN", SIM + " --set coin.thickness=0.013 --set coin.edge_radius=NaN", 2,
+     'coin.edge_radius: must be a number, got string "NaN"', key="coin.edge_radius", na_before=NO_RIM)
+case("rim-edge-nan-literal", C, "NaN literal as coin.edge_radius in the file (not JSON)", SIM, 2,
+     "scene.json: invalid JSON at line 1, column", key="scene.json",
+     files={"scene.json": scene(coin={"thickness": 0.013, "edge_radius": 0.001}).replace("0.001", "NaN")})
+case("rim-edge-string", C, 'coin.edge_radius "1mm" (a string)', SIM, 2,
+     'coin.edge_radius: must be a number, got string "1mm"', key="coin.edge_radius",
+     files={"scene.json": scene(coin={"thickness": 0.013, "edge_radius": "1mm"})}, na_before=NO_RIM)
+case("rim-edge-null", C, "coin.edge_radius null", SIM, 2, "coin.edge_radius: must be a number, got null",
+     key="coin.edge_radius", files={"scene.json": scene(coin={"thickness": 0.013, "edge_radius": None})}, na_before=NO_RIM)
+case("rim-upright-corners", C, "initial.theta 0 with a cornered rim (h 0.013, rho 0.001): stands on two corners", SIM, 2,
+     "initial.theta: a coin whose rim has corners (coin.edge_radius < thickness / 2) cannot start upright",
+     key="initial.theta", files={"scene.json": scene(coin=CORNERED, initial={"theta": 0})}, na_before=NO_RIM)
+case("rim-steady-straight-corners", C, "steady straight with a cornered rim", SIM, 2,
+     "initial.steady: steady state straight: a rim with corners (edge radius 0.001000 m < thickness / 2 = 0.006500 m) "
+     "cannot roll upright", key="initial.steady",
+     files={"scene.json": scene(coin=CORNERED, initial={"steady": "straight", "theta": DELETE, "omega_Z": 12})},
+     na_before=NO_RIM)
+case("rim-steady-cmd-corners", C, "coinroll steady --kind straight with a cornered rim",
+     "steady --kind straight --omega-Z 12 --set coin.thickness=0.013 --set coin.edge_radius=0.001", 2,
+     "initial.steady: steady state straight: a rim with corners", key="initial.steady", files={}, gtest=(G_CORNERED,),
+     na_before=NO_RIM)
+case("rim-euler-angles-landing", C, 'solver.formulation "euler-angles" with thickness and effects', SIM, 2,
+     'solver.formulation: "euler-angles" cannot carry a coin with thickness and effects to its landing',
+     key="solver.formulation",
+     files={"scene.json": scene(coin={"thickness": 0.013}, solver={"formulation": "euler-angles"},
+                                effects=[{"type": "air_drag"}])},
+     na_before="no thick-coin dynamics (thickness drawn only) before")
+case("rim-thick-default-edge", C, "coin.thickness 0.013 with the default edge radius (fully rounded; must work)", SIM, 0,
+     None, files={"scene.json": scene(coin={"thickness": 0.013})}, produces=("o.csv",))
+case("rim-thick-upright", C, "fully rounded thick coin started upright (rolls through; must work)", SIM, 0, None,
+     files={"scene.json": scene(coin={"thickness": 0.013}, initial={"theta": 0})}, produces=("o.csv",))
+case("rim-sharp-tilted", C, "coin.edge_radius 0 (sharp corners), tilted start (must work)", SIM, 0, None,
+     files={"scene.json": scene(coin={"thickness": 0.013, "edge_radius": 0})}, produces=("o.csv",), na_before=NO_RIM)
+case("rim-ring-thick", C, "ring (inner_radius 0.03) with coin.thickness 0.004 (must work)", SIM, 0, None,
+     files={"scene.json": scene(coin={"shape": "ring", "inner_radius": 0.03, "thickness": 0.004})}, produces=("o.csv",))
+case("rim-steady-cmd-thick", C, "coinroll steady on a thick coin, straight (must work)",
+     "steady --kind straight --omega-Z 12 --set coin.thickness=0.013", 0, None, files={}, gtest=(G_THICK,),
+     na_before=NO_RIM)
+case("rim-steady-cmd-cornered-circle", C, "coinroll steady, circle on a cornered rim: no critical spin (must work)",
+     "steady --kind circle --theta 20 --omega-Z 10 --set coin.thickness=0.013 --set coin.edge_radius=0.0016", 0, None,
+     files={}, gtest=(G_CORNERED,), na_before=NO_RIM)
+
 # --- the render block
 C = "render block"
 REN = "render scene.json -q -o o.mp4 --set "

@@ -179,6 +179,63 @@ TEST_F(CliTest, SteadyVerdictSwitchesAtTheThinDiskCriticalSpin) {
   EXPECT_EQ(run("steady --theta 20").exitCode, 2);
 }
 
+// The number printed after `label` in a report ("omega_c = 9.33809 rad/s" -> 9.33809); NaN if absent.
+double numberAfter(const std::string& output, const std::string& label) {
+  const std::size_t at = output.find(label);
+  if (at == std::string::npos) return std::nan("");
+  return std::stod(output.substr(at + label.size()));
+}
+
+// A thick coin (docs/rim.md §5): the built-in 37.5 mm toy at h = 13 mm, fully rounded by default (rho = h/2).
+// Straight rolling is steady and its critical spin is eq. 5.9, omega_c^2 = M g (a - rho) I_X / (I_Z (I_Z + M a^2)),
+// computed here from the inertia the report says it used; the shorter lever a - rho puts it below the thin coin's.
+TEST_F(CliTest, SteadyOfAFullyRoundedThickCoinPrintsItsRimAndALowerCriticalSpin) {
+  const RunResult thin = run("steady --kind straight --omega-Z 12");
+  ASSERT_EQ(thin.exitCode, 0) << thin.output;
+  const RunResult thick = run("steady --kind straight --omega-Z 12 --set coin.thickness=0.013");
+  ASSERT_EQ(thick.exitCode, 0) << thick.output;
+  EXPECT_NE(thick.output.find("rim: thickness h = 0.013 m, edge radius rho = 0.0065 m"), std::string::npos) << thick.output;
+  EXPECT_NE(thick.output.find("inertia used:"), std::string::npos) << thick.output;
+  EXPECT_NE(thick.output.find("docs/rim.md eq. 5.8"), std::string::npos) << thick.output;
+  EXPECT_EQ(thick.output.find("docs/derivations.md"), std::string::npos) << thick.output;
+  EXPECT_NE(thick.output.find("verdict: STABLE"), std::string::npos) << thick.output;
+  EXPECT_EQ(thin.output.find("rim:"), std::string::npos) << thin.output;
+
+  const double thinSpin = numberAfter(thin.output, "omega_c = "), thickSpin = numberAfter(thick.output, "omega_c = ");
+  EXPECT_NEAR(thinSpin, std::sqrt(9.81 / (3 * 0.0375)), 1e-4);
+  EXPECT_LT(thickSpin, thinSpin);
+  const double M = 0.4, a = 0.0375, g = 9.81, rho = 0.0065;
+  const double I_X = numberAfter(thick.output, "I_X = "), I_Z = numberAfter(thick.output, "I_Z = ");
+  EXPECT_NEAR(thickSpin, std::sqrt(M * g * (a - rho) * I_X / (I_Z * (I_Z + M * a * a))), 1e-5 * thickSpin) << thick.output;
+  // The thick coin's verdict switches at its own critical spin.
+  for (const auto& [factor, verdict] : {std::pair{0.99, "verdict: UNSTABLE"}, std::pair{1.01, "verdict: STABLE"}}) {
+    const RunResult near = run("steady --kind straight --omega-Z " + std::to_string(factor * thickSpin) +
+                               " --set coin.thickness=0.013");
+    EXPECT_NE(near.output.find(verdict), std::string::npos) << factor << ": " << near.output;
+  }
+}
+
+// A cornered rim (rho < h/2) has no upright steady motion, so no critical spin: the report says why instead of
+// failing, and still gives a circle's K and verdict; asking for straight rolling is a bad request naming the key.
+TEST_F(CliTest, SteadyOfACorneredRimHasAVerdictButNoCriticalSpin) {
+  const std::string rim = " --set coin.thickness=0.013 --set coin.edge_radius=0.0016";
+  const RunResult r = run("steady --kind circle --theta 20 --omega-Z 10" + rim);
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("verdict: "), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("omega_c"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("straight rolling is not a steady motion of a coin whose rim has corners (it switches corners "
+                          "at upright)"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("edge radius rho = 0.0016 m"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("docs/rim.md eq. 5.8"), std::string::npos) << r.output;
+
+  const RunResult straight = run("steady --kind straight --omega-Z 12" + rim);
+  EXPECT_EQ(straight.exitCode, 2) << straight.output;
+  EXPECT_NE(straight.output.find("initial.steady"), std::string::npos) << straight.output;
+  EXPECT_EQ(straight.output.find("verdict"), std::string::npos) << straight.output;
+}
+
 TEST_F(CliTest, HelpTeachesAndExitsZero) {
   const RunResult r = run("--help");
   EXPECT_EQ(r.exitCode, 0);

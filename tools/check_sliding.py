@@ -37,7 +37,7 @@ sg, cg = sp.symbols("sg cg")  # rolling friction direction f_hat = cg e_X + sg h
 
 def reduce_(expr):
     """Numerator of expr reduced modulo S^2 + C^2 = 1, sb^2 + cb^2 = 1, sg^2 + cg^2 = 1 (exact)."""
-    numerator = sp.numer(sp.cancel(sp.together(sp.sympify(expr))))
+    numerator = sp.numer(sp.together(sp.sympify(expr)))
     numerator = sp.expand(numerator)
     for s_, c_ in ((S, C), (sb, cb), (sg, cg)):
         if numerator.has(s_):
@@ -110,96 +110,107 @@ def delassus(c):
 
 
 def sliding_from_scratch(sigma):
-    """omega', N of a sliding coin: Euler about G with R = N (y - mu s_hat) at the contact, and Newton's
-    vertical law with y_G = H(theta) (the held contact), differentiated twice. Slip s = S_m s_hat."""
+    """Sliding coin from scratch, N kept as a symbol: Euler about G with R = N (y - mu s_hat) at the contact
+    gives omega'(N) (linear in N); Newton's vertical law with the held contact y_G = H(theta), differentiated
+    twice, is the residual res(N) = M d2H/dt2 - (N - M g), whose root is the normal force."""
     A, B, c, c_comp, c_floor, H, Lam = geometry(sigma)
     R = N * yhat - mu * N * s_hat
-    euler = inertia * dOmegaSym + Omega.cross(inertia * omega) - c.cross(R) - tau
+    dOm = inertia_inv * (c.cross(R) + tau - Omega.cross(inertia * omega))
     v_y = dth(H) * wX
-    a_y = dth(v_y) * wX + sp.diff(v_y, wX) * dX
-    vertical = M * a_y - (N - M * g)
-    sol = sp.solve(list(euler) + [vertical], [dX, dY, dZ, N], dict=True)[0]
-    return sp.Matrix([sol[dX], sol[dY], sol[dZ]]), sol[N]
+    a_y = dth(v_y) * wX + sp.diff(v_y, wX) * dOm[0]
+    res = sp.expand(M * a_y - (N - M * g))
+    return dOm, res
+
+
+def normal_force(res):
+    """The root of the residual, linear in N."""
+    slope = sp.diff(res, N)
+    return -res.subs(N, 0) / slope
 
 
 def rolling_from_scratch(sigma):
-    """omega' of a rolling coin (rim.md 2.4-2.7) and its reaction R = M a_G + M g y."""
+    """omega' of a rolling coin (rim.md 2.4-2.7), solved with the block structure (2.8), and R = M a_G + M g y.
+    Returns also a_G as a function of the symbols omega' for the kinematic identities."""
     A, B, c, c_comp, c_floor, H, Lam = geometry(sigma)
     v = -omega.cross(c)
-    a_G = -(dOmegaSym.cross(c) + omega.cross(c_comp)) + Omega.cross(v)
-    R = M * a_G + M * g * yhat
-    euler = inertia * dOmegaSym + Omega.cross(inertia * omega) - c.cross(R) - tau
-    sol = sp.solve(list(euler), [dX, dY, dZ], dict=True)[0]
-    d = sp.Matrix([sol[dX], sol[dY], sol[dZ]])
-    return d, R.subs(sol)
+    a_G_sym = -(dOmegaSym.cross(c) + omega.cross(c_comp)) + Omega.cross(v)
+    m = inertia + M * (c.dot(c) * sp.eye(3) - c * c.T)
+    f = (-Omega.cross(inertia * omega) + M * c.cross(Omega.cross(v) - omega.cross(c_comp))
+         + M * g * c.cross(yhat) + tau)
+    det = m[1, 1] * m[2, 2] - m[1, 2]**2
+    d = sp.Matrix([f[0] / m[0, 0], (m[2, 2] * f[1] - m[1, 2] * f[2]) / det, (m[1, 1] * f[2] - m[1, 2] * f[1]) / det])
+    R = (M * a_G_sym + M * g * yhat).subs({dX: d[0], dY: d[1], dZ: d[2]})
+    return d, R, a_G_sym, m
 
 
 # ================================================================================ (a) §1
 for sigma in (1, -1):
     A, B, c, c_comp, c_floor, H, Lam = geometry(sigma)
-    dOm, Nsl = sliding_from_scratch(sigma)
+    dOm, res = sliding_from_scratch(sigma)
     # (1.2) G's vertical speed from the held contact makes the slip horizontal.
     v_y = dth(H) * wX
-    require(f"(1.2) v_G . y = -(omega x c) . y = -Lambda omega_X, sigma = {sigma}",
-            v_y + omega.cross(c).dot(yhat))
+    require(f"(1.2) v_G . y = dH/dt = -(omega x c) . y, sigma = {sigma}", v_y + omega.cross(c).dot(yhat))
     require(f"(1.2) ... = -Lambda omega_X, sigma = {sigma}", v_y + Lam * wX)
-    # (1.5)-(1.8) vector forms with omega-dot the inertial derivative omega' + Omega x omega.
+    # (1.5)-(1.8) vector forms with omega-dot the inertial derivative omega' + Omega x omega. Identities in N:
+    # each form minus its claim is a multiple of the vertical residual res(N) (zero at the normal force).
     wdot = dOm + Omega.cross(omega)
     m = c.cross(yhat)
     k = c.cross(yhat - mu * s_hat)
     N0 = M * g - M * omega.cross(c_floor).dot(yhat)
     require_all(f"(1.5) m = c x y = Lambda e_X, sigma = {sigma}", m - Lam * eX)
-    require(f"(1.6) N = N0 - M m . omega-dot, sigma = {sigma}", Nsl - (N0 - M * m.dot(wdot)))
-    require(f"(1.6) N = M (g - (H - rho) omega_X^2 - Lambda omega_X'), sigma = {sigma}",
-            Nsl - M * (g - (H - rho) * wX**2 - Lam * dOm[0]))
+    require(f"(1.6) vertical law <=> N = N0 - M m . omega-dot, sigma = {sigma}",
+            (N - (N0 - M * m.dot(wdot))) + res)
+    require(f"(1.6) vertical law <=> N = M (g - (H - rho) omega_X^2 - Lambda omega_X'), sigma = {sigma}",
+            (N - M * (g - (H - rho) * wX**2 - Lam * dOm[0])) + res)
     lhs = (inertia + M * k * m.T) * wdot
     rhs = -omega.cross(inertia * omega) + N0 * k + tau
-    require_all(f"(1.8) [I_G + M k m^T] omega-dot = -omega x I_G omega + N0 k + tau, sigma = {sigma}", lhs - rhs)
-    # The frame identity used to pass between the forms: I omega-dot + omega x I omega = I omega' + Omega x I omega.
-    require_all(f"(1.4) I omega-dot + omega x I omega = I omega' + Omega x I omega, sigma = {sigma}",
-                inertia * wdot + omega.cross(inertia * omega) - inertia * dOm - Omega.cross(inertia * omega))
+    require_all(f"(1.8) [I_G + M k m^T] omega-dot = -omega x I_G omega + N0 k + tau (+ k res), sigma = {sigma}",
+                lhs - rhs + k * res)
+    require_all(f"(1.4) I omega-dot + omega x I omega = N k + tau (Euler in the inertial form), sigma = {sigma}",
+                inertia * wdot + omega.cross(inertia * omega) - N * k - tau)
     # (1.10)-(1.11): acceleration of the material contact point = W R + b; vertical part 0 = the held contact.
     W = delassus(c)
     require_all(f"(1.10) W is symmetric, sigma = {sigma}", W - W.T)
-    R = Nsl * (yhat - mu * s_hat)
+    R = N * (yhat - mu * s_hat)
     a_G = R / M - g * yhat
     sdot_P = a_G + wdot.cross(c) + omega.cross(c_floor)
     b = -g * yhat + (inertia_inv * (tau - omega.cross(inertia * omega))).cross(c) + omega.cross(c_floor)
     require_all(f"(1.10) s_P-dot = a_G + omega-dot x c + omega x c-dot = W R + b, sigma = {sigma}",
                 sdot_P - (W * R + b))
-    require(f"(1.11) y . s_P-dot = 0 along the sliding solution, sigma = {sigma}", sdot_P.dot(yhat))
-    require(f"(1.11) N = -y . b / (y . W (y - mu s_hat)), sigma = {sigma}",
-            Nsl * (yhat.dot(W * (yhat - mu * s_hat))) + yhat.dot(b))
+    require(f"(1.11) y . s_P-dot = -res / M: the held contact, sigma = {sigma}", sdot_P.dot(yhat) + res / M)
+    require(f"(1.11) N = -y . b / (y . W (y - mu s_hat)) at res = 0, sigma = {sigma}",
+            normal_force(res) * (yhat.dot(W * (yhat - mu * s_hat))) + yhat.dot(b))
 print(f"       ({time.monotonic() - started:.1f} s)")
 
 # ================================================================================ (b) §2
 for sigma in (1, -1):
     A, B, c, c_comp, c_floor, H, Lam = geometry(sigma)
-    dOm, Nsl = sliding_from_scratch(sigma)
+    dOm, res = sliding_from_scratch(sigma)
     v_y = dth(H) * wX
     vG = U1 * eX + U2 * hh + v_y * yhat
-    # Floor-frame acceleration: component derivative (theta' = omega_X, omega' , U') plus Omega x v_G.
+    # Floor-frame acceleration: component derivative (theta' = omega_X, omega', U') plus Omega x v_G.
     vG_comp = dth_vec(vG) * wX + sp.diff(vG, wX) * dOm[0] + eX * dU1 + hh * dU2
     a_G = vG_comp + Omega.cross(vG)
-    F = -mu * Nsl * s_hat
+    F = -mu * N * s_hat
     sol = sp.solve([M * a_G.dot(eX) - F.dot(eX), M * a_G.dot(hh) - F.dot(hh)], [dU1, dU2], dict=True)[0]
-    require(f"(1.9) vertical Newton holds along the solution, sigma = {sigma}",
-            (M * a_G.dot(yhat) - (Nsl - M * g)).subs(sol))
-    require(f"(1.9) horizontal frame turns at phi' = omega_Y / cos: U1' = F.e_X/M + phi' U2, sigma = {sigma}",
-            sol[dU1] - (F.dot(eX) / M + wY / C * U2))
+    require(f"(1.9) vertical component of M a_G - R - M g... = res, sigma = {sigma}",
+            (M * a_G.dot(yhat) - (N - M * g)).subs(sol) - res)
+    require(f"(1.9) the horizontal frame turns at phi' = omega_Y / cos: U1' = F.e_X/M - phi' U2, sigma = {sigma}",
+            sol[dU1] - (F.dot(eX) / M - wY / C * U2))
+    require(f"(1.9) ... U2' = F.h/M + phi' U1, sigma = {sigma}", sol[dU2] - (F.dot(hh) / M + wY / C * U1))
     energy = M * vG.dot(vG) / 2 + (IX * (wX**2 + wY**2) + IZ * wZ**2) / 2 + M * g * H      # (2.1)
     dE = (dth(energy) * wX + sum(sp.diff(energy, w) * dw for w, dw in zip(omega, dOm))
           + sp.diff(energy, U1) * sol[dU1] + sp.diff(energy, U2) * sol[dU2])
-    # State with slip S_m s_hat: U = S_m s_hat - (omega x c)_h.
+    # State with slip S_m s_hat: U = S_m s_hat - (omega x c)_h. dE/dt - claim = v_y res (0 at the normal force).
     on_slip = {U1: Sm * cb - omega.cross(c).dot(eX), U2: Sm * sb - omega.cross(c).dot(hh)}
     require(f"(2.2) dE/dt = -mu N |s| + tau . omega while sliding, sigma = {sigma}",
-            (dE - (-mu * Nsl * Sm + tau.dot(omega))).subs(on_slip))
+            (dE - (-mu * N * Sm + tau.dot(omega)) - v_y * res).subs(on_slip))
 print(f"       ({time.monotonic() - started:.1f} s)")
 
 # ================================================================================ (c) §3
 for sigma in (1, -1):
     A, B, c, c_comp, c_floor, H, Lam = geometry(sigma)
-    dOm, Nsl = sliding_from_scratch(sigma)
+    dOm, res = sliding_from_scratch(sigma)
     m = c.cross(yhat)
     k = c.cross(yhat - mu * s_hat)
     N0 = M * g - M * omega.cross(c_floor).dot(yhat)
@@ -207,13 +218,15 @@ for sigma in (1, -1):
     D = 1 + M * (m.T * inertia_inv * k)[0]
     require(f"(3.1) det(I_G + M k m^T) = det(I_G) D, sigma = {sigma}",
             (inertia + M * k * m.T).det() - inertia.det() * D)
-    require(f"(3.2) N D = N0 - M m^T I_G^-1 (tau - omega x I_G omega), sigma = {sigma}",
-            Nsl * D - (N0 - M * (m.T * inertia_inv * bvec)[0]))
+    require(f"(3.2) vertical law <=> N D = N0 - M m^T I_G^-1 (tau - omega x I_G omega), sigma = {sigma}",
+            N * D - (N0 - M * (m.T * inertia_inv * bvec)[0]) + res)
+    require(f"(3.2) the residual's slope is -D: N is unique iff D != 0, sigma = {sigma}", sp.diff(res, N) + D)
     require(f"(3.3) D = 1 + (M / I_X)(Lambda^2 + mu Lambda H (s_hat . h)), sigma = {sigma}",
             D - (1 + M / IX * (Lam**2 + mu * Lam * H * sb)))
     W = delassus(c)
     require(f"(3.4) D / M = y . W (y - mu s_hat), sigma = {sigma}", D / M - yhat.dot(W * (yhat - mu * s_hat)))
     require(f"(3.4) y . W y = 1/M + Lambda^2 / I_X, sigma = {sigma}", yhat.dot(W * yhat) - (1 / M + Lam**2 / IX))
+    Nsl = normal_force(res)
     require(f"(6.2) dN/dtau_Y = dN/dtau_Z = 0 while sliding, sigma = {sigma}",
             sp.diff(Nsl, tY)**2 + sp.diff(Nsl, tZ)**2)
     require(f"(6.2) dN/dtau_X = -M Lambda / (I_X D), sigma = {sigma}", sp.diff(Nsl, tX) + M * Lam / (IX * D))
@@ -227,8 +240,7 @@ require("(3.5) thin coin, s_hat = -h: D = 0 at mu = (k + sin^2 th) / (sin th cos
         D_thin.subs(IX, kk * M * a**2).subs(mu, muP))
 # In t = tan(theta): mu_P = k / t + (k + 1) t, least at t = sqrt(k / (k + 1)), value 2 sqrt(k (k + 1)).
 muP_t = kk / t_ + (kk + 1) * t_
-require("(3.5) mu_P = k / tan + (k + 1) tan",
-        (muP - muP_t.subs(t_, S / C)))
+require("(3.5) mu_P = k / tan + (k + 1) tan", muP - muP_t.subs(t_, S / C))
 t_star = sp.sqrt(kk / (kk + 1))
 require("(3.6) d mu_P / d tan = 0 at tan = sqrt(k / (k + 1))", sp.simplify(sp.diff(muP_t, t_).subs(t_, t_star)))
 require("(3.6) min mu_P = 2 sqrt(k (k + 1))", sp.simplify(muP_t.subs(t_, t_star) - 2 * sp.sqrt(kk * (kk + 1))))
@@ -243,20 +255,19 @@ print(f"       ({time.monotonic() - started:.1f} s)")
 # ================================================================================ (d) §4
 for sigma in (1, -1):
     A, B, c, c_comp, c_floor, H, Lam = geometry(sigma)
-    dOm_r, R_r = rolling_from_scratch(sigma)
-    N_r = R_r.dot(yhat)
-    # (4.1) The rolling solution satisfies the held-contact vertical law, so with R = R_r (of the sliding
-    # form N (y - mu s_hat) with mu s_hat = -F_r / N_r) it solves the sliding system: Euler is the rolling
-    # one, and the vertical Newton law reads M H'' = N - M g.
+    # (4.1) Kinematics of rolling, for any omega': the vertical acceleration of G is d2H/dt2 and the material
+    # contact point has no acceleration, so the rolling solution (omega'_r, R_r) satisfies the sliding system
+    # with R = R_r, i.e. with mu s_hat = -F_r / N_r.
+    d_r, R_r, a_G_sym, m_r = rolling_from_scratch(sigma)
     v_y = dth(H) * wX
-    a_y = dth(v_y) * wX + sp.diff(v_y, wX) * dOm_r[0]
-    require(f"(4.1) rolling: M (d2H/dt2) = N_r - M g, sigma = {sigma}", M * a_y - (N_r - M * g))
-    wdot = dOm_r + Omega.cross(omega)
-    v = -omega.cross(c)
-    a_G = R_r / M - g * yhat
-    require_all(f"(4.1) rolling: the slip stays 0, a_G + omega-dot x c + omega x c-dot = 0, sigma = {sigma}",
-                a_G + wdot.cross(c) + omega.cross(c_floor))
-
+    a_y = dth(v_y) * wX + sp.diff(v_y, wX) * dX
+    require(f"(4.1) rolling: a_G . y = d2H/dt2 for every omega', sigma = {sigma}", a_G_sym.dot(yhat) - a_y)
+    wdot_sym = dOmegaSym + Omega.cross(omega)
+    require_all(f"(4.1) rolling: a_G + omega-dot x c + omega x c-dot = 0 for every omega', sigma = {sigma}",
+                a_G_sym + wdot_sym.cross(c) + omega.cross(c_floor))
+    # ... and Euler holds with R_r (rim.md 2.6): so the sliding Euler equation with R = R_r gives omega'_r.
+    require_all(f"(4.1) rolling: I omega' + Omega x I omega = c x R_r + tau, sigma = {sigma}",
+                inertia * d_r + Omega.cross(inertia * omega) - c.cross(R_r) - tau)
     # Condensed horizontal compliance: Schur complement of y.W.y, in the basis (e_X, h).
     W = delassus(c)
     Wyy = yhat.dot(W * yhat)
@@ -268,9 +279,15 @@ for sigma in (1, -1):
     require(f"(4.3) w_1 = 1/M + A^2/I_Z + B^2/I_X, sigma = {sigma}", Wc[0, 0] - w1)
     require(f"(4.3) w_2 = (I_X + M (A^2 + B^2)) / (M (I_X + M Lambda^2)), sigma = {sigma}", Wc[1, 1] - w2)
     nu_h = M * H * Lam / (IX + M * Lam**2)
-    require(f"(4.3) nu = -P_h W y / (y . W y) = nu_h h, sigma = {sigma}",
-            -eX.dot(W * yhat) / Wyy)
+    require(f"(4.3) nu = -P_h W y / (y . W y) has no e_X part, sigma = {sigma}", -eX.dot(W * yhat) / Wyy)
     require(f"(4.3) nu_h = M H Lambda / (I_X + M Lambda^2), sigma = {sigma}", -hh.dot(W * yhat) / Wyy - nu_h)
+    # The held contact: N = N_r + nu . (F - F_r) for any horizontal F (R = N y + F, y.(W R + b) = 0).
+    Fx_, Fh_, Nr_, Frx, Frh = sp.symbols("F_x F_h N_r0 F_rx F_rh")
+    R_any = Nr_ * yhat + Frx * eX + Frh * hh
+    b_any = -W * R_any                      # b of a state whose rolling reaction is R_any
+    Fnew = Fx_ * eX + Fh_ * hh
+    N_new = -(yhat.dot(b_any) + yhat.dot(W * Fnew)) / Wyy
+    require(f"(4.2) N = N_r + nu . (F - F_r), sigma = {sigma}", N_new - (Nr_ + nu_h * (Fh_ - Frh)))
 
     # (4.4)-(4.5): at the cone's edge R_r = N_r (y + mu_s f_hat); b = -W R_r. Slide with mu_k, s_hat = -f_hat.
     Nr, mus, muk = sp.symbols("N_r mu_s mu_k", positive=True)
@@ -280,14 +297,17 @@ for sigma in (1, -1):
     N_k = -yhat.dot(b) / yhat.dot(W * x_k)
     sdot = W * (N_k * x_k) + b
     require(f"(4.4) the slip acceleration is horizontal, sigma = {sigma}", sdot.dot(yhat))
+    require_all(f"(4.1) mu_k = mu_s: the slip acceleration is zero at the switch, sigma = {sigma}",
+                sdot.subs(muk, mus))
     Dk = M * yhat.dot(W * x_k)   # D at (mu_k, s_hat = -f_hat)
+    Wyy = 1 / M + Lam**2 / IX    # (3.4), checked
     Delta_f = (muk - mus) * Nr * M * Wyy / Dk
-    Wc_f = Wc[0, 0] * cg * eX + Wc[1, 1] * sg * hh
+    Wc_f = w1 * cg * eX + w2 * sg * hh   # (4.3), checked
     require_all(f"(4.4) s-dot = Delta_f W_c f_hat, Delta_f = (mu_k - mu_s) N_r M (y.W.y) / D_k, sigma = {sigma}",
                 sdot - Delta_f * Wc_f)
     require(f"(4.5) s-dot . s_hat = (mu_s - mu_k) N_r M (y.W.y) / D_k (f.W_c.f), sigma = {sigma}",
-            sdot.dot(-f_hat) - (mus - muk) * Nr * M * Wyy / Dk * (Wc[0, 0] * cg**2 + Wc[1, 1] * sg**2))
-    require(f"(4.4) D_k = 1 - mu_k M ... = (M y.W.y)(1 - mu_k nu . f_hat), sigma = {sigma}",
+            sdot.dot(-f_hat) - (mus - muk) * Nr * M * Wyy / Dk * (w1 * cg**2 + w2 * sg**2))
+    require(f"(4.4) D_k = M (y.W.y)(1 - mu_k nu . f_hat), sigma = {sigma}",
             Dk - M * Wyy * (1 - muk * nu_h * sg))
 print(f"       ({time.monotonic() - started:.1f} s)")
 
@@ -332,20 +352,21 @@ require_true(f"(4.6) thin disk, mu = 1: beta > 0 on every tilt and direction (mi
 print(f"       ({time.monotonic() - started:.1f} s)")
 
 # ================================================================================ (e) §5
+t, v0 = sp.symbols("t v_0", positive=True)
 for name, geo in (("thin", {h: 0, rho: 0}), ("fully rounded", {h: 2 * rho})):
-    dOm, Nsl = sliding_from_scratch(1)
+    dOm, res = sliding_from_scratch(1)
     upright = {S: 0, C: 1, wX: 0, wY: 0, cb: 1, sb: 0, tX: 0, tY: 0, tZ: 0}
-    dOm0 = sp.simplify(dOm.subs(geo).subs(upright))
-    N0_ = sp.simplify(Nsl.subs(geo).subs(upright))
+    res0 = sp.expand(res.subs(geo).subs(upright))
+    N_up = normal_force(res0)
+    dOm0 = sp.simplify(dOm.subs(geo).subs(upright).subs(N, N_up))
+    require(f"(5.1) {name}: N = M g", N_up - M * g)
     require_all(f"(5.1) {name}: upright, slip along e_X: omega' = (0, 0, -mu M g a / I_Z)",
                 dOm0 - sp.Matrix([0, 0, -mu * M * g * a / IZ]))
-    require(f"(5.1) {name}: N = M g", N0_ - M * g)
-    # omega_Y = 0 so the frame does not turn (phi' = 0): U1' = F . e_X / M = -mu g, U2' = 0.
+    # omega_Y = 0 so the frame does not turn (phi' = 0): U1' = F . e_X / M = -mu g, U2' = 0 ((1.9) above).
     A, B, c, *_ = geometry(1)
     slip_x = (U1 + omega.cross(c).dot(eX)).subs(geo).subs(upright)
     require(f"(5.1) {name}: slip = v + a omega_Z", slip_x - (U1 + a * wZ))
     # Integrate: v = v0 - mu g t, omega_Z = -mu M g a t / I_Z; slip zero at t*.
-    t, v0 = sp.symbols("t v_0", positive=True)
     v_t = v0 - mu * g * t
     wZ_t = -mu * M * g * a / IZ * t
     t_star = sp.solve(sp.Eq(v_t + a * wZ_t, 0), t)[0]
@@ -362,9 +383,9 @@ for name, geo in (("thin", {h: 0, rho: 0}), ("fully rounded", {h: 2 * rho})):
                  and sp.simplify((v_after - 2 * v0 / 3).subs(disk)) == 0
                  and sp.simplify((work - M * v0**2 / 6).subs(disk)) == 0)
     # Rolling afterwards, upright, omega = (0, 0, omega_Z): omega' = 0 and no friction needed (fits any cone).
-    dOm_r, R_r = rolling_from_scratch(1)
+    d_r, R_r, *_ = rolling_from_scratch(1)
     roll0 = {S: 0, C: 1, wX: 0, wY: 0, tX: 0, tY: 0, tZ: 0}
-    require_all(f"(5.3) {name}: upright straight rolling needs omega' = 0", dOm_r.subs(geo).subs(roll0))
+    require_all(f"(5.3) {name}: upright straight rolling needs omega' = 0", d_r.subs(geo).subs(roll0))
     require_all(f"(5.3) {name}: ... and R = M g y, F = 0", (R_r - M * g * yhat).subs(geo).subs(roll0))
 
 print(f"all sliding checks passed ({time.monotonic() - started:.1f} s)")

@@ -61,6 +61,9 @@ scene::SceneConfig loadScene(const SceneSource& source) {
 }
 
 void reportStop(const pipeline::CsvRunResult& result) {
+  for (const pipeline::ModeSwitch& w : result.switches) {
+    std::cerr << fmt::format("coinroll: {} at t = {:.9f} s\n", w.toSliding ? "slides" : "rolls", w.t);
+  }
   for (const auto& warning : result.warnings) {
     std::cerr << "coinroll: warning: the ideal contact fails here (on_invalid: warn, going on): "
               << pipeline::describeStop(warning) << '\n';

@@ -29,9 +29,15 @@ struct Forward {
   double spinRate = 0;        // rad/s, psi-dot: the contact point running round the rim
   double precessionRate = 0;  // rad/s, phi-dot = Omega: the contact point going round the floor
   Eigen::Vector3d dOmega = Eigen::Vector3d::Zero();  // rad/s^2, in the formulation's own components
-  Reaction reaction;
-  Loads loads;        // the effects' couple and dissipated power; zero without effects
+  Reaction reaction;  // with friction's part while sliding
+  Loads loads;        // the effects' couple and dissipated power (and friction's mu N |s| while sliding)
   double energy = 0;  // J, kinetic plus potential
+  // The contact (docs/sliding.md): the velocity of the coin's material point there (zero while
+  // rolling), whether it slides, and while sliding the normal effective mass D of eq. 3.2, whose
+  // sign decides whether the held contact has a unique normal force (Painleve: D <= 0).
+  Eigen::Vector3d slip = Eigen::Vector3d::Zero();  // m/s, floor components, horizontal
+  bool sliding = false;
+  double normalEffectiveMass = 1;
 };
 
 // alpha, rad: the coin plane's tilt above the floor, pi/2 - |theta|, from e_Y's rise and e_Z's, so it

@@ -5,56 +5,12 @@
 #include <cmath>
 #include <numbers>
 
+#include "physics/body_contact.h"
 #include "physics/observables.h"
 
 namespace coinroll::physics {
 
 namespace {
-
-// What the attitude alone fixes, in material-frame components (docs/quaternion_formulation.md §2,
-// docs/rim.md §3).
-struct ContactGeometry {
-  Eigen::Matrix3d floorFromBody;  // columns: the material axes b1, b2, b3 in floor components
-  Eigen::Vector3d up;             // e_y, the floor's upward normal
-  Eigen::Vector3d e_X, e_Y;       // the seed's in-plane axes: e_Y points up the coin plane (eq. 2.1)
-  double sinTheta = 0;            // -e_y . e_Z: positive when the e_Z face is the lower one
-  double cosTheta = 0;            // |e_y minus its normal part|, = cos(theta) >= 0
-  Eigen::Vector3d c;              // m, from the centre of mass to the contact point (eq. 2.2; rim.md eq. 3.1)
-  ContactOffset offset;           // the rim's c = -reach e_Y + lift e_Z (unused for the thin coin)
-};
-
-ContactGeometry contactGeometry(const CoinModel& m, const Eigen::Quaterniond& unitQ) {
-  ContactGeometry geo;
-  geo.floorFromBody = unitQ.toRotationMatrix();
-  geo.up = geo.floorFromBody.row(1).transpose();
-  geo.cosTheta = std::hypot(geo.up.x(), geo.up.y());
-  geo.sinTheta = -geo.up.z();
-  geo.e_Y = Eigen::Vector3d(geo.up.x(), geo.up.y(), 0) / geo.cosTheta;
-  geo.e_X = Eigen::Vector3d(geo.e_Y.y(), -geo.e_Y.x(), 0);  // e_Y x e_Z
-  if (m.rim.thin()) {
-    geo.c = -m.a * geo.e_Y;
-  } else {
-    geo.offset = contactOffset(m.rim, m.a, geo.sinTheta, geo.cosTheta);
-    geo.c = -geo.offset.reach * geo.e_Y + Eigen::Vector3d(0, 0, geo.offset.lift);  // docs/rim.md eq. 3.1
-  }
-  return geo;
-}
-
-// psi-dot = e_X . (e_y x omega) / cos(theta) is the one place 1 / cos(theta) remains; it is the
-// physical rolling rate, finite along every finite-energy motion short of flat.
-double spinRateOf(const ContactGeometry& geo, const Eigen::Vector3d& omega) {
-  return geo.e_X.dot(geo.up.cross(omega)) / geo.cosTheta;
-}
-
-// dc/dt in material components: the contact point runs round the rim at psi-dot (eq. 2.4); with
-// a rim, reach and lift also change with the tilt at theta-dot = omega . e_X (docs/rim.md eq. 3.2).
-Eigen::Vector3d contactDrift(const CoinModel& m, const ContactGeometry& geo, const Eigen::Vector3d& omega) {
-  const double psiDot = spinRateOf(geo, omega);
-  if (m.rim.thin()) return -m.a * psiDot * geo.e_X;
-  const double thetaDot = omega.dot(geo.e_X);
-  return -geo.offset.reach * psiDot * geo.e_X - geo.offset.dReach * thetaDot * geo.e_Y +
-         Eigen::Vector3d(0, 0, geo.offset.dLift * thetaDot);
-}
 
 // (3.4): [I_G + M (|c|^2 1 - c c^t)] omega-dot = -omega x I_G omega - M c x (omega x c-dot + omega x (omega x c))
 //                                                + M g c x e_y + tau
@@ -117,23 +73,7 @@ Forward forwardAt(const CoinModel& m, const QuaternionState& s, const ContactGeo
   f.dOmega = angularAcceleration(m, geo, s.omegaBody, cDot);
   f.reaction = reactionFrom(m, s, geo, cDot, f.dOmega);
   if (!m.effects.empty()) addEffects(m, s, geo, cDot, f);
-  const Eigen::Matrix3d& R = geo.floorFromBody;
-  f.theta = thetaOf(s.q);
-  // Rows e_X, e_Y, e_Z in floor components.
-  f.axes.row(0) = (R * geo.e_X).transpose();
-  f.axes.row(1) = (R * geo.e_Y).transpose();
-  f.axes.row(2) = R.col(2).transpose();
-  f.omega = R * s.omegaBody;
-  f.contactVector = R * geo.c;
-  f.centre = Eigen::Vector3d(s.x, -geo.c.dot(geo.up), s.z);  // (2.3)
-  f.velocity = R * centreOfMassVelocityBody(geo, s.omegaBody);
-  f.contactPoint = f.centre + f.contactVector;
-  f.spinRate = spinRateOf(geo, s.omegaBody);
-  // omega = theta-dot e_X + phi-dot e_y + psi-dot e_Z with e_X . e_y = 0 and e_Z . e_y = -sin(theta).
-  f.precessionRate = s.omegaBody.dot(geo.up) + f.spinRate * geo.sinTheta;
-  const Eigen::Vector3d inertia(m.I_X, m.I_X, m.I_Z);
-  f.energy = 0.5 * m.M * f.velocity.squaredNorm() + 0.5 * s.omegaBody.dot(inertia.cwiseProduct(s.omegaBody)) +
-             m.M * m.g * f.centre.y();
+  setAttitudeKinematics(m, s.q, s.omegaBody, s.x, s.z, geo, geo.floorFromBody * centreOfMassVelocityBody(geo, s.omegaBody), f);
   return f;
 }
 

@@ -11,6 +11,8 @@ std::string_view eventName(ModelEvent event) {
     case ModelEvent::CornerSwitch: return "corner-switch";
     case ModelEvent::LiftOff: return "lift-off";
     case ModelEvent::Slip: return "slip";
+    case ModelEvent::Painleve: return "painleve";
+    case ModelEvent::StickSlip: return "stick-slip";
   }
   return "event";
 }

@@ -20,9 +20,11 @@ enum class ModelEvent {
   CornerSwitch,  // a cornered rim passes upright: the contact would jump to the other corner
   LiftOff,       // N falls through 0
   Slip,          // friction needed reaches mu N
+  Painleve,      // sliding, the held contact has no unique normal force (docs/sliding.md §3)
+  StickSlip,     // more rolling/sliding switches than the run allows per simulated second (docs/sliding.md §4)
 };
 
-// The contract's name: "coin-flat", "face-down", "corner-switch", "lift-off", "slip".
+// The contract's name: "coin-flat", "face-down", "corner-switch", "lift-off", "slip", "painleve".
 std::string_view eventName(ModelEvent event);
 
 // rad. The Euler-angle equations carry tan(theta) and 1 / cos(theta); at 89 degrees the coin's

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <type_traits>
 
 #include "physics/observables.h"
 #include "pipeline/cancelled.h"
@@ -37,6 +38,7 @@ integrate::Trajectory<N, physics::CoinRhs<F>> start(const Simulation& simulation
 
 template <class Variant>
 Variant startEither(const Simulation& simulation) {
+  if (simulation.sliding) return Variant(std::in_place_type<HybridRun>, simulation);
   const bool dissipative = !simulation.model.effects.empty();
   if (simulation.formulation == Formulation::EulerAngles) {
     if (dissipative) return start<Formulation::EulerAngles, physics::kStateSize + 1>(simulation);
@@ -55,6 +57,9 @@ double dissipatedOf(const integrate::Vec<N>& y) {
 template <class T>
 struct RunTraits;
 
+template <class T>
+inline constexpr bool kHybrid = std::is_same_v<std::decay_t<T>, HybridRun>;
+
 template <int N, Formulation F>
 struct RunTraits<integrate::Trajectory<N, physics::CoinRhs<F>>> {
   static constexpr Formulation kFormulation = F;
@@ -71,10 +76,34 @@ std::optional<RunSample> CoinRun::sampleAt(double t) {
   throwIfCancelled(cancel_);
   return std::visit(
       [this, t](auto& run) {
-        using Traits = RunTraits<std::decay_t<decltype(run)>>;
-        return sampleOf<Traits::kFormulation, Traits::kSize>(run, t);
+        if constexpr (kHybrid<decltype(run)>) {
+          return hybridSampleAt(run, t);
+        } else {
+          using Traits = RunTraits<std::decay_t<decltype(run)>>;
+          return sampleOf<Traits::kFormulation, Traits::kSize>(run, t);
+        }
       },
       trajectory_);
+}
+
+std::optional<RunSample> CoinRun::hybridSampleAt(HybridRun& run, double t) {
+  if (t < lastTime_) {
+    throw std::logic_error(fmt::format("CoinRun::stateAt: queries must not go back in time ({} after {})", t, lastTime_));
+  }
+  // As for the quaternion formulation (sampleOf): phi and psi unwrapped every quarter turn.
+  while (lastTime_ < t || !lastForwardValid_) {
+    throwIfCancelled(cancel_);
+    const double turnRate = std::max(std::abs(lastForward_.precessionRate), std::abs(lastForward_.spinRate));
+    const double next = lastForwardValid_ && turnRate > 0 ? std::min(t, lastTime_ + kUnwrapTurn / turnRate) : t;
+    const std::optional<HybridSample> sample = run.sampleAt(next, lastState_);
+    if (!sample) return std::nullopt;
+    lastState_ = sample->state;
+    lastForward_ = sample->forward;
+    lastDissipated_ = sample->dissipated;
+    lastTime_ = next;
+    lastForwardValid_ = true;
+  }
+  return RunSample{lastState_, lastForward_, lastDissipated_};
 }
 
 std::optional<physics::CoinState> CoinRun::stateAt(double t) {
@@ -121,12 +150,16 @@ std::optional<RunSample> CoinRun::sampleOf(Run<F, N>& run, double t) {
 std::optional<RunEvent> CoinRun::stoppedBy() const {
   return std::visit(
       [this](const auto& run) -> std::optional<RunEvent> {
-        using Traits = RunTraits<std::decay_t<decltype(run)>>;
-        const auto& hit = run.stoppedBy();
-        // A fixed step may end past the duration and find an event there: not this run's.
-        if (!hit || hit->t > duration_) return std::nullopt;
-        // The hit lies within one unwrap interval of the last sample, so lastState_ continues it.
-        return eventOf<Traits::kFormulation, Traits::kSize>(*hit, lastState_);
+        if constexpr (kHybrid<decltype(run)>) {
+          return run.stoppedBy(lastState_);
+        } else {
+          using Traits = RunTraits<std::decay_t<decltype(run)>>;
+          const auto& hit = run.stoppedBy();
+          // A fixed step may end past the duration and find an event there: not this run's.
+          if (!hit || hit->t > duration_) return std::nullopt;
+          // The hit lies within one unwrap interval of the last sample, so lastState_ continues it.
+          return eventOf<Traits::kFormulation, Traits::kSize>(*hit, lastState_);
+        }
       },
       trajectory_);
 }
@@ -134,15 +167,24 @@ std::optional<RunEvent> CoinRun::stoppedBy() const {
 std::vector<RunEvent> CoinRun::warnings() const {
   return std::visit(
       [this](const auto& run) {
-        using Traits = RunTraits<std::decay_t<decltype(run)>>;
-        std::vector<RunEvent> hits;
-        for (const auto& hit : run.nonTerminalHits()) {
-          if (hit.t > duration_) break;
-          hits.push_back(eventOf<Traits::kFormulation, Traits::kSize>(hit, physics::CoinState{}));
+        if constexpr (kHybrid<decltype(run)>) {
+          return run.warnings();
+        } else {
+          using Traits = RunTraits<std::decay_t<decltype(run)>>;
+          std::vector<RunEvent> hits;
+          for (const auto& hit : run.nonTerminalHits()) {
+            if (hit.t > duration_) break;
+            hits.push_back(eventOf<Traits::kFormulation, Traits::kSize>(hit, physics::CoinState{}));
+          }
+          return hits;
         }
-        return hits;
       },
       trajectory_);
+}
+
+std::vector<ModeSwitch> CoinRun::switches() const {
+  if (const auto* hybrid = std::get_if<HybridRun>(&trajectory_)) return hybrid->switches();
+  return {};
 }
 
 template <Formulation F, int N>

@@ -15,6 +15,7 @@
 #include "physics/coin_state.h"
 #include "physics/forward.h"
 #include "physics/validity.h"
+#include "pipeline/hybrid_run.h"
 #include "pipeline/run_event.h"
 #include "pipeline/simulation.h"
 
@@ -44,6 +45,9 @@ class CoinRun {
   // Lift-off and slip crossings the run went on past (on_invalid "warn"), in time order so far.
   std::vector<RunEvent> warnings() const;
 
+  // The switches between rolling and sliding so far (none unless the scene has "sliding": true).
+  std::vector<ModeSwitch> switches() const;
+
   integrate::Stats stats() const;
 
  private:
@@ -60,7 +64,10 @@ class CoinRun {
   template <physics::Formulation F, int N>
   RunEvent eventOf(const integrate::EventHit<N>& hit, const physics::CoinState& continuation) const;
 
-  std::variant<EulerRun, EulerDissipativeRun, QuaternionRun, QuaternionDissipativeRun> trajectory_;
+  std::optional<RunSample> hybridSampleAt(HybridRun& run, double t);
+
+  // HybridRun: "sliding": true (rolling and sliding segments of the quaternion formulation).
+  std::variant<EulerRun, EulerDissipativeRun, QuaternionRun, QuaternionDissipativeRun, HybridRun> trajectory_;
   double lastTime_ = 0;             // s, time of lastState_
   physics::CoinState lastState_;    // the latest sample: the continuation for phi and psi
   physics::Forward lastForward_;    // at lastTime_, once lastForwardValid_

@@ -43,6 +43,14 @@ physics::CoinModel modelFrom(const scene::CoinSpec& coin, double g) {
 
 physics::Formulation formulationFor(const scene::SceneConfig& scene) {
   const bool landing = scene.coin.thickness && !scene.effects.empty();
+  if (scene.sliding) {
+    if (scene.solver.formulation == physics::Formulation::EulerAngles) {
+      throw scene::SceneError(
+          "solver.formulation: \"euler-angles\" does not carry sliding (docs/sliding.md §1: the quaternion formulation "
+          "does, the one that reaches a spin-down's landing); use \"quaternion\", the default with \"sliding\": true");
+    }
+    return physics::Formulation::Quaternion;
+  }
   if (!scene.solver.formulation) return landing ? physics::Formulation::Quaternion : physics::Formulation::EulerAngles;
   if (landing && *scene.solver.formulation == physics::Formulation::EulerAngles) {
     throw scene::SceneError(
@@ -98,6 +106,8 @@ void requireValidStart(const Simulation& sim) {
         "initial: the floor would have to pull the coin down (normal force N = {:.4g} N <= 0): the coin lifts off at "
         "once; lower the spin or the tilt", r.N));
   }
+  // With sliding on, a start outside the cone or with a slip simply starts sliding.
+  if (sim.sliding) return;
   if (sim.friction && physics::slipMargin(sim.model, f, *sim.friction) < 0) {
     throw scene::SceneError(fmt::format(
         "initial: the contact needs friction F = {:.4g} N > mu N = {:.4g} N: the coin slips at once; raise friction or "
@@ -119,7 +129,12 @@ Simulation buildSimulation(const scene::SceneConfig& scene) {
   sim.solver.dt = scene.solver.dt;
   sim.formulation = formulationFor(scene);
   sim.model.effects = scene.effects;
-  sim.friction = scene.friction;
+  sim.friction = scene.frictionStatic ? scene.frictionStatic : scene.friction;
+  sim.sliding = scene.sliding;
+  sim.kineticFriction = scene.friction.value_or(0);
+  if (const auto* e = std::get_if<scene::ExplicitInitial>(&scene.initial); e && e->velocity) {
+    sim.initialVelocity = Eigen::Vector2d(e->velocity->at(0), e->velocity->at(1));
+  }
   sim.validityIsTerminal = scene.onInvalid == scene::OnInvalid::Stop;
   sim.duration = scene.duration;
   requireValidStart(sim);
@@ -152,6 +167,14 @@ std::string describeStop(const RunEvent& hit) {
       break;
     case ModelEvent::LiftOff: meaning = "the normal force reached zero; the coin would leave the floor"; break;
     case ModelEvent::Slip: meaning = "friction reached mu N; the contact would start slipping"; break;
+    case ModelEvent::StickSlip:
+      meaning = "the coin switched between rolling and sliding more than 1000 times in one simulated second "
+                "(stick-slip faster than the model resolves, docs/sliding.md §4)";
+      break;
+    case ModelEvent::Painleve:
+      meaning = "the sliding contact has no unique normal force (Painleve's paradox: friction too large for this "
+                "attitude; the model would need an impact, docs/sliding.md §3)";
+      break;
   }
   return fmt::format("{} at t = {:.9f} s (theta = {:.4f} deg): {}", physics::eventName(hit.event), hit.t,
                      degrees(hit.state.theta), meaning);

@@ -6,6 +6,8 @@
 #include <optional>
 #include <string>
 
+#include <Eigen/Core>
+
 #include "integrate/events.h"
 #include "integrate/solver_config.h"
 #include "physics/coin_model.h"
@@ -21,7 +23,12 @@ struct Simulation {
   physics::CoinState initial;
   integrate::SolverConfig solver;
   physics::Formulation formulation = physics::Formulation::EulerAngles;  // which equations CoinRun integrates
-  std::optional<double> friction;  // mu; no slip monitor when absent
+  std::optional<double> friction;  // the rolling cone's coefficient (friction_static, else friction); none: no slip monitor
+  // "sliding": the coin slides with Coulomb friction `kineticFriction` instead of stopping at slip
+  // (pipeline/hybrid_run.h); the quaternion formulation carries it.
+  bool sliding = false;
+  double kineticFriction = 0;
+  std::optional<Eigen::Vector2d> initialVelocity;  // m/s, (v_x, v_z); none: the rolling velocity
   bool validityIsTerminal = true;  // on_invalid: "stop" ends the run at lift-off or slip
   double duration = 0;             // s
   // When set and true, runs of this simulation stop at their next sample with Cancelled.

@@ -15,8 +15,8 @@ long sampleCount(double duration, double sampleDt) {
 }
 
 CsvRunResult writeTrajectoryCsv(const Simulation& simulation, double sampleDt, std::ostream& out) {
-  const bool dissipative = !simulation.model.effects.empty();
-  out << kCsvHeader << (dissipative ? kCsvDissipationColumns : "") << '\n';
+  const bool dissipative = !simulation.model.effects.empty() || simulation.sliding;
+  out << kCsvHeader << (dissipative ? kCsvDissipationColumns : "") << (simulation.sliding ? kCsvSlidingColumns : "") << '\n';
   CoinRun run(simulation);
   CsvRunResult result;
   const long rows = sampleCount(simulation.duration, sampleDt);
@@ -42,6 +42,7 @@ CsvRunResult writeTrajectoryCsv(const Simulation& simulation, double sampleDt, s
       fmt::format_to(std::back_inserter(line), ",{:.17g},{:.17g}", f.loads.power, sample->dissipated);
       singularTime.add(t, energy, f.loads.power);
     }
+    if (simulation.sliding) fmt::format_to(std::back_inserter(line), ",{:.17g},{:d}", f.slip.norm(), f.sliding ? 1 : 0);
     line.push_back('\n');
     out.write(line.data(), static_cast<std::streamsize>(line.size()));
     ++result.rows;
@@ -49,12 +50,13 @@ CsvRunResult writeTrajectoryCsv(const Simulation& simulation, double sampleDt, s
   result.stoppedBy = run.stoppedBy();
   const bool flat = result.stoppedBy && (result.stoppedBy->event == physics::ModelEvent::CoinFlat ||
                                          result.stoppedBy->event == physics::ModelEvent::FaceDown);
-  if (dissipative && flat) {
+  if (!simulation.model.effects.empty() && flat) {
     // The stop itself is the sample nearest the singularity; the fit needs it most.
     singularTime.add(result.stoppedBy->t, result.stoppedBy->forward.energy, result.stoppedBy->forward.loads.power);
     result.singularTime = singularTime.estimate();
   }
   result.warnings = run.warnings();
+  result.switches = run.switches();
   result.stats = run.stats();
   return result;
 }

@@ -7,6 +7,7 @@
 
 #include "integrate/events.h"
 #include "physics/coin_state.h"
+#include "pipeline/hybrid_run.h"
 #include "pipeline/run_event.h"
 #include "pipeline/simulation.h"
 #include "pipeline/singular_time.h"
@@ -18,6 +19,8 @@ inline constexpr const char* kCsvHeader =
 
 // Appended to the header when the scene has effects: power dissipated now (W) and since t = 0 (J).
 inline constexpr const char* kCsvDissipationColumns = ",power,dissipated";
+// With "sliding": true (after power and dissipated, which then include friction's work).
+inline constexpr const char* kCsvSlidingColumns = ",slip_speed,sliding";
 
 // Number of rows for a duration and sample step: k = 0 .. floor(duration / S). The quotient is
 // nudged by a relative 1e-9 so a duration that is a whole number of steps keeps its last row
@@ -29,6 +32,7 @@ struct CsvRunResult {
   long rows = 0;
   std::optional<RunEvent> stoppedBy;
   std::vector<RunEvent> warnings;  // on_invalid "warn": crossings gone past
+  std::vector<ModeSwitch> switches;  // "sliding": true: each switch between rolling and sliding
   std::optional<SingularTimeEstimate> singularTime;  // a spin-down that reached coin-flat or face-down
   integrate::Stats stats;
 };

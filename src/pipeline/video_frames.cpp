@@ -134,10 +134,13 @@ VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& si
   VideoRunResult result;
   result.simulatedSeconds = survey.endTime;
   if (survey.stoppedBy) result.stopDescription = describeStop(*survey.stoppedBy);
-  const std::vector<double> times = frameTimes(scene, simulation, survey.endTime, options.maxFrames);
-  const long simulatedFrames = static_cast<long>(times.size());
-  // A coin that landed on its face lies still for a while before the clip ends, so the end is seen.
+  std::vector<double> times = frameTimes(scene, simulation, survey.endTime, options.maxFrames);
+  // A coin that landed on its face is shown at its landing, then lies still for a while before the
+  // clip ends, so the end is seen.
   const bool landed = survey.stoppedBy && survey.stoppedBy->event == physics::ModelEvent::FaceDown;
+  const bool landingFrameAdded = landed && times.back() < survey.endTime;
+  if (landingFrameAdded) times.push_back(survey.endTime);
+  const long simulatedFrames = static_cast<long>(times.size());
   const long holdFrames = landed ? std::lround(kLandingHoldSeconds * scene.render.fps) : 0;
   const long total = simulatedFrames + holdFrames;
 
@@ -155,9 +158,14 @@ VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& si
       continue;
     }
     const double t = times[static_cast<std::size_t>(k)];
-    // Simulated seconds per video second at this frame, from the frame times.
-    const double step = k + 1 < simulatedFrames ? times[static_cast<std::size_t>(k) + 1] - t
-                                                : scene.render.timeScale / scene.render.fps;
+    // Simulated seconds per video second at this frame, from the frame times. The clip's last planned
+    // frame and an added landing frame keep the pace of the frame before (a remapped clip's end is
+    // still in slow motion), not that of the short step to the landing.
+    const auto index = static_cast<std::size_t>(k);
+    const std::size_t lastPlanned = times.size() - (landingFrameAdded ? 2 : 1);
+    const double step = index < lastPlanned ? times[index + 1] - t
+                        : lastPlanned > 0   ? times[lastPlanned] - times[lastPlanned - 1]
+                                            : scene.render.timeScale / scene.render.fps;
     const double playbackRate = step * scene.render.fps;
     std::vector<std::string> speed;
     if (scene.render.hud) {

@@ -37,6 +37,8 @@ struct ExplicitInitial {
   double theta = 0, phi = 0, psi = 0;              // rad (degrees in the file)
   double omega_X = 0, omega_Y = 0, omega_Z = 0;    // rad/s
   double x = 0, z = 0;                             // m
+  // m/s, initial.v_x and v_z (only with "sliding": true): the centre's velocity; absent, the rolling one.
+  std::optional<std::array<double, 2>> velocity;
 };
 
 enum class SteadyKind { Straight, Circle, SpinInPlace };
@@ -138,7 +140,9 @@ struct SceneConfig {
   std::string name = "coinroll";
   CoinSpec coin;
   double gravity = 9.81;            // m/s^2
-  std::optional<double> friction;   // static friction coefficient mu; absent = no slip monitor
+  std::optional<double> friction;   // mu: the slip monitor's cone, and Coulomb's kinetic coefficient when sliding
+  std::optional<double> frictionStatic;  // friction_static >= friction: the rolling cone; absent = friction
+  bool sliding = false;             // "sliding": true, the coin slides instead of stopping at slip (needs friction)
   InitialSpec initial;
   double duration = 0;              // s, required
   SolverSpec solver;

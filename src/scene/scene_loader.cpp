@@ -58,6 +58,7 @@ double positive(const JsonReader& r, std::string_view key, std::optional<double>
 constexpr double kMinLength = 1e-6, kMaxLength = 1e3;  // m
 constexpr double kMinMass = 1e-9, kMaxMass = 1e9;      // kg
 constexpr double kMaxRate = 1e6;                       // rad/s
+constexpr double kMaxSpeed = 1e3;                      // m/s, a launched coin; faster is a typo
 constexpr double kMaxPosition = 1e6;                   // m
 constexpr double kMaxGravity = 1e4;                    // m/s^2
 
@@ -185,7 +186,7 @@ InitialSpec parseInitial(const JsonReader& top) {
     s.z = position(r, "z");
     return s;
   }
-  const JsonReader r(*node, "initial", "", {"theta", "phi", "psi", "omega_X", "omega_Y", "omega_Z", "x", "z"});
+  const JsonReader r(*node, "initial", "", {"theta", "phi", "psi", "omega_X", "omega_Y", "omega_Z", "x", "z", "v_x", "v_z"});
   ExplicitInitial e;
   e.theta = tiltDegrees(r, "theta", 0);
   e.phi = r.number("phi", 0) * kRadiansPerDegree;
@@ -195,6 +196,10 @@ InitialSpec parseInitial(const JsonReader& top) {
   e.omega_Z = rate(r, "omega_Z");
   e.x = position(r, "x");
   e.z = position(r, "z");
+  if (r.has("v_x") || r.has("v_z")) {
+    const auto speed = [&r](std::string_view key) { return inRange(r, key, r.number(key, 0), -kMaxSpeed, kMaxSpeed, "m/s"); };
+    e.velocity = std::array<double, 2>{speed("v_x"), speed("v_z")};
+  }
   return e;
 }
 
@@ -473,7 +478,8 @@ std::string parseErrorReason(const nlohmann::json::parse_error& error) {
 SceneConfig parseScene(const nlohmann::json& document, std::string_view sourceName, const ParseOptions& options) {
   try {
     const JsonReader top(document, "", sourceName,
-                         {"name", "coin", "gravity", "friction", "initial", "duration", "solver", "effects", "on_invalid", "render"});
+                         {"name", "coin", "gravity", "friction", "friction_static", "sliding", "initial", "duration", "solver",
+                          "effects", "on_invalid", "render"});
     SceneConfig scene;
     scene.name = top.optionalString("name").value_or(scene.name);
     render::CoinShape drawnCoin;
@@ -483,7 +489,22 @@ SceneConfig parseScene(const nlohmann::json& document, std::string_view sourceNa
     inRange(top, "gravity", scene.gravity, 0, kMaxGravity, "m/s^2");
     scene.friction = top.optionalNumber("friction");
     if (scene.friction && !(*scene.friction >= 0)) top.fail("friction", fmt::format("must be >= 0, got {}", *scene.friction));
+    scene.frictionStatic = top.optionalNumber("friction_static");
+    if (scene.frictionStatic && !scene.friction) {
+      top.fail("friction_static", "needs friction (the kinetic coefficient, which it must be at least)");
+    }
+    if (scene.frictionStatic && !(*scene.frictionStatic >= *scene.friction && std::isfinite(*scene.frictionStatic))) {
+      top.fail("friction_static", fmt::format("must be >= friction = {} (static friction is at least kinetic), got {}",
+                                              *scene.friction, *scene.frictionStatic));
+    }
+    scene.sliding = top.boolean("sliding", false);
+    if (scene.sliding && !scene.friction) {
+      top.fail("sliding", "needs friction (the coefficient of Coulomb friction while the coin slides), e.g. \"friction\": 0.3");
+    }
     scene.initial = parseInitial(top);
+    if (const auto* e = std::get_if<ExplicitInitial>(&scene.initial); e && e->velocity && !scene.sliding) {
+      top.fail("initial.v_x", "only with \"sliding\": true (a rolling coin's velocity follows from its rates)");
+    }
     scene.duration = top.requiredNumber("duration");
     positive(top, "duration", scene.duration);
     scene.solver = parseSolver(top, options);

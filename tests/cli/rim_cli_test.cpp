@@ -110,7 +110,8 @@ TEST_F(RimCliTest, ASpinDownLandsOnItsFaceAndTheClipHoldsStillInSilence) {
   ASSERT_EQ(runCoinroll("render " + scene.string() + " -q -o " + mp4.string()).exitCode, 0);
 
   const coinroll::video::VideoInfo info = coinroll::video::readVideoInfo(mp4);
-  const long simulatedFrames = static_cast<long>(std::floor(landing * 30)) + 1;
+  // Frames k / 30 s up to the landing, then the landing itself (it falls between two frames).
+  const long simulatedFrames = static_cast<long>(std::floor(landing * 30)) + 2;
   EXPECT_EQ(info.frameCount, simulatedFrames + 45);  // 1.5 s of hold at 30 fps
   // The hold shows the landing's picture: a PNG sequence of the same clip, losslessly.
   const fs::path frames = dir_ / "frames";

@@ -1,0 +1,51 @@
+#pragma once
+// The sliding coin (docs/sliding.md): the contact held on the floor (N from the unilateral
+// constraint), its material point slipping, Coulomb friction F = -mu N s_hat along the slip, the
+// centre of mass's horizontal velocity free. Carried by the quaternion formulation only: it is the
+// one that reaches a spin-down's landing, where an Euler's disk slides (docs/sliding.md §1).
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "physics/coin_model.h"
+#include "physics/forward.h"
+#include "physics/quaternion_dynamics.h"
+
+namespace coinroll::physics {
+
+// The slip, not the centre's velocity, is state: near zero slip, where friction's direction is
+// decided, it is then integrated to its own relative accuracy instead of being the small difference
+// of two integrated velocities, v + omega x c, whose errors would turn its direction at random
+// (docs/sliding.md §4).
+struct SlidingState {
+  QuaternionState attitude;                        // q, omegaBody, centre (x, z) on the floor plane
+  Eigen::Vector2d slip = Eigen::Vector2d::Zero();  // m/s, (x, z) of the contact's material velocity
+};
+
+inline constexpr int kSlidingStateSize = kQuaternionStateSize + 2;
+using SlidingStateVec = Eigen::Matrix<double, kSlidingStateSize, 1>;
+enum SlidingStateIndex : int { kSlipX = kQuaternionStateSize, kSlipZ };
+
+// The slip of a coin in `attitude` whose centre moves at (v_x, v_z) on the floor, m/s.
+Eigen::Vector2d slipOf(const CoinModel& model, const QuaternionState& attitude, const Eigen::Vector2d& velocity);
+
+SlidingStateVec toVector(const SlidingState& state);
+SlidingState toSlidingState(const SlidingStateVec& y);
+
+// The forward pass while sliding with kinetic coefficient `mu`. `slipDirection` (unit, horizontal,
+// floor components) stands for s_hat while the slip speed is below round-off: at the switch from
+// rolling, where s = 0 and the contract takes it opposite to the rolling friction force.
+// Forward::slip, ::sliding and ::normalEffectiveMass are set.
+Forward slidingForward(const CoinModel& model, const SlidingState& state, double mu, const Eigen::Vector3d& slipDirection);
+
+// dy/dt and the power dissipated (the effects' and friction's mu N |s|), W.
+struct SlidingRates {
+  SlidingStateVec dy;
+  double power = 0;
+};
+SlidingRates slidingRates(const CoinModel& model, const SlidingStateVec& y, double mu, const Eigen::Vector3d& slipDirection);
+
+// m/s: speeds below this are the slip's round-off, not a direction (docs/sliding.md §4).
+inline constexpr double kSlipRoundOff = 1e-13;
+
+}  // namespace coinroll::physics

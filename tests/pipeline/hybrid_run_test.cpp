@@ -1,0 +1,151 @@
+// Rolling and sliding (docs/sliding.md) against truths computed another way: the skid's closed
+// form, pure rolling as friction grows without bound, the energy budget across switches, and the
+// rolling run's own slip event for the instant sliding begins.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <optional>
+#include <sstream>
+#include <string_view>
+#include <vector>
+
+#include "pipeline/coin_run.h"
+#include "pipeline/simulation.h"
+#include "pipeline/trajectory_csv.h"
+#include "scene/scene_loader.h"
+#include "tolerance.h"
+
+namespace {
+
+using namespace coinroll;
+using coinroll::testing::isBelow;
+using coinroll::testing::isNear;
+
+const std::vector<std::string_view> kMethods = {"dop853"};
+
+pipeline::Simulation simulationOf(const nlohmann::json& doc) {
+  return pipeline::buildSimulation(scene::parseScene(doc, "test", {.solverMethods = kMethods}));
+}
+
+nlohmann::json skid(const nlohmann::json& coin, double v0, double mu) {
+  return {{"coin", coin},  {"friction", mu}, {"sliding", true}, {"initial", {{"theta", 0}, {"v_x", v0}}},
+          {"duration", 1}, {"solver", {{"rtol", 1e-12}, {"atol", 1e-14}}}};
+}
+
+TEST(Sliding, AnUprightSkidRollsAtTheClosedFormTimeSpeedAndWork) {
+  // v0 / (mu g (1 + M a^2 / I_Z)) and v0 M a^2 / (I_Z + M a^2): a disk, a ring, and a thick disk whose
+  // fully rounded rim touches at radius a when upright, with the I_Z of its solid.
+  const double v0 = 1.3, mu = 0.25, g = 9.81;
+  for (const nlohmann::json& coin : {nlohmann::json{{"radius", 0.0375}, {"mass", 0.4}},
+                                     nlohmann::json{{"shape", "ring"}, {"radius", 0.04}, {"inner_radius", 0.03}, {"mass", 0.2}},
+                                     nlohmann::json{{"radius", 0.0375}, {"mass", 0.449}, {"thickness", 0.013}}}) {
+    const pipeline::Simulation sim = simulationOf(skid(coin, v0, mu));
+    const double M = sim.model.M, a = sim.model.a, I_Z = sim.model.I_Z;
+    const double tStar = v0 / (mu * g * (1 + M * a * a / I_Z));
+    const double vAfter = v0 * M * a * a / (I_Z + M * a * a);
+    const double work = 0.5 * M * v0 * v0 - 0.5 * (M + I_Z / (a * a)) * vAfter * vAfter;
+    pipeline::CoinRun run(sim);
+    const pipeline::RunSample end = *run.sampleAt(1.0);
+    ASSERT_EQ(run.switches().size(), 1u) << coin.dump();
+    EXPECT_FALSE(run.switches()[0].toSliding);
+    EXPECT_TRUE(isNear(run.switches()[0].t, tStar, 1e-9)) << coin.dump();
+    EXPECT_FALSE(end.forward.sliding);
+    EXPECT_TRUE(isNear(end.forward.velocity.x() / vAfter, 1, 1e-9)) << coin.dump();
+    EXPECT_TRUE(isNear(end.dissipated / work, 1, 1e-9)) << coin.dump();
+    EXPECT_TRUE(isBelow(std::abs(end.forward.energy + end.dissipated - 0.5 * M * v0 * v0 - M * g * end.forward.centre.y()) /
+                            (0.5 * M * v0 * v0), 1e-9));
+  }
+}
+
+std::vector<pipeline::RunSample> samples(const pipeline::Simulation& sim, double dt) {
+  pipeline::CoinRun run(sim);
+  std::vector<pipeline::RunSample> out;
+  for (int k = 0; k * dt <= sim.duration + 1e-12; ++k) {
+    const std::optional<pipeline::RunSample> s = run.sampleAt(k * dt);
+    if (!s) break;
+    out.push_back(*s);
+  }
+  return out;
+}
+
+TEST(Sliding, WithFrictionWithoutBoundItIsPureRolling) {
+  nlohmann::json doc = {{"coin", {{"radius", 0.0375}, {"mass", 0.4}, {"thickness", 0.004}}},
+                        {"initial", {{"theta", 25}, {"omega_X", 0.4}, {"omega_Y", 4.0}, {"omega_Z", 11.0}}},
+                        {"duration", 3},
+                        {"solver", {{"formulation", "quaternion"}, {"rtol", 1e-12}, {"atol", 1e-14}}}};
+  const std::vector<pipeline::RunSample> rolling = samples(simulationOf(doc), 0.01);
+  doc["friction"] = 1e6;
+  doc["sliding"] = true;
+  const pipeline::Simulation sim = simulationOf(doc);
+  const std::vector<pipeline::RunSample> hybrid = samples(sim, 0.01);
+  ASSERT_EQ(rolling.size(), hybrid.size());
+  double worst = 0;
+  for (std::size_t i = 0; i < rolling.size(); ++i) {
+    worst = std::max({worst, std::abs(rolling[i].state.theta - hybrid[i].state.theta),
+                      (rolling[i].forward.centre - hybrid[i].forward.centre).norm() / 0.0375});
+    EXPECT_FALSE(hybrid[i].forward.sliding);
+  }
+  EXPECT_TRUE(isBelow(worst, 1e-12));
+}
+
+TEST(Sliding, SlidingBeginsWhereTheRollingRunFirstNeedsMuN) {
+  // A coin let go tilted with a slow spin falls; rolling, its contact needs more and more friction.
+  // The rolling run's slip event (on_invalid stop) is the truth for the instant sliding begins.
+  nlohmann::json doc = {{"coin", {{"radius", 0.0375}, {"mass", 0.4}}},
+                        {"initial", {{"theta", 20}, {"omega_Z", 1.0}}},
+                        {"friction", 0.5},
+                        {"duration", 0.5},
+                        {"solver", {{"formulation", "quaternion"}, {"rtol", 1e-12}, {"atol", 1e-14}}}};
+  pipeline::CoinRun rolling(simulationOf(doc));
+  rolling.sampleAt(0.5);
+  ASSERT_TRUE(rolling.stoppedBy().has_value());
+  ASSERT_EQ(rolling.stoppedBy()->event, physics::ModelEvent::Slip);
+  doc["sliding"] = true;
+  pipeline::CoinRun hybrid(simulationOf(doc));
+  hybrid.sampleAt(rolling.stoppedBy()->t + 1e-3);
+  ASSERT_FALSE(hybrid.switches().empty());
+  EXPECT_TRUE(hybrid.switches()[0].toSliding);
+  EXPECT_TRUE(isNear(hybrid.switches()[0].t, rolling.stoppedBy()->t, 1e-12));
+}
+
+TEST(Sliding, TheEnergyBudgetClosesAcrossSwitches) {
+  // A tilted spinning coin set down skidding sideways: it slides, rolls, and may switch again; energy
+  // + dissipated (friction's mu N |s| and the air's) stays the initial energy.
+  const nlohmann::json doc = {{"coin", {{"radius", 0.0375}, {"mass", 0.4}, {"thickness", 0.003}}},
+                              {"initial", {{"theta", 20}, {"omega_Y", 5.0}, {"omega_Z", 12.0}, {"v_x", 0.3}, {"v_z", -0.2}}},
+                              {"friction", 0.3},
+                              {"sliding", true},
+                              {"effects", {{{"type", "air_drag"}}}},
+                              {"duration", 1},
+                              {"solver", {{"rtol", 1e-10}}}};
+  const pipeline::Simulation sim = simulationOf(doc);
+  pipeline::CoinRun run(sim);
+  const double E0 = run.sampleAt(0)->forward.energy;
+  double worst = 0;
+  bool slid = false, rolled = false;
+  for (int k = 1; k <= 100; ++k) {
+    const std::optional<pipeline::RunSample> s = run.sampleAt(0.01 * k);
+    if (!s) break;
+    worst = std::max(worst, std::abs(s->forward.energy + s->dissipated - E0) / E0);
+    (s->forward.sliding ? slid : rolled) = true;
+  }
+  EXPECT_TRUE(slid && rolled);
+  EXPECT_GE(run.switches().size(), 4u);  // rolls, slides, rolls, ... (10 in this second)
+  EXPECT_TRUE(isBelow(worst, 1e-9));
+}
+
+TEST(Sliding, TheCsvCarriesTheSlipAndTheSwitches) {
+  const pipeline::Simulation sim = simulationOf(skid({{"radius", 0.0375}, {"mass", 0.4}}, 1.0, 0.3));
+  std::ostringstream csv;
+  const pipeline::CsvRunResult result = pipeline::writeTrajectoryCsv(sim, 0.05, csv);
+  std::istringstream lines(csv.str());
+  std::string header, first;
+  std::getline(lines, header);
+  std::getline(lines, first);
+  EXPECT_EQ(header, std::string(pipeline::kCsvHeader) + ",power,dissipated,slip_speed,sliding");
+  EXPECT_EQ(first.substr(first.rfind(',') - 1), "1,1");  // slip speed 1 m/s, sliding
+  ASSERT_EQ(result.switches.size(), 1u);
+}
+
+}  // namespace

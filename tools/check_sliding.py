@@ -1,19 +1,19 @@
 #!/usr/bin/env python3
-"""Symbolic checks of docs/sliding.md (run with Debian's python3-sympy; about 20 s).
+"""Symbolic checks of docs/sliding.md (run with Debian's python3-sympy; about 40 s).
 
 For general M, a, h, rho, I_X, I_Z, g, mu, a general couple tau and a general slip direction, on both
 sides sigma = sign(theta) = +-1, in the seed's turning frame XYZ (docs/derivations.md, docs/rim.md):
   (a)  §1  the sliding equations built from scratch (Newton-Euler with the unknowns omega', N, the held
-           contact y_G = H(theta) differentiated twice) against the vector forms (1.6)-(1.9); the slip is
-           horizontal (1.2); the Delassus form (1.10)-(1.11);
-  (b)  §2  dE/dt = -mu N |s| + tau . omega along them (2.2), the horizontal velocity's equations from
+           contact y_G = H(theta) differentiated twice) against the vector forms (1.4)-(1.8); the slip is
+           horizontal (1.2); the Delassus form (1.9)-(1.10);
+  (b)  §2  dE/dt = -mu N |s| + tau . omega along them (2.1), the horizontal velocity's equations from
            Newton's law in the turning frame;
   (c)  §3  Painleve: Sherman-Morrison (3.1)-(3.2), the closed form (3.3) of D, D / M = y . W (y - mu s)
            (3.4), the thresholds (3.5)-(3.6) (thin disk sqrt(5)/2 at 24.09 deg, Painleve's rod 4/3),
            N sees a couple only through tau_X (6.2);
   (d)  §4  the switch: the rolling solution satisfies the sliding equations with mu s_hat = -F_roll / N_roll
-           (4.1), the condensed compliance W_c is diagonal in (e_X, h) with (4.3), mu_k < mu_s gives
-           (4.4)-(4.5), and the quadratic start (4.6)-(4.7) for mu_k = mu_s;
+           (4.4), N's sensitivity (4.2), the condensed compliance W_c is diagonal in (e_X, h) with (4.3),
+           mu_k < mu_s gives (4.5)-(4.6), and the quadratic start (4.7)-(4.8) for mu_k = mu_s;
   (e)  §5  the skid of an upright coin: t*, speed after, friction work; rolling after it fits the cone.
 Exits non-zero on the first failed identity.
 """
@@ -92,15 +92,15 @@ def geometry(sigma):
     A = a - rho + rho * C
     B = sigma * (h / 2 - rho) + rho * S
     c = sp.Matrix([0, -A, B])                       # rim.md (1.3)
-    c_comp = dth_vec(c) * wX                        # component derivative (2.3)
+    c_comp = dth_vec(c) * wX                        # component derivative, rim.md (2.3)
     c_floor = c_comp + Omega.cross(c)               # derivative in the floor frame
-    H = A * C + B * S                               # height of G (1.4)
-    Lam = A * S - B * C                             # (1.7)
+    H = A * C + B * S                               # height of G, rim.md (1.4)
+    Lam = A * S - B * C                             # rim.md (1.7)
     return A, B, c, c_comp, c_floor, H, Lam
 
 
 def delassus(c):
-    """W x = x / M + (I^-1 (c x x)) x c  (1.10), as a matrix."""
+    """W x = x / M + (I^-1 (c x x)) x c  (1.9), as a matrix."""
     cols = []
     for i in range(3):
         x = sp.zeros(3, 1)
@@ -151,34 +151,34 @@ for sigma in (1, -1):
     v_y = dth(H) * wX
     require(f"(1.2) v_G . y = dH/dt = -(omega x c) . y, sigma = {sigma}", v_y + omega.cross(c).dot(yhat))
     require(f"(1.2) ... = -Lambda omega_X, sigma = {sigma}", v_y + Lam * wX)
-    # (1.5)-(1.8) vector forms with omega-dot the inertial derivative omega' + Omega x omega. Identities in N:
+    # (1.4)-(1.7) vector forms with omega-dot the inertial derivative omega' + Omega x omega. Identities in N:
     # each form minus its claim is a multiple of the vertical residual res(N) (zero at the normal force).
     wdot = dOm + Omega.cross(omega)
     m = c.cross(yhat)
     k = c.cross(yhat - mu * s_hat)
     N0 = M * g - M * omega.cross(c_floor).dot(yhat)
-    require_all(f"(1.5) m = c x y = Lambda e_X, sigma = {sigma}", m - Lam * eX)
-    require(f"(1.6) vertical law <=> N = N0 - M m . omega-dot, sigma = {sigma}",
+    require_all(f"(1.6) m = c x y = Lambda e_X, sigma = {sigma}", m - Lam * eX)
+    require(f"(1.5) vertical law <=> N = N0 - M m . omega-dot, sigma = {sigma}",
             (N - (N0 - M * m.dot(wdot))) + res)
-    require(f"(1.6) vertical law <=> N = M (g - (H - rho) omega_X^2 - Lambda omega_X'), sigma = {sigma}",
+    require(f"(1.5) vertical law <=> N = M (g - (H - rho) omega_X^2 - Lambda omega_X'), sigma = {sigma}",
             (N - M * (g - (H - rho) * wX**2 - Lam * dOm[0])) + res)
     lhs = (inertia + M * k * m.T) * wdot
     rhs = -omega.cross(inertia * omega) + N0 * k + tau
-    require_all(f"(1.8) [I_G + M k m^T] omega-dot = -omega x I_G omega + N0 k + tau (+ k res), sigma = {sigma}",
+    require_all(f"(1.7) [I_G + M k m^T] omega-dot = -omega x I_G omega + N0 k + tau (+ k res), sigma = {sigma}",
                 lhs - rhs + k * res)
     require_all(f"(1.4) I omega-dot + omega x I omega = N k + tau (Euler in the inertial form), sigma = {sigma}",
                 inertia * wdot + omega.cross(inertia * omega) - N * k - tau)
-    # (1.10)-(1.11): acceleration of the material contact point = W R + b; vertical part 0 = the held contact.
+    # (1.9)-(1.10): acceleration of the material contact point = W R + b; vertical part 0 = the held contact.
     W = delassus(c)
-    require_all(f"(1.10) W is symmetric, sigma = {sigma}", W - W.T)
+    require_all(f"(1.9) W is symmetric, sigma = {sigma}", W - W.T)
     R = N * (yhat - mu * s_hat)
     a_G = R / M - g * yhat
     sdot_P = a_G + wdot.cross(c) + omega.cross(c_floor)
     b = -g * yhat + (inertia_inv * (tau - omega.cross(inertia * omega))).cross(c) + omega.cross(c_floor)
-    require_all(f"(1.10) s_P-dot = a_G + omega-dot x c + omega x c-dot = W R + b, sigma = {sigma}",
+    require_all(f"(1.9) s_P-dot = a_G + omega-dot x c + omega x c-dot = W R + b, sigma = {sigma}",
                 sdot_P - (W * R + b))
-    require(f"(1.11) y . s_P-dot = -res / M: the held contact, sigma = {sigma}", sdot_P.dot(yhat) + res / M)
-    require(f"(1.11) N = -y . b / (y . W (y - mu s_hat)) at res = 0, sigma = {sigma}",
+    require(f"(1.10) y . s_P-dot = -res / M: the held contact, sigma = {sigma}", sdot_P.dot(yhat) + res / M)
+    require(f"(1.10) N = -y . b / (y . W (y - mu s_hat)) at res = 0, sigma = {sigma}",
             normal_force(res) * (yhat.dot(W * (yhat - mu * s_hat))) + yhat.dot(b))
 print(f"       ({time.monotonic() - started:.1f} s)")
 
@@ -193,17 +193,17 @@ for sigma in (1, -1):
     a_G = vG_comp + Omega.cross(vG)
     F = -mu * N * s_hat
     sol = sp.solve([M * a_G.dot(eX) - F.dot(eX), M * a_G.dot(hh) - F.dot(hh)], [dU1, dU2], dict=True)[0]
-    require(f"(1.9) vertical component of M a_G - R - M g... = res, sigma = {sigma}",
+    require(f"(1.8) vertical component of M a_G - R - M g... = res, sigma = {sigma}",
             (M * a_G.dot(yhat) - (N - M * g)).subs(sol) - res)
-    require(f"(1.9) the horizontal frame turns at phi' = omega_Y / cos: U1' = F.e_X/M - phi' U2, sigma = {sigma}",
+    require(f"(1.8) the horizontal frame turns at phi' = omega_Y / cos: U1' = F.e_X/M - phi' U2, sigma = {sigma}",
             sol[dU1] - (F.dot(eX) / M - wY / C * U2))
-    require(f"(1.9) ... U2' = F.h/M + phi' U1, sigma = {sigma}", sol[dU2] - (F.dot(hh) / M + wY / C * U1))
-    energy = M * vG.dot(vG) / 2 + (IX * (wX**2 + wY**2) + IZ * wZ**2) / 2 + M * g * H      # (2.1)
+    require(f"(1.8) ... U2' = F.h/M + phi' U1, sigma = {sigma}", sol[dU2] - (F.dot(hh) / M + wY / C * U1))
+    energy = M * vG.dot(vG) / 2 + (IX * (wX**2 + wY**2) + IZ * wZ**2) / 2 + M * g * H      # (2.2)
     dE = (dth(energy) * wX + sum(sp.diff(energy, w) * dw for w, dw in zip(omega, dOm))
           + sp.diff(energy, U1) * sol[dU1] + sp.diff(energy, U2) * sol[dU2])
     # State with slip S_m s_hat: U = S_m s_hat - (omega x c)_h. dE/dt - claim = v_y res (0 at the normal force).
     on_slip = {U1: Sm * cb - omega.cross(c).dot(eX), U2: Sm * sb - omega.cross(c).dot(hh)}
-    require(f"(2.2) dE/dt = -mu N |s| + tau . omega while sliding, sigma = {sigma}",
+    require(f"(2.1) dE/dt = -mu N |s| + tau . omega while sliding, sigma = {sigma}",
             (dE - (-mu * N * Sm + tau.dot(omega)) - v_y * res).subs(on_slip))
 print(f"       ({time.monotonic() - started:.1f} s)")
 
@@ -255,18 +255,18 @@ print(f"       ({time.monotonic() - started:.1f} s)")
 # ================================================================================ (d) §4
 for sigma in (1, -1):
     A, B, c, c_comp, c_floor, H, Lam = geometry(sigma)
-    # (4.1) Kinematics of rolling, for any omega': the vertical acceleration of G is d2H/dt2 and the material
+    # (4.4) Kinematics of rolling, for any omega': the vertical acceleration of G is d2H/dt2 and the material
     # contact point has no acceleration, so the rolling solution (omega'_r, R_r) satisfies the sliding system
     # with R = R_r, i.e. with mu s_hat = -F_r / N_r.
     d_r, R_r, a_G_sym, m_r = rolling_from_scratch(sigma)
     v_y = dth(H) * wX
     a_y = dth(v_y) * wX + sp.diff(v_y, wX) * dX
-    require(f"(4.1) rolling: a_G . y = d2H/dt2 for every omega', sigma = {sigma}", a_G_sym.dot(yhat) - a_y)
+    require(f"(4.4) rolling: a_G . y = d2H/dt2 for every omega', sigma = {sigma}", a_G_sym.dot(yhat) - a_y)
     wdot_sym = dOmegaSym + Omega.cross(omega)
-    require_all(f"(4.1) rolling: a_G + omega-dot x c + omega x c-dot = 0 for every omega', sigma = {sigma}",
+    require_all(f"(4.4) rolling: a_G + omega-dot x c + omega x c-dot = 0 for every omega', sigma = {sigma}",
                 a_G_sym + wdot_sym.cross(c) + omega.cross(c_floor))
     # ... and Euler holds with R_r (rim.md 2.6): so the sliding Euler equation with R = R_r gives omega'_r.
-    require_all(f"(4.1) rolling: I omega' + Omega x I omega = c x R_r + tau, sigma = {sigma}",
+    require_all(f"(4.4) rolling: I omega' + Omega x I omega = c x R_r + tau, sigma = {sigma}",
                 inertia * d_r + Omega.cross(inertia * omega) - c.cross(R_r) - tau)
     # Condensed horizontal compliance: Schur complement of y.W.y, in the basis (e_X, h).
     W = delassus(c)
@@ -289,29 +289,29 @@ for sigma in (1, -1):
     N_new = -(yhat.dot(b_any) + yhat.dot(W * Fnew)) / Wyy
     require(f"(4.2) N = N_r + nu . (F - F_r), sigma = {sigma}", N_new - (Nr_ + nu_h * (Fh_ - Frh)))
 
-    # (4.4)-(4.5): at the cone's edge R_r = N_r (y + mu_s f_hat); b = -W R_r. Slide with mu_k, s_hat = -f_hat.
+    # (4.5)-(4.6): at the cone's edge R_r = N_r (y + mu_s f_hat); b = -W R_r. Slide with mu_k, s_hat = -f_hat.
     Nr, mus, muk = sp.symbols("N_r mu_s mu_k", positive=True)
     R_roll = Nr * (yhat + mus * f_hat)
     b = -W * R_roll
     x_k = yhat + muk * f_hat
     N_k = -yhat.dot(b) / yhat.dot(W * x_k)
     sdot = W * (N_k * x_k) + b
-    require(f"(4.4) the slip acceleration is horizontal, sigma = {sigma}", sdot.dot(yhat))
-    require_all(f"(4.1) mu_k = mu_s: the slip acceleration is zero at the switch, sigma = {sigma}",
+    require(f"(4.5) the slip acceleration is horizontal, sigma = {sigma}", sdot.dot(yhat))
+    require_all(f"(4.4) mu_k = mu_s: the slip acceleration is zero at the switch, sigma = {sigma}",
                 sdot.subs(muk, mus))
     Dk = M * yhat.dot(W * x_k)   # D at (mu_k, s_hat = -f_hat)
     Wyy = 1 / M + Lam**2 / IX    # (3.4), checked
     Delta_f = (muk - mus) * Nr * M * Wyy / Dk
     Wc_f = w1 * cg * eX + w2 * sg * hh   # (4.3), checked
-    require_all(f"(4.4) s-dot = Delta_f W_c f_hat, Delta_f = (mu_k - mu_s) N_r M (y.W.y) / D_k, sigma = {sigma}",
+    require_all(f"(4.5) s-dot = Delta_f W_c f_hat, Delta_f = (mu_k - mu_s) N_r M (y.W.y) / D_k, sigma = {sigma}",
                 sdot - Delta_f * Wc_f)
-    require(f"(4.5) s-dot . s_hat = (mu_s - mu_k) N_r M (y.W.y) / D_k (f.W_c.f), sigma = {sigma}",
+    require(f"(4.6) s-dot . s_hat = (mu_s - mu_k) N_r M (y.W.y) / D_k (f.W_c.f), sigma = {sigma}",
             sdot.dot(-f_hat) - (mus - muk) * Nr * M * Wyy / Dk * (w1 * cg**2 + w2 * sg**2))
-    require(f"(4.4) D_k = M (y.W.y)(1 - mu_k nu . f_hat), sigma = {sigma}",
+    require(f"(4.5) D_k = M (y.W.y)(1 - mu_k nu . f_hat), sigma = {sigma}",
             Dk - M * Wyy * (1 - muk * nu_h * sg))
 print(f"       ({time.monotonic() - started:.1f} s)")
 
-# (4.6)-(4.7) mu_k = mu_s: first order in t after the switch. Abstract algebra in the horizontal plane with
+# (4.7)-(4.8) mu_k = mu_s: first order in t after the switch. Abstract algebra in the horizontal plane with
 # W_c = diag(w1, w2) in the orthonormal basis (e_X, h), nu = (0, nu_h), f_hat = (cg, sg), f_perp = (-sg, cg),
 # the rolling demand F_r(t) = F_r + t Fdot, N_r(t) = N_r + t Ndot. Unknowns: lambda (s = -lambda t^2 / 2 f_hat
 # + O(t^3)), d (friction direction -s_hat = f_hat - d t f_perp + O(t^2)), and Delta_1 = (F - F_r) / t.
@@ -330,12 +330,12 @@ sol = sp.solve(eqs, list(D1) + [lam_, d_], dict=True)[0]
 kappa = f2.dot(Fdot) - mus * Ndot                      # rate at which |F_r| - mu N_r grows
 Wc2inv = Wc2.inv()
 beta_ = (f2 - mus * nu2).dot(Wc2inv * f2)
-require("(4.6) lambda = kappa / beta, beta = (f_hat - mu nu) . W_c^-1 f_hat", sol[lam_] - kappa / beta_)
-require("(4.7) d = (-f_perp . Fdot + lambda f_perp . W_c^-1 f_hat) / (mu N_r)",
+require("(4.7) lambda = kappa / beta, beta = (f_hat - mu nu) . W_c^-1 f_hat", sol[lam_] - kappa / beta_)
+require("(4.8) d = (-f_perp . Fdot + lambda f_perp . W_c^-1 f_hat) / (mu N_r)",
         sol[d_] - (-fp2.dot(Fdot) + sol[lam_] * fp2.dot(Wc2inv * f2)) / (mus * Nr))
-require("(4.6) coin: beta = cg^2 / w1 + sg (sg - mu nu_h) / w2",
+require("(4.7) coin: beta = cg^2 / w1 + sg (sg - mu nu_h) / w2",
         beta_ - (cg**2 / w1s + sg * (sg - mus * nuh) / w2s))
-# The sufficient condition quoted in §4.3: thin disk, mu <= 1 keeps beta > 0 for every tilt and direction.
+# The statement after (4.8): thin disk, mu <= 1 keeps beta > 0 for every tilt and direction.
 import math
 worst = math.inf
 for i in range(1, 90):
@@ -348,7 +348,7 @@ for i in range(1, 90):
     for j in range(360):
         gam = math.radians(j)
         worst = min(worst, math.cos(gam)**2 / w1n + math.sin(gam) * (math.sin(gam) - 1.0 * nun) / w2n)
-require_true(f"(4.6) thin disk, mu = 1: beta > 0 on every tilt and direction (min {worst:.4f} M)", worst > 0)
+require_true(f"(4.7) thin disk, mu = 1: beta > 0 on every tilt and direction (min {worst:.4f} M)", worst > 0)
 print(f"       ({time.monotonic() - started:.1f} s)")
 
 # ================================================================================ (e) §5
@@ -362,7 +362,7 @@ for name, geo in (("thin", {h: 0, rho: 0}), ("fully rounded", {h: 2 * rho})):
     require(f"(5.1) {name}: N = M g", N_up - M * g)
     require_all(f"(5.1) {name}: upright, slip along e_X: omega' = (0, 0, -mu M g a / I_Z)",
                 dOm0 - sp.Matrix([0, 0, -mu * M * g * a / IZ]))
-    # omega_Y = 0 so the frame does not turn (phi' = 0): U1' = F . e_X / M = -mu g, U2' = 0 ((1.9) above).
+    # omega_Y = 0 so the frame does not turn (phi' = 0): U1' = F . e_X / M = -mu g, U2' = 0 ((1.8) above).
     A, B, c, *_ = geometry(1)
     slip_x = (U1 + omega.cross(c).dot(eX)).subs(geo).subs(upright)
     require(f"(5.1) {name}: slip = v + a omega_Z", slip_x - (U1 + a * wZ))

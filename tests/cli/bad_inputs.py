@@ -331,6 +331,30 @@ case("rim-steady-cmd-cornered-circle", C, "coinroll steady, circle on a cornered
      files={}, gtest=(G_CORNERED,), na_before=NO_RIM)
 
 # --- the render block
+# --- rolling and sliding: "sliding", "friction_static", initial.v_x / v_z (INTERFACE.md "Rolling and sliding")
+C = "rolling and sliding"
+NO_SLIDING = "no sliding before"
+case("sliding-without-friction", C, "sliding true without friction", SIM, 2,
+     "sliding: needs friction", key="sliding", files={"scene.json": scene(sliding=True)}, na_before=NO_SLIDING)
+case("sliding-not-boolean", C, "sliding \"yes\"", SIM, 2, "sliding", key="sliding",
+     files={"scene.json": scene(sliding="yes", friction=0.3)}, na_before=NO_SLIDING)
+case("static-below-kinetic", C, "friction_static 0.2 < friction 0.3", SIM, 2,
+     "friction_static: must be >= friction = 0.3", key="friction_static",
+     files={"scene.json": scene(friction=0.3, friction_static=0.2)}, na_before=NO_SLIDING)
+case("static-without-kinetic", C, "friction_static without friction", SIM, 2,
+     "friction_static: needs friction", key="friction_static",
+     files={"scene.json": scene(friction_static=0.5)}, na_before=NO_SLIDING)
+case("velocity-without-sliding", C, "initial.v_x without sliding", SIM, 2,
+     "initial.v_x: only with \"sliding\": true", key="initial.v_x",
+     files={"scene.json": scene(initial={"v_x": 1.0})}, na_before=NO_SLIDING)
+case("velocity-absurd", C, "initial.v_z 1e9 m/s", SIM, 2, "initial.v_z", key="v_z",
+     files={"scene.json": scene(sliding=True, friction=0.3, initial={"v_z": 1e9})}, na_before=NO_SLIDING)
+case("sliding-in-euler-angles", C, "sliding with solver.formulation euler-angles", SIM, 2,
+     "solver.formulation: \"euler-angles\" does not carry sliding", key="solver.formulation",
+     files={"scene.json": scene(sliding=True, friction=0.3, solver={"formulation": "euler-angles"})}, na_before=NO_SLIDING)
+case("sliding-skid-runs", C, "an upright skid (must work)", SIM, 0, "rolls at t = ", produces=("o.csv",),
+     files={"scene.json": scene(sliding=True, friction=0.3, initial={"theta": 0, "v_x": 1.0})}, na_before=NO_SLIDING)
+
 C = "render block"
 REN = "render scene.json -q -o o.mp4 --set "
 case("fps-zero", C, "render.fps 0", REN + "render.fps=0", 2, "render.fps: must be in [1, 240], got 0", key="render.fps")

@@ -10,6 +10,7 @@
 #include "physics/observables.h"
 #include "physics/dynamics.h"
 #include "physics/quaternion_dynamics.h"
+#include "physics/sliding.h"
 #include "physics/solid_inertia.h"
 #include "physics/steady.h"
 #include "physics/validity.h"
@@ -106,8 +107,26 @@ void requireValidStart(const Simulation& sim) {
         "initial: the floor would have to pull the coin down (normal force N = {:.4g} N <= 0): the coin lifts off at "
         "once; lower the spin or the tilt", r.N));
   }
-  // With sliding on, a start outside the cone or with a slip simply starts sliding.
-  if (sim.sliding) return;
+  // With sliding on, a start outside the cone or with a slip simply starts sliding, unless that
+  // sliding has no unique normal force (the event painleve, which a run can only meet by crossing).
+  if (sim.sliding) {
+    const physics::QuaternionState start = physics::fromEulerState(sim.initial);
+    const Eigen::Vector3d rolling = f.velocity;
+    const Eigen::Vector2d velocity = sim.initialVelocity.value_or(Eigen::Vector2d(rolling.x(), rolling.z()));
+    const Eigen::Vector2d slip = physics::slipOf(sim.model, start, velocity);
+    if (slip.norm() > 0) {
+      const Eigen::Vector3d direction = Eigen::Vector3d(slip.x(), 0, slip.y()).normalized();
+      const physics::Forward sliding =
+          physics::slidingForward(sim.model, {.attitude = start, .slip = slip}, sim.kineticFriction, direction);
+      if (!(sliding.normalEffectiveMass > 0)) {
+        throw scene::SceneError(fmt::format(
+            "initial: the coin starts sliding with no unique normal force (Painleve: normal effective mass {:.3g} <= 0 "
+            "with friction {}; docs/sliding.md §3); lower friction, the tilt, or slide the other way",
+            sliding.normalEffectiveMass, sim.kineticFriction));
+      }
+    }
+    return;
+  }
   if (sim.friction && physics::slipMargin(sim.model, f, *sim.friction) < 0) {
     throw scene::SceneError(fmt::format(
         "initial: the contact needs friction F = {:.4g} N > mu N = {:.4g} N: the coin slips at once; raise friction or "

@@ -352,6 +352,10 @@ case("velocity-absurd", C, "initial.v_z 1e9 m/s", SIM, 2, "initial.v_z", key="v_
 case("sliding-in-euler-angles", C, "sliding with solver.formulation euler-angles", SIM, 2,
      "solver.formulation: \"euler-angles\" does not carry sliding", key="solver.formulation",
      files={"scene.json": scene(sliding=True, friction=0.3, solver={"formulation": "euler-angles"})}, na_before=NO_SLIDING)
+case("sliding-painleve-start", C, "a disk at 24 deg sliding sideways away from under its centre, friction 2", SIM, 2,
+     "initial: the coin starts sliding with no unique normal force (Painleve", key="initial",
+     files={"scene.json": scene(sliding=True, friction=2, initial={"theta": 24, "omega_Z": 0, "v_z": -1})},
+     na_before=NO_SLIDING)
 case("sliding-skid-runs", C, "an upright skid (must work)", SIM, 0, "rolls at t = ", produces=("o.csv",),
      files={"scene.json": scene(sliding=True, friction=0.3, initial={"theta": 0, "v_x": 1.0})}, na_before=NO_SLIDING)
 

@@ -108,7 +108,8 @@ Forward slidingForward(const CoinModel& model, const SlidingState& state, double
 SlidingRates slidingRates(const CoinModel& model, const SlidingStateVec& y, double mu, const Eigen::Vector3d& slipDirection) {
   const Eigen::Quaterniond stored(y[kQw], y[kQx], y[kQy], y[kQz]);
   const SlidingState state = toSlidingState(y);
-  const Forward f = slidingForward(model, state, mu, slipDirection);
+  const Sliding terms = slidingTerms(model, state, mu, slipDirection);
+  const Forward f = forwardFrom(model, state, mu, terms);
   SlidingRates rates;
   SlidingStateVec& dy = rates.dy;
   // q-dot as in the rolling formulation (docs/quaternion_formulation.md eq. 4.1), norm pulled back to 1.
@@ -125,9 +126,9 @@ SlidingRates slidingRates(const CoinModel& model, const SlidingStateVec& y, doub
   dy[kCentreZ] = f.velocity.z();
   // ds/dt = a_G + d(omega x c)/dt, the latter in the turning body frame (docs/sliding.md eq. 4.1);
   // horizontally a_G is friction's alone (1.8).
-  const ContactGeometry geo = contactGeometry(model, q);
-  const Eigen::Vector3d cDot = contactDrift(model, geo, w);
-  const Eigen::Vector3d spinRate = geo.floorFromBody * (f.dOmega.cross(geo.c) + w.cross(cDot) + w.cross(w.cross(geo.c)));
+  const ContactGeometry& geo = terms.geo;
+  const Eigen::Vector3d spinRate =
+      geo.floorFromBody * (f.dOmega.cross(geo.c) + w.cross(terms.cDot) + w.cross(w.cross(geo.c)));
   dy[kSlipX] = f.reaction.R.x() / model.M + spinRate.x();
   dy[kSlipZ] = f.reaction.R.z() / model.M + spinRate.z();
   rates.power = f.loads.power;

@@ -74,16 +74,16 @@ struct HybridRun::Segment {
   Eigen::Vector3d direction = Eigen::Vector3d::UnitX();  // sliding: s_hat at the segment's start
 };
 
-HybridRun::HybridRun(const Simulation& simulation) : model_(simulation.model), simulation_(simulation) {
+HybridRun::HybridRun(const Simulation& simulation) : simulation_(simulation) {
   const physics::QuaternionState start = physics::fromEulerState(simulation.initial);
-  const physics::Forward rolling = physics::forward(model_, start);
+  const physics::Forward rolling = physics::forward(simulation_.model, start);
   const Eigen::Vector3d rollingVelocity = rolling.velocity;
   const Eigen::Vector2d velocity = simulation.initialVelocity.value_or(Eigen::Vector2d(rollingVelocity.x(), rollingVelocity.z()));
-  const physics::SlidingState sliding{.attitude = start, .slip = physics::slipOf(model_, start, velocity)};
-  const physics::Forward slipping = physics::slidingForward(model_, sliding, simulation.kineticFriction, Eigen::Vector3d::UnitX());
+  const physics::SlidingState sliding{.attitude = start, .slip = physics::slipOf(simulation_.model, start, velocity)};
+  const physics::Forward slipping = physics::slidingForward(simulation_.model, sliding, simulation.kineticFriction, Eigen::Vector3d::UnitX());
   if (slipping.slip.norm() > kStoppedSlip) {
     startSliding(0, sliding, 0, slipping.slip.normalized());
-  } else if (physics::slipMargin(model_, rolling, *simulation.friction) < 0) {
+  } else if (physics::slipMargin(simulation_.model, rolling, *simulation.friction) < 0) {
     startSliding(0, sliding, 0, againstRollingFriction(rolling));
   } else {
     startRolling(0, start, 0);
@@ -97,34 +97,28 @@ HybridRun& HybridRun::operator=(HybridRun&&) noexcept = default;
 void HybridRun::startRolling(double t, const physics::QuaternionState& state, double dissipated) {
   using Y = integrate::Vec<kRollingSize>;
   std::vector<integrate::Event<kRollingSize>> events =
-      validityEvents<Formulation::Quaternion, kRollingSize>(model_, std::nullopt, simulation_.validityIsTerminal);
+      validityEvents<Formulation::Quaternion, kRollingSize>(simulation_.model, std::nullopt, simulation_.validityIsTerminal);
   events.push_back(switchEvent<kRollingSize>(
-      kSlideOnset, "slides", [model = model_, mu = *simulation_.friction](double, const Y& y) {
+      kSlideOnset, "slides", [model = simulation_.model, mu = *simulation_.friction](double, const Y& y) {
         return physics::slipMargin(model, physics::forward(model, rollingStateOf(y)), mu);
       }));
   Y y0;
   y0 << physics::toVector(state), dissipated;
   segment_ = std::make_unique<Segment>(Segment{
-      .trajectory = RollingTrajectory(physics::CoinRhs<Formulation::Quaternion>{model_}, t, y0, simulation_.solver, events),
+      .trajectory = RollingTrajectory(physics::CoinRhs<Formulation::Quaternion>{simulation_.model}, t, y0, simulation_.solver, events),
       .direction = Eigen::Vector3d::UnitX()});
 }
 
 void HybridRun::startSliding(double t, const physics::SlidingState& state, double dissipated, const Eigen::Vector3d& slipDirection) {
   using Y = integrate::Vec<kSlidingSize>;
   const double mu = simulation_.kineticFriction;
-  const auto forwardOf = [model = model_, mu, slipDirection](const Y& y) {
+  const auto forwardOf = [model = simulation_.model, mu, slipDirection](const Y& y) {
     return physics::slidingForward(model, slidingStateOf(y), mu, slipDirection);
   };
-  const physics::FlatStop flat = physics::flatStopFor(model_, Formulation::Quaternion);
-  const auto theta = [](const Y& y) { return physics::thetaOf(slidingStateOf(y).attitude.q); };
-  std::vector<integrate::Event<kSlidingSize>> events;
+  std::vector<integrate::Event<kSlidingSize>> events = geometryEvents<kSlidingSize>(
+      simulation_.model, Formulation::Quaternion, [](const Y& y) { return physics::thetaOf(slidingStateOf(y).attitude.q); });
   events.push_back(modelEvent<kSlidingSize>(
-      flat.event, [theta, tilt = flat.tilt](double, const Y& y) { return physics::flatMargin(theta(y), tilt); }, -1, true));
-  if (physics::hasCorners(model_)) {
-    events.push_back(modelEvent<kSlidingSize>(ModelEvent::CornerSwitch, [theta](double, const Y& y) { return theta(y); }, 0, true));
-  }
-  events.push_back(modelEvent<kSlidingSize>(
-      ModelEvent::LiftOff, [model = model_, forwardOf](double, const Y& y) { return physics::liftOffMargin(model, forwardOf(y)); },
+      ModelEvent::LiftOff, [model = simulation_.model, forwardOf](double, const Y& y) { return physics::liftOffMargin(model, forwardOf(y)); },
       -1, simulation_.validityIsTerminal));
   events.push_back(modelEvent<kSlidingSize>(
       ModelEvent::Painleve, [forwardOf](double, const Y& y) { return forwardOf(y).normalEffectiveMass; }, -1, true));
@@ -133,7 +127,7 @@ void HybridRun::startSliding(double t, const physics::SlidingState& state, doubl
   Y y0;
   y0 << physics::toVector(state), dissipated;
   segment_ = std::make_unique<Segment>(Segment{
-      .trajectory = SlidingTrajectory(SlidingRhs{model_, mu, slipDirection}, t, y0, simulation_.solver, events),
+      .trajectory = SlidingTrajectory(SlidingRhs{simulation_.model, mu, slipDirection}, t, y0, simulation_.solver, events),
       .direction = slipDirection});
 }
 
@@ -158,7 +152,7 @@ bool HybridRun::switchIfDue() {
   // The finished segment's crossings gone past and its work, kept before it is replaced.
   const auto retire = [&](const auto& trajectory) {
     for (const auto& crossing : trajectory.nonTerminalHits()) {
-      const HybridSample at = sampleOf(model_, mu, direction, crossing.y, physics::CoinState{});
+      const HybridSample at = sampleOf(simulation_.model, mu, direction, crossing.y, physics::CoinState{});
       warnings_.push_back({static_cast<ModelEvent>(crossing.id), crossing.t, at.state, at.forward, at.dissipated});
     }
     const integrate::Stats work = trajectory.stats();
@@ -176,7 +170,7 @@ bool HybridRun::switchIfDue() {
     if (!hit || hit->id != kSlideOnset) return false;
     if (tooManySwitches(hit->t)) return false;
     const physics::QuaternionState state = rollingStateOf(hit->y);
-    const physics::Forward f = physics::forward(model_, state);
+    const physics::Forward f = physics::forward(simulation_.model, state);
     const double t = hit->t, dissipated = hit->y[kRollingSize - 1];
     retire(*rolling);
     switches_.push_back({t, true});
@@ -189,12 +183,12 @@ bool HybridRun::switchIfDue() {
   if (tooManySwitches(hit->t)) return false;
   const physics::SlidingState state = slidingStateOf(hit->y);
   const double t = hit->t;
-  const physics::Forward slipping = physics::slidingForward(model_, state, mu, direction);
+  const physics::Forward slipping = physics::slidingForward(simulation_.model, state, mu, direction);
   retire(sliding);
-  const physics::Forward rolling = physics::forward(model_, state.attitude);
+  const physics::Forward rolling = physics::forward(simulation_.model, state.attitude);
   // Friction takes the last kStoppedSlip of slip at once: the kinetic energy it removes is dissipated.
   const double dissipated = hit->y[kSlidingSize - 1] + (slipping.energy - rolling.energy);
-  if (physics::slipMargin(model_, rolling, *simulation_.friction) < 0) {
+  if (physics::slipMargin(simulation_.model, rolling, *simulation_.friction) < 0) {
     // At zero slip the rolling reaction does not fit the cone: the coin slides on, from zero slip
     // along the direction the contract gives at a switch.
     startSliding(t, {.attitude = state.attitude, .slip = Eigen::Vector2d::Zero()}, dissipated, againstRollingFriction(rolling));
@@ -211,7 +205,7 @@ std::optional<HybridSample> HybridRun::sampleAt(double t, const physics::CoinSta
         [&](auto& trajectory) -> std::optional<HybridSample> {
           const auto y = trajectory.stateAt(t);
           if (!y) return std::nullopt;
-          return sampleOf(model_, simulation_.kineticFriction, segment_->direction, *y, continuation);
+          return sampleOf(simulation_.model, simulation_.kineticFriction, segment_->direction, *y, continuation);
         },
         segment_->trajectory);
     if (sample) return sample;
@@ -224,7 +218,7 @@ std::optional<RunEvent> HybridRun::stoppedBy(const physics::CoinState& continuat
       [&](const auto& trajectory) -> std::optional<RunEvent> {
         const auto& hit = trajectory.stoppedBy();
         if (!hit || hit->t > simulation_.duration) return std::nullopt;
-        const HybridSample at = sampleOf(model_, simulation_.kineticFriction, segment_->direction, hit->y, continuation);
+        const HybridSample at = sampleOf(simulation_.model, simulation_.kineticFriction, segment_->direction, hit->y, continuation);
         // A switch the run could not make (stick-slip past its bound) ends it as stick-slip.
         const bool modelEvent = hit->id != kSlideOnset && hit->id != kSlipStops;
         return RunEvent{modelEvent ? static_cast<ModelEvent>(hit->id) : ModelEvent::StickSlip, hit->t, at.state, at.forward,
@@ -239,7 +233,7 @@ std::vector<RunEvent> HybridRun::warnings() const {
       [&](const auto& trajectory) {
         for (const auto& crossing : trajectory.nonTerminalHits()) {
           if (crossing.t > simulation_.duration) break;
-          const HybridSample at = sampleOf(model_, simulation_.kineticFriction, segment_->direction, crossing.y, physics::CoinState{});
+          const HybridSample at = sampleOf(simulation_.model, simulation_.kineticFriction, segment_->direction, crossing.y, physics::CoinState{});
           all.push_back({static_cast<ModelEvent>(crossing.id), crossing.t, at.state, at.forward, at.dissipated});
         }
       },

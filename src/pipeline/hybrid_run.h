@@ -55,7 +55,6 @@ class HybridRun {
   // Moves to the next segment when the current one ended in a switch; false when a model event ended it.
   bool switchIfDue();
 
-  physics::CoinModel model_;
   Simulation simulation_;
   std::unique_ptr<Segment> segment_;
   std::vector<ModeSwitch> switches_;

@@ -60,22 +60,32 @@ integrate::Event<N> modelEvent(physics::ModelEvent kind, std::function<double(do
           .direction = direction, .terminal = terminal};
 }
 
-// coin-flat or face-down (|theta| reaches physics::flatStopFor), corner-switch (a cornered rim
-// passes upright), lift-off (N falls through 0) and, when mu is given, slip (F rises through
-// mu N). The flat and corner events always end the run; lift-off and slip end it when
-// `validityIsTerminal`, else they are recorded and the run goes on.
+// coin-flat or face-down (|theta| reaches physics::flatStopFor) and, for a rim with corners,
+// corner-switch (theta passes 0): the events of the coin's geometry, which always end the run.
+// `theta` reads the tilt of an integrated state.
+template <int N>
+std::vector<integrate::Event<N>> geometryEvents(const physics::CoinModel& model, physics::Formulation formulation,
+                                                std::function<double(const integrate::Vec<N>&)> theta) {
+  using Y = integrate::Vec<N>;
+  const physics::FlatStop flat = physics::flatStopFor(model, formulation);
+  std::vector<integrate::Event<N>> events;
+  events.push_back(modelEvent<N>(
+      flat.event, [theta, tilt = flat.tilt](double, const Y& y) { return physics::flatMargin(theta(y), tilt); }, -1, true));
+  if (physics::hasCorners(model)) {
+    events.push_back(modelEvent<N>(physics::ModelEvent::CornerSwitch, [theta](double, const Y& y) { return theta(y); }, 0, true));
+  }
+  return events;
+}
+
+// The geometry's events, lift-off (N falls through 0) and, when mu is given, slip (F rises through
+// mu N). Lift-off and slip end the run when `validityIsTerminal`, else they are recorded and the run
+// goes on.
 template <physics::Formulation F, int N>
 std::vector<integrate::Event<N>> validityEvents(const physics::CoinModel& model, std::optional<double> friction,
                                                 bool validityIsTerminal) {
   using Y = integrate::Vec<N>;
   using physics::ModelEvent;
-  const physics::FlatStop flat = physics::flatStopFor(model, F);
-  std::vector<integrate::Event<N>> events;
-  events.push_back(modelEvent<N>(
-      flat.event, [tilt = flat.tilt](double, const Y& y) { return physics::flatMargin(thetaOf<F, N>(y), tilt); }, -1, true));
-  if (physics::hasCorners(model)) {
-    events.push_back(modelEvent<N>(ModelEvent::CornerSwitch, [](double, const Y& y) { return thetaOf<F, N>(y); }, 0, true));
-  }
+  std::vector<integrate::Event<N>> events = geometryEvents<N>(model, F, [](const Y& y) { return thetaOf<F, N>(y); });
   events.push_back(modelEvent<N>(
       ModelEvent::LiftOff, [model](double, const Y& y) { return physics::liftOffMargin(model, forwardOf<F, N>(model, y)); },
       -1, validityIsTerminal));

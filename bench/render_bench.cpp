@@ -20,9 +20,9 @@
 #include <vector>
 
 #include "render/camera.h"
+#include "render/gl_context.h"
 #include "render/gl_handles.h"
 #include "render/meshes.h"
-#include "render/osmesa_context.h"
 #include "render/image_compare.h"
 #include "render/renderer.h"
 #include "integrate/solver_config.h"
@@ -60,19 +60,20 @@ FrameSnapshot benchSnapshot(double time) {
 // framebuffer, resolved and read back, as a plain OpenGL program would.
 class Probe {
  public:
-  Probe(int width, int height, int samples) : width_(width), height_(height), pixels_(std::size_t(width) * height * 4) {
+  Probe(const GlFunctions& gl, int width, int height, int samples)
+      : gl_(gl), width_(width), height_(height), pixels_(std::size_t(width) * height * 4) {
     const char* vertexSource =
         "#version 330 core\nlayout(location=0) in vec3 p; uniform mat4 m; void main(){ gl_Position = m * vec4(p, 1.0); }\n";
     const char* fragmentSource = "#version 330 core\nuniform vec4 c; out vec4 o; void main(){ o = c; }\n";
-    const Shader vs(glCreateShader(GL_VERTEX_SHADER)), fs(glCreateShader(GL_FRAGMENT_SHADER));
-    glShaderSource(vs.get(), 1, &vertexSource, nullptr);
-    glShaderSource(fs.get(), 1, &fragmentSource, nullptr);
-    glCompileShader(vs.get());
-    glCompileShader(fs.get());
-    program_ = Program(glCreateProgram());
-    glAttachShader(program_.get(), vs.get());
-    glAttachShader(program_.get(), fs.get());
-    glLinkProgram(program_.get());
+    const Shader vs(gl, gl.CreateShader(GL_VERTEX_SHADER)), fs(gl, gl.CreateShader(GL_FRAGMENT_SHADER));
+    gl.ShaderSource(vs.get(), 1, &vertexSource, nullptr);
+    gl.ShaderSource(fs.get(), 1, &fragmentSource, nullptr);
+    gl.CompileShader(vs.get());
+    gl.CompileShader(fs.get());
+    program_ = Program(gl, gl.CreateProgram());
+    gl.AttachShader(program_.get(), vs.get());
+    gl.AttachShader(program_.get(), fs.get());
+    gl.LinkProgram(program_.get());
 
     std::vector<glm::vec3> vertices = {{-5, 0, -5}, {5, 0, 5}, {5, 0, -5}, {-5, 0, -5}, {-5, 0, 5}, {5, 0, 5}};
     for (const CoinVertex& v : coinTriangles({0.0375f, 0.0f, 0.00225f}, 128)) vertices.push_back(v.position);
@@ -81,60 +82,61 @@ class Probe {
     traceFirst_ = static_cast<GLsizei>(vertices.size());
     for (const RibbonVertex& v : ribbonStrip(circleTrace(10000), 0.0015f)) vertices.emplace_back(v.position.x, 0.0f, v.position.y);
     traceCount_ = static_cast<GLsizei>(vertices.size()) - traceFirst_;
-    glBindVertexArray(array_.get());
-    glBindBuffer(GL_ARRAY_BUFFER, buffer_.get());
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(glm::vec3)), vertices.data(), GL_STATIC_DRAW);
-    glEnableVertexAttribArray(0);
-    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(glm::vec3), nullptr);
+    gl.BindVertexArray(array_.get());
+    gl.BindBuffer(GL_ARRAY_BUFFER, buffer_.get());
+    gl.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(glm::vec3)), vertices.data(), GL_STATIC_DRAW);
+    gl.EnableVertexAttribArray(0);
+    gl.VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(glm::vec3), nullptr);
 
-    glBindFramebuffer(GL_FRAMEBUFFER, msaa_.get());
-    glBindRenderbuffer(GL_RENDERBUFFER, msaaColour_.get());
-    glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_RGBA8, width, height);
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, msaaColour_.get());
-    glBindRenderbuffer(GL_RENDERBUFFER, msaaDepth_.get());
-    glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_DEPTH24_STENCIL8, width, height);
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, msaaDepth_.get());
-    glBindFramebuffer(GL_FRAMEBUFFER, resolve_.get());
-    glBindRenderbuffer(GL_RENDERBUFFER, resolveColour_.get());
-    glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width, height);
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, resolveColour_.get());
+    gl.BindFramebuffer(GL_FRAMEBUFFER, msaa_.get());
+    gl.BindRenderbuffer(GL_RENDERBUFFER, msaaColour_.get());
+    gl.RenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_RGBA8, width, height);
+    gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, msaaColour_.get());
+    gl.BindRenderbuffer(GL_RENDERBUFFER, msaaDepth_.get());
+    gl.RenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_DEPTH24_STENCIL8, width, height);
+    gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, msaaDepth_.get());
+    gl.BindFramebuffer(GL_FRAMEBUFFER, resolve_.get());
+    gl.BindRenderbuffer(GL_RENDERBUFFER, resolveColour_.get());
+    gl.RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width, height);
+    gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, resolveColour_.get());
   }
 
   void draw(const FrameSnapshot& s) {
     const CameraMatrices m = cameraMatrices(s.camera, width_, height_);
     const glm::mat4 viewProjection = m.projection * m.view;
-    glBindFramebuffer(GL_FRAMEBUFFER, msaa_.get());
-    glViewport(0, 0, width_, height_);
-    glClearColor(0.8f, 0.8f, 0.8f, 1.0f);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    glEnable(GL_DEPTH_TEST);
-    glUseProgram(program_.get());
-    glBindVertexArray(array_.get());
-    const GLint mLocation = glGetUniformLocation(program_.get(), "m"), cLocation = glGetUniformLocation(program_.get(), "c");
-    glUniformMatrix4fv(mLocation, 1, GL_FALSE, glm::value_ptr(viewProjection));
-    glUniform4f(cLocation, 0.5f, 0.5f, 0.5f, 1.0f);
-    glDrawArrays(GL_TRIANGLES, 0, 6);
-    glUniform4f(cLocation, 0.9f, 0.4f, 0.1f, 1.0f);
-    glDrawArrays(GL_TRIANGLE_STRIP, traceFirst_, traceCount_);
+    gl_.BindFramebuffer(GL_FRAMEBUFFER, msaa_.get());
+    gl_.Viewport(0, 0, width_, height_);
+    gl_.ClearColor(0.8f, 0.8f, 0.8f, 1.0f);
+    gl_.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    gl_.Enable(GL_DEPTH_TEST);
+    gl_.UseProgram(program_.get());
+    gl_.BindVertexArray(array_.get());
+    const GLint mLocation = gl_.GetUniformLocation(program_.get(), "m"), cLocation = gl_.GetUniformLocation(program_.get(), "c");
+    gl_.UniformMatrix4fv(mLocation, 1, GL_FALSE, glm::value_ptr(viewProjection));
+    gl_.Uniform4f(cLocation, 0.5f, 0.5f, 0.5f, 1.0f);
+    gl_.DrawArrays(GL_TRIANGLES, 0, 6);
+    gl_.Uniform4f(cLocation, 0.9f, 0.4f, 0.1f, 1.0f);
+    gl_.DrawArrays(GL_TRIANGLE_STRIP, traceFirst_, traceCount_);
     const glm::mat4 model = glm::translate(glm::mat4(1.0f), s.coin.centre) * glm::mat4_cast(s.coin.attitude);
-    glUniformMatrix4fv(mLocation, 1, GL_FALSE, glm::value_ptr(viewProjection * model));
-    glUniform4f(cLocation, 0.8f, 0.6f, 0.2f, 1.0f);
-    glDrawArrays(GL_TRIANGLES, coinFirst_, coinCount_);
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, msaa_.get());
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, resolve_.get());
-    glBlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, resolve_.get());
-    glReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, pixels_.data());
+    gl_.UniformMatrix4fv(mLocation, 1, GL_FALSE, glm::value_ptr(viewProjection * model));
+    gl_.Uniform4f(cLocation, 0.8f, 0.6f, 0.2f, 1.0f);
+    gl_.DrawArrays(GL_TRIANGLES, coinFirst_, coinCount_);
+    gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, msaa_.get());
+    gl_.BindFramebuffer(GL_DRAW_FRAMEBUFFER, resolve_.get());
+    gl_.BlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, resolve_.get());
+    gl_.ReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, pixels_.data());
   }
 
  private:
+  const GlFunctions& gl_;
   int width_, height_;
   std::vector<std::uint8_t> pixels_;
   Program program_;
-  VertexArray array_ = makeVertexArray();
-  Buffer buffer_ = makeBuffer();
-  Framebuffer msaa_ = makeFramebuffer(), resolve_ = makeFramebuffer();
-  Renderbuffer msaaColour_ = makeRenderbuffer(), msaaDepth_ = makeRenderbuffer(), resolveColour_ = makeRenderbuffer();
+  VertexArray array_ = makeVertexArray(gl_);
+  Buffer buffer_ = makeBuffer(gl_);
+  Framebuffer msaa_ = makeFramebuffer(gl_), resolve_ = makeFramebuffer(gl_);
+  Renderbuffer msaaColour_ = makeRenderbuffer(gl_), msaaDepth_ = makeRenderbuffer(gl_), resolveColour_ = makeRenderbuffer(gl_);
   GLsizei coinFirst_ = 0, coinCount_ = 0, traceFirst_ = 0, traceCount_ = 0;
 };
 
@@ -308,8 +310,8 @@ int main(int argc, char** argv) {
   for (auto [width, height] : {std::pair{1280, 720}, std::pair{1920, 1080}}) {
     double probeFps = 0;
     {
-      OsMesaContext context;
-      Probe probe(width, height, 4);
+      const std::unique_ptr<GlContext> context = makeGlContext(selectedGlBackend());
+      Probe probe(context->functions(), width, height, 4);
       probeFps = framesPerSecond(frames, [&](int i) { probe.draw(benchSnapshot(i / 30.0)); });
     }
     if (width == 1280) probeFps720 = probeFps;

@@ -1,7 +1,8 @@
 #pragma once
 // Move-only owners of OpenGL object names, so every buffer, vertex array, framebuffer,
-// renderbuffer, shader and program is deleted exactly once, also on error paths. They must be
-// destroyed while their context is current (Renderer's member order guarantees it).
+// renderbuffer, shader and program is deleted exactly once, also on error paths. Each keeps the
+// function table it was made with, and must be destroyed while that table's context is current
+// (Renderer's member order and destructor guarantee it).
 
 #include <utility>
 
@@ -13,14 +14,13 @@ template <class Deleter>
 class GlHandle {
  public:
   GlHandle() = default;
-  explicit GlHandle(GLuint name) : name_(name) {}
-  ~GlHandle() {
-    if (name_ != 0) Deleter{}(name_);
-  }
-  GlHandle(GlHandle&& other) noexcept : name_(std::exchange(other.name_, 0)) {}
+  GlHandle(const GlFunctions& gl, GLuint name) : gl_(&gl), name_(name) {}
+  ~GlHandle() { release(); }
+  GlHandle(GlHandle&& other) noexcept : gl_(other.gl_), name_(std::exchange(other.name_, 0)) {}
   GlHandle& operator=(GlHandle&& other) noexcept {
     if (this != &other) {
-      if (name_ != 0) Deleter{}(name_);
+      release();
+      gl_ = other.gl_;
       name_ = std::exchange(other.name_, 0);
     }
     return *this;
@@ -31,29 +31,33 @@ class GlHandle {
   GLuint get() const { return name_; }
 
  private:
+  void release() {
+    if (name_ != 0) Deleter{}(*gl_, name_);
+  }
+  const GlFunctions* gl_ = nullptr;
   GLuint name_ = 0;
 };
 
 struct BufferDeleter {
-  void operator()(GLuint name) const { glDeleteBuffers(1, &name); }
+  void operator()(const GlFunctions& gl, GLuint name) const { gl.DeleteBuffers(1, &name); }
 };
 struct VertexArrayDeleter {
-  void operator()(GLuint name) const { glDeleteVertexArrays(1, &name); }
+  void operator()(const GlFunctions& gl, GLuint name) const { gl.DeleteVertexArrays(1, &name); }
 };
 struct FramebufferDeleter {
-  void operator()(GLuint name) const { glDeleteFramebuffers(1, &name); }
+  void operator()(const GlFunctions& gl, GLuint name) const { gl.DeleteFramebuffers(1, &name); }
 };
 struct RenderbufferDeleter {
-  void operator()(GLuint name) const { glDeleteRenderbuffers(1, &name); }
+  void operator()(const GlFunctions& gl, GLuint name) const { gl.DeleteRenderbuffers(1, &name); }
 };
 struct TextureDeleter {
-  void operator()(GLuint name) const { glDeleteTextures(1, &name); }
+  void operator()(const GlFunctions& gl, GLuint name) const { gl.DeleteTextures(1, &name); }
 };
 struct ShaderDeleter {
-  void operator()(GLuint name) const { glDeleteShader(name); }
+  void operator()(const GlFunctions& gl, GLuint name) const { gl.DeleteShader(name); }
 };
 struct ProgramDeleter {
-  void operator()(GLuint name) const { glDeleteProgram(name); }
+  void operator()(const GlFunctions& gl, GLuint name) const { gl.DeleteProgram(name); }
 };
 
 using Buffer = GlHandle<BufferDeleter>;
@@ -64,30 +68,30 @@ using Texture = GlHandle<TextureDeleter>;
 using Shader = GlHandle<ShaderDeleter>;
 using Program = GlHandle<ProgramDeleter>;
 
-inline Buffer makeBuffer() {
+inline Buffer makeBuffer(const GlFunctions& gl) {
   GLuint name = 0;
-  glGenBuffers(1, &name);
-  return Buffer(name);
+  gl.GenBuffers(1, &name);
+  return Buffer(gl, name);
 }
-inline VertexArray makeVertexArray() {
+inline VertexArray makeVertexArray(const GlFunctions& gl) {
   GLuint name = 0;
-  glGenVertexArrays(1, &name);
-  return VertexArray(name);
+  gl.GenVertexArrays(1, &name);
+  return VertexArray(gl, name);
 }
-inline Framebuffer makeFramebuffer() {
+inline Framebuffer makeFramebuffer(const GlFunctions& gl) {
   GLuint name = 0;
-  glGenFramebuffers(1, &name);
-  return Framebuffer(name);
+  gl.GenFramebuffers(1, &name);
+  return Framebuffer(gl, name);
 }
-inline Texture makeTexture() {
+inline Texture makeTexture(const GlFunctions& gl) {
   GLuint name = 0;
-  glGenTextures(1, &name);
-  return Texture(name);
+  gl.GenTextures(1, &name);
+  return Texture(gl, name);
 }
-inline Renderbuffer makeRenderbuffer() {
+inline Renderbuffer makeRenderbuffer(const GlFunctions& gl) {
   GLuint name = 0;
-  glGenRenderbuffers(1, &name);
-  return Renderbuffer(name);
+  gl.GenRenderbuffers(1, &name);
+  return Renderbuffer(gl, name);
 }
 
 }  // namespace coinroll::render

@@ -1,31 +1,16 @@
 #pragma once
-// An off-screen OpenGL 3.3 core context on Mesa's software rasteriser (llvmpipe): no display, no
-// GPU. Rendering goes to framebuffer objects (the Renderer's, made with gl_handles.h's
-// makeFramebuffer); the context's own buffer is a 1x1 placeholder that OSMesaMakeCurrent requires.
+// The osmesa back end: an off-screen OpenGL 3.3 core context from Mesa's OSMesa library, drawn by
+// llvmpipe on the CPU, with no display and no GPU. Compiled only with COINROLL_WITH_OSMESA (Mesa
+// removed OSMesa in 25.1; the egl back end gives the same bytes on Mesa before that).
 
-#include <array>
-#include <cstdint>
+#include <memory>
 
-#include "render/gl.h"
+#include "render/gl_context.h"
 
 namespace coinroll::render {
 
-class OsMesaContext {
- public:
-  // Creates the context and makes it current on the calling thread. Throws std::runtime_error
-  // if Mesa cannot provide a 3.3 core context.
-  OsMesaContext();
-  ~OsMesaContext();
-
-  OsMesaContext(const OsMesaContext&) = delete;
-  OsMesaContext& operator=(const OsMesaContext&) = delete;
-
-  // Makes this context current on the calling thread (a context is current on one thread).
-  void makeCurrent();
-
- private:
-  OSMesaContext context_ = nullptr;
-  std::array<std::uint8_t, 4> placeholder_{};
-};
+// Creates the context and makes it current. Throws std::runtime_error if Mesa cannot provide a
+// 3.3 core context.
+std::unique_ptr<GlContext> makeOsMesaContext();
 
 }  // namespace coinroll::render

@@ -14,8 +14,8 @@
 #include "render/assets.h"
 #include "render/camera.h"
 #include "render/floor_tile.h"
+#include "render/gl_context.h"
 #include "render/gl_handles.h"
-#include "render/osmesa_context.h"
 #include "render/shader_program.h"
 
 namespace coinroll::render {
@@ -68,47 +68,50 @@ glm::mat4 floorShadowProjection(float lift) {
 }
 
 template <class Vertex>
-void upload(GLuint buffer, const std::vector<Vertex>& vertices, GLenum usage) {
-  glBindBuffer(GL_ARRAY_BUFFER, buffer);
-  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(Vertex)), vertices.data(), usage);
+void upload(const GlFunctions& gl, GLuint buffer, const std::vector<Vertex>& vertices, GLenum usage) {
+  gl.BindBuffer(GL_ARRAY_BUFFER, buffer);
+  gl.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(Vertex)), vertices.data(), usage);
 }
 
-void uploadMipmapped(const Texture& texture, const image::Image& picture, GLint minFilter, GLint wrap) {
-  glBindTexture(GL_TEXTURE_2D, texture.get());
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, picture.width, picture.height, 0, GL_RGBA, GL_UNSIGNED_BYTE, picture.rgba.data());
-  glGenerateMipmap(GL_TEXTURE_2D);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, minFilter);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, wrap);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, wrap);
+void uploadMipmapped(const GlFunctions& gl, const Texture& texture, const image::Image& picture, GLint minFilter, GLint wrap) {
+  gl.BindTexture(GL_TEXTURE_2D, texture.get());
+  gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, picture.width, picture.height, 0, GL_RGBA, GL_UNSIGNED_BYTE, picture.rgba.data());
+  gl.GenerateMipmap(GL_TEXTURE_2D);
+  gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, minFilter);
+  gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, wrap);
+  gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, wrap);
 }
 
-void floatAttribute(GLuint index, int components, std::size_t stride, std::size_t offset) {
-  glEnableVertexAttribArray(index);
-  glVertexAttribPointer(index, components, GL_FLOAT, GL_FALSE, static_cast<GLsizei>(stride),
-                        reinterpret_cast<const void*>(offset));
+void floatAttribute(const GlFunctions& gl, GLuint index, int components, std::size_t stride, std::size_t offset) {
+  gl.EnableVertexAttribArray(index);
+  gl.VertexAttribPointer(index, components, GL_FLOAT, GL_FALSE, static_cast<GLsizei>(stride),
+                         reinterpret_cast<const void*>(offset));
 }
 
 }  // namespace
 
-struct Renderer::Gl {
-  OsMesaContext context;  // first member: created first, destroyed after every GL object below
+struct Renderer::GlState {
+  explicit GlState(std::unique_ptr<GlContext> made) : context(std::move(made)) {}
+
+  std::unique_ptr<GlContext> context;  // first member: created first, destroyed after every GL object below
+  const GlFunctions& gl = context->functions();
   Framebuffer drawTarget, resolveTarget;
   Renderbuffer drawColour, drawDepthStencil, resolveColour;
-  ShaderProgram coinProgram{"coin.vert", "coin.frag"};
-  ShaderProgram floorProgram{"floor.vert", "floor.frag"};
-  ShaderProgram flatProgram{"flat.vert", "flat.frag"};
-  ShaderProgram traceProgram{"trace.vert", "trace.frag"};
-  ShaderProgram hudProgram{"hud.vert", "hud.frag"};
+  ShaderProgram coinProgram{gl, "coin.vert", "coin.frag"};
+  ShaderProgram floorProgram{gl, "floor.vert", "floor.frag"};
+  ShaderProgram flatProgram{gl, "flat.vert", "flat.frag"};
+  ShaderProgram traceProgram{gl, "trace.vert", "trace.frag"};
+  ShaderProgram hudProgram{gl, "hud.vert", "hud.frag"};
   std::optional<ShaderProgram> fxaaProgram;  // only for Antialiasing::Fxaa
   Texture sceneColour;                       // the FXAA pass reads the scene from this texture
-  VertexArray coinArray = makeVertexArray(), floorArray = makeVertexArray(), markerArray = makeVertexArray(),
-              traceArray = makeVertexArray(), hudArray = makeVertexArray(), fullScreenArray = makeVertexArray();
-  Buffer coinBuffer = makeBuffer(), floorBuffer = makeBuffer(), markerBuffer = makeBuffer(), traceBuffer = makeBuffer(),
-         hudBuffer = makeBuffer();
-  Texture coinFace = makeTexture();
-  Texture floorGrid = makeTexture();
+  VertexArray coinArray = makeVertexArray(gl), floorArray = makeVertexArray(gl), markerArray = makeVertexArray(gl),
+              traceArray = makeVertexArray(gl), hudArray = makeVertexArray(gl), fullScreenArray = makeVertexArray(gl);
+  Buffer coinBuffer = makeBuffer(gl), floorBuffer = makeBuffer(gl), markerBuffer = makeBuffer(gl),
+         traceBuffer = makeBuffer(gl), hudBuffer = makeBuffer(gl);
+  Texture coinFace = makeTexture(gl);
+  Texture floorGrid = makeTexture(gl);
   GLsizei coinVertices = 0, markerVertices = 0;
   // The draw target's colour, depth and stencil just after the floor, for the camera it was
   // drawn with; a blit of the same format and sample count restores it exactly.
@@ -117,79 +120,82 @@ struct Renderer::Gl {
   std::optional<CameraView> backgroundCamera, previousCamera;
 };
 
-Renderer::Renderer(const RenderSettings& settings) : settings_(settings) {
+Renderer::Renderer(const RenderSettings& settings) : Renderer(settings, selectedGlBackend()) {}
+
+Renderer::Renderer(const RenderSettings& settings, GlBackend backend) : settings_(settings) {
   validate(settings_);
-  gl_ = std::make_unique<Gl>();
-  Gl& gl = *gl_;
+  state_ = std::make_unique<GlState>(makeGlContext(backend));
+  GlState& state = *state_;
+  const GlFunctions& gl = state.gl;
   const int w = settings_.width, h = settings_.height;
 
   GLint maxSamples = 0;
-  glGetIntegerv(GL_MAX_SAMPLES, &maxSamples);
+  gl.GetIntegerv(GL_MAX_SAMPLES, &maxSamples);
   if (settings_.antialiasing == Antialiasing::Msaa && settings_.msaa > maxSamples) {
     throw std::invalid_argument(fmt::format("render.msaa: this OpenGL allows at most {} samples, got {}", maxSamples, settings_.msaa));
   }
   const bool fxaa = settings_.antialiasing == Antialiasing::Fxaa;
   const bool multisampled = !fxaa && settings_.msaa > 1;
-  gl.drawTarget = makeFramebuffer();
-  gl.drawDepthStencil = makeRenderbuffer();
-  glBindFramebuffer(GL_FRAMEBUFFER, gl.drawTarget.get());
+  state.drawTarget = makeFramebuffer(gl);
+  state.drawDepthStencil = makeRenderbuffer(gl);
+  gl.BindFramebuffer(GL_FRAMEBUFFER, state.drawTarget.get());
   if (fxaa) {
-    gl.fxaaProgram.emplace("fullscreen.vert", "fxaa.frag");
-    gl.sceneColour = makeTexture();
-    glBindTexture(GL_TEXTURE_2D, gl.sceneColour.get());
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, gl.sceneColour.get(), 0);
+    state.fxaaProgram.emplace(gl, "fullscreen.vert", "fxaa.frag");
+    state.sceneColour = makeTexture(gl);
+    gl.BindTexture(GL_TEXTURE_2D, state.sceneColour.get());
+    gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, state.sceneColour.get(), 0);
   } else {
-    gl.drawColour = makeRenderbuffer();
-    glBindRenderbuffer(GL_RENDERBUFFER, gl.drawColour.get());
-    glRenderbufferStorageMultisample(GL_RENDERBUFFER, multisampled ? settings_.msaa : 0, GL_RGBA8, w, h);
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, gl.drawColour.get());
+    state.drawColour = makeRenderbuffer(gl);
+    gl.BindRenderbuffer(GL_RENDERBUFFER, state.drawColour.get());
+    gl.RenderbufferStorageMultisample(GL_RENDERBUFFER, multisampled ? settings_.msaa : 0, GL_RGBA8, w, h);
+    gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, state.drawColour.get());
   }
-  glBindRenderbuffer(GL_RENDERBUFFER, gl.drawDepthStencil.get());
-  glRenderbufferStorageMultisample(GL_RENDERBUFFER, multisampled ? settings_.msaa : 0, GL_DEPTH24_STENCIL8, w, h);
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, gl.drawDepthStencil.get());
-  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+  gl.BindRenderbuffer(GL_RENDERBUFFER, state.drawDepthStencil.get());
+  gl.RenderbufferStorageMultisample(GL_RENDERBUFFER, multisampled ? settings_.msaa : 0, GL_DEPTH24_STENCIL8, w, h);
+  gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, state.drawDepthStencil.get());
+  if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
     throw std::runtime_error(fmt::format("OpenGL: cannot create a {}x{} framebuffer with {} samples", w, h, settings_.msaa));
   }
   if (multisampled || fxaa) {
-    gl.resolveTarget = makeFramebuffer();
-    gl.resolveColour = makeRenderbuffer();
-    glBindFramebuffer(GL_FRAMEBUFFER, gl.resolveTarget.get());
-    glBindRenderbuffer(GL_RENDERBUFFER, gl.resolveColour.get());
-    glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, w, h);
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, gl.resolveColour.get());
-    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+    state.resolveTarget = makeFramebuffer(gl);
+    state.resolveColour = makeRenderbuffer(gl);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, state.resolveTarget.get());
+    gl.BindRenderbuffer(GL_RENDERBUFFER, state.resolveColour.get());
+    gl.RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, w, h);
+    gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, state.resolveColour.get());
+    if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
       throw std::runtime_error(fmt::format("OpenGL: cannot create a {}x{} resolve framebuffer", w, h));
     }
   }
 
   // The face pattern (assets/coin_face.png): row 0 of the image is body +Y, so the shader maps
   // t = (1 - Y / a) / 2 and the pixels go up unflipped. Mipmaps keep a distant coin from shimmering.
-  uploadMipmapped(gl.coinFace, loadAssetImage("coin_face.png"), GL_LINEAR_MIPMAP_LINEAR, GL_CLAMP_TO_EDGE);
+  uploadMipmapped(gl, state.coinFace, loadAssetImage("coin_face.png"), GL_LINEAR_MIPMAP_LINEAR, GL_CLAMP_TO_EDGE);
 
   // 512 texels per 10 cm: the 0.5 mm minor lines are 2.6 texels wide, so every mipmap level is
   // a faithful average of the one above. One mipmap level per lookup (not two blended) halves
   // the floor's texturing cost, the largest part of a frame on llvmpipe, with no visible seams.
-  uploadMipmapped(gl.floorGrid, floorTile(512), GL_LINEAR_MIPMAP_NEAREST, GL_REPEAT);
+  uploadMipmapped(gl, state.floorGrid, floorTile(512), GL_LINEAR_MIPMAP_NEAREST, GL_REPEAT);
 
   const std::vector<CoinVertex> coin = coinTriangles(settings_.coin, kCoinSegments);
-  gl.coinVertices = static_cast<GLsizei>(coin.size());
-  glBindVertexArray(gl.coinArray.get());
-  upload(gl.coinBuffer.get(), coin, GL_STATIC_DRAW);
-  floatAttribute(0, 3, sizeof(CoinVertex), offsetof(CoinVertex, position));
-  floatAttribute(1, 3, sizeof(CoinVertex), offsetof(CoinVertex, normal));
-  floatAttribute(2, 1, sizeof(CoinVertex), offsetof(CoinVertex, part));
+  state.coinVertices = static_cast<GLsizei>(coin.size());
+  gl.BindVertexArray(state.coinArray.get());
+  upload(gl, state.coinBuffer.get(), coin, GL_STATIC_DRAW);
+  floatAttribute(gl, 0, 3, sizeof(CoinVertex), offsetof(CoinVertex, position));
+  floatAttribute(gl, 1, 3, sizeof(CoinVertex), offsetof(CoinVertex, normal));
+  floatAttribute(gl, 2, 1, sizeof(CoinVertex), offsetof(CoinVertex, part));
 
   // The floor is one square around the camera target; the shader scales it (uniform "extent").
   // Counter-clockwise seen from above (+y), so back-face culling keeps it.
   const std::vector<glm::vec2> floorCorners = {{-1, -1}, {1, 1}, {1, -1}, {-1, -1}, {-1, 1}, {1, 1}};
-  glBindVertexArray(gl.floorArray.get());
-  upload(gl.floorBuffer.get(), floorCorners, GL_STATIC_DRAW);
-  floatAttribute(0, 2, sizeof(glm::vec2), 0);
+  gl.BindVertexArray(state.floorArray.get());
+  upload(gl, state.floorBuffer.get(), floorCorners, GL_STATIC_DRAW);
+  floatAttribute(gl, 0, 2, sizeof(glm::vec2), 0);
 
   // The contact marker: a unit disc in the floor plane, scaled per frame.
   std::vector<glm::vec3> marker;
@@ -197,24 +203,30 @@ Renderer::Renderer(const RenderSettings& settings) : settings_(settings) {
     const double a0 = 2 * std::numbers::pi * i / 32, a1 = 2 * std::numbers::pi * (i + 1) / 32;
     marker.insert(marker.end(), {glm::vec3(0), glm::vec3(std::cos(a1), 0, std::sin(a1)), glm::vec3(std::cos(a0), 0, std::sin(a0))});
   }
-  gl.markerVertices = static_cast<GLsizei>(marker.size());
-  glBindVertexArray(gl.markerArray.get());
-  upload(gl.markerBuffer.get(), marker, GL_STATIC_DRAW);
-  floatAttribute(0, 3, sizeof(glm::vec3), 0);
+  state.markerVertices = static_cast<GLsizei>(marker.size());
+  gl.BindVertexArray(state.markerArray.get());
+  upload(gl, state.markerBuffer.get(), marker, GL_STATIC_DRAW);
+  floatAttribute(gl, 0, 3, sizeof(glm::vec3), 0);
 
-  glBindVertexArray(gl.traceArray.get());
-  glBindBuffer(GL_ARRAY_BUFFER, gl.traceBuffer.get());
-  floatAttribute(0, 2, sizeof(RibbonVertex), offsetof(RibbonVertex, position));
-  floatAttribute(1, 1, sizeof(RibbonVertex), offsetof(RibbonVertex, age));
+  gl.BindVertexArray(state.traceArray.get());
+  gl.BindBuffer(GL_ARRAY_BUFFER, state.traceBuffer.get());
+  floatAttribute(gl, 0, 2, sizeof(RibbonVertex), offsetof(RibbonVertex, position));
+  floatAttribute(gl, 1, 1, sizeof(RibbonVertex), offsetof(RibbonVertex, age));
 
-  glBindVertexArray(gl.hudArray.get());
-  glBindBuffer(GL_ARRAY_BUFFER, gl.hudBuffer.get());
-  floatAttribute(0, 2, sizeof(TextVertex), offsetof(TextVertex, position));
-  floatAttribute(1, 4, sizeof(TextVertex), offsetof(TextVertex, colour));
-  glBindVertexArray(0);
+  gl.BindVertexArray(state.hudArray.get());
+  gl.BindBuffer(GL_ARRAY_BUFFER, state.hudBuffer.get());
+  floatAttribute(gl, 0, 2, sizeof(TextVertex), offsetof(TextVertex, position));
+  floatAttribute(gl, 1, 4, sizeof(TextVertex), offsetof(TextVertex, colour));
+  gl.BindVertexArray(0);
 }
 
-Renderer::~Renderer() = default;
+// Another Renderer's context may have been made current since this one last drew: its GL objects
+// must be deleted in their own context, not in that one (where the same names may be in use).
+Renderer::~Renderer() {
+  if (state_) state_->context->makeCurrent();
+}
+
+GlBackend Renderer::backend() const { return state_->context->backend(); }
 
 image::Image Renderer::draw(const FrameSnapshot& snapshot) {
   image::Image out;
@@ -224,150 +236,153 @@ image::Image Renderer::draw(const FrameSnapshot& snapshot) {
 
 // Allocated on the first frame whose camera repeats, so orbit and follow clips never pay for it.
 void Renderer::allocateBackgroundCache() {
-  Gl& gl = *gl_;
+  GlState& state = *state_;
+  const GlFunctions& gl = state.gl;
   const int w = settings_.width, h = settings_.height;
   const int samples = settings_.antialiasing == Antialiasing::Msaa && settings_.msaa > 1 ? settings_.msaa : 0;
-  gl.backgroundCache = makeFramebuffer();
-  gl.backgroundColour = makeRenderbuffer();
-  gl.backgroundDepthStencil = makeRenderbuffer();
-  glBindFramebuffer(GL_FRAMEBUFFER, gl.backgroundCache.get());
-  glBindRenderbuffer(GL_RENDERBUFFER, gl.backgroundColour.get());
-  glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_RGBA8, w, h);
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, gl.backgroundColour.get());
-  glBindRenderbuffer(GL_RENDERBUFFER, gl.backgroundDepthStencil.get());
-  glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_DEPTH24_STENCIL8, w, h);
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, gl.backgroundDepthStencil.get());
-  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+  state.backgroundCache = makeFramebuffer(gl);
+  state.backgroundColour = makeRenderbuffer(gl);
+  state.backgroundDepthStencil = makeRenderbuffer(gl);
+  gl.BindFramebuffer(GL_FRAMEBUFFER, state.backgroundCache.get());
+  gl.BindRenderbuffer(GL_RENDERBUFFER, state.backgroundColour.get());
+  gl.RenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_RGBA8, w, h);
+  gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, state.backgroundColour.get());
+  gl.BindRenderbuffer(GL_RENDERBUFFER, state.backgroundDepthStencil.get());
+  gl.RenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_DEPTH24_STENCIL8, w, h);
+  gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, state.backgroundDepthStencil.get());
+  if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
     throw std::runtime_error(fmt::format("OpenGL: cannot create a {}x{} background framebuffer", w, h));
   }
 }
 
 void Renderer::drawBackground(const CameraView& camera, const glm::mat4& viewProjection) {
-  Gl& gl = *gl_;
+  GlState& state = *state_;
+  const GlFunctions& gl = state.gl;
   const float cameraDistance = glm::length(camera.eye - camera.target);
-  glClearColor(kBackgroundSrgb.r, kBackgroundSrgb.g, kBackgroundSrgb.b, 1.0f);
-  glClearStencil(0);
-  glClearDepth(1.0);
-  glDepthMask(GL_TRUE);
-  glStencilMask(0xFF);
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+  gl.ClearColor(kBackgroundSrgb.r, kBackgroundSrgb.g, kBackgroundSrgb.b, 1.0f);
+  gl.ClearStencil(0);
+  gl.ClearDepth(1.0);
+  gl.DepthMask(GL_TRUE);
+  gl.StencilMask(0xFF);
+  gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
 
   // Floor (writes depth so the coin's lower edge meets it correctly).
-  gl.floorProgram.use();
-  gl.floorProgram.set("viewProjection", viewProjection);
-  gl.floorProgram.set("centre", glm::vec2(camera.target.x, camera.target.z));
-  gl.floorProgram.set("extent", 150.0f * cameraDistance);
-  gl.floorProgram.set("eye", camera.eye);
-  gl.floorProgram.set("fogStart", 2.5f * cameraDistance);
-  gl.floorProgram.set("fogEnd", 12.0f * cameraDistance);
-  gl.floorProgram.set("backgroundSrgb", kBackgroundSrgb);
-  gl.floorProgram.set("tileMetres", kFloorTileMetres);
-  gl.floorProgram.set("gridTile", 0);
-  glActiveTexture(GL_TEXTURE0);
-  glBindTexture(GL_TEXTURE_2D, gl.floorGrid.get());
-  glBindVertexArray(gl.floorArray.get());
-  glDrawArrays(GL_TRIANGLES, 0, 6);
+  state.floorProgram.use();
+  state.floorProgram.set("viewProjection", viewProjection);
+  state.floorProgram.set("centre", glm::vec2(camera.target.x, camera.target.z));
+  state.floorProgram.set("extent", 150.0f * cameraDistance);
+  state.floorProgram.set("eye", camera.eye);
+  state.floorProgram.set("fogStart", 2.5f * cameraDistance);
+  state.floorProgram.set("fogEnd", 12.0f * cameraDistance);
+  state.floorProgram.set("backgroundSrgb", kBackgroundSrgb);
+  state.floorProgram.set("tileMetres", kFloorTileMetres);
+  state.floorProgram.set("gridTile", 0);
+  gl.ActiveTexture(GL_TEXTURE0);
+  gl.BindTexture(GL_TEXTURE_2D, state.floorGrid.get());
+  gl.BindVertexArray(state.floorArray.get());
+  gl.DrawArrays(GL_TRIANGLES, 0, 6);
 }
 
 void Renderer::draw(const FrameSnapshot& snapshot, image::Image& out) {
-  Gl& gl = *gl_;
-  gl.context.makeCurrent();
+  GlState& state = *state_;
+  const GlFunctions& gl = state.gl;
+  state.context->makeCurrent();
   const int w = settings_.width, h = settings_.height;
   const CameraMatrices camera = cameraMatrices(snapshot.camera, w, h);
   const glm::mat4 viewProjection = camera.projection * camera.view;
   const float coinRadius = settings_.coin.radius;
 
-  glBindFramebuffer(GL_FRAMEBUFFER, gl.drawTarget.get());
-  glViewport(0, 0, w, h);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-  glEnable(GL_CULL_FACE);
+  gl.BindFramebuffer(GL_FRAMEBUFFER, state.drawTarget.get());
+  gl.Viewport(0, 0, w, h);
+  gl.Enable(GL_DEPTH_TEST);
+  gl.DepthFunc(GL_LESS);
+  gl.Enable(GL_CULL_FACE);
   // Keep the destination alpha at 1 so the PNG is opaque whatever was blended over it.
-  glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
-  glDisable(GL_BLEND);
+  gl.BlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
+  gl.Disable(GL_BLEND);
   constexpr GLbitfield kAllBuffers = GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT;
-  if (gl.backgroundCamera == snapshot.camera) {
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, gl.backgroundCache.get());
-    glBlitFramebuffer(0, 0, w, h, 0, 0, w, h, kAllBuffers, GL_NEAREST);
-    glBindFramebuffer(GL_FRAMEBUFFER, gl.drawTarget.get());
+  if (state.backgroundCamera == snapshot.camera) {
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, state.backgroundCache.get());
+    gl.BlitFramebuffer(0, 0, w, h, 0, 0, w, h, kAllBuffers, GL_NEAREST);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, state.drawTarget.get());
   } else {
     drawBackground(snapshot.camera, viewProjection);
     // Saved only once the camera has stayed put for a frame: a moving camera never pays the copy.
-    if (settings_.reuseStaticBackground && gl.previousCamera == snapshot.camera) {
-      if (gl.backgroundCache.get() == 0) allocateBackgroundCache();
-      glBindFramebuffer(GL_READ_FRAMEBUFFER, gl.drawTarget.get());
-      glBindFramebuffer(GL_DRAW_FRAMEBUFFER, gl.backgroundCache.get());
-      glBlitFramebuffer(0, 0, w, h, 0, 0, w, h, kAllBuffers, GL_NEAREST);
-      glBindFramebuffer(GL_FRAMEBUFFER, gl.drawTarget.get());
-      gl.backgroundCamera = snapshot.camera;
+    if (settings_.reuseStaticBackground && state.previousCamera == snapshot.camera) {
+      if (state.backgroundCache.get() == 0) allocateBackgroundCache();
+      gl.BindFramebuffer(GL_READ_FRAMEBUFFER, state.drawTarget.get());
+      gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, state.backgroundCache.get());
+      gl.BlitFramebuffer(0, 0, w, h, 0, 0, w, h, kAllBuffers, GL_NEAREST);
+      gl.BindFramebuffer(GL_FRAMEBUFFER, state.drawTarget.get());
+      state.backgroundCamera = snapshot.camera;
     }
   }
-  gl.previousCamera = snapshot.camera;
+  state.previousCamera = snapshot.camera;
 
   // Decals on the floor: nothing but the coins can hide them, and those are drawn afterwards.
-  glDisable(GL_DEPTH_TEST);
-  glDisable(GL_CULL_FACE);
-  glEnable(GL_BLEND);
+  gl.Disable(GL_DEPTH_TEST);
+  gl.Disable(GL_CULL_FACE);
+  gl.Enable(GL_BLEND);
   if (settings_.showShadow) {
     // The stencil lets each floor pixel be darkened once, however many shadow triangles overlap.
-    glEnable(GL_STENCIL_TEST);
-    glStencilFunc(GL_EQUAL, 0, 0xFF);
-    glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
-    gl.flatProgram.use();
-    gl.flatProgram.set("viewProjection", viewProjection);
-    gl.flatProgram.set("colour", kShadowColour);
-    glBindVertexArray(gl.coinArray.get());
+    gl.Enable(GL_STENCIL_TEST);
+    gl.StencilFunc(GL_EQUAL, 0, 0xFF);
+    gl.StencilOp(GL_KEEP, GL_KEEP, GL_INCR);
+    state.flatProgram.use();
+    state.flatProgram.set("viewProjection", viewProjection);
+    state.flatProgram.set("colour", kShadowColour);
+    gl.BindVertexArray(state.coinArray.get());
     const glm::mat4 shadow = floorShadowProjection(0.0f);
-    gl.flatProgram.set("model", shadow * modelMatrix(snapshot.coin));
-    glDrawArrays(GL_TRIANGLES, 0, gl.coinVertices);
-    gl.flatProgram.set("colour", glm::vec4(glm::vec3(kShadowColour), 0.5f * kShadowColour.a));
+    state.flatProgram.set("model", shadow * modelMatrix(snapshot.coin));
+    gl.DrawArrays(GL_TRIANGLES, 0, state.coinVertices);
+    state.flatProgram.set("colour", glm::vec4(glm::vec3(kShadowColour), 0.5f * kShadowColour.a));
     for (const CoinPose& ghost : snapshot.ghosts) {
-      gl.flatProgram.set("model", shadow * modelMatrix(ghost));
-      glDrawArrays(GL_TRIANGLES, 0, gl.coinVertices);
+      state.flatProgram.set("model", shadow * modelMatrix(ghost));
+      gl.DrawArrays(GL_TRIANGLES, 0, state.coinVertices);
     }
-    glDisable(GL_STENCIL_TEST);
+    gl.Disable(GL_STENCIL_TEST);
   }
   if (const std::vector<RibbonVertex> ribbon = ribbonStrip(snapshot.trace, snapshot.traceWidth); !ribbon.empty()) {
-    gl.traceProgram.use();
-    gl.traceProgram.set("viewProjection", viewProjection);
-    glBindVertexArray(gl.traceArray.get());
-    upload(gl.traceBuffer.get(), ribbon, GL_STREAM_DRAW);
-    glDrawArrays(GL_TRIANGLE_STRIP, 0, static_cast<GLsizei>(ribbon.size()));
+    state.traceProgram.use();
+    state.traceProgram.set("viewProjection", viewProjection);
+    gl.BindVertexArray(state.traceArray.get());
+    upload(gl, state.traceBuffer.get(), ribbon, GL_STREAM_DRAW);
+    gl.DrawArrays(GL_TRIANGLE_STRIP, 0, static_cast<GLsizei>(ribbon.size()));
   }
   if (snapshot.showContact && !snapshot.trace.empty()) {
-    gl.flatProgram.use();
-    gl.flatProgram.set("viewProjection", viewProjection);
-    gl.flatProgram.set("colour", kContactColour);
+    state.flatProgram.use();
+    state.flatProgram.set("viewProjection", viewProjection);
+    state.flatProgram.set("colour", kContactColour);
     const glm::vec2 contact = snapshot.trace.back();
     const float markerRadius = std::max(0.08f * coinRadius, 1.6f * snapshot.traceWidth);
-    gl.flatProgram.set("model", glm::scale(glm::translate(glm::mat4(1.0f), glm::vec3(contact.x, 0.0f, contact.y)),
-                                           glm::vec3(markerRadius)));
-    glBindVertexArray(gl.markerArray.get());
-    glDrawArrays(GL_TRIANGLES, 0, gl.markerVertices);
+    state.flatProgram.set("model", glm::scale(glm::translate(glm::mat4(1.0f), glm::vec3(contact.x, 0.0f, contact.y)),
+                                              glm::vec3(markerRadius)));
+    gl.BindVertexArray(state.markerArray.get());
+    gl.DrawArrays(GL_TRIANGLES, 0, state.markerVertices);
   }
 
   // Coins: the current one opaque, then the ghosts from far to near so nearer ones blend last.
-  glEnable(GL_DEPTH_TEST);
-  glEnable(GL_CULL_FACE);
-  gl.coinProgram.use();
-  gl.coinProgram.set("viewProjection", viewProjection);
-  gl.coinProgram.set("eye", snapshot.camera.eye);
-  gl.coinProgram.set("lightDirection", kLightDirection);
+  gl.Enable(GL_DEPTH_TEST);
+  gl.Enable(GL_CULL_FACE);
+  state.coinProgram.use();
+  state.coinProgram.set("viewProjection", viewProjection);
+  state.coinProgram.set("eye", snapshot.camera.eye);
+  state.coinProgram.set("lightDirection", kLightDirection);
   // The face pattern spans the flat part of each face, inside the fillets (radius - rho); with a
   // sharp rim that is the whole radius, exactly as before fillets existed.
-  gl.coinProgram.set("radius", coinRadius - settings_.coin.edgeRadius);
-  gl.coinProgram.set("face", 0);
-  glActiveTexture(GL_TEXTURE0);
-  glBindTexture(GL_TEXTURE_2D, gl.coinFace.get());
-  glBindVertexArray(gl.coinArray.get());
+  state.coinProgram.set("radius", coinRadius - settings_.coin.edgeRadius);
+  state.coinProgram.set("face", 0);
+  gl.ActiveTexture(GL_TEXTURE0);
+  gl.BindTexture(GL_TEXTURE_2D, state.coinFace.get());
+  gl.BindVertexArray(state.coinArray.get());
   auto drawCoin = [&](const CoinPose& pose, float opacity) {
     const glm::mat4 model = modelMatrix(pose);
-    gl.coinProgram.set("model", model);
-    gl.coinProgram.set("normalMatrix", glm::mat3_cast(pose.attitude));
-    gl.coinProgram.set("opacity", opacity);
-    glDrawArrays(GL_TRIANGLES, 0, gl.coinVertices);
+    state.coinProgram.set("model", model);
+    state.coinProgram.set("normalMatrix", glm::mat3_cast(pose.attitude));
+    state.coinProgram.set("opacity", opacity);
+    gl.DrawArrays(GL_TRIANGLES, 0, state.coinVertices);
   };
-  glDisable(GL_BLEND);
+  gl.Disable(GL_BLEND);
   drawCoin(snapshot.coin, 1.0f);
   if (!snapshot.ghosts.empty()) {
     std::vector<const CoinPose*> farToNear;
@@ -375,51 +390,51 @@ void Renderer::draw(const FrameSnapshot& snapshot, image::Image& out) {
     std::stable_sort(farToNear.begin(), farToNear.end(), [&](const CoinPose* a, const CoinPose* b) {
       return glm::length(a->centre - snapshot.camera.eye) > glm::length(b->centre - snapshot.camera.eye);
     });
-    glEnable(GL_BLEND);
+    gl.Enable(GL_BLEND);
     for (const CoinPose* ghost : farToNear) drawCoin(*ghost, 0.45f);
   }
 
   // The overlay goes on after anti-aliasing: FXAA would soften the text, MSAA gains nothing on it.
   const bool fxaa = settings_.antialiasing == Antialiasing::Fxaa;
   if (fxaa) {
-    glBindFramebuffer(GL_FRAMEBUFFER, gl.resolveTarget.get());
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_CULL_FACE);
-    glDisable(GL_BLEND);
-    gl.fxaaProgram->use();
-    gl.fxaaProgram->set("scene", 0);
-    gl.fxaaProgram->set("texelSize", glm::vec2(1.0f / static_cast<float>(w), 1.0f / static_cast<float>(h)));
-    glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_2D, gl.sceneColour.get());
-    glBindVertexArray(gl.fullScreenArray.get());
-    glDrawArrays(GL_TRIANGLES, 0, 3);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, state.resolveTarget.get());
+    gl.Disable(GL_DEPTH_TEST);
+    gl.Disable(GL_CULL_FACE);
+    gl.Disable(GL_BLEND);
+    state.fxaaProgram->use();
+    state.fxaaProgram->set("scene", 0);
+    state.fxaaProgram->set("texelSize", glm::vec2(1.0f / static_cast<float>(w), 1.0f / static_cast<float>(h)));
+    gl.ActiveTexture(GL_TEXTURE0);
+    gl.BindTexture(GL_TEXTURE_2D, state.sceneColour.get());
+    gl.BindVertexArray(state.fullScreenArray.get());
+    gl.DrawArrays(GL_TRIANGLES, 0, 3);
   }
   if (const std::vector<TextVertex> hud = hudTriangles(snapshot.hudLines, std::max(1.0f, std::floor(h / 300.0f)));
       !hud.empty()) {
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_CULL_FACE);
-    glEnable(GL_BLEND);
-    gl.hudProgram.use();
-    gl.hudProgram.set("viewportSize", glm::vec2(w, h));
-    glBindVertexArray(gl.hudArray.get());
-    upload(gl.hudBuffer.get(), hud, GL_STREAM_DRAW);
-    glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(hud.size()));
+    gl.Disable(GL_DEPTH_TEST);
+    gl.Disable(GL_CULL_FACE);
+    gl.Enable(GL_BLEND);
+    state.hudProgram.use();
+    state.hudProgram.set("viewportSize", glm::vec2(w, h));
+    gl.BindVertexArray(state.hudArray.get());
+    upload(gl, state.hudBuffer.get(), hud, GL_STREAM_DRAW);
+    gl.DrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(hud.size()));
   }
-  glBindVertexArray(0);
+  gl.BindVertexArray(0);
 
   if (fxaa) {
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, gl.resolveTarget.get());
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, state.resolveTarget.get());
   } else if (settings_.msaa > 1) {
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, gl.drawTarget.get());
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, gl.resolveTarget.get());
-    glBlitFramebuffer(0, 0, w, h, 0, 0, w, h, kAllBuffers, GL_NEAREST);
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, gl.resolveTarget.get());
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, state.drawTarget.get());
+    gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, state.resolveTarget.get());
+    gl.BlitFramebuffer(0, 0, w, h, 0, 0, w, h, kAllBuffers, GL_NEAREST);
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, state.resolveTarget.get());
   } else {
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, gl.drawTarget.get());
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, state.drawTarget.get());
   }
   if (out.width != w || out.height != h) out = image::Image(w, h);
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, out.rgba.data());
+  gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
+  gl.ReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, out.rgba.data());
   // OpenGL's rows run bottom-up; Image's run top-down.
   const std::size_t rowBytes = static_cast<std::size_t>(w) * 4;
   std::vector<std::uint8_t> row(rowBytes);
@@ -430,7 +445,7 @@ void Renderer::draw(const FrameSnapshot& snapshot, image::Image& out) {
     std::memcpy(top, bottom, rowBytes);
     std::memcpy(bottom, row.data(), rowBytes);
   }
-  if (const GLenum error = glGetError(); error != GL_NO_ERROR) {
+  if (const GLenum error = gl.GetError(); error != GL_NO_ERROR) {
     throw std::runtime_error(fmt::format("OpenGL error 0x{:04x} while drawing a frame", error));
   }
 }

@@ -1,12 +1,13 @@
 #pragma once
 // Draws FrameSnapshots into RGBA images: floor with a metric grid, the contact trace, the coin's
-// shadow, the coin (and stroboscopic ghosts), the overlay text. Owns its OSMesa context and every
-// GL object; one Renderer per thread.
+// shadow, the coin (and stroboscopic ghosts), the overlay text. Owns its OpenGL context (on the
+// back end of gl_backend.h) and every GL object; one Renderer per thread.
 
 #include <memory>
 
 #include "image/image.h"
 #include "render/frame_snapshot.h"
+#include "render/gl_backend.h"
 #include "render/meshes.h"
 #include "render/render_settings.h"
 
@@ -14,9 +15,13 @@ namespace coinroll::render {
 
 class Renderer {
  public:
-  // Throws std::invalid_argument for bad settings (naming the field) and std::runtime_error if
-  // OpenGL cannot be set up.
+  // On the back end $COINROLL_GL selects (selectedGlBackend()). Throws std::invalid_argument for
+  // bad settings (naming the field) or a bad $COINROLL_GL, and std::runtime_error if OpenGL
+  // cannot be set up.
   explicit Renderer(const RenderSettings& settings);
+  // On `backend`, whatever $COINROLL_GL says; never on another one (a back end that cannot start
+  // is an error, not a fallback).
+  Renderer(const RenderSettings& settings, GlBackend backend);
   ~Renderer();
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
@@ -27,15 +32,16 @@ class Renderer {
   void draw(const FrameSnapshot& snapshot, image::Image& out);
 
   const RenderSettings& settings() const { return settings_; }
+  GlBackend backend() const;
 
  private:
   // Clears the draw target and shades the sky and the floor: everything a fixed camera sees the same.
   void drawBackground(const CameraView& camera, const glm::mat4& viewProjection);
   void allocateBackgroundCache();
 
-  struct Gl;  // the context and GL objects, out of this header so callers need no GL
+  struct GlState;  // the context and GL objects, out of this header so callers need no GL
   RenderSettings settings_;
-  std::unique_ptr<Gl> gl_;
+  std::unique_ptr<GlState> state_;
 };
 
 }  // namespace coinroll::render

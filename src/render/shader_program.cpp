@@ -31,18 +31,18 @@ std::string withOrigin(const std::string& log, const std::string& origin) {
   return std::regex_replace(log, mesaPosition, origin + ":$1:$2: ");
 }
 
-Shader compile(GLenum stage, const ShaderSource& source) {
-  Shader shader(glCreateShader(stage));
+Shader compile(const GlFunctions& gl, GLenum stage, const ShaderSource& source) {
+  Shader shader(gl, gl.CreateShader(stage));
   const char* text = source.text.c_str();
-  glShaderSource(shader.get(), 1, &text, nullptr);
-  glCompileShader(shader.get());
+  gl.ShaderSource(shader.get(), 1, &text, nullptr);
+  gl.CompileShader(shader.get());
   GLint ok = GL_FALSE;
-  glGetShaderiv(shader.get(), GL_COMPILE_STATUS, &ok);
+  gl.GetShaderiv(shader.get(), GL_COMPILE_STATUS, &ok);
   if (ok != GL_TRUE) {
     GLint length = 0;
-    glGetShaderiv(shader.get(), GL_INFO_LOG_LENGTH, &length);
+    gl.GetShaderiv(shader.get(), GL_INFO_LOG_LENGTH, &length);
     std::string log(static_cast<std::size_t>(std::max(length, 1)), '\0');
-    glGetShaderInfoLog(shader.get(), length, nullptr, log.data());
+    gl.GetShaderInfoLog(shader.get(), length, nullptr, log.data());
     throw std::runtime_error(fmt::format("shader {} does not compile:\n{}", source.origin, withOrigin(log, source.origin)));
   }
   return shader;
@@ -60,48 +60,48 @@ ShaderSource loadShaderSource(std::string_view name) {
   return {std::string(*embedded), fmt::format("embedded:{}", name)};
 }
 
-ShaderProgram::ShaderProgram(std::string_view vertexName, std::string_view fragmentName) {
+ShaderProgram::ShaderProgram(const GlFunctions& gl, std::string_view vertexName, std::string_view fragmentName) : gl_(&gl) {
   const ShaderSource vertexSource = loadShaderSource(vertexName);
   const ShaderSource fragmentSource = loadShaderSource(fragmentName);
-  const Shader vertex = compile(GL_VERTEX_SHADER, vertexSource);
-  const Shader fragment = compile(GL_FRAGMENT_SHADER, fragmentSource);
-  program_ = Program(glCreateProgram());
-  glAttachShader(program_.get(), vertex.get());
-  glAttachShader(program_.get(), fragment.get());
-  glLinkProgram(program_.get());
+  const Shader vertex = compile(gl, GL_VERTEX_SHADER, vertexSource);
+  const Shader fragment = compile(gl, GL_FRAGMENT_SHADER, fragmentSource);
+  program_ = Program(gl, gl.CreateProgram());
+  gl.AttachShader(program_.get(), vertex.get());
+  gl.AttachShader(program_.get(), fragment.get());
+  gl.LinkProgram(program_.get());
   GLint ok = GL_FALSE;
-  glGetProgramiv(program_.get(), GL_LINK_STATUS, &ok);
+  gl.GetProgramiv(program_.get(), GL_LINK_STATUS, &ok);
   if (ok != GL_TRUE) {
     GLint length = 0;
-    glGetProgramiv(program_.get(), GL_INFO_LOG_LENGTH, &length);
+    gl.GetProgramiv(program_.get(), GL_INFO_LOG_LENGTH, &length);
     std::string log(static_cast<std::size_t>(std::max(length, 1)), '\0');
-    glGetProgramInfoLog(program_.get(), length, nullptr, log.data());
+    gl.GetProgramInfoLog(program_.get(), length, nullptr, log.data());
     throw std::runtime_error(fmt::format("shaders {} + {} do not link:\n{}", vertexSource.origin, fragmentSource.origin, log));
   }
 }
 
 GLint ShaderProgram::location(const char* uniform) const {
-  const GLint where = glGetUniformLocation(program_.get(), uniform);
+  const GLint where = gl_->GetUniformLocation(program_.get(), uniform);
   // A uniform the compiler optimised away is not an error (e.g. while editing a shader).
   return where;
 }
 
-void ShaderProgram::set(const char* uniform, float value) const { glUniform1f(location(uniform), value); }
-void ShaderProgram::set(const char* uniform, int value) const { glUniform1i(location(uniform), value); }
+void ShaderProgram::set(const char* uniform, float value) const { gl_->Uniform1f(location(uniform), value); }
+void ShaderProgram::set(const char* uniform, int value) const { gl_->Uniform1i(location(uniform), value); }
 void ShaderProgram::set(const char* uniform, const glm::vec2& value) const {
-  glUniform2fv(location(uniform), 1, glm::value_ptr(value));
+  gl_->Uniform2fv(location(uniform), 1, glm::value_ptr(value));
 }
 void ShaderProgram::set(const char* uniform, const glm::vec3& value) const {
-  glUniform3fv(location(uniform), 1, glm::value_ptr(value));
+  gl_->Uniform3fv(location(uniform), 1, glm::value_ptr(value));
 }
 void ShaderProgram::set(const char* uniform, const glm::vec4& value) const {
-  glUniform4fv(location(uniform), 1, glm::value_ptr(value));
+  gl_->Uniform4fv(location(uniform), 1, glm::value_ptr(value));
 }
 void ShaderProgram::set(const char* uniform, const glm::mat3& value) const {
-  glUniformMatrix3fv(location(uniform), 1, GL_FALSE, glm::value_ptr(value));
+  gl_->UniformMatrix3fv(location(uniform), 1, GL_FALSE, glm::value_ptr(value));
 }
 void ShaderProgram::set(const char* uniform, const glm::mat4& value) const {
-  glUniformMatrix4fv(location(uniform), 1, GL_FALSE, glm::value_ptr(value));
+  gl_->UniformMatrix4fv(location(uniform), 1, GL_FALSE, glm::value_ptr(value));
 }
 
 }  // namespace coinroll::render

@@ -24,11 +24,12 @@ ShaderSource loadShaderSource(std::string_view name);
 
 class ShaderProgram {
  public:
-  // Compiles shaders/<vertexName> and shaders/<fragmentName> and links them. Compile and link
-  // errors throw std::runtime_error with the file and line of each message ("coin.frag:12: ...").
-  ShaderProgram(std::string_view vertexName, std::string_view fragmentName);
+  // Compiles shaders/<vertexName> and shaders/<fragmentName> and links them, in the context `gl`
+  // reaches (current, and outliving the program). Compile and link errors throw
+  // std::runtime_error with the file and line of each message ("coin.frag:12: ...").
+  ShaderProgram(const GlFunctions& gl, std::string_view vertexName, std::string_view fragmentName);
 
-  void use() const { glUseProgram(program_.get()); }
+  void use() const { gl_->UseProgram(program_.get()); }
   void set(const char* uniform, float value) const;
   void set(const char* uniform, int value) const;
   void set(const char* uniform, const glm::vec2& value) const;
@@ -39,6 +40,7 @@ class ShaderProgram {
 
  private:
   GLint location(const char* uniform) const;
+  const GlFunctions* gl_;
   Program program_;
 };
 

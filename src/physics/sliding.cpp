@@ -3,6 +3,9 @@
 #include <Eigen/LU>
 
 #include <cmath>
+#include <string>
+#include <optional>
+#include <utility>
 
 #include "physics/body_contact.h"
 
@@ -78,37 +81,13 @@ Forward forwardFrom(const CoinModel& model, const SlidingState& state, double mu
   f.reaction.F = mu * std::abs(N);
   f.slip = t.slip;
   f.sliding = true;
-  f.loads.power += mu * N * t.slip.norm();  // friction's work rate (2.1)
+  f.loads.power += mu * N * t.slipHat.dot(t.slip);  // friction's work rate -F . s (2.1)
   setAttitudeKinematics(model, s.q, s.omegaBody, s.x, s.z, t.geo, t.velocity, f);
   return f;
 }
 
-}  // namespace
-
-SlidingStateVec toVector(const SlidingState& s) {
-  SlidingStateVec y;
-  y << toVector(s.attitude), s.slip;
-  return y;
-}
-
-SlidingState toSlidingState(const SlidingStateVec& y) {
-  return {.attitude = toQuaternionState(y.head<kQuaternionStateSize>()), .slip = y.tail<2>()};
-}
-
-Eigen::Vector2d slipOf(const CoinModel& model, const QuaternionState& attitude, const Eigen::Vector2d& velocity) {
-  const ContactGeometry geo = contactGeometry(model, attitude.q);
-  const Eigen::Vector3d spinAtContact = geo.floorFromBody * attitude.omegaBody.cross(geo.c);
-  return velocity + Eigen::Vector2d(spinAtContact.x(), spinAtContact.z());
-}
-
-Forward slidingForward(const CoinModel& model, const SlidingState& state, double mu, const Eigen::Vector3d& slipDirection) {
-  return forwardFrom(model, state, mu, slidingTerms(model, state, mu, slipDirection));
-}
-
-SlidingRates slidingRates(const CoinModel& model, const SlidingStateVec& y, double mu, const Eigen::Vector3d& slipDirection) {
+SlidingRates ratesFrom(const CoinModel& model, const SlidingStateVec& y, const SlidingState& state, const Sliding& terms, double mu) {
   const Eigen::Quaterniond stored(y[kQw], y[kQx], y[kQy], y[kQz]);
-  const SlidingState state = toSlidingState(y);
-  const Sliding terms = slidingTerms(model, state, mu, slipDirection);
   const Forward f = forwardFrom(model, state, mu, terms);
   SlidingRates rates;
   SlidingStateVec& dy = rates.dy;
@@ -133,6 +112,130 @@ SlidingRates slidingRates(const CoinModel& model, const SlidingStateVec& y, doub
   dy[kSlipZ] = f.reaction.R.z() / model.M + spinRate.z();
   rates.power = f.loads.power;
   return rates;
+}
+
+}  // namespace
+
+SlidingStateVec toVector(const SlidingState& s) {
+  SlidingStateVec y;
+  y << toVector(s.attitude), s.slip;
+  return y;
+}
+
+SlidingState toSlidingState(const SlidingStateVec& y) {
+  return {.attitude = toQuaternionState(y.head<kQuaternionStateSize>()), .slip = y.tail<2>()};
+}
+
+Eigen::Vector2d slipOf(const CoinModel& model, const QuaternionState& attitude, const Eigen::Vector2d& velocity) {
+  const ContactGeometry geo = contactGeometry(model, attitude.q);
+  const Eigen::Vector3d spinAtContact = geo.floorFromBody * attitude.omegaBody.cross(geo.c);
+  return velocity + Eigen::Vector2d(spinAtContact.x(), spinAtContact.z());
+}
+
+SlidingRates slidingRates(const CoinModel& model, const SlidingStateVec& y, double mu, const Eigen::Vector3d& slipDirection) {
+  const SlidingState state = toSlidingState(y);
+  return ratesFrom(model, y, state, slidingTerms(model, state, mu, slipDirection), mu);
+}
+
+Forward slidingForward(const CoinModel& model, const SlidingState& state, double mu, const Eigen::Vector3d& slipDirection) {
+  return forwardFrom(model, state, mu, slidingTerms(model, state, mu, slipDirection));
+}
+
+
+namespace {
+
+// Newton on the direction's angle converges in three or four passes from the rolling friction's
+// direction; more means the rest has gone (the caller is told).
+constexpr int kMaxCreepPasses = 12;
+constexpr double kAngleStep = 1e-7;        // rad, for the central difference in the angle
+constexpr double kAngleConverged = 1e-13;  // rad
+// s: the step along the motion for the rest's turn rate; its error is (turn rate x step)^2 ~ 1e-7.
+constexpr double kFlowStep = 1e-6;
+// A pull on the direction below this part of mu g is round-off, not a rest: an upright coin rolling
+// straight needs no friction and leaves every direction neutral.
+constexpr double kLeastRestoring = 1e-9;
+
+Eigen::Vector3d floorDirection(double angle) { return {std::cos(angle), 0, std::sin(angle)}; }
+double angleOf(const Eigen::Vector2d& slip) { return std::atan2(slip.y(), slip.x()); }
+
+// The terms with friction along -slipHat whatever the slip's own direction.
+Sliding termsAlong(const CoinModel& model, const SlidingState& state, double mu, const Eigen::Vector3d& slipHat) {
+  Sliding terms = slidingTerms(model, {.attitude = state.attitude}, mu, slipHat);
+  terms.slip = Eigen::Vector3d(state.slip.x(), 0, state.slip.y());
+  terms.velocity = terms.slip - terms.spinAtContact;
+  return terms;
+}
+
+SlidingRates ratesAlong(const CoinModel& model, const SlidingStateVec& y, double mu, double angle) {
+  const SlidingState state = toSlidingState(y);
+  return ratesFrom(model, y, state, termsAlong(model, state, mu, floorDirection(angle)), mu);
+}
+
+// s_perp . s-dot with friction along -s_hat(angle): the slip's turn rate times |s|. The slip itself
+// does not enter it (it moves only the centre).
+double turning(const CoinModel& model, const SlidingStateVec& y, double mu, double angle) {
+  const SlidingRates r = ratesAlong(model, y, mu, angle);
+  return -std::sin(angle) * r.dy[kSlipX] + std::cos(angle) * r.dy[kSlipZ];
+}
+
+double restoringAt(const CoinModel& model, const SlidingStateVec& y, double mu, double angle) {
+  return -(turning(model, y, mu, angle + kAngleStep) - turning(model, y, mu, angle - kAngleStep)) / (2 * kAngleStep);
+}
+
+// Newton for turning(angle) = target from `angle`: the angle and the restoring there, or nothing when
+// it finds no attracting rest.
+std::optional<std::pair<double, double>> solveTurning(const CoinModel& model, const SlidingStateVec& y, double mu, double angle,
+                                                      double target) {
+  for (int pass = 0; pass <= kMaxCreepPasses && std::isfinite(angle); ++pass) {
+    const double restoring = restoringAt(model, y, mu, angle);
+    const double change = (turning(model, y, mu, angle) - target) / restoring;
+    angle += change;
+    if (std::abs(change) < kAngleConverged && restoring > kLeastRestoring * mu * model.g) return std::pair{angle, restoring};
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::optional<Creep> findCreep(const CoinModel& model, const SlidingStateVec& y, double mu) {
+  // Newton starts against the rolling friction force (the contract's direction at a slide's onset);
+  // where rolling needs next to no friction that direction is noise, and the slip's own is taken.
+  const Forward rolling = forward(model, toQuaternionState(y.head<kQuaternionStateSize>()));
+  const Eigen::Vector3d& rollingFriction = rolling.reaction.R;
+  const Eigen::Vector2d slip = y.tail<2>();
+  const bool slipLeads = Eigen::Vector2d(rollingFriction.x(), rollingFriction.z()).norm() < kLeastRestoring * mu * std::abs(rolling.reaction.N) &&
+                         slip.norm() > kSlipRoundOff;
+  const double start = slipLeads ? angleOf(slip) : std::atan2(-rollingFriction.z(), -rollingFriction.x());
+  const auto rest = solveTurning(model, y, mu, start, 0);
+  if (!rest) return std::nullopt;
+  const auto [restAngle, restoring] = *rest;
+  // The rest turns with the motion; a slip that keeps up with it must turn at the same rate, which
+  // takes turning(angle) = |s| x (its rate): the rest to first order in the lag (docs/sliding.md eq. 4.14).
+  const SlidingStateVec flow = ratesAlong(model, y, mu, restAngle).dy;
+  const double restRate =
+      (turning(model, y + kFlowStep * flow, mu, restAngle) - turning(model, y - kFlowStep * flow, mu, restAngle)) /
+      (2 * kFlowStep * restoring);
+  const double slipSpeed = slip.norm();
+  double angle = restAngle;
+  if (slipSpeed > 0) {
+    const auto lagging = solveTurning(model, y, mu, restAngle, slipSpeed * restRate);
+    if (!lagging) return std::nullopt;
+    angle = lagging->first;
+  }
+  return Creep{.slipHat = floorDirection(angle), .restoring = restoring, .restRate = restRate};
+}
+
+SlidingRates slidingRatesAlong(const CoinModel& model, const SlidingStateVec& y, double mu, const Eigen::Vector3d& slipHat) {
+  const SlidingState state = toSlidingState(y);
+  return ratesFrom(model, y, state, termsAlong(model, state, mu, slipHat), mu);
+}
+
+Forward slidingForwardAlong(const CoinModel& model, const SlidingState& state, double mu, const Eigen::Vector3d& slipHat) {
+  return forwardFrom(model, state, mu, termsAlong(model, state, mu, slipHat));
+}
+
+double slipDirectionRestoring(const CoinModel& model, const SlidingState& state, double mu) {
+  return restoringAt(model, toVector(state), mu, angleOf(state.slip));
 }
 
 }  // namespace coinroll::physics

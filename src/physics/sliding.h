@@ -7,6 +7,8 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include <optional>
+
 #include "physics/coin_model.h"
 #include "physics/forward.h"
 #include "physics/quaternion_dynamics.h"
@@ -44,6 +46,30 @@ struct SlidingRates {
   double power = 0;
 };
 SlidingRates slidingRates(const CoinModel& model, const SlidingStateVec& y, double mu, const Eigen::Vector3d& slipDirection);
+
+// The creeping slide (docs/sliding.md §4.6). Where the rolling reaction sits just outside the
+// friction cone the slip stays tiny and its direction is slaved to the slow motion: it turns back
+// to a rest at the rate restoring / |s|, far faster than anything else in the motion, which no
+// explicit step can follow. While the slip is that small friction is taken along the rest instead
+// of along the slip (a Tikhonov reduction to first order in the lag, (turn rate) |s| / restoring):
+// the slip, the centre's velocity and the energy stay integrated from the forces, so momentum and
+// the energy budget hold exactly, and only friction's direction is approximated.
+struct Creep {
+  Eigen::Vector3d slipHat;  // floor, unit, horizontal: friction is along -slipHat
+  double restoring = 0;     // -d(s_perp . s-dot)/d(angle) at the rest, m/s^2 (positive: it attracts)
+  double restRate = 0;      // rad/s, the rest's turn rate
+};
+// std::nullopt when there is no attracting rest next to the direction opposite the rolling friction
+// force (an upright coin rolling straight needs no friction: every direction is neutral).
+std::optional<Creep> findCreep(const CoinModel& model, const SlidingStateVec& y, double mu);
+
+// The sliding coin with friction along -slipHat whatever the slip's own direction (the creeping slide).
+SlidingRates slidingRatesAlong(const CoinModel& model, const SlidingStateVec& y, double mu, const Eigen::Vector3d& slipHat);
+Forward slidingForwardAlong(const CoinModel& model, const SlidingState& state, double mu, const Eigen::Vector3d& slipHat);
+
+// -d(s_perp . s-dot)/d(angle) at the slip's own direction, m/s^2: the pull towards a rest (positive)
+// or away from one; the direction turns at this over |s|.
+double slipDirectionRestoring(const CoinModel& model, const SlidingState& state, double mu);
 
 // m/s: speeds below this are the slip's round-off, not a direction (docs/sliding.md §4).
 inline constexpr double kSlipRoundOff = 1e-13;

@@ -1,5 +1,6 @@
 #include "pipeline/hybrid_run.h"
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 #include <variant>
@@ -19,6 +20,8 @@ constexpr int kSlidingSize = physics::kSlidingStateSize + 1;
 // The switches' event ids, past ModelEvent's values.
 constexpr int kSlideOnset = 1000;  // rolling: the reaction reaches the cone
 constexpr int kSlipStops = 1001;   // sliding: the slip speed falls to kStoppedSlip
+constexpr int kSlipFrees = 1002;   // creeping: the slip's direction is slow enough to integrate
+constexpr int kSlipCreeps = 1003;  // sliding: the slip's direction is too fast to integrate
 
 // m/s. Sliding ends when the slip speed falls to this, not to 0, where friction's direction is no
 // longer defined: the last 1e-12 m/s is closed by friction at once, its kinetic energy booked as
@@ -29,14 +32,34 @@ constexpr double kStoppedSlip = 1e-12;
 // Stick-slip: more switches than this within one simulated second end the run (docs/sliding.md §4).
 constexpr std::size_t kMaxSwitchesPerSecond = 1000;
 
+// rad: the creeping slip's direction lags its rest by at most this before it is integrated freely
+// (docs/sliding.md §4.6): the lag is (turn rate of the rest) |s| / restoring.
+constexpr double kCreepLag = 1e-3;
+// rad: a free slip is handed back to its rest only within this angle of it (docs/sliding.md §4.6).
+constexpr double kCreepAlignment = 1e-5;
+
 struct SlidingRhs {
   physics::CoinModel model;
   double mu = 0;
-  Eigen::Vector3d direction;  // s_hat while the slip is below round-off
+  SlipMode mode = SlipMode::Free;
+  Eigen::Vector3d direction;  // free: s_hat while the slip is below round-off
 
+  // Creeping: along the rest; where a trial state has none (rolling needs next to no friction and
+  // the direction is neutral) along the slip itself, as when free.
+  Eigen::Vector3d frictionDirection(const physics::SlidingStateVec& y) const {
+    if (const std::optional<physics::Creep> creep = physics::findCreep(model, y, mu)) return creep->slipHat;
+    const Eigen::Vector2d slip = y.tail<2>();
+    return slip.norm() > physics::kSlipRoundOff ? Eigen::Vector3d(slip.x() / slip.norm(), 0, slip.y() / slip.norm()) : direction;
+  }
+  physics::Forward forward(const physics::SlidingStateVec& y) const {
+    const physics::SlidingState state = physics::toSlidingState(y);
+    return mode == SlipMode::Free ? physics::slidingForward(model, state, mu, direction)
+                                  : physics::slidingForwardAlong(model, state, mu, frictionDirection(y));
+  }
   integrate::Vec<kSlidingSize> operator()(double /*t*/, const integrate::Vec<kSlidingSize>& y) const {
-    const physics::SlidingRates r =
-        physics::slidingRates(model, y.head<physics::kSlidingStateSize>(), mu, direction);
+    const physics::SlidingStateVec& coin = y.head<physics::kSlidingStateSize>();
+    const physics::SlidingRates r = mode == SlipMode::Free ? physics::slidingRates(model, coin, mu, direction)
+                                                          : physics::slidingRatesAlong(model, coin, mu, frictionDirection(coin));
     integrate::Vec<kSlidingSize> dy;
     dy << r.dy, r.power;
     return dy;
@@ -54,24 +77,23 @@ physics::QuaternionState rollingStateOf(const integrate::Vec<kRollingSize>& y) {
   return physics::toQuaternionState(y.head<physics::kQuaternionStateSize>());
 }
 
-// Unit, horizontal, opposite to the rolling friction force: the slip direction the contract takes
-// at the switch (docs/sliding.md §4).
-Eigen::Vector3d againstRollingFriction(const physics::Forward& rolling) {
-  const Eigen::Vector3d friction(rolling.reaction.R.x(), 0, rolling.reaction.R.z());
-  const double size = friction.norm();
-  return size > 0 ? Eigen::Vector3d(-friction / size) : Eigen::Vector3d::UnitX();
+// m/s: the slip speed above which its direction is integrated (kCreepLag); the rest turns with the
+// fastest of the body's rotation, the contact's precession and the rocking rate sqrt(g/a).
+double freeSlipSpeed(const physics::CoinModel& model, const physics::Forward& f, double restoring) {
+  const double turnRate = std::max({f.omega.norm(), std::abs(f.precessionRate), std::sqrt(model.g / model.a)});
+  return kCreepLag * std::max(restoring, 0.0) / turnRate;
 }
 
 template <int N>
-integrate::Event<N> switchEvent(int id, const char* name, std::function<double(double, const integrate::Vec<N>&)> g) {
-  return {.name = name, .id = id, .g = std::move(g), .direction = -1, .terminal = true};
+integrate::Event<N> switchEvent(int id, const char* name, std::function<double(double, const integrate::Vec<N>&)> g, int direction = -1) {
+  return {.name = name, .id = id, .g = std::move(g), .direction = direction, .terminal = true};
 }
 
 }  // namespace
 
 struct HybridRun::Segment {
   std::variant<RollingTrajectory, SlidingTrajectory> trajectory;
-  Eigen::Vector3d direction = Eigen::Vector3d::UnitX();  // sliding: s_hat at the segment's start
+  SlidingRhs sliding;  // the sliding segment's right-hand side, for its samples
 };
 
 HybridRun::HybridRun(const Simulation& simulation) : simulation_(simulation) {
@@ -82,9 +104,9 @@ HybridRun::HybridRun(const Simulation& simulation) : simulation_(simulation) {
   const physics::SlidingState sliding{.attitude = start, .slip = physics::slipOf(simulation_.model, start, velocity)};
   const physics::Forward slipping = physics::slidingForward(simulation_.model, sliding, simulation.kineticFriction, Eigen::Vector3d::UnitX());
   if (slipping.slip.norm() > kStoppedSlip) {
-    startSliding(0, sliding, 0, slipping.slip.normalized());
+    startSliding(0, sliding, 0, SlipMode::Free);
   } else if (physics::slipMargin(simulation_.model, rolling, *simulation.friction) < 0) {
-    startSliding(0, sliding, 0, againstRollingFriction(rolling));
+    startSliding(0, {.attitude = start}, 0, SlipMode::Creeping);
   } else {
     startRolling(0, start, 0);
   }
@@ -106,53 +128,82 @@ void HybridRun::startRolling(double t, const physics::QuaternionState& state, do
   y0 << physics::toVector(state), dissipated;
   segment_ = std::make_unique<Segment>(Segment{
       .trajectory = RollingTrajectory(physics::CoinRhs<Formulation::Quaternion>{simulation_.model}, t, y0, simulation_.solver, events),
-      .direction = Eigen::Vector3d::UnitX()});
+      .sliding = {}});
 }
 
-void HybridRun::startSliding(double t, const physics::SlidingState& state, double dissipated, const Eigen::Vector3d& slipDirection) {
+void HybridRun::startSliding(double t, const physics::SlidingState& state, double dissipated, SlipMode mode) {
   using Y = integrate::Vec<kSlidingSize>;
+  const physics::CoinModel& model = simulation_.model;
   const double mu = simulation_.kineticFriction;
-  const auto forwardOf = [model = simulation_.model, mu, slipDirection](const Y& y) {
-    return physics::slidingForward(model, slidingStateOf(y), mu, slipDirection);
-  };
+  const Eigen::Vector2d along = state.slip.norm() > 0 ? state.slip.normalized() : Eigen::Vector2d::UnitX();
+  const SlidingRhs rhs{.model = model, .mu = mu, .mode = mode, .direction = Eigen::Vector3d(along.x(), 0, along.y())};
+  const auto forwardOf = [rhs](const Y& y) { return rhs.forward(y.head<physics::kSlidingStateSize>()); };
   std::vector<integrate::Event<kSlidingSize>> events = geometryEvents<kSlidingSize>(
-      simulation_.model, Formulation::Quaternion, [](const Y& y) { return physics::thetaOf(slidingStateOf(y).attitude.q); });
+      model, Formulation::Quaternion, [](const Y& y) { return physics::thetaOf(slidingStateOf(y).attitude.q); });
   events.push_back(modelEvent<kSlidingSize>(
-      ModelEvent::LiftOff, [model = simulation_.model, forwardOf](double, const Y& y) { return physics::liftOffMargin(model, forwardOf(y)); },
-      -1, simulation_.validityIsTerminal));
+      ModelEvent::LiftOff, [model, forwardOf](double, const Y& y) { return physics::liftOffMargin(model, forwardOf(y)); }, -1,
+      simulation_.validityIsTerminal));
   events.push_back(modelEvent<kSlidingSize>(
       ModelEvent::Painleve, [forwardOf](double, const Y& y) { return forwardOf(y).normalEffectiveMass; }, -1, true));
-  events.push_back(switchEvent<kSlidingSize>(
-      kSlipStops, "rolls", [forwardOf](double, const Y& y) { return forwardOf(y).slip.norm() - kStoppedSlip; }));
+  if (mode == SlipMode::Free) {
+    events.push_back(switchEvent<kSlidingSize>(kSlipStops, "rolls", [](double, const Y& y) { return slidingStateOf(y).slip.norm() - kStoppedSlip; }));
+    // A slip that falls back to half the creep's threshold hands its direction to its rest, once it
+    // has come to the rest: the threshold fades to zero as the slip's angle from the rest grows to
+    // kCreepLag, so a slide that ends across the rest's pull (a skid) is integrated to its end.
+    events.push_back(switchEvent<kSlidingSize>(kSlipCreeps, "creeps", [model, mu, forwardOf](double, const Y& y) {
+      const physics::SlidingStateVec coin = y.head<physics::kSlidingStateSize>();
+      const Eigen::Vector2d slip = physics::toSlidingState(coin).slip;
+      const std::optional<physics::Creep> creep = physics::findCreep(model, coin, mu);
+      if (!creep) return slip.norm();
+      const Eigen::Vector2d rest(creep->slipHat.x(), creep->slipHat.z());
+      const double angleFromRest = std::acos(std::clamp(rest.dot(slip.normalized()), -1.0, 1.0));
+      const double nearness = std::max(0.0, 1 - angleFromRest / kCreepAlignment);
+      return slip.norm() - 0.5 * nearness * freeSlipSpeed(model, forwardOf(y), creep->restoring);
+    }));
+  } else {
+    // Friction keeps to the rest while the slip passes zero, so the slip crosses it smoothly and its
+    // length has a kink there that a step can jump: the stop is found on the slip along the rest.
+    events.push_back(switchEvent<kSlidingSize>(kSlipStops, "rolls", [rhs](double, const Y& y) {
+      const physics::SlidingStateVec coin = y.head<physics::kSlidingStateSize>();
+      const Eigen::Vector3d rest = rhs.frictionDirection(coin);
+      const Eigen::Vector2d slip = physics::toSlidingState(coin).slip;
+      return slip.x() * rest.x() + slip.y() * rest.z() - kStoppedSlip;
+    }));
+    events.push_back(switchEvent<kSlidingSize>(
+        kSlipFrees, "slips freely",
+        [rhs](double, const Y& y) {
+          const physics::SlidingStateVec coin = y.head<physics::kSlidingStateSize>();
+          return physics::toSlidingState(coin).slip.norm() -
+                 freeSlipSpeed(rhs.model, rhs.forward(coin), physics::findCreep(rhs.model, coin, rhs.mu).value_or(physics::Creep{}).restoring);
+        },
+        +1));
+  }
   Y y0;
   y0 << physics::toVector(state), dissipated;
-  segment_ = std::make_unique<Segment>(Segment{
-      .trajectory = SlidingTrajectory(SlidingRhs{simulation_.model, mu, slipDirection}, t, y0, simulation_.solver, events),
-      .direction = slipDirection});
+  segment_ = std::make_unique<Segment>(
+      Segment{.trajectory = SlidingTrajectory(rhs, t, y0, simulation_.solver, events), .sliding = rhs});
 }
 
 // The seed's variables, the forward pass of the segment's mode and the dissipated energy of an
 // integrated state of either kind.
-HybridSample sampleOf(const physics::CoinModel& model, double /*mu*/, const Eigen::Vector3d& /*direction*/,
-                      const integrate::Vec<kRollingSize>& y, const physics::CoinState& continuation) {
+HybridSample sampleOf(const physics::CoinModel& model, const SlidingRhs& /*sliding*/, const integrate::Vec<kRollingSize>& y,
+                      const physics::CoinState& continuation) {
   const physics::QuaternionState state = rollingStateOf(y);
   return {physics::toEulerState(state, continuation), physics::forward(model, state), y[kRollingSize - 1]};
 }
 
-HybridSample sampleOf(const physics::CoinModel& model, double mu, const Eigen::Vector3d& direction,
-                      const integrate::Vec<kSlidingSize>& y, const physics::CoinState& continuation) {
-  const physics::SlidingState state = slidingStateOf(y);
-  return {physics::toEulerState(state.attitude, continuation), physics::slidingForward(model, state, mu, direction),
+HybridSample sampleOf(const physics::CoinModel& /*model*/, const SlidingRhs& sliding, const integrate::Vec<kSlidingSize>& y,
+                      const physics::CoinState& continuation) {
+  return {physics::toEulerState(slidingStateOf(y).attitude, continuation), sliding.forward(y.head<physics::kSlidingStateSize>()),
           y[kSlidingSize - 1]};
 }
 
 bool HybridRun::switchIfDue() {
-  const double mu = simulation_.kineticFriction;
-  const Eigen::Vector3d direction = segment_->direction;
+  const SlidingRhs sliding = segment_->sliding;
   // The finished segment's crossings gone past and its work, kept before it is replaced.
   const auto retire = [&](const auto& trajectory) {
     for (const auto& crossing : trajectory.nonTerminalHits()) {
-      const HybridSample at = sampleOf(simulation_.model, mu, direction, crossing.y, physics::CoinState{});
+      const HybridSample at = sampleOf(simulation_.model, sliding, crossing.y, physics::CoinState{});
       warnings_.push_back({static_cast<ModelEvent>(crossing.id), crossing.t, at.state, at.forward, at.dissipated});
     }
     const integrate::Stats work = trajectory.stats();
@@ -170,32 +221,36 @@ bool HybridRun::switchIfDue() {
     if (!hit || hit->id != kSlideOnset) return false;
     if (tooManySwitches(hit->t)) return false;
     const physics::QuaternionState state = rollingStateOf(hit->y);
-    const physics::Forward f = physics::forward(simulation_.model, state);
     const double t = hit->t, dissipated = hit->y[kRollingSize - 1];
     retire(*rolling);
     switches_.push_back({t, true});
-    startSliding(t, {.attitude = state, .slip = Eigen::Vector2d::Zero()}, dissipated, againstRollingFriction(f));
+    startSliding(t, {.attitude = state}, dissipated, SlipMode::Creeping);
     return true;
   }
-  auto& sliding = std::get<SlidingTrajectory>(segment_->trajectory);
-  const auto& hit = sliding.stoppedBy();
-  if (!hit || hit->id != kSlipStops) return false;
-  if (tooManySwitches(hit->t)) return false;
+  auto& trajectory = std::get<SlidingTrajectory>(segment_->trajectory);
+  const auto& hit = trajectory.stoppedBy();
+  if (!hit || (hit->id != kSlipStops && hit->id != kSlipCreeps && hit->id != kSlipFrees)) return false;
   const physics::SlidingState state = slidingStateOf(hit->y);
-  const double t = hit->t;
-  const physics::Forward slipping = physics::slidingForward(simulation_.model, state, mu, direction);
-  retire(sliding);
+  const double t = hit->t, dissipated = hit->y[kSlidingSize - 1];
+  if (hit->id != kSlipStops) {
+    retire(trajectory);
+    startSliding(t, state, dissipated, hit->id == kSlipCreeps ? SlipMode::Creeping : SlipMode::Free);
+    return true;
+  }
+  if (tooManySwitches(t)) return false;
+  const physics::Forward slipping = sliding.forward(hit->y.head<physics::kSlidingStateSize>());
+  retire(trajectory);
   const physics::Forward rolling = physics::forward(simulation_.model, state.attitude);
   // Friction takes the last kStoppedSlip of slip at once: the kinetic energy it removes is dissipated.
-  const double dissipated = hit->y[kSlidingSize - 1] + (slipping.energy - rolling.energy);
+  const double afterStop = dissipated + (slipping.energy - rolling.energy);
   if (physics::slipMargin(simulation_.model, rolling, *simulation_.friction) < 0) {
-    // At zero slip the rolling reaction does not fit the cone: the coin slides on, from zero slip
-    // along the direction the contract gives at a switch.
-    startSliding(t, {.attitude = state.attitude, .slip = Eigen::Vector2d::Zero()}, dissipated, againstRollingFriction(rolling));
+    // At zero slip the rolling reaction does not fit the cone: the coin slides on from zero slip,
+    // its direction at its rest.
+    startSliding(t, {.attitude = state.attitude}, afterStop, SlipMode::Creeping);
     return true;
   }
   switches_.push_back({t, false});
-  startRolling(t, state.attitude, dissipated);
+  startRolling(t, state.attitude, afterStop);
   return true;
 }
 
@@ -205,7 +260,7 @@ std::optional<HybridSample> HybridRun::sampleAt(double t, const physics::CoinSta
         [&](auto& trajectory) -> std::optional<HybridSample> {
           const auto y = trajectory.stateAt(t);
           if (!y) return std::nullopt;
-          return sampleOf(simulation_.model, simulation_.kineticFriction, segment_->direction, *y, continuation);
+          return sampleOf(simulation_.model, segment_->sliding, *y, continuation);
         },
         segment_->trajectory);
     if (sample) return sample;
@@ -218,9 +273,9 @@ std::optional<RunEvent> HybridRun::stoppedBy(const physics::CoinState& continuat
       [&](const auto& trajectory) -> std::optional<RunEvent> {
         const auto& hit = trajectory.stoppedBy();
         if (!hit || hit->t > simulation_.duration) return std::nullopt;
-        const HybridSample at = sampleOf(simulation_.model, simulation_.kineticFriction, segment_->direction, hit->y, continuation);
+        const HybridSample at = sampleOf(simulation_.model, segment_->sliding, hit->y, continuation);
         // A switch the run could not make (stick-slip past its bound) ends it as stick-slip.
-        const bool modelEvent = hit->id != kSlideOnset && hit->id != kSlipStops;
+        const bool modelEvent = hit->id < kSlideOnset;
         return RunEvent{modelEvent ? static_cast<ModelEvent>(hit->id) : ModelEvent::StickSlip, hit->t, at.state, at.forward,
                         at.dissipated};
       },
@@ -233,7 +288,7 @@ std::vector<RunEvent> HybridRun::warnings() const {
       [&](const auto& trajectory) {
         for (const auto& crossing : trajectory.nonTerminalHits()) {
           if (crossing.t > simulation_.duration) break;
-          const HybridSample at = sampleOf(simulation_.model, simulation_.kineticFriction, segment_->direction, crossing.y, physics::CoinState{});
+          const HybridSample at = sampleOf(simulation_.model, segment_->sliding, crossing.y, physics::CoinState{});
           all.push_back({static_cast<ModelEvent>(crossing.id), crossing.t, at.state, at.forward, at.dissipated});
         }
       },

@@ -32,6 +32,10 @@ struct HybridSample {
   double dissipated = 0;
 };
 
+// How a sliding segment takes friction's direction: along the slip (free), or along the slip's rest
+// while the slip is too small for its own direction to be integrated (creeping, physics::Creep).
+enum class SlipMode { Free, Creeping };
+
 class HybridRun {
  public:
   explicit HybridRun(const Simulation& simulation);
@@ -51,7 +55,9 @@ class HybridRun {
  private:
   struct Segment;
   void startRolling(double t, const physics::QuaternionState& state, double dissipated);
-  void startSliding(double t, const physics::SlidingState& state, double dissipated, const Eigen::Vector3d& slipDirection);
+  // `mode`: friction along the slip (free) or along its rest (creeping, physics::Creep: from zero
+  // slip, or a slip too small for its direction to be integrated).
+  void startSliding(double t, const physics::SlidingState& state, double dissipated, SlipMode mode);
   // Moves to the next segment when the current one ended in a switch; false when a model event ended it.
   bool switchIfDue();
 

@@ -52,37 +52,61 @@ std::vector<std::vector<double>> readRows(const fs::path& csv, std::string& head
 
 // The CSV of a spin-down: its columns, power >= 0, and energy + dissipated = the initial energy;
 // most of the energy above `restingEnergy` (the coin lying still) spent by the end.
-void expectClosedEnergyBudget(const fs::path& csv, double restingEnergy, double spentFraction) {
+// With sliding on, the slip columns follow.
+std::vector<std::vector<double>> expectClosedEnergyBudget(const fs::path& csv, double restingEnergy, double spentFraction,
+                                                          bool sliding = false) {
   std::string header;
-  const std::vector<std::vector<double>> rows = readRows(csv, header);
+  std::vector<std::vector<double>> rows = readRows(csv, header);
   EXPECT_EQ(header,
-            "t,theta,phi,psi,omega_X,omega_Y,omega_Z,x,y,z,contact_x,contact_z,energy,normal_force,friction_force,power,"
-            "dissipated");
-  ASSERT_GT(rows.size(), 100u);
+            std::string("t,theta,phi,psi,omega_X,omega_Y,omega_Z,x,y,z,contact_x,contact_z,energy,normal_force,friction_force,"
+                        "power,dissipated") +
+                (sliding ? ",slip_speed,sliding" : ""));
+  EXPECT_GT(rows.size(), 100u);
+  if (rows.empty()) return rows;
   const double E0 = rows.front()[12];
   for (const std::vector<double>& row : rows) {
-    ASSERT_EQ(row.size(), 17u);
+    EXPECT_EQ(row.size(), sliding ? 19u : 17u);
+    if (row.size() < 17) break;
     EXPECT_GE(row[15], 0);                                // power
     EXPECT_LE(std::abs(row[12] + row[16] - E0), 1e-9 * E0);  // energy + dissipated
   }
   EXPECT_GT(rows.back()[16], spentFraction * (E0 - restingEnergy));
   EXPECT_GT(rows.back()[12], restingEnergy);
+  return rows;
 }
 
-TEST_F(EffectsCliTest, TheThickToySpinsDownToFaceDownWithItsEnergyBudgetT0AndWarnings) {
+TEST_F(EffectsCliTest, TheThickToySlipsAndSpinsDownToFaceDownWithItsEnergyBudgetAndT0) {
   const fs::path csv = dir_ / "spin_down.csv";
-  const RunResult r = runCoinroll("simulate " + example("euler_disk") + " --csv " + csv.string() + " --sample-dt 0.05");
+  const RunResult r = runCoinroll("simulate " + example("euler_disk") + " --csv " + csv.string());
   ASSERT_EQ(r.exitCode, 0) << r.output;
-  // Lying on its face the 0.449 kg, 13 mm toy keeps M g h / 2; the face spin the rolling constraint
-  // pumps up and the last whirl keep 8 % of the rest at the landing (docs/rim.md §7).
-  expectClosedEnergyBudget(csv, 0.449 * 9.81 * 0.013 / 2, 0.85);
+  // Lying on its face the 0.449 kg, 13 mm toy keeps M g h / 2. Free to slide, its face no longer spins
+  // up under the rolling constraint (docs/euler_disk.md §6): nearly all the rest is spent at the landing.
+  const auto rows = expectClosedEnergyBudget(csv, 0.449 * 9.81 * 0.013 / 2, 0.98, true);
+  std::size_t slidingRows = 0;
+  for (const auto& row : rows) slidingRows += row.size() == 19 && row[18] == 1 ? 1 : 0;
+  EXPECT_GT(slidingRows, 0u);
+  EXPECT_NE(r.output.find("coinroll: slides at t = "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("coinroll: rolls at t = "), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("stopped early: face-down at t = "), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("89.9500 deg"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("singular time t0 = "), std::string::npos) << r.output;
+  // Sliding carries the coin where rolling would leave the cone: no slip warning.
+  EXPECT_EQ(r.output.find("slip at t = "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("note: initial.steady is a steady motion of the ideal model"), std::string::npos) << r.output;
+}
+
+TEST_F(EffectsCliTest, TheRollingOnlyToyWarnsWhereItLeavesItsFrictionCone) {
+  const fs::path csv = dir_ / "rolling.csv";
+  const RunResult r = runCoinroll("simulate " + example("euler_disk") + " --csv " + csv.string() +
+                                  " --sample-dt 0.05 --set sliding=false");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  // The face spin the rolling constraint pumps up and the last whirl keep 8 % of the rest at the
+  // landing (docs/rim.md §7).
+  expectClosedEnergyBudget(csv, 0.449 * 9.81 * 0.013 / 2, 0.85);
+  EXPECT_NE(r.output.find("stopped early: face-down at t = "), std::string::npos) << r.output;
   // on_invalid "warn": the slip crossing is reported and the run goes on to flat.
   EXPECT_NE(r.output.find("warning: the ideal contact fails here (on_invalid: warn, going on): slip at t = "),
             std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("note: initial.steady is a steady motion of the ideal model"), std::string::npos) << r.output;
 }
 
 TEST_F(EffectsCliTest, AThinCoinSpinsDownToCoinFlatAtHalfADegree) {
@@ -102,7 +126,7 @@ TEST_F(EffectsCliTest, AThinCoinSpinsDownToCoinFlatAtHalfADegree) {
 TEST_F(EffectsCliTest, OnInvalidStopEndsTheSpinDownAtSlip) {
   const fs::path csv = dir_ / "stop.csv";
   const RunResult r = runCoinroll("simulate " + example("euler_disk") + " --csv " + csv.string() +
-                                  " --sample-dt 0.5 --set on_invalid=stop");
+                                  " --sample-dt 0.5 --set sliding=false --set on_invalid=stop");
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("stopped early: slip at t = "), std::string::npos) << r.output;
   EXPECT_EQ(r.output.find("face-down"), std::string::npos) << r.output;

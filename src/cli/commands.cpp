@@ -5,15 +5,18 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cerrno>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <functional>
 #include <fstream>
+#include <new>
 #include <regex>
 #include <iostream>
 #include <numbers>
@@ -26,9 +29,12 @@
 #include "image/compare.h"
 #include "image/image.h"
 #include "integrate/solver_config.h"
-#include "io/atomic_file.h"
+#include "io/destination.h"
+#include "io/output_file.h"
 #include "physics/observables.h"
 #include "physics/steady.h"
+#include "render/render_settings.h"
+#include "pipeline/resources.h"
 #include "pipeline/simulation.h"
 #include "pipeline/still.h"
 #include "pipeline/sweep.h"
@@ -97,7 +103,7 @@ auto withProgress(ProgressLine& progress, const std::string& output, Work work,
   } catch (const pipeline::Cancelled&) {
     progress.finish();
     if (discardOutput) discardOutput();
-    throw std::runtime_error(fmt::format("interrupted; nothing was written to {}", output));
+    throw std::runtime_error(interruptionMessage(output));
   } catch (const std::invalid_argument& e) {
     progress.finish();
     throw UsageError(e.what());
@@ -151,17 +157,41 @@ std::vector<std::filesystem::path> inputsOf(const SceneSource& source) {
   return {std::filesystem::path(*source.file)};
 }
 
-// "My scene: v2" -> "My_scene__v2": a scene name made safe as a file name.
+// A default output name made from the scene name (docs/outputs.md): a name of letters, digits,
+// '-', '_' and '.' that does not start with a dot is used as it is; any other ("My scene: v2",
+// ".hidden", a Cyrillic name) has each other byte and a leading dot replaced by '_', is cut to
+// kMaxDerivedNameBytes, and gets '+' and 8 hex digits of a hash of the whole original name:
+// "My_scene__v2+1c0e3f52". So different names never share a file ('+' never survives the
+// replacement, so a hashed name cannot equal a kept one; two hashed ones clash only if both the
+// replaced text and 32 bits of hash agree), no default name is a hidden file, and every one fits
+// in a file name with its extension.
+constexpr std::size_t kMaxDerivedNameBytes = 200;
+
 std::string fileNameFrom(const std::string& sceneName) {
-  std::string name = sceneName.empty() ? "coinroll" : sceneName;
+  if (sceneName.empty()) return "coinroll";
+  std::string name = sceneName;
   for (char& c : name) {
     if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_' && c != '.') c = '_';
   }
-  return name;
+  if (name[0] == '.') name[0] = '_';
+  if (name == sceneName && name.size() <= kMaxDerivedNameBytes) return name;
+  name.resize(std::min(name.size(), kMaxDerivedNameBytes));
+  std::uint64_t hash = 14695981039346656037ull;  // FNV-1a, 64 bits: stable across builds and machines
+  for (const char c : sceneName) hash = (hash ^ static_cast<unsigned char>(c)) * 1099511628211ull;
+  return fmt::format("{}+{:08x}", name, static_cast<std::uint32_t>(hash ^ (hash >> 32)));
 }
 
-// Runs `write` into `path`: standard output for "-", otherwise a temporary file that takes the name
-// only once `write` and the close have succeeded. `what` names the content in errors ("CSV").
+// An empty output name would be found only when the output is opened, which for some commands
+// is after all the work: refused first, naming the option and what to give.
+void refuseEmptyOutputName(const std::string& option, const std::string& name, const std::string& example) {
+  if (name.empty()) {
+    throw UsageError(fmt::format("{}: the output name is empty; give a file name, e.g. {} {}", option, option, example));
+  }
+}
+
+// Runs `write` into `path`: standard output for "-", otherwise the output layer (a temporary file
+// that takes the name only once `write` and the close have succeeded, or a device, FIFO or
+// descriptor written directly; io/output_file.h). `what` names the content in errors ("CSV").
 void writeTextOutput(const std::string& path, std::string_view what, const std::function<void(std::ostream&)>& write) {
   if (path == "-") {
     write(std::cout);
@@ -170,13 +200,8 @@ void writeTextOutput(const std::string& path, std::string_view what, const std::
     if (!std::cout) throw std::runtime_error(fmt::format("writing the {} to stdout failed: {}", what, std::strerror(errno)));
     return;
   }
-  io::AtomicOutputFile file(path);
-  {
-    std::ofstream out(file.temporaryPath());
-    write(out);
-    out.close();
-    if (!out) throw std::runtime_error(fmt::format("{}: writing the {} failed: {}", path, what, std::strerror(errno)));
-  }
+  io::OutputFile file(path, std::string(what));
+  write(file.stream());
   file.commit();
 }
 
@@ -186,6 +211,7 @@ void runSimulate(const SimulateOptions& options) {
   if (!(options.sampleDt > 0) || !std::isfinite(options.sampleDt)) {
     throw UsageError(fmt::format("--sample-dt: must be a finite number > 0 s, got {}", options.sampleDt));
   }
+  refuseEmptyOutputName("--csv", options.csvPath, "out.csv (or - for standard output)");
   if (options.csvPath != "-") refuseOverwritingInput("--csv", options.csvPath, inputsOf(options.scene));
   const scene::SceneConfig scene = loadScene(options.scene);
   const long maxRows = options.maxRows > 0 ? options.maxRows : kDefaultMaxRows;
@@ -283,10 +309,13 @@ void runSteady(const SteadyOptions& options) {
 
 void runStill(const StillOptions& options) {
   const std::filesystem::path output(options.output);
-  if (output.extension() != ".png") {
+  refuseEmptyOutputName("-o", options.output, "still.png");
+  // A device, FIFO or descriptor has no name to check: it gets the PNG.
+  if (output.extension() != ".png" && !io::namesStream(output)) {
     throw UsageError(fmt::format("-o: a still is written as PNG; give a name ending in .png, got \"{}\"", options.output));
   }
   refuseOverwritingInput("-o", output, inputsOf(options.scene));
+  io::checkOutputName(output);  // the PNG is written after the rendering: a name that cannot work fails first
   const scene::SceneConfig scene = loadScene(options.scene);
   reportSteadyStart(scene);
   pipeline::StillResult result;
@@ -299,7 +328,7 @@ void runStill(const StillOptions& options) {
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   } catch (const pipeline::Cancelled&) {
-    throw std::runtime_error(fmt::format("interrupted; nothing was written to {}", options.output));
+    throw std::runtime_error(interruptionMessage(options.output));
   }
   if (result.stopDescription) {
     std::cerr << fmt::format("coinroll: the run stopped early, so the still shows t = {:.6f} s: {}\n", result.shownTime,
@@ -310,6 +339,7 @@ void runStill(const StillOptions& options) {
 }
 
 void runRender(const RenderOptions& options) {
+  if (options.output) refuseEmptyOutputName("-o", *options.output, "clip.mp4");
   const scene::SceneConfig scene = loadScene(options.scene);
   reportSteadyStart(scene);
   const std::filesystem::path output = options.output ? std::filesystem::path(*options.output)
@@ -369,6 +399,7 @@ void refuseMisnamedAxes(const pipeline::SweepSpec& spec) {
 }
 
 void runSweep(const SweepOptions& options) {
+  refuseEmptyOutputName("-o", options.output, "sweep.csv (or - for standard output)");
   if (options.output != "-") refuseOverwritingInput("-o", options.output, inputsOf(options.scene));
   pipeline::SweepSpec spec;
   std::tie(spec.scene, spec.sourceName) = loadSceneDocument(options.scene);
@@ -409,20 +440,21 @@ void runSweep(const SweepOptions& options) {
 
 void runSweepMerge(const SweepMergeOptions& options) {
   const std::vector<std::filesystem::path> shards(options.shards.begin(), options.shards.end());
+  refuseEmptyOutputName("-o", options.output, "merged.csv (or - for standard output)");
   if (options.output != "-") refuseOverwritingInput("-o", options.output, shards);
-  writeTextOutput(options.output, "merged sweep", [&](std::ostream& out) {
-    try {
-      pipeline::mergeSweepShards(shards, out);
-    } catch (const std::invalid_argument& e) {
-      throw UsageError(e.what());
-    }
+  ProgressLine noProgress(false);
+  withProgress(noProgress, options.output, [&] {
+    writeTextOutput(options.output, "merged sweep",
+                    [&](std::ostream& out) { pipeline::mergeSweepShards(shards, out, &interruptRequested()); });
+    return 0;
   });
 }
 
 namespace {
 
-// A picture to compare, or a UsageError that names the file and says what to give instead.
-image::Image readComparedPng(const std::string& name) {
+// A picture to compare, checked as far as its header: its size, or a UsageError that names the
+// file and says what to give instead.
+image::PngSize checkComparedPng(const std::string& name) {
   const std::filesystem::path path(name);
   std::error_code error;
   if (!std::filesystem::exists(path, error)) {
@@ -442,7 +474,15 @@ image::Image readComparedPng(const std::string& name) {
                                  name));
   }
   try {
-    return image::readPng(path);
+    return image::readPngSize(path);
+  } catch (const std::runtime_error& e) {
+    throw UsageError(fmt::format("{} (a damaged or truncated PNG?)", e.what()));
+  }
+}
+
+image::Image decodeComparedPng(const std::string& name) {
+  try {
+    return image::readPng(name);
   } catch (const std::runtime_error& e) {
     throw UsageError(fmt::format("{} (a damaged or truncated PNG?)", e.what()));
   }
@@ -466,28 +506,50 @@ int runCompare(const CompareOptions& options) {
     }
     if (options.minPsnr && std::isnan(*options.minPsnr)) throw UsageError("--min-psnr: must be a number of dB, got nan");
     if (options.diff) {
-      if (std::filesystem::path(*options.diff).extension() != ".png") {
+      refuseEmptyOutputName("--diff", *options.diff, "diff.png");
+      if (std::filesystem::path(*options.diff).extension() != ".png" && !io::namesStream(*options.diff)) {
         throw UsageError(fmt::format("--diff: the diff image is a PNG; give a name ending in .png, got \"{}\"", *options.diff));
       }
       refuseOverwritingInput("--diff", *options.diff, {options.a, options.b});
+      io::checkOutputName(*options.diff);  // written after both pictures are read and compared
     }
-    const image::Image a = readComparedPng(options.a);
-    const image::Image b = readComparedPng(options.b);
-    if (a.width != b.width || a.height != b.height) {
+    // Judged by the headers before anything is decoded: a small file may declare a huge picture.
+    const image::PngSize sizeA = checkComparedPng(options.a), sizeB = checkComparedPng(options.b);
+    if (sizeA.width != sizeB.width || sizeA.height != sizeB.height) {
       throw UsageError(fmt::format("{} is {}x{} but {} is {}x{}: compare pictures of the same size (render them with the same "
                                    "render.width and render.height)",
-                                   options.a, a.width, a.height, options.b, b.width, b.height));
+                                   options.a, sizeA.width, sizeA.height, options.b, sizeB.width, sizeB.height));
     }
+    static_assert(image::kMaxComparedPixels == static_cast<long>(render::kMaxImageSide) * render::kMaxImageSide);
+    const long pixels = static_cast<long>(sizeA.width) * sizeA.height;
+    if (pixels > image::kMaxComparedPixels) {
+      throw UsageError(fmt::format("{} and {} are {}x{}, more than the {} pixels compare decodes ({}x{}, the largest picture "
+                                   "coinroll draws); compare smaller pictures", options.a, options.b, sizeA.width,
+                                   sizeA.height, image::kMaxComparedPixels, render::kMaxImageSide, render::kMaxImageSide));
+    }
+    // RGBA pictures at the peak: A, B and B's decoder buffer; with --diff, A, B, the diff image and
+    // the two buffers encoding it.
+    pipeline::requireAddressSpace((options.diff ? 5 : 3) * 4 * static_cast<std::uint64_t>(pixels),
+                                  fmt::format("comparing two {}x{} pictures", sizeA.width, sizeA.height),
+                                  "compare smaller pictures");
+    // Each step is bounded by the size limit above, so polling between them answers Ctrl-C quickly.
+    const auto stopIfInterrupted = [&] {
+      if (interruptRequested()) {
+        throw UsageError(options.diff ? interruptionMessage(*options.diff) : interruption() + "; nothing was compared");
+      }
+    };
+    const image::Image a = decodeComparedPng(options.a);
+    stopIfInterrupted();
+    const image::Image b = decodeComparedPng(options.b);
+    stopIfInterrupted();
     const image::CompareThresholds thresholds{.maxDifferingPixels = options.maxDifferingPixels,
                                               .maxDifferingFraction = options.maxDifferingFraction,
                                               .channelTolerance = options.channelTolerance,
                                               .minPsnr = options.minPsnr};
     const image::ImageComparison result = image::compareImages(a, b, thresholds.channelTolerance);
     const bool pass = image::withinThresholds(result, thresholds);
-    if (options.diff) {
-      if (interruptRequested()) throw std::runtime_error(fmt::format("interrupted; nothing was written to {}", *options.diff));
-      image::writeDifferenceImage(a, b, thresholds.channelTolerance, *options.diff);
-    }
+    stopIfInterrupted();
+    if (options.diff) image::writeDifferenceImage(a, b, thresholds.channelTolerance, *options.diff);
 
     // The verdict names the limits broken, or when a difference passes, the limits it was held to.
     const long maxPixels = options.maxDifferingPixels.value_or(options.maxDifferingFraction ? result.pixels : 0);
@@ -523,6 +585,8 @@ int runCompare(const CompareOptions& options) {
     return pass ? kExitSuccess : kExitFailure;
   } catch (const UsageError&) {
     throw;
+  } catch (const std::bad_alloc&) {
+    throw UsageError(pipeline::outOfMemoryMessage());
   } catch (const std::exception& e) {
     throw UsageError(e.what());
   }

@@ -10,11 +10,13 @@
 #include <cstring>
 #include <exception>
 #include <iostream>
+#include <new>
 #include <stdexcept>
 
 #include "cli/commands.h"
 #include "cli/exit_codes.h"
 #include "cli/interrupts.h"
+#include "pipeline/resources.h"
 #include "scene/scene_loader.h"
 
 namespace {
@@ -45,6 +47,8 @@ const CLI::Validator kAtLeastOne(
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Before anything allocates on a second thread (pipeline/resources.h says why).
+  coinroll::pipeline::fitAllocatorToAddressSpaceLimit();
   CLI::App app{"coinroll: a coin rolling without slipping on a table, simulated, rendered headless to MP4 and PNG."};
   app.require_subcommand(1);
   app.footer(
@@ -205,8 +209,9 @@ int main(int argc, char** argv) {
     return code == 0 ? kExitSuccess : kExitBadInput;
   }
 
-  // Before any command can create an output (docs in cli/interrupts.h).
-  const InterruptGuard interrupts;
+  // Before any command can create an output (docs in cli/interrupts.h). compare's failure code is
+  // 2: its 1 means "the pictures differ".
+  const InterruptGuard interrupts(*compareCommand ? kExitBadInput : kExitFailure);
   int exitCode = kExitSuccess;  // compare's verdict: 1 when the pictures differ
   try {
     if (*simulateCommand) runSimulate(simulate);
@@ -231,6 +236,9 @@ int main(int argc, char** argv) {
   } catch (const UsageError& e) {
     std::cerr << "coinroll: error: " << e.what() << '\n';
     return kExitBadInput;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "coinroll: error: " << coinroll::pipeline::outOfMemoryMessage() << '\n';
+    return kExitFailure;
   } catch (const std::exception& e) {
     std::cerr << "coinroll: error: " << e.what() << '\n';
     return kExitFailure;

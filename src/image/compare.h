@@ -15,6 +15,12 @@
 
 namespace coinroll::image {
 
+// Pixels of the largest picture `coinroll compare` decodes: the largest coinroll draws (7680 on
+// both sides, render::kMaxImageSide), 225 MiB as RGBA. A PNG's header can declare far more than
+// its file holds (a 20000x20000 picture of one colour is 389 KB and decodes to 1.5 GiB), so a
+// caller reads the header first (readPngSize) and refuses a picture above this before decoding.
+inline constexpr long kMaxComparedPixels = 7680L * 7680L;
+
 struct ImageComparison {
   long pixels = 0;                 // width * height
   long differingPixels = 0;        // pixels with a channel off by more than the tolerance

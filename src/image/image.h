@@ -33,7 +33,19 @@ void writePng(const Image& image, const std::filesystem::path& path);
 // full disk or any other failure); making the result appear atomically is the caller's business.
 void writePngBytes(const Image& image, const std::filesystem::path& path, const std::filesystem::path& name);
 
-// Reads an 8-bit PNG as RGBA. Throws std::runtime_error naming the path on failure.
+// The size a PNG's header declares, pixels.
+struct PngSize {
+  int width = 0;
+  int height = 0;
+};
+
+// Reads the header of the PNG at `path` only, so a caller can judge the size before decoding it
+// (a small file may declare a picture of gigabytes). Throws std::runtime_error naming the path
+// when it is not a PNG.
+PngSize readPngSize(const std::filesystem::path& path);
+
+// Reads an 8-bit PNG as RGBA. Throws std::runtime_error naming the path on failure, and
+// std::bad_alloc when the decoded picture does not fit in memory.
 Image readPng(const std::filesystem::path& path);
 
 // Decodes PNG bytes held in memory (e.g. an asset embedded in the binary) as RGBA. Throws

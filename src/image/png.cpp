@@ -1,58 +1,107 @@
 #include <cerrno>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <new>
 #include <vector>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 #include "image/image.h"
-#include "io/atomic_file.h"
+#include "io/output_file.h"
 
 #include <stb_image.h>
 #include <stb_image_write.h>
 
 namespace coinroll::image {
 
-void writePngBytes(const Image& image, const std::filesystem::path& path, const std::filesystem::path& name) {
+namespace {
+
+// stb's zlib output depends only on the pixels and this level, so equal pixels give equal bytes.
+constexpr int kPngCompressionLevel = 8;
+
+// The PNG file's bytes. Encoded in memory and written by the caller: stbi_write_png's own file
+// output ignores fwrite's and fclose's results, so a full disk would pass as success.
+std::vector<unsigned char> encodePng(const Image& image, const std::filesystem::path& name) {
   if (image.width <= 0 || image.height <= 0 ||
       image.rgba.size() != static_cast<std::size_t>(image.width) * image.height * 4) {
     throw std::runtime_error(name.string() + ": refusing to write an empty or inconsistent image");
   }
-  // stb's zlib output depends only on the pixels and this level, so equal pixels give equal bytes.
-  stbi_write_png_compression_level = 8;
-  // Encoded in memory and written here: stbi_write_png's own file output ignores fwrite's and
-  // fclose's results, so a full disk would pass as success with a truncated file.
+  stbi_write_png_compression_level = kPngCompressionLevel;
   std::vector<unsigned char> png;
   const auto append = [](void* context, void* data, int size) {
     auto* bytes = static_cast<unsigned char*>(data);
     static_cast<std::vector<unsigned char>*>(context)->insert(static_cast<std::vector<unsigned char>*>(context)->end(),
                                                               bytes, bytes + size);
   };
+  // Sizes and data were checked above, so stb fails only to allocate its buffers.
   if (stbi_write_png_to_func(append, &png, image.width, image.height, 4, image.rgba.data(), image.width * 4) == 0) {
-    throw std::runtime_error(name.string() + ": PNG encoding failed");
+    throw std::bad_alloc();
   }
+  return png;
+}
+
+// stb reports a failed allocation as "outofmem"; it is not a fault of the file.
+[[noreturn]] void throwDecodeFailure(const std::string& context) {
+  const std::string reason = stbi_failure_reason();
+  if (reason == "outofmem") throw std::bad_alloc();
+  throw std::runtime_error(context + reason);
+}
+
+}  // namespace
+
+void writePngBytes(const Image& image, const std::filesystem::path& path, const std::filesystem::path& name) {
+  const std::vector<unsigned char> png = encodePng(image, name);
   std::FILE* out = std::fopen(path.c_str(), "wb");
   if (out == nullptr) throw std::runtime_error(name.string() + ": cannot open for writing: " + std::strerror(errno));
   const bool written = std::fwrite(png.data(), 1, png.size(), out) == png.size() && std::fflush(out) == 0;
   const int writeError = errno;
   const bool closed = std::fclose(out) == 0;
   if (!written || !closed) {
-    throw std::runtime_error(name.string() + ": writing the PNG failed: " + std::strerror(written ? errno : writeError));
+    throw std::runtime_error(name.string() + ": writing the PNG failed: " + io::describeWriteError(written ? errno : writeError));
   }
 }
 
+// Through the output layer: atomic for a file (a link's target included), streamed to a device,
+// FIFO or descriptor (io/output_file.h).
 void writePng(const Image& image, const std::filesystem::path& path) {
-  io::AtomicOutputFile file(path);
-  writePngBytes(image, file.temporaryPath(), path);
+  io::OutputFile file(path, "PNG");
+  const std::vector<unsigned char> png = encodePng(image, path);
+  file.write(std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
   file.commit();
+}
+
+// Read by hand: stb's own header reader refuses pictures above 1 GiB without saying their size.
+PngSize readPngSize(const std::filesystem::path& path) {
+  // The signature, then the IHDR chunk, which PNG requires first: length 13, "IHDR", width and
+  // height as big-endian 32-bit numbers.
+  constexpr unsigned char kStart[16] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n', 0, 0, 0, 13, 'I', 'H', 'D', 'R'};
+  unsigned char head[24] = {};
+  std::FILE* in = std::fopen(path.c_str(), "rb");
+  if (in == nullptr) throw std::runtime_error(path.string() + ": cannot open: " + std::strerror(errno));
+  const std::size_t got = std::fread(head, 1, sizeof head, in);
+  std::fclose(in);
+  if (got != sizeof head || std::memcmp(head, kStart, sizeof kStart) != 0) {
+    throw std::runtime_error(path.string() + ": cannot read the PNG header: no IHDR chunk where PNG puts it");
+  }
+  const auto number = [&](int at) {
+    return static_cast<std::uint32_t>(head[at]) << 24 | static_cast<std::uint32_t>(head[at + 1]) << 16 |
+           static_cast<std::uint32_t>(head[at + 2]) << 8 | static_cast<std::uint32_t>(head[at + 3]);
+  };
+  // PNG allows sides up to 2^31 - 1, and 0 nowhere.
+  const std::uint32_t width = number(16), height = number(20);
+  if (width == 0 || height == 0 || width > 0x7fffffffu || height > 0x7fffffffu) {
+    throw std::runtime_error(path.string() + ": cannot read the PNG header: a side of " +
+                             std::to_string(width == 0 || width > 0x7fffffffu ? width : height) + " pixels");
+  }
+  return {static_cast<int>(width), static_cast<int>(height)};
 }
 
 Image readPng(const std::filesystem::path& path) {
   int width = 0, height = 0, channels = 0;
   stbi_uc* data = stbi_load(path.c_str(), &width, &height, &channels, 4);
-  if (data == nullptr) {
-    throw std::runtime_error(path.string() + ": cannot read PNG: " + stbi_failure_reason());
-  }
+  if (data == nullptr) throwDecodeFailure(path.string() + ": cannot read PNG: ");
   Image image(width, height);
   std::copy(data, data + image.rgba.size(), image.rgba.begin());
   stbi_image_free(data);
@@ -62,7 +111,7 @@ Image readPng(const std::filesystem::path& path) {
 Image decodePng(std::span<const std::uint8_t> bytes, std::string_view name) {
   int width = 0, height = 0, channels = 0;
   stbi_uc* data = stbi_load_from_memory(bytes.data(), static_cast<int>(bytes.size()), &width, &height, &channels, 4);
-  if (data == nullptr) throw std::runtime_error(std::string(name) + ": cannot decode PNG: " + stbi_failure_reason());
+  if (data == nullptr) throwDecodeFailure(std::string(name) + ": cannot decode PNG: ");
   Image image(width, height);
   std::copy(data, data + image.rgba.size(), image.rgba.begin());
   stbi_image_free(data);

@@ -8,6 +8,7 @@
 
 #include "image/image.h"
 #include "pipeline/motion_survey.h"
+#include "pipeline/resources.h"
 #include "pipeline/simulation.h"
 #include "pipeline/snapshot.h"
 #include "render/renderer.h"
@@ -30,6 +31,9 @@ StillResult renderStill(const scene::SceneConfig& scene, const StillRequest& req
   simulation.cancel = request.cancel;
   render::RenderSettings settings = scene.render.picture;
   settings.reuseStaticBackground = false;  // one frame: nothing to reuse
+  // llvmpipe does not check its allocations: short of memory, it crashes or hangs rather than
+  // failing, so what it needs is checked first.
+  requireRendererAddressSpace(settings);
   render::Renderer renderer(settings);  // before the physics: bad render settings fail fast
   const MotionSurvey survey = surveyMotion(simulation);
   StillResult result;

@@ -8,11 +8,15 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <mutex>
+#include <new>
 #include <stdexcept>
+#include <system_error>
 #include <thread>
 
 #include "pipeline/cancelled.h"
 #include "pipeline/coin_run.h"
+#include "pipeline/resources.h"
 #include "pipeline/simulation.h"
 #include "pipeline/trajectory_csv.h"
 #include "pipeline/video_frames.h"
@@ -112,6 +116,8 @@ std::string pointRow(const SweepSpec& spec, long point, const std::atomic<bool>*
     row += fmt::format(",{},{},{},{},{},{}", s.end, s.tEnd, s.thetaMin, s.thetaMax, s.energyStart, s.energyEnd);
   } catch (const Cancelled&) {
     throw;  // not the point's failure: the whole sweep stops
+  } catch (const std::bad_alloc&) {
+    throw;  // nor is memory running out, which would fail every point after it
   } catch (const std::exception& e) {
     row += "," + csvField(std::string("error: ") + e.what()) + ",,,,,";
   }
@@ -200,23 +206,39 @@ SweepResult runSweep(const SweepSpec& spec, std::ostream& out, const std::functi
     const long blockSize = std::min(kBlockSize, mine - blockStart);
     rows.assign(static_cast<std::size_t>(blockSize), std::string());
     std::atomic<long> next{0};
-    std::atomic<bool> cancelled{false};
+    // The first exception of any thread (Cancelled, out of memory), rethrown here once all have
+    // stopped: one escaping a thread would end the process through std::terminate.
+    std::mutex failureMutex;
+    std::exception_ptr failure;
     const auto work = [&] {
       for (long i; (i = next.fetch_add(1)) < blockSize;) {
         try {
           throwIfCancelled(cancel);
           rows[static_cast<std::size_t>(i)] = pointRow(spec, first + (blockStart + i) * step, cancel);
-        } catch (const Cancelled&) {
-          cancelled = true;  // an exception must not leave a worker thread
+        } catch (...) {
+          const std::lock_guard lock(failureMutex);
+          if (!failure) failure = std::current_exception();
+          next = blockSize;  // the other threads stop after their point
           return;
         }
       }
     };
-    std::vector<std::jthread> helpers;
-    for (int t = 1; t < threads; ++t) helpers.emplace_back(work);
-    work();
-    helpers.clear();  // joins
-    if (cancelled) throw Cancelled();
+    {
+      std::vector<std::jthread> helpers;  // joined when the block ends, also when starting one throws
+      for (int t = 1; t < threads; ++t) {
+        try {
+          helpers.emplace_back(work);
+        } catch (const std::system_error& e) {
+          next = blockSize;
+          throw std::runtime_error(fmt::format("cannot start sweep thread {} of {}: {}: a thread needs memory for its "
+                                               "stack, within {}, and counts against the processes a user may run "
+                                               "(ulimit -u); give fewer --threads", t + 1, threads, e.code().message(),
+                                               memoryLimitDescription()));
+        }
+      }
+      work();
+    }
+    if (failure) std::rethrow_exception(failure);
     for (const std::string& row : rows) {
       out << row << '\n';
       if (row.find(",error: ") != std::string::npos || row.find(",\"error: ") != std::string::npos) ++result.failed;
@@ -254,7 +276,7 @@ bool endsWithNewline(std::ifstream& in) {
 
 }  // namespace
 
-void mergeSweepShards(const std::vector<std::filesystem::path>& shards, std::ostream& out) {
+void mergeSweepShards(const std::vector<std::filesystem::path>& shards, std::ostream& out, const std::atomic<bool>* cancel) {
   if (shards.empty()) throw std::invalid_argument("sweep-merge: give the shard files to merge");
   std::string header;
   std::map<long, std::string> rows;  // point -> row
@@ -284,6 +306,7 @@ void mergeSweepShards(const std::vector<std::filesystem::path>& shards, std::ost
     }
     const std::size_t headerFields = csvFieldCount(header);
     for (long lineNumber = 2; std::getline(in, line); ++lineNumber) {
+      throwIfCancelled(cancel);
       long point = -1;
       const auto comma = line.find(',');
       const auto [end, error] = std::from_chars(line.data(), line.data() + std::min(comma, line.size()), point);
@@ -305,13 +328,30 @@ void mergeSweepShards(const std::vector<std::filesystem::path>& shards, std::ost
   if (!repeated.empty()) throw std::runtime_error(fmt::format("sweep-merge: points repeated: {}", list(repeated)));
   // Shards deal the points out in turn, so a lost shard leaves holes below the last point present
   // (only a shard holding nothing but the grid's top points could go unseen: grids smaller than
-  // the number of shards).
-  std::vector<long> missing;
-  const long last = rows.empty() ? -1 : rows.rbegin()->first;
-  for (long p = 0; p <= last; ++p) {
-    if (!rows.contains(p)) missing.push_back(p);
+  // the number of shards). Holes are found between the rows present, never by counting up to the
+  // last point: a damaged row numbered 9e18 must not make us count to it. The first holes are
+  // named, a run of three or more points as a range.
+  constexpr std::size_t kHolesNamed = 20;
+  std::vector<std::string> holes;
+  long missingPoints = 0, namedPoints = 0, expected = 0;
+  for (const auto& [point, row] : rows) {
+    if (point > expected) {
+      const long count = point - expected;
+      missingPoints += count;
+      if (holes.size() < kHolesNamed) {
+        holes.push_back(count == 1   ? fmt::format("{}", expected)
+                        : count == 2 ? fmt::format("{}, {}", expected, expected + 1)
+                                     : fmt::format("{} to {}", expected, point - 1));
+        namedPoints += count;
+      }
+    }
+    expected = point + 1;
   }
-  if (!missing.empty()) throw std::runtime_error(fmt::format("sweep-merge: points missing: {}", list(missing)));
+  if (missingPoints > 0) {
+    throw std::runtime_error(fmt::format("sweep-merge: points missing: {}{}", fmt::join(holes, ", "),
+                                         missingPoints > namedPoints ? fmt::format(" and {} more", missingPoints - namedPoints)
+                                                                     : ""));
+  }
   out << header << '\n';
   for (const auto& [point, row] : rows) out << row << '\n';
   if (!out) throw std::runtime_error("sweep-merge: writing the merged file failed");

@@ -73,7 +73,8 @@ SweepResult runSweep(const SweepSpec& spec, std::ostream& out, const std::functi
 
 // Concatenates shard files in point order after checking that they share one header, that no
 // point appears twice and that none is missing below the last one. Throws std::runtime_error
-// naming the repeated or missing points.
-void mergeSweepShards(const std::vector<std::filesystem::path>& shards, std::ostream& out);
+// naming the repeated or missing points; a set `cancel` stops the reading with Cancelled.
+void mergeSweepShards(const std::vector<std::filesystem::path>& shards, std::ostream& out,
+                      const std::atomic<bool>* cancel = nullptr);
 
 }  // namespace coinroll::pipeline

@@ -14,6 +14,7 @@
 #include "pipeline/coin_run.h"
 #include "pipeline/coin_sound.h"
 #include "pipeline/motion_survey.h"
+#include "pipeline/resources.h"
 #include "pipeline/simulation.h"
 #include "pipeline/snapshot.h"
 #include "render/renderer.h"
@@ -128,6 +129,10 @@ VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& si
   simulation.cancel = options.cancel;
   render::RenderSettings settings = scene.render.picture;
   settings.reuseStaticBackground = options.reuseStaticBackground;
+  // llvmpipe does not check its allocations: short of memory, it crashes or hangs rather than
+  // failing; an encoder fails mid-clip without saying why. So what both need is checked first.
+  const std::uint64_t frameBytes = 4 * static_cast<std::uint64_t>(settings.width) * static_cast<std::uint64_t>(settings.height);
+  requireRendererAddressSpace(settings, sink.workingMemory(frameBytes));
   render::Renderer renderer(settings);
   const MotionSurvey survey = surveyMotion(simulation);
 

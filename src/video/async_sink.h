@@ -34,6 +34,10 @@ class AsyncSink final : public FrameSink {
   void pushAudio(std::span<const float> samples) override;
   // Waits for the queue to drain, then finishes the inner sink (on the caller's thread).
   void finish() override;
+  // The queue, the frame in the worker's hands and the copy push() makes, and the inner sink's.
+  std::uint64_t workingMemory(std::uint64_t frameBytes) const override {
+    return (capacity_ + 2) * frameBytes + inner_->workingMemory(frameBytes);
+  }
 
  private:
   void runWorker();

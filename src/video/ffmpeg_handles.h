@@ -12,9 +12,12 @@ extern "C" {
 #include <libswscale/swscale.h>
 }
 
+#include <cerrno>
 #include <memory>
 #include <stdexcept>
 #include <string>
+
+#include "io/output_file.h"
 
 namespace coinroll::video::detail {
 
@@ -54,6 +57,7 @@ using DictionaryPtr = std::unique_ptr<AVDictionary, DictionaryDeleter>;
 
 // FFmpeg's text for an AVERROR code (what av_err2str gives, without its C99 compound literal).
 inline std::string describeAvError(int errorCode) {
+  if (errorCode == AVERROR(EFBIG)) return io::describeWriteError(EFBIG);  // names the limit reached
   char text[AV_ERROR_MAX_STRING_SIZE] = {};
   if (av_strerror(errorCode, text, sizeof text) < 0) return "unknown FFmpeg error " + std::to_string(errorCode);
   return text;

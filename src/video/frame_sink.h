@@ -1,6 +1,7 @@
 #pragma once
 // Where rendered frames go. One sink per output format; the frame loop only knows this interface.
 
+#include <cstdint>
 #include <span>
 
 #include "image/image.h"
@@ -26,6 +27,12 @@ class FrameSink {
   // Completes the output and publishes it under its final name in one step. A sink destroyed
   // without a successful finish() leaves nothing under the final name.
   virtual void finish() = 0;
+
+  // Bytes the sink may allocate while frames of `frameBytes` bytes each arrive (an upper
+  // estimate): an encoder that runs short of memory mid-clip fails without saying why ("Generic
+  // error in an external library"), so the frame loop checks this against the memory left
+  // before any work (pipeline/resources.h).
+  virtual std::uint64_t workingMemory(std::uint64_t /*frameBytes*/) const { return 0; }
 
  protected:
   FrameSink() = default;

@@ -3,6 +3,7 @@
 #include <cctype>
 #include <stdexcept>
 
+#include "io/destination.h"
 #include "video/png_sequence_sink.h"
 
 namespace coinroll::video {
@@ -19,7 +20,9 @@ bool hasMp4Extension(const std::filesystem::path& path) {
 
 std::unique_ptr<FrameSink> makeSinkForPath(const std::filesystem::path& path, const Mp4Options& options) {
   if (looksLikeSequencePattern(path.filename().string())) return std::make_unique<PngSequenceSink>(path);
-  if (hasMp4Extension(path)) return std::make_unique<Mp4Sink>(path, options);
+  // A device, FIFO or descriptor has no extension of its own to choose by (/dev/null,
+  // /dev/fd/63 from `-o >(...)`): it gets the default kind, as the default name does.
+  if (hasMp4Extension(path) || io::namesStream(path)) return std::make_unique<Mp4Sink>(path, options);
   throw std::invalid_argument(path.string() +
                               ": unknown output kind: expected a video ending in .mp4 (out.mp4) or a PNG "
                               "sequence pattern with one %d or %0Nd conversion (out_%05d.png)");

@@ -10,7 +10,8 @@
 namespace coinroll::video {
 
 // A path whose file name has a % conversion ("out/frame_%05d.png") gives a PngSequenceSink; a path ending in
-// ".mp4" (any case) gives an Mp4Sink configured by `options` (the PNG sequence ignores them).
+// ".mp4" (any case), or naming a device, FIFO or descriptor (/dev/null, /dev/stdout, /dev/fd/N),
+// gives an Mp4Sink configured by `options` (the PNG sequence ignores them).
 // Anything else throws std::invalid_argument naming the path and the two accepted forms; the
 // sinks' constructors throw for a bad pattern, bad options or a missing directory.
 std::unique_ptr<FrameSink> makeSinkForPath(const std::filesystem::path& path, const Mp4Options& options);

@@ -19,7 +19,9 @@ void validate(const Mp4Options& options);
 // BT.709 primaries, transfer and matrix, limited ("TV") range, all tagged; moov before mdat
 // (faststart, so players can start before the download ends); byte-identical for identical
 // frames and options on the same FFmpeg/x264 build (bit-exact flags, no dates or version tags).
-// The file is written under a temporary name beside the destination and renamed in finish().
+// The file is written under a temporary name beside the destination and renamed in finish();
+// for a stream destination (a device, FIFO or descriptor, which the muxer cannot seek) it is
+// encoded in $TMPDIR and copied to the stream in finish() (io::OutputFile::Access::ByPath).
 class Mp4Sink final : public FrameSink {
  public:
   // Throws std::invalid_argument for bad options, std::runtime_error naming the destination if
@@ -35,6 +37,8 @@ class Mp4Sink final : public FrameSink {
   // Drains the encoder, writes the trailer (moving moov to the front) and renames the file into
   // place. Throws std::runtime_error if no frame was pushed.
   void finish() override;
+  // x264's frames in flight (lookahead, references, B-frames) for the preset, from measurements.
+  std::uint64_t workingMemory(std::uint64_t frameBytes) const override;
 
   std::int64_t framesPushed() const { return framesPushed_; }
 

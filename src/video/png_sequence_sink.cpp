@@ -1,6 +1,7 @@
 #include "video/png_sequence_sink.h"
 
 #include <cctype>
+#include <climits>
 #include <stdexcept>
 #include <system_error>
 
@@ -79,7 +80,7 @@ PngSequenceSink::PngSequenceSink(std::filesystem::path pattern) {
   }
 }
 
-PngSequenceSink::~PngSequenceSink() = default;  // uncommitted temporaries remove themselves
+PngSequenceSink::~PngSequenceSink() = default;  // an uncommitted group removes its temporaries
 
 std::filesystem::path PngSequenceSink::pathOfFrame(int index) const {
   std::string number = std::to_string(index);
@@ -89,14 +90,42 @@ std::filesystem::path PngSequenceSink::pathOfFrame(int index) const {
 
 void PngSequenceSink::push(const image::Image& frame) {
   if (finished_) throw std::logic_error(pathOfFrame(0).string() + ": push() after finish()");
-  auto file = std::make_unique<io::AtomicOutputFile>(pathOfFrame(static_cast<int>(staged_.size())));
-  image::writePngBytes(frame, file->temporaryPath(), file->destination());
-  staged_.push_back(std::move(file));
+  const std::filesystem::path name = pathOfFrame(static_cast<int>(frames_.size()));
+  image::writePngBytes(frame, frames_.add(name), name);
+}
+
+std::vector<std::filesystem::path> PngSequenceSink::framesFrom(int count) const {
+  std::vector<std::filesystem::path> frames;
+  std::error_code error;
+  const std::filesystem::path directory = directory_.empty() ? "." : directory_;
+  for (std::filesystem::directory_iterator entry(directory, error), end; !error && entry != end; entry.increment(error)) {
+    const std::string name = entry->path().filename().string();
+    if (name.size() <= prefix_.size() + suffix_.size() || name.compare(0, prefix_.size(), prefix_) != 0 ||
+        name.compare(name.size() - suffix_.size(), suffix_.size(), suffix_) != 0) {
+      continue;
+    }
+    const std::string digits = name.substr(prefix_.size(), name.size() - prefix_.size() - suffix_.size());
+    if (digits.size() > static_cast<std::size_t>(kMaxDigits) ||
+        digits.find_first_not_of("0123456789") != std::string::npos) {
+      continue;
+    }
+    const long long number = std::stoll(digits);
+    // Only the exact name the pattern gives that number: "f_0004.png" is no frame of f_%03d.png.
+    if (number < count || number > INT_MAX || pathOfFrame(static_cast<int>(number)).filename() != name) continue;
+    frames.push_back(directory_ / name);
+  }
+  if (error) {
+    throw std::runtime_error(pathOfFrame(0).string() + ": cannot list '" + directory.string() +
+                             "' for frames of an earlier sequence: " + error.message());
+  }
+  return frames;
 }
 
 void PngSequenceSink::finish() {
   if (finished_) throw std::logic_error(pathOfFrame(0).string() + ": finish() called twice");
-  for (const auto& file : staged_) file->commit();
+  if (frames_.size() == 0) throw std::runtime_error(pathOfFrame(0).string() + ": no frames to write");
+  for (const std::filesystem::path& stale : framesFrom(static_cast<int>(frames_.size()))) frames_.retire(stale);
+  frames_.commit();
   finished_ = true;
 }
 

@@ -2,11 +2,10 @@
 // A numbered sequence of PNG files, one per frame.
 
 #include <filesystem>
-#include <memory>
 #include <string>
 #include <vector>
 
-#include "io/atomic_file.h"
+#include "io/output_group.h"
 
 #include "video/frame_sink.h"
 
@@ -17,21 +16,28 @@ namespace coinroll::video {
 // there. The directory part is taken literally, '%' included.
 // Frames are numbered from 0: "out/frame_%05d.png" gives out/frame_00000.png, frame_00001.png, ...
 //
-// Each frame is written as it arrives under a hidden temporary name beside its final one, every
-// write checked; finish() renames them all into place (thousands a second: renames are cheap).
+// The sequence is all or nothing (io::OutputGroup, docs/outputs.md). Each frame is written as it
+// arrives under a hidden temporary name beside its final one, every write checked; finish()
+// renames them all into place (thousands a second: renames are cheap) and removes the frames of
+// an earlier, longer sequence with this pattern that the new one does not reach (the names
+// pathOfFrame gives for numbers from the frame count on, and no other file), so the directory
+// holds exactly this sequence. If any of that fails, the renames already done are undone.
 // Destroyed without finish(), the sink removes only its temporaries, so an interrupted or failed
-// render leaves no partial sequence and never touches files it did not write: files of an earlier
-// run with the same names are replaced only when this run completes, and those it does not reach
-// remain.
+// render leaves the directory as it was.
 class PngSequenceSink final : public FrameSink {
  public:
   // Throws std::invalid_argument naming the pattern if it is malformed, std::runtime_error if its
-  // directory does not exist.
+  // directory does not exist. A frame's name may be a link (its target is written, as for any
+  // output) but not a device, FIFO or descriptor: frames are published by renames.
   explicit PngSequenceSink(std::filesystem::path pattern);
   ~PngSequenceSink() override;
 
   void push(const image::Image& frame) override;
+  // Publishes the frames and removes the earlier sequence's higher-numbered ones, or changes
+  // nothing and throws std::runtime_error; also when no frame was pushed.
   void finish() override;
+  // Encoding one frame at a time: stb's filtered rows, its compressed output and our copy of it.
+  std::uint64_t workingMemory(std::uint64_t frameBytes) const override { return 3 * frameBytes; }
 
   // The file frame `index` goes to.
   std::filesystem::path pathOfFrame(int index) const;
@@ -41,8 +47,12 @@ class PngSequenceSink final : public FrameSink {
   std::string prefix_;  // file name before the number
   std::string suffix_;  // file name after the number
   int minimumDigits_ = 0;
-  std::vector<std::unique_ptr<io::AtomicOutputFile>> staged_;  // frame i's temporary, in order
+  io::OutputGroup frames_{"PNG"};  // frame i is the i-th file staged
   bool finished_ = false;
+
+  // Frames with this pattern already in the directory numbered `count` or more: those of an
+  // earlier, longer sequence that this one replaces.
+  std::vector<std::filesystem::path> framesFrom(int count) const;
 };
 
 // True if `fileName` contains a '%' other than a "%%" escape, i.e. it is meant as a sequence pattern.

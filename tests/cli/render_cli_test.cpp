@@ -166,3 +166,44 @@ TEST_F(RenderCliTest, AFullDiskFailsEveryWriterWithoutLeavingAFile) {
 }
 
 }  // namespace
+
+namespace {
+
+// As a user's shell sets the limit, SIGXFSZ at its default: the signal used to kill coinroll and
+// leave its temporary; now the write fails, naming the limit, and nothing is left.
+TEST_F(RenderCliTest, AFileSizeLimitIsAWriteErrorEvenWithSigxfszAtItsDefault) {
+  const std::string limit = "ulimit -f 1; ";
+  for (const std::string& command : {"still " + scene_.string() + " --time 0.5 -o " + (dir_ / "still.png").string(),
+                                     "render " + scene_.string() + " -q -o " + (dir_ / "clip.mp4").string(),
+                                     "render " + scene_.string() + " -q -o " + (dir_ / "f_%03d.png").string(),
+                                     "simulate " + scene_.string() + " --csv " + (dir_ / "run.csv").string()}) {
+    const RunResult r = run(command, limit);
+    EXPECT_EQ(r.exitCode, 1) << command << ": " << r.output;
+    // (In bytes: "ulimit -f 1" is 512 bytes to dash, which popen runs, and 1024 to bash.)
+    EXPECT_NE(r.output.find("File too large (the file-size limit, ulimit -f, is "), std::string::npos)
+        << command << ": " << r.output;
+    EXPECT_TRUE(leftovers().empty()) << command << " left " << leftovers().front();
+  }
+}
+
+// OpenGL on llvmpipe does not check its allocations: under an address-space limit too small for
+// the picture it segfaulted or hung. The need is checked first and the message names it; a
+// 7680x4320 picture needs about 2 GiB, more than a 1.5 GB limit leaves beside the binary.
+TEST_F(RenderCliTest, UnderAnAddressSpaceLimitTooSmallRenderingIsRefusedNamingIt) {
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "AddressSanitizer cannot start under an address-space limit (it reserves terabytes of shadow)";
+#endif
+  const std::string limit = "ulimit -v 1500000; ";
+  const std::string big = " --set render.width=7680 --set render.height=4320";
+  for (const std::string& command : {"still " + scene_.string() + " --time 0.5 -o " + (dir_ / "still.png").string() + big,
+                                     "render " + scene_.string() + " -q -o " + (dir_ / "clip.mp4").string() + big}) {
+    const RunResult r = run(command, limit);
+    EXPECT_EQ(r.exitCode, 1) << command << ": " << r.output;
+    EXPECT_NE(r.output.find("not enough memory for drawing"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("7680x4320 pictures"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("(ulimit -v 1500000)"), std::string::npos) << r.output;
+    EXPECT_TRUE(leftovers().empty()) << command << " left " << leftovers().front();
+  }
+}
+
+}  // namespace

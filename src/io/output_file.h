@@ -1,0 +1,83 @@
+#pragma once
+// The one output layer every command writes through (docs/outputs.md). What happens depends on
+// what the name turns out to be (io/destination.h):
+// - a new name or a regular file: the content goes to a hidden temporary beside it and is
+//   renamed onto it by commit(), so a failed or interrupted run never leaves a truncated file
+//   under the name (rename(2) within one directory is atomic); a replaced file keeps its
+//   permission bits (and, as root, its owner); a file the user could not write is refused;
+// - a symbolic link: the same for the file it leads to; the link stays a link;
+// - a device, FIFO or descriptor (/dev/null, a FIFO, /dev/stdout, /dev/fd/N from `>(...)`):
+//   written in place as the content is made; what was written before a failure stays written
+//   (a pipe cannot take bytes back), as with `--csv -`.
+// Every write and the close are checked: a full disk, a file-size limit or a vanished reader is
+// an exception naming the output and the system's reason.
+
+#include <filesystem>
+#include <memory>
+#include <ostream>
+#include <string>
+#include <string_view>
+
+#include "io/destination.h"
+#include "io/unfinished_files.h"
+
+namespace coinroll::io {
+
+// The system's text for a failed write's `error` (strerror), naming for EFBIG the limit that was
+// reached: "File too large (the file-size limit, ulimit -f, is 512 bytes)".
+std::string describeWriteError(int error);
+
+class OutputFile {
+ public:
+  enum class Access {
+    Sequential,  // the content is written front to back through write() or stream()
+    ByPath,      // a library writes temporaryPath() itself and may seek and reread it (the MP4
+                 // muxer moving its index to the front); for a stream destination the file is
+                 // made in $TMPDIR and copied to the stream by commit()
+  };
+
+  // Resolves and checks `name` and opens what the content goes to, so a name that cannot work
+  // fails here, before any work. `what` names the content in messages ("CSV" gives
+  // "o.csv: writing the CSV failed: No space left on device"). Throws std::invalid_argument for
+  // an empty name, std::runtime_error naming it otherwise.
+  OutputFile(const std::filesystem::path& name, std::string what, Access access = Access::Sequential);
+  ~OutputFile();  // without commit(): removes the temporary; a stream is closed as it is
+
+  OutputFile(const OutputFile&) = delete;
+  OutputFile& operator=(const OutputFile&) = delete;
+
+  const Destination& destination() const { return destination_; }
+  const std::filesystem::path& name() const { return destination_.name; }
+
+  // Access::ByPath: the file to write. Empty for a Sequential stream, which has none.
+  const std::filesystem::path& temporaryPath() const { return temporary_; }
+
+  // Access::Sequential: appends bytes (std::runtime_error naming the output on a failed write).
+  void write(std::string_view bytes);
+  // Access::Sequential: a buffered stream over write(); a failed write throws from the insertion
+  // that reached it (its exception mask holds badbit), so a long run stops at the first failure.
+  std::ostream& stream();
+
+  // Completes the output: flushes and closes, then renames the temporary into place, or copies
+  // it to the stream (Access::ByPath). Throws std::runtime_error naming the output.
+  void commit();
+
+ private:
+  class StreamBuffer;
+  void requireSequential() const;
+  void writeBytes(const char* data, std::size_t size);
+  [[noreturn]] void failWrite(int error) const;
+  void copyTemporaryToStream();
+
+  Destination destination_;
+  std::string what_;
+  const Access access_;
+  std::filesystem::path temporary_;  // the file by path: beside the destination, or in $TMPDIR
+  ListedFile listedTemporary_;       // temporary_ on the list of unfinished files, until published
+  int descriptor_ = -1;              // where the bytes go: the temporary, or the stream
+  std::unique_ptr<StreamBuffer> buffer_;
+  std::unique_ptr<std::ostream> stream_;
+  bool committed_ = false;
+};
+
+}  // namespace coinroll::io

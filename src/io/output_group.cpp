@@ -1,0 +1,162 @@
+#include "io/output_group.h"
+
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <stdexcept>
+
+#include "io/temporary.h"
+#include "io/unfinished_files.h"
+
+namespace coinroll::io {
+
+OutputGroup::OutputGroup(std::string what) : what_(std::move(what)) {}
+
+OutputGroup::~OutputGroup() {
+  if (committed_) return;
+  for (const Staged& file : staged_) {
+    if (!file.placed) ::unlink(file.temporary.c_str());
+  }
+}
+
+std::filesystem::path OutputGroup::add(const std::filesystem::path& name) {
+  if (committed_) throw std::logic_error(name.string() + ": add() after commit()");
+  Destination destination = resolveDestination(name);
+  if (destination.isStream()) {
+    throw std::runtime_error(name.string() + ": cannot write: not a regular file (a device, FIFO or open descriptor); each " +
+                             what_ + " of a sequence is a file of its own");
+  }
+  checkReplaceable(destination);
+  TemporaryFile temporary = createTemporaryFor(destination);
+  ::close(temporary.descriptor);  // the caller writes it by path
+  Staged file;
+  file.destination = std::move(destination);
+  file.temporary = temporary.path;
+  file.listedTemporary = std::move(temporary.listed);
+  staged_.push_back(std::move(file));
+  return staged_.back().temporary;
+}
+
+void OutputGroup::retire(const std::filesystem::path& path) {
+  if (committed_) throw std::logic_error(path.string() + ": retire() after commit()");
+  Retired file;
+  file.path = path;
+  retired_.push_back(std::move(file));
+}
+
+void OutputGroup::keepPrevious(Staged& file) {
+  const std::filesystem::path& path = file.destination.path;
+  struct stat info {};
+  if (::lstat(path.c_str(), &info) != 0) {
+    if (errno == ENOENT) return;  // a new name: nothing to keep
+    throw std::runtime_error(file.destination.name.string() + ": " + std::strerror(errno));
+  }
+  if (!S_ISREG(info.st_mode)) {
+    throw std::runtime_error(file.destination.name.string() + ": is no longer a regular file; the " + what_ +
+                             " cannot replace it");
+  }
+  file.previous = siblingName(path, "previous");
+  const UnfinishedFilesSection section;  // within commit()'s: listed before it exists
+  file.listedPrevious = section.list(file.previous);
+  // A second hard link keeps the name on the earlier file until the rename replaces it; where
+  // hard links are refused (some file systems, or another user's file under
+  // fs.protected_hardlinks) the file is moved aside, and the name is missing for a moment.
+  if (::link(path.c_str(), file.previous.c_str()) == 0) {
+    file.previousIsLink = true;
+    return;
+  }
+  if (std::rename(path.c_str(), file.previous.c_str()) == 0) return;
+  const int error = errno;
+  file.previous.clear();
+  file.listedPrevious.reset();
+  throw std::runtime_error(file.destination.name.string() + ": cannot set the earlier file aside: " + std::strerror(error));
+}
+
+void OutputGroup::commit() {
+  if (committed_) throw std::logic_error("commit() called twice");
+  {
+    // A process ending at once (io/unfinished_files.h) waits for this section, so it never
+    // leaves the directory half published: it finds the commit done, or undone.
+    const UnfinishedFilesSection section;
+    try {
+      for (Staged& file : staged_) {
+        keepPrevious(file);
+        if (std::rename(file.temporary.c_str(), file.destination.path.c_str()) != 0) {
+          throw std::runtime_error(file.destination.name.string() + ": cannot move the finished " + what_ +
+                                   " into place: " + std::strerror(errno));
+        }
+        file.placed = true;
+        file.listedTemporary.reset();
+      }
+      for (Retired& old : retired_) {
+        const std::filesystem::path previous = siblingName(old.path, "previous");
+        ListedFile listed = section.list(previous);
+        if (std::rename(old.path.c_str(), previous.c_str()) == 0) {
+          old.previous = previous;
+          old.listedPrevious = std::move(listed);
+        } else if (errno != ENOENT) {  // already gone is as good as removed
+          throw std::runtime_error(old.path.string() + ": cannot remove this " + what_ +
+                                   " left from an earlier, longer sequence: " + std::strerror(errno));
+        }
+      }
+    } catch (const std::runtime_error& error) {
+      const std::string problems = rollBack();
+      throw std::runtime_error(std::string(error.what()) +
+                               (problems.empty() ? "; nothing was published and the earlier files are as they were"
+                                                 : problems));
+    }
+    committed_ = true;
+  }
+  for (Staged& file : staged_) {
+    if (!file.previous.empty()) ::unlink(file.previous.c_str());
+    file.listedPrevious.reset();
+  }
+  for (Retired& old : retired_) {
+    if (!old.previous.empty()) ::unlink(old.previous.c_str());
+    old.listedPrevious.reset();
+  }
+}
+
+std::string OutputGroup::rollBack() {
+  std::string problems;
+  // Either way the kept file is no longer unfinished: back under its name, or the one copy of the
+  // user's earlier content, which the message names and an ending process must not remove.
+  const auto restore = [&](std::filesystem::path& previous, ListedFile& listed, const std::filesystem::path& path) {
+    if (std::rename(previous.c_str(), path.c_str()) == 0) {
+      previous.clear();
+    } else {
+      problems += "; " + path.string() + " could not be restored (" + std::strerror(errno) +
+                  "): its earlier content is in " + previous.string();
+    }
+    listed.reset();
+  };
+  for (auto old = retired_.rbegin(); old != retired_.rend(); ++old) {
+    if (!old->previous.empty()) restore(old->previous, old->listedPrevious, old->path);
+  }
+  for (auto file = staged_.rbegin(); file != staged_.rend(); ++file) {
+    const std::filesystem::path& path = file->destination.path;
+    if (file->placed) {
+      // The new file is under the name: the earlier one goes back over it, or it goes.
+      if (!file->previous.empty()) {
+        restore(file->previous, file->listedPrevious, path);
+      } else {
+        ::unlink(path.c_str());
+      }
+      file->placed = false;
+    } else if (!file->previous.empty()) {
+      if (file->previousIsLink) {
+        ::unlink(file->previous.c_str());  // the name never left the earlier file
+        file->previous.clear();
+        file->listedPrevious.reset();
+      } else {
+        restore(file->previous, file->listedPrevious, path);
+      }
+    }
+  }
+  return problems;
+}
+
+}  // namespace coinroll::io

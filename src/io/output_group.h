@@ -1,0 +1,68 @@
+#pragma once
+// Files published together or not at all: a PNG sequence's frames (docs/outputs.md). Each file is
+// written under a hidden temporary beside its name; commit() renames them all into place and
+// removes the files retired with them, and if any step fails it undoes the steps before it, so
+// the directory holds the earlier files exactly as they were. No file system renames many files
+// in one step, so a reader looking while commit() runs (a few milliseconds for thousands of
+// files) may see some new files beside old ones; a failure or an interruption never leaves that.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "io/destination.h"
+#include "io/unfinished_files.h"
+
+namespace coinroll::io {
+
+class OutputGroup {
+ public:
+  // `what` names one file's content in messages ("PNG").
+  explicit OutputGroup(std::string what);
+  ~OutputGroup();  // without commit(): removes the temporaries; the earlier files stay
+
+  OutputGroup(const OutputGroup&) = delete;
+  OutputGroup& operator=(const OutputGroup&) = delete;
+
+  // Stages `name`: resolves it (links followed; it must be a new name or a regular file, since
+  // it is published by a rename), refuses it as OutputFile would, creates its temporary with the
+  // mode of the file it replaces, and returns the temporary's path for the caller to write.
+  // Throws std::runtime_error naming `name`.
+  std::filesystem::path add(const std::filesystem::path& name);
+
+  // An existing file for commit() to remove along with publishing the staged ones (kept if the
+  // commit fails). Links are not followed: the name itself goes.
+  void retire(const std::filesystem::path& path);
+
+  std::size_t size() const { return staged_.size(); }
+
+  // Publishes every staged file and removes every retired one, or none of it: throws
+  // std::runtime_error naming the file that failed, after putting the earlier files back.
+  void commit();
+
+ private:
+  struct Staged {
+    Destination destination;
+    std::filesystem::path temporary;
+    std::filesystem::path previous;  // the replaced file, kept until the commit holds
+    bool previousIsLink = false;     // `previous` is a second hard link: the name kept its file
+    bool placed = false;             // the temporary was renamed onto the destination
+    ListedFile listedTemporary;      // unfinished files (io/unfinished_files.h) until placed
+    ListedFile listedPrevious;
+  };
+  struct Retired {
+    std::filesystem::path path;
+    std::filesystem::path previous;  // where it was moved; empty while it is still in place
+    ListedFile listedPrevious;
+  };
+
+  void keepPrevious(Staged& file);
+  std::string rollBack();
+
+  std::string what_;
+  std::vector<Staged> staged_;
+  std::vector<Retired> retired_;
+  bool committed_ = false;
+};
+
+}  // namespace coinroll::io

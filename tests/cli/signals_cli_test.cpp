@@ -1,0 +1,168 @@
+// Signals from outside (cli/interrupts.h, docs/outputs.md "Signals"): every request to stop, a
+// second one, and one that the work cannot answer in time all end the run with exit 1 and leave
+// no file, hidden temporaries included, and earlier files of the same names untouched.
+
+#include <gtest/gtest.h>
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "scratch_dir.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace std::chrono_literals;
+
+const std::string kEarlierFrame = "an earlier frame, which must survive";
+
+// A coinroll run in the background, started in `directory`, its stderr kept in a file outside it.
+class BackgroundRun {
+ public:
+  BackgroundRun(const fs::path& directory, const std::vector<std::string>& arguments)
+      : errors_(fs::temp_directory_path() / ("coinroll_signals_stderr_" + std::to_string(::getpid()))) {
+    pid_ = ::fork();
+    if (pid_ == 0) {
+      const std::string binary = std::string(COINROLL_BINARY_DIR) + "/coinroll";
+      const int error = ::open(errors_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+      if (error < 0 || ::dup2(error, STDERR_FILENO) < 0 || ::chdir(directory.c_str()) != 0) ::_exit(127);
+      std::vector<char*> argv{const_cast<char*>(binary.c_str())};
+      for (const std::string& argument : arguments) argv.push_back(const_cast<char*>(argument.c_str()));
+      argv.push_back(nullptr);
+      ::execv(binary.c_str(), argv.data());
+      ::_exit(127);
+    }
+  }
+  ~BackgroundRun() {
+    if (pid_ > 0 && !waited_) {
+      ::kill(pid_, SIGKILL);
+      ::waitpid(pid_, nullptr, 0);
+    }
+    std::error_code ignored;
+    fs::remove(errors_, ignored);
+  }
+  BackgroundRun(const BackgroundRun&) = delete;
+  BackgroundRun& operator=(const BackgroundRun&) = delete;
+
+  bool started() const { return pid_ > 0; }
+  void send(int signal) const { ::kill(pid_, signal); }
+  // The wait status (waitpid's).
+  int wait() {
+    int status = 0;
+    ::waitpid(pid_, &status, 0);
+    waited_ = true;
+    return status;
+  }
+  std::string errors() const {
+    std::ifstream in(errors_);
+    return {std::istreambuf_iterator<char>(in), {}};
+  }
+
+ private:
+  fs::path errors_;
+  pid_t pid_ = -1;
+  bool waited_ = false;
+};
+
+class SignalsCliTest : public coinroll::testing::ScratchDirTest {
+ protected:
+  void SetUp() override {
+    ScratchDirTest::SetUp();
+    std::ofstream(dir_ / "scene.json")
+        << R"({"coin": {"radius": 0.0375, "mass": 0.4}, "initial": {"theta": 10, "omega_Z": 12}, "duration": 60,
+              "render": {"width": 64, "height": 48}})";
+    std::ofstream(dir_ / "f_000.png") << kEarlierFrame;
+  }
+
+  // Hidden files in the directory: the temporaries of a run under way.
+  int hiddenFiles() const {
+    int count = 0;
+    for (const auto& entry : fs::directory_iterator(dir_)) count += entry.path().filename().string()[0] == '.';
+    return count;
+  }
+
+  // Waits (at most 10 s) until a run has at least `count` hidden files: its work is under way.
+  bool waitForHiddenFiles(int count) const {
+    for (int i = 0; i < 1000 && hiddenFiles() < count; ++i) std::this_thread::sleep_for(10ms);
+    return hiddenFiles() >= count;
+  }
+
+  // The directory holds what the test put there, as it was: the scene and the earlier frame.
+  void expectUntouched(const std::string& context) const {
+    std::vector<std::string> names;
+    for (const auto& entry : fs::directory_iterator(dir_)) names.push_back(entry.path().filename().string());
+    std::sort(names.begin(), names.end());
+    EXPECT_EQ(names, (std::vector<std::string>{"f_000.png", "scene.json"})) << context;
+    std::ifstream in(dir_ / "f_000.png");
+    EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}), kEarlierFrame) << context;
+  }
+};
+
+const std::vector<std::string> kSequence = {"render", "scene.json", "-q", "-o", "f_%03d.png"};
+
+TEST_F(SignalsCliTest, EveryRequestToStopLeavesNoFile) {
+  for (const int signal : {SIGHUP, SIGQUIT, SIGUSR1, SIGXCPU}) {
+    const std::string name = sigabbrev_np(signal);
+    BackgroundRun run(dir_, kSequence);
+    ASSERT_TRUE(run.started());
+    ASSERT_TRUE(waitForHiddenFiles(5)) << "SIG" << name << ": the render never started staging frames";
+    run.send(signal);
+    const int status = run.wait();
+    ASSERT_TRUE(WIFEXITED(status)) << "SIG" << name << " killed the run instead of stopping it";
+    EXPECT_EQ(WEXITSTATUS(status), 1) << name;
+    EXPECT_NE(run.errors().find("interrupted by SIG" + name), std::string::npos) << run.errors();
+    expectUntouched("SIG" + name);
+  }
+}
+
+// SIGSTOP holds the process while both signals arrive, so the second is there before the loop
+// can answer the first: the deterministic way to the second signal's path, with frames staged
+// (each run of a PNG sequence had left 706 and 848 of them) or an MP4 half encoded.
+TEST_F(SignalsCliTest, ASecondSignalWhileFramesAreStagedEndsAtOnceAndLeavesNothing) {
+  for (const std::string output : {"f_%03d.png", "o.mp4"}) {
+    BackgroundRun run(dir_, {"render", "scene.json", "-q", "-o", output});
+    ASSERT_TRUE(run.started());
+    ASSERT_TRUE(waitForHiddenFiles(output == "o.mp4" ? 1 : 20)) << output << ": the render never started writing";
+    run.send(SIGSTOP);
+    run.send(SIGINT);
+    run.send(SIGTERM);
+    run.send(SIGCONT);
+    const int status = run.wait();
+    ASSERT_TRUE(WIFEXITED(status)) << output << ": killed by a signal";
+    EXPECT_EQ(WEXITSTATUS(status), 1);
+    EXPECT_NE(run.errors().find("stopped at once; no unfinished file is left"), std::string::npos) << run.errors();
+    expectUntouched(output);
+  }
+}
+
+// Opening a FIFO waits for a reader, in a call no loop can poll: the grace timer ends the run.
+TEST_F(SignalsCliTest, ARequestToStopNotAnsweredInTimeEndsTheRunAtOnce) {
+  ASSERT_EQ(::mkfifo((dir_ / "fifo").c_str(), 0600), 0);
+  BackgroundRun run(dir_, {"simulate", "scene.json", "--csv", "fifo"});
+  ASSERT_TRUE(run.started());
+  std::this_thread::sleep_for(300ms);  // past the start, into the open
+  const auto sent = std::chrono::steady_clock::now();
+  run.send(SIGTERM);
+  const int status = run.wait();
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - sent).count();
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 1);
+  EXPECT_NE(run.errors().find("interrupted by SIGTERM and not stopped within 3 s"), std::string::npos) << run.errors();
+  EXPECT_GT(seconds, 2.5);  // the grace was given
+  EXPECT_LT(seconds, 4.5);  // and not more
+}
+
+}  // namespace

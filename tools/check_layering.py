@@ -30,7 +30,7 @@ MAY_INCLUDE = {
     "io": {},
     # Leaf utility: the RGBA Image type and PNG reading/writing.
     "image": {
-        "io": "PNGs are written through io::AtomicFile so a crash never leaves half a file",
+        "io": "PNGs are written through io::OutputFile so a crash never leaves half a file",
     },
     # draw(FrameSnapshot) -> Image; never physics/integrate/scene/pipeline/video.
     "render": {
@@ -40,7 +40,7 @@ MAY_INCLUDE = {
     # FrameSink per format; never render/physics/integrate/scene/pipeline.
     "video": {
         "image": "sinks consume image::Image frames; PNG sequences reuse image's PNG writer",
-        "io": "sinks write their output through io::AtomicFile (an unfinished sink leaves no file)",
+        "io": "sinks write their output through io::OutputFile (an unfinished sink leaves no file)",
     },
     # CoinModel, CoinState, rhs(): Eigen and std only.
     "physics": {},
@@ -68,7 +68,7 @@ MAY_INCLUDE = {
     },
     # Parse argv, build the pipeline, run, map errors to exit codes: may use everything.
     "cli": {
-        "io": "commands write their outputs through io::AtomicFile",
+        "io": "commands write their outputs through io::OutputFile",
         "image": "leaf utility (stills, frames)",
         "render": "everything below cli: render options may surface on the command line",
         "video": "picks and wraps a sink (make_sink, async_sink) for --output",

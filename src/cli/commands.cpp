@@ -30,6 +30,7 @@
 #include "image/image.h"
 #include "integrate/solver_config.h"
 #include "io/destination.h"
+#include "io/fnv1a.h"
 #include "io/output_file.h"
 #include "physics/observables.h"
 #include "physics/steady.h"
@@ -176,8 +177,7 @@ std::string fileNameFrom(const std::string& sceneName) {
   if (name[0] == '.') name[0] = '_';
   if (name == sceneName && name.size() <= kMaxDerivedNameBytes) return name;
   name.resize(std::min(name.size(), kMaxDerivedNameBytes));
-  std::uint64_t hash = 14695981039346656037ull;  // FNV-1a, 64 bits: stable across builds and machines
-  for (const char c : sceneName) hash = (hash ^ static_cast<unsigned char>(c)) * 1099511628211ull;
+  const std::uint64_t hash = io::fnv1a64(sceneName);
   return fmt::format("{}+{:08x}", name, static_cast<std::uint32_t>(hash ^ (hash >> 32)));
 }
 

@@ -52,11 +52,23 @@ struct SweepSpec {
   long maxPoints = kDefaultMaxPoints;
 };
 
-// "point,<keys>,end,t_end,theta_min,theta_max,energy_start,energy_end".
+// "point,<keys>,end,t_end,theta_min,theta_max,energy_start,energy_end,grid_points,sweep": the
+// contract's columns, then the sweep's identity (SweepIdentity).
 std::string sweepHeader(const std::vector<GridAxis>& axes);
 
 // Points in the whole grid; throws std::invalid_argument naming --grid when it exceeds maxPoints.
 long gridPointCount(const SweepSpec& spec);
+
+// What every row of a sweep carries after the contract's columns, the same in every shard and in
+// the unsharded file (so merged shards still equal it byte for byte): the number of points in the
+// whole grid, which lets a merge find points missing at the grid's top, and 16 hexadecimal
+// digits of FNV-1a over the scene document (after --set, keys sorted) and every axis' key and
+// values, which tells shards of different sweeps apart. The shard K/N is not part of it.
+struct SweepIdentity {
+  long gridPoints = 0;
+  std::string digest;
+};
+SweepIdentity sweepIdentity(const SweepSpec& spec);
 
 struct SweepResult {
   long points = 0;  // rows written
@@ -71,9 +83,11 @@ struct SweepResult {
 SweepResult runSweep(const SweepSpec& spec, std::ostream& out, const std::function<void(long, long)>& onPoint,
                      const std::atomic<bool>* cancel);
 
-// Concatenates shard files in point order after checking that they share one header, that no
-// point appears twice and that none is missing below the last one. Throws std::runtime_error
-// naming the repeated or missing points; a set `cancel` stops the reading with Cancelled.
+// Concatenates shard files in point order after checking that they share one header, that every
+// row belongs to one sweep (SweepIdentity), that no file was cut short and that every point of the
+// grid is there exactly once. A shard may be a pipe or a FIFO, or "-" for standard input, and may
+// hold only the header (a shard with no points). Throws std::runtime_error naming the file and
+// line, or the repeated or missing points; a set `cancel` stops the reading with Cancelled.
 void mergeSweepShards(const std::vector<std::filesystem::path>& shards, std::ostream& out,
                       const std::atomic<bool>* cancel = nullptr);
 

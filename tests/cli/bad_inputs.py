@@ -67,11 +67,12 @@ def scene(**changes):
 
 VALID = scene()
 SMALL = "--set render.width=64 --set render.height=48"  # renders in well under a second
-HEADER = "point,initial.theta,end,t_end,theta_min,theta_max,energy_start,energy_end"
+HEADER = "point,initial.theta,end,t_end,theta_min,theta_max,energy_start,energy_end,grid_points,sweep"
+SWEEP_ID = "40,0123456789abcdef"  # a 40-point grid's identity columns (written by the sweep itself)
 
 
-def shard(points):
-    rows = "".join(f"{p},{1 + p / 10},duration,0.5,0.1,0.2,0.3,0.3\n" for p in points)
+def shard(points, identity=SWEEP_ID):
+    rows = "".join(f"{p},{1 + p / 10},duration,0.5,0.1,0.2,0.3,0.3,{identity}\n" for p in points)
     return HEADER + "\n" + rows
 
 
@@ -636,23 +637,57 @@ case("threads-huge", C, "--threads 100000", SW + "--grid initial.theta=1:2:3 --t
      "--threads: must be 1 to 1024", key="--threads")
 MERGE = "sweep-merge -o m.csv "
 case("merge-missing-point", C, "sweep-merge of one shard of two", MERGE + "p1.csv", 1,
-     "sweep-merge: points missing: 1, 3, 5", key="missing", files=SHARDS, gtest=(G_MERGE,))
+     "sweep-merge: points missing (of 40 in the grid): 1, 3, 5", key="missing", files=SHARDS, gtest=(G_MERGE,))
 case("merge-repeated", C, "sweep-merge with a shard given twice", MERGE + "p1.csv p2.csv p2.csv", 1,
      "sweep-merge: points repeated: 1, 3, 5", key="repeated", files=SHARDS, gtest=(G_MERGE,))
 case("merge-no-file", C, "sweep-merge of a shard that does not exist", MERGE + "p1.csv p3.csv", 1,
      "p3.csv: cannot open the shard", key="p3.csv", files=SHARDS)
 case("merge-other-sweep", C, "shards of different sweeps (headers differ)", MERGE + "p1.csv q2.csv", 1,
-     "q2.csv: its header differs from p1.csv's: shards of different sweeps", key="q2.csv",
+     "q2.csv: its header differs from p1.csv's: shards of sweeps over different axes", key="q2.csv",
      files={**SHARDS, "q2.csv": shard(range(1, 40, 2)).replace("initial.theta", "initial.omega_Z")})
 case("merge-empty", C, "an empty shard file", MERGE + "e.csv", 2, "e.csv: empty, not a sweep shard", key="e.csv",
      files={"e.csv": ""})
 case("merge-directory", C, "a directory as a shard", MERGE + "sub", 2, "sub: is a directory", key="sub",
      files={"sub": Dir})
 case("merge-scene", C, "a scene JSON given as a shard", MERGE + "scene.json", 2, "scene.json: not a sweep shard")
-case("merge-truncated", C, "a shard cut off mid-row", MERGE + "p1.csv p2.csv", 1, "p2.csv",
+case("merge-truncated", C, "a shard cut off mid-row", MERGE + "p1.csv p2.csv", 1,
+     "p2.csv:21: cut short inside a row (no line break at its end)", key="p2.csv",
      files={**SHARDS, "p2.csv": shard(range(1, 40, 2))[:-20]})
 case("merge-no-point", C, "a row without its point number", MERGE + "bad.csv", 1,
-     "bad.csv:2: a row must start with its point number", key="bad.csv", files={"bad.csv": "point,a\nx,1\n"})
+     "bad.csv:2: a row must start with its point number", key="bad.csv",
+     files={"bad.csv": "point,a,grid_points,sweep\nx,1,1,0123456789abcdef\n"})
+# Shards that know their sweep (issue 21 section 4): the identity columns grid_points and sweep.
+case("merge-cut-at-line-break", C, "the last shard cut after a whole row (an interrupted `sweep -o - > part.csv`)",
+     MERGE + "p1.csv p2.csv", 1, "sweep-merge: points missing (of 40 in the grid): 39", key="missing",
+     files={**SHARDS, "p2.csv": shard(range(1, 39, 2))})
+case("merge-other-scene", C, "shards of sweeps over the same axes of different scenes or --set",
+     MERGE + "p1.csv p2.csv", 1,
+     "p2.csv:2: from another sweep than p1.csv:2 (grid_points,sweep: 40,fedcba9876543210 here, "
+     "40,0123456789abcdef there): the scene, its --set values or the grid differ", key="p2.csv",
+     files={**SHARDS, "p2.csv": shard(range(1, 40, 2), "40,fedcba9876543210")})
+case("merge-other-count", C, "shards of sweeps over grids of different sizes", MERGE + "p1.csv p2.csv", 1,
+     "p2.csv:2: from another sweep than p1.csv:2 (grid_points,sweep: 80,0123456789abcdef here", key="p2.csv",
+     files={**SHARDS, "p2.csv": shard(range(1, 40, 2), "80,0123456789abcdef")})
+case("merge-header-only-missing", C, "a shard holding only its header where points belong",
+     MERGE + "p1.csv h.csv", 1, "sweep-merge: points missing (of 40 in the grid): 1, 3, 5", key="missing",
+     files={**SHARDS, "h.csv": shard([])})
+case("merge-empty-shard-ok", C, "a legitimately empty shard (N larger than the grid) merges as nothing (must work)",
+     MERGE + "p1.csv h.csv p2.csv", 0, None, files={**SHARDS, "h.csv": shard([])}, produces=("m.csv",))
+case("merge-only-headers", C, "every shard holds only its header", MERGE + "h.csv", 1,
+     "sweep-merge: no shard holds a point, but shard 1 of every sweep holds point 0", key="no shard",
+     files={"h.csv": shard([])})
+case("merge-no-identity", C, "a shard without the identity columns (an older coinroll's)", MERGE + "old.csv", 2,
+     "old.csv: its header has no grid_points and sweep columns", key="old.csv",
+     files={"old.csv": "point,initial.theta,end,t_end,theta_min,theta_max,energy_start,energy_end\n"
+                       "0,1,duration,0.5,0.1,0.2,0.3,0.3\n"})
+case("merge-point-beyond-grid", C, "a row numbered beyond its grid's size", MERGE + "p1.csv p2.csv far.csv", 1,
+     "far.csv:2: point 40 is outside the grid of 40 points", key="far.csv",
+     files={**SHARDS, "far.csv": shard([40])})
+case("merge-from-pipes", C, "shards read from a pipe, a process substitution and standard input (must work)",
+     "cat p2.csv | exec {bin} sweep-merge -o m.csv <(cat p1.csv) - ", 0, None, shell=True, files=SHARDS,
+     produces=("m.csv",))
+case("merge-stdin-twice", C, "- (standard input) given twice", MERGE + "- -", 2,
+     "sweep-merge: - (standard input) is given more than once", key="standard input", files=SHARDS)
 
 # --- output paths
 C = "output paths"
@@ -1145,8 +1180,8 @@ case("out-of-memory-named", C, "a 16 MB scene array under a 500 MB address-space
 # A damaged row numbered 9e18 made sweep-merge count (and list) every point up to it.
 case("merge-point-9e18", C, "sweep-merge with a row numbered 9e18 under a 1 GB address-space limit",
      "ulimit -v 1000000; exec {bin} sweep-merge -o m.csv p1.csv p2.csv far.csv", 1,
-     "sweep-merge: points missing: 40 to 8999999999999999999", key="missing", shell=True, timeout=5,
-     files={**SHARDS, "far.csv": HEADER + "\n9000000000000000000,1,duration,0.5,0.1,0.2,0.3,0.3\n"})
+     "far.csv:2: point 9000000000000000000 is outside the grid of 40 points", key="far.csv", shell=True, timeout=5,
+     files={**SHARDS, "far.csv": shard([9000000000000000000])})
 
 
 # ----------------------------------------------------------------------------------------------

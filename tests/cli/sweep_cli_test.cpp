@@ -68,7 +68,7 @@ TEST_F(SweepCliTest, SameBytesForOneAndTwoThreadsAndForShardsRunByGnuParallel) {
   RunResult r = runCoinroll("sweep-merge -o " + refused.string() + " " + (dir_ / "part1.csv").string() + " " +
                             (dir_ / "part2.csv").string() + " " + (dir_ / "part4.csv").string());
   EXPECT_EQ(r.exitCode, 1);
-  EXPECT_NE(r.output.find("points missing: 2, 6, 10, 14"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("points missing (of 56 in the grid): 2, 6, 10, 14"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(refused));
   r = runCoinroll("sweep-merge -o " + refused.string() + " " + parts + " " + (dir_ / "part2.csv").string());
   EXPECT_EQ(r.exitCode, 1);
@@ -98,7 +98,8 @@ TEST_F(SweepCliTest, RowsFollowTheGridLastAxisFastestAndMatchTheTrajectoryCsv) {
   std::ifstream in(sweep);
   std::string line;
   std::getline(in, line);
-  EXPECT_EQ(line, "point,initial.theta,initial.omega_Z,end,t_end,theta_min,theta_max,energy_start,energy_end");
+  EXPECT_EQ(line, "point,initial.theta,initial.omega_Z,end,t_end,theta_min,theta_max,energy_start,energy_end,"
+                  "grid_points,sweep");
   std::vector<std::vector<std::string>> rows;
   while (std::getline(in, line)) rows.push_back(fields(line));
   ASSERT_EQ(rows.size(), 56u);
@@ -127,6 +128,65 @@ TEST_F(SweepCliTest, RowsFollowTheGridLastAxisFastestAndMatchTheTrajectoryCsv) {
   EXPECT_EQ(std::stod(row[6]), thetaMax);
   EXPECT_EQ(std::stod(row[7]), energyStart);
   EXPECT_EQ(std::stod(row[8]), energyEnd);
+}
+
+// Every row ends with the sweep's identity: the grid's size and a digest of the scene and the grid,
+// equal in every shard and the unsharded file, different for another scene, --set or grid. A merge
+// refuses a mixture and a shard cut after a whole row, and reads shards from pipes.
+TEST_F(SweepCliTest, ShardsKnowTheirSweep) {
+  const auto identities = [](const std::string& text) {
+    std::vector<std::string> found;
+    std::stringstream in(text);
+    std::string line;
+    std::getline(in, line);
+    while (std::getline(in, line)) {
+      const std::vector<std::string> f = fields(line);
+      found.push_back(f[f.size() - 2] + "," + f.back());
+    }
+    std::sort(found.begin(), found.end());
+    found.erase(std::unique(found.begin(), found.end()), found.end());
+    return found;
+  };
+  const std::string sweep = "sweep " + scene().string() + kGrid + " -q --set duration=0.5";
+  const fs::path whole = dir_ / "whole.csv", other = dir_ / "other.csv";
+  ASSERT_EQ(runCoinroll(sweep + " -o " + whole.string()).exitCode, 0);
+  const std::vector<std::string> identity = identities(slurp(whole));
+  ASSERT_EQ(identity.size(), 1u);
+  EXPECT_TRUE(identity[0].starts_with("56,")) << identity[0];
+  EXPECT_EQ(identity[0].size(), 3u + 16u) << identity[0];
+  for (const char* shard : {"1", "2", "3"}) {
+    const fs::path part = dir_ / (std::string("part") + shard + ".csv");
+    ASSERT_EQ(runCoinroll(sweep + " --shard " + shard + "/3 -o " + part.string()).exitCode, 0);
+    EXPECT_EQ(identities(slurp(part)), identity) << shard;
+  }
+  // Another scene value gives another digest, another grid another size and digest.
+  ASSERT_EQ(runCoinroll(sweep + " --set gravity=9.8 --shard 3/3 -o " + other.string()).exitCode, 0);
+  EXPECT_NE(identities(slurp(other)), identity);
+  ASSERT_EQ(runCoinroll("sweep " + scene().string() + " --grid initial.theta=5:40:8 --grid initial.omega_Z=4:16:8 -q "
+                        "--set duration=0.5 --shard 3/3 -o " + (dir_ / "bigger.csv").string()).exitCode, 0);
+  EXPECT_TRUE(identities(slurp(dir_ / "bigger.csv"))[0].starts_with("64,"));
+
+  const std::string part1 = (dir_ / "part1.csv").string(), part2 = (dir_ / "part2.csv").string();
+  const fs::path merged = dir_ / "merged.csv";
+  RunResult r = runCoinroll("sweep-merge -o " + merged.string() + " " + part1 + " " + part2 + " " + other.string());
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.output.find("from another sweep than"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(merged));
+
+  // Shard 3 of 56 points holds 2, 5, ..., 53, 18 rows: cut after its 17th, point 53 is named missing.
+  const std::string text3 = slurp(dir_ / "part3.csv");
+  std::ofstream(dir_ / "cut3.csv") << text3.substr(0, text3.rfind('\n', text3.size() - 2) + 1);
+  r = runCoinroll("sweep-merge -o " + merged.string() + " " + part1 + " " + part2 + " " + (dir_ / "cut3.csv").string());
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.output.find("points missing (of 56 in the grid): 53"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(merged));
+
+  // From a pipe, a process substitution and standard input: the unsharded bytes.
+  const std::string fromPipes = "bash -c '" + std::string(COINROLL_BINARY_DIR) + "/coinroll sweep-merge -o " +
+                                merged.string() + " <(cat " + part1 + ") - " + (dir_ / "part3.csv").string() + " < " +
+                                part2 + "'";
+  ASSERT_EQ(std::system(fromPipes.c_str()), 0) << fromPipes;
+  EXPECT_EQ(slurp(merged), slurp(whole));
 }
 
 TEST_F(SweepCliTest, AFailingPointKeepsItsRowAndItsReason) {

@@ -7,7 +7,7 @@ packages=(
   cmake g++ pkg-config make
   libeigen3-dev nlohmann-json3-dev libcli11-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  libosmesa6-dev libglm-dev libstb-dev
+  libosmesa6-dev libglm-dev libstb-dev zlib1g-dev
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri  # EGL back ends: glvnd's libEGL, Mesa's vendor and its llvmpipe
   libavcodec-dev libavformat-dev libavutil-dev libswscale-dev
   ffmpeg

@@ -473,14 +473,29 @@ image::PngSize checkComparedPng(const std::string& name) {
     throw UsageError(fmt::format("{}: not a PNG file (no PNG signature); compare the PNGs coinroll still or render wrote",
                                  name));
   }
+  image::PngSize size;
   try {
-    return image::readPngSize(path);
+    size = image::readPngSize(path);
   } catch (const std::runtime_error& e) {
     throw UsageError(fmt::format("{} (a damaged or truncated PNG?)", e.what()));
   }
+  // The decoder would read 16 bits per channel as 8, so two pictures that differ everywhere in
+  // their low bytes would compare equal.
+  if (size.bitDepth == 16) {
+    throw UsageError(fmt::format("{}: 16 bits per channel; compare reads 8-bit PNGs (what coinroll writes): convert "
+                                 "both, e.g. ffmpeg -i {} -pix_fmt rgba out8.png, or compare the 16-bit files with "
+                                 "another tool", name, name));
+  }
+  return size;
 }
 
+// The decoder ignores CRCs, so the chunks are checked first: a damaged golden is no verdict.
 image::Image decodeComparedPng(const std::string& name) {
+  try {
+    image::checkPngChunks(name);
+  } catch (const std::runtime_error& e) {
+    throw UsageError(e.what());
+  }
   try {
     return image::readPng(name);
   } catch (const std::runtime_error& e) {

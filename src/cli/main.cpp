@@ -12,6 +12,8 @@
 #include <iostream>
 #include <new>
 #include <stdexcept>
+#include <string>
+#include <string_view>
 
 #include "cli/commands.h"
 #include "cli/exit_codes.h"
@@ -43,6 +45,18 @@ const CLI::Validator kAtLeastOne(
       return {};
     },
     "INT>=1");
+
+// Messages quote what users gave (file names, --set values, scene text): a control character
+// among them would act on the terminal instead of showing, so it is shown as \xNN.
+std::string printable(std::string_view message) {
+  std::string shown;
+  for (const char c : message) {
+    const auto byte = static_cast<unsigned char>(c);
+    if ((byte < 0x20 && c != '\n' && c != '\t') || byte == 0x7f) shown += fmt::format("\\x{:02x}", byte);
+    else shown += c;
+  }
+  return shown;
+}
 
 }  // namespace
 
@@ -198,7 +212,7 @@ int main(int argc, char** argv) {
     known = known || (argc > 1 && command->get_name() == argv[1]);
   }
   if (argc > 1 && argv[1][0] != '-' && !known) {
-    std::cerr << "coinroll: error: unknown command '" << argv[1] << "'; the commands are " << commands
+    std::cerr << "coinroll: error: unknown command '" << printable(argv[1]) << "'; the commands are " << commands
               << " (coinroll --help)\n";
     return kExitBadInput;
   }
@@ -231,16 +245,16 @@ int main(int argc, char** argv) {
     }
     return exitCode;
   } catch (const coinroll::scene::SceneError& e) {
-    std::cerr << "coinroll: error: " << e.what() << '\n';
+    std::cerr << "coinroll: error: " << printable(e.what()) << '\n';
     return kExitBadInput;
   } catch (const UsageError& e) {
-    std::cerr << "coinroll: error: " << e.what() << '\n';
+    std::cerr << "coinroll: error: " << printable(e.what()) << '\n';
     return kExitBadInput;
   } catch (const std::bad_alloc&) {
     std::cerr << "coinroll: error: " << coinroll::pipeline::outOfMemoryMessage() << '\n';
     return kExitFailure;
   } catch (const std::exception& e) {
-    std::cerr << "coinroll: error: " << e.what() << '\n';
+    std::cerr << "coinroll: error: " << printable(e.what()) << '\n';
     return kExitFailure;
   }
 }

@@ -33,16 +33,22 @@ void writePng(const Image& image, const std::filesystem::path& path);
 // full disk or any other failure); making the result appear atomically is the caller's business.
 void writePngBytes(const Image& image, const std::filesystem::path& path, const std::filesystem::path& name);
 
-// The size a PNG's header declares, pixels.
+// The size a PNG's header declares, pixels, and its bits per channel (1, 2, 4, 8 or 16).
 struct PngSize {
   int width = 0;
   int height = 0;
+  int bitDepth = 8;
 };
 
 // Reads the header of the PNG at `path` only, so a caller can judge the size before decoding it
 // (a small file may declare a picture of gigabytes). Throws std::runtime_error naming the path
 // when it is not a PNG.
 PngSize readPngSize(const std::filesystem::path& path);
+
+// Walks every chunk of the PNG at `path` and checks its CRC, up to the IEND chunk that ends a
+// PNG; the decoder ignores CRCs, so a damaged file would otherwise decode as if whole. Throws
+// std::runtime_error naming the path, the chunk and its byte offset.
+void checkPngChunks(const std::filesystem::path& path);
 
 // Reads an 8-bit PNG as RGBA. Throws std::runtime_error naming the path on failure, and
 // std::bad_alloc when the decoded picture does not fit in memory.

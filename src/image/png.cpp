@@ -2,17 +2,20 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <array>
+#include <memory>
 #include <new>
-#include <vector>
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "image/image.h"
 #include "io/output_file.h"
 
 #include <stb_image.h>
 #include <stb_image_write.h>
+#include <zlib.h>
 
 namespace coinroll::image {
 
@@ -77,7 +80,7 @@ PngSize readPngSize(const std::filesystem::path& path) {
   // The signature, then the IHDR chunk, which PNG requires first: length 13, "IHDR", width and
   // height as big-endian 32-bit numbers.
   constexpr unsigned char kStart[16] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n', 0, 0, 0, 13, 'I', 'H', 'D', 'R'};
-  unsigned char head[24] = {};
+  unsigned char head[25] = {};
   std::FILE* in = std::fopen(path.c_str(), "rb");
   if (in == nullptr) throw std::runtime_error(path.string() + ": cannot open: " + std::strerror(errno));
   const std::size_t got = std::fread(head, 1, sizeof head, in);
@@ -95,7 +98,42 @@ PngSize readPngSize(const std::filesystem::path& path) {
     throw std::runtime_error(path.string() + ": cannot read the PNG header: a side of " +
                              std::to_string(width == 0 || width > 0x7fffffffu ? width : height) + " pixels");
   }
-  return {static_cast<int>(width), static_cast<int>(height)};
+  return {static_cast<int>(width), static_cast<int>(height), head[24]};
+}
+
+void checkPngChunks(const std::filesystem::path& path) {
+  const std::unique_ptr<std::FILE, int (*)(std::FILE*)> in(std::fopen(path.c_str(), "rb"), &std::fclose);
+  if (!in) throw std::runtime_error(path.string() + ": cannot open: " + std::strerror(errno));
+  const auto fail = [&](long offset, const std::string& what) {
+    throw std::runtime_error(path.string() + ": " + what + " at byte " + std::to_string(offset) +
+                             ": a damaged or truncated PNG");
+  };
+  const auto bigEndian = [](const unsigned char* b) {
+    return static_cast<std::uint32_t>(b[0]) << 24 | static_cast<std::uint32_t>(b[1]) << 16 |
+           static_cast<std::uint32_t>(b[2]) << 8 | static_cast<std::uint32_t>(b[3]);
+  };
+  long offset = 8;  // past the signature, which readPngSize checks
+  if (std::fseek(in.get(), offset, SEEK_SET) != 0) fail(0, "no PNG signature");
+  std::array<unsigned char, 1 << 16> block{};
+  while (true) {
+    unsigned char head[8];
+    if (std::fread(head, 1, sizeof head, in.get()) != sizeof head) fail(offset, "the file ends before its IEND chunk");
+    const std::uint32_t length = bigEndian(head);
+    const std::string type(reinterpret_cast<const char*>(head + 4), 4);
+    if (length > 0x7fffffffu) fail(offset, "chunk " + type + " declares " + std::to_string(length) + " bytes");
+    uLong crc = crc32(0, head + 4, 4);
+    for (std::uint32_t left = length; left > 0;) {
+      const std::size_t want = std::min<std::size_t>(left, block.size());
+      if (std::fread(block.data(), 1, want, in.get()) != want) fail(offset, "chunk " + type + " is cut short");
+      crc = crc32(crc, block.data(), static_cast<uInt>(want));
+      left -= static_cast<std::uint32_t>(want);
+    }
+    unsigned char stored[4];
+    if (std::fread(stored, 1, sizeof stored, in.get()) != sizeof stored) fail(offset, "chunk " + type + " has no CRC");
+    if (bigEndian(stored) != static_cast<std::uint32_t>(crc)) fail(offset, "chunk " + type + " fails its CRC check");
+    if (type == "IEND") return;
+    offset += 12 + static_cast<long>(length);
+  }
 }
 
 Image readPng(const std::filesystem::path& path) {

@@ -73,6 +73,12 @@ physics::CoinState steadyState(const physics::CoinModel& model, const scene::Ste
   } catch (const std::invalid_argument& e) {
     throw scene::SceneError(std::string("initial.steady: ") + e.what());
   }
+  // A tilt of 1e-200 deg with no spin asks for a rate past any double: no state to start from.
+  if (!std::isfinite(s.omega_X) || !std::isfinite(s.omega_Y) || !std::isfinite(s.omega_Z)) {
+    throw scene::SceneError(fmt::format(
+        "initial.steady: this steady motion needs rates beyond any number (omega_X = {}, omega_Y = {}, omega_Z = {} "
+        "rad/s); tilt it more, or give it more spin", s.omega_X, s.omega_Y, s.omega_Z));
+  }
   s.phi = steady.phi;
   s.psi = steady.psi;
   s.x = steady.x;
@@ -99,6 +105,22 @@ void requireValidStart(const Simulation& sim) {
         "initial.theta: a coin whose rim has corners (coin.edge_radius < thickness / 2) cannot start upright: it stands on "
         "two corners at once and which one it rolls on is not defined (the corner-switch impact is not modelled); tilt it "
         "or round the rim fully (edge_radius = thickness / 2)");
+  }
+  // The flat stop fires on crossing |theta| = tilt; a start beyond it would never cross and run on
+  // where the formulation does not hold (the Euler angles from 89.5 deg took the centre 7.5 cm
+  // below the floor).
+  if (const physics::FlatStop flat = physics::flatStopFor(sim.model, sim.formulation);
+      std::abs(sim.initial.theta) >= flat.tilt) {
+    const auto degrees = [](double radians) { return radians * 180 / std::numbers::pi; };
+    const double quaternionLimit = physics::flatStopFor(sim.model, physics::Formulation::Quaternion).tilt;
+    throw scene::SceneError(fmt::format(
+        "initial.theta: {:.10g} deg is at or beyond ±{} deg, where this run stops ({}: {}); start inside (-{}, {}) "
+        "deg{}", degrees(sim.initial.theta), degrees(flat.tilt), physics::eventName(flat.event),
+        flat.event == physics::ModelEvent::FaceDown ? "the coin lies on its face" : "the formulation's limit near flat",
+        degrees(flat.tilt), degrees(flat.tilt),
+        quaternionLimit > flat.tilt
+            ? fmt::format(", or use solver.formulation \"quaternion\" (limit ±{} deg)", degrees(quaternionLimit))
+            : ""));
   }
   const physics::Forward f = startForward(sim);
   const physics::Reaction& r = f.reaction;

@@ -53,7 +53,9 @@ std::vector<double> frameTimes(const scene::SceneConfig& scene, const Simulation
   CoinRun trajectory(simulation);
   // The sum of steps drifts by round-off; a relative 1e-12 keeps the frame at the very end.
   for (double t = 0; t <= endTime * (1 + 1e-12);) {
-    if (static_cast<long>(times.size()) == maxFrames) refuseFrames(scene, maxFrames, "more than that");
+    if (static_cast<long>(times.size()) == maxFrames) {
+      refuseFrames(scene, maxFrames, fmt::format("more than {} (the time remap slows it at t = {:.6g} s)", maxFrames, t));
+    }
     times.push_back(std::min(t, endTime));
     const std::optional<RunSample> y = trajectory.sampleAt(t);
     if (!y) break;

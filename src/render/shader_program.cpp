@@ -2,7 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <cerrno>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <glm/gtc/type_ptr.hpp>
@@ -16,11 +18,22 @@ namespace coinroll::render {
 
 namespace {
 
+// $COINROLL_SHADER_DIR is a developer's override: say which file, and why it cannot be read,
+// rather than hand the compiler an empty source (a directory opens as a stream that reads nothing).
 std::string readFile(const std::filesystem::path& path) {
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error)) {
+    throw std::runtime_error(fmt::format("shader: {} is a directory; $COINROLL_SHADER_DIR must hold the shader files "
+                                         "(e.g. the checkout's shaders/), or unset it for the built-in ones", path.string()));
+  }
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(fmt::format("shader: cannot read {}", path.string()));
+  if (!in) {
+    throw std::runtime_error(fmt::format("shader: cannot read {}: {} ($COINROLL_SHADER_DIR names the directory it is "
+                                         "read from; unset it for the built-in shaders)", path.string(), std::strerror(errno)));
+  }
   std::ostringstream text;
   text << in.rdbuf();
+  if (in.bad()) throw std::runtime_error(fmt::format("shader: reading {} failed: {}", path.string(), std::strerror(errno)));
   return text.str();
 }
 

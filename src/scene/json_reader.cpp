@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "scene/scene_loader.h"
@@ -20,6 +21,15 @@ std::string describeJson(const nlohmann::json& value) {
     case nlohmann::json::value_t::array: return "an array";
     default: return text();
   }
+}
+
+std::string printableKey(std::string_view key) {
+  const bool printable = std::none_of(key.begin(), key.end(), [](char c) {
+    const auto byte = static_cast<unsigned char>(c);
+    return byte < 0x20 || byte == 0x7f;
+  });
+  if (printable) return std::string(key);
+  return nlohmann::json(std::string(key)).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
 JsonReader::JsonReader(const nlohmann::json& object, std::string path, std::string_view source,
@@ -42,7 +52,8 @@ JsonReader::JsonReader(const nlohmann::json& object, std::string path, std::stri
 bool JsonReader::has(std::string_view key) const { return object_.contains(key); }
 
 std::string JsonReader::where(std::string_view key) const {
-  return path_.empty() ? fmt::format("{}: {}", source_, key) : fmt::format("{}: {}.{}", source_, path_, key);
+  return path_.empty() ? fmt::format("{}: {}", source_, printableKey(key))
+                       : fmt::format("{}: {}.{}", source_, path_, printableKey(key));
 }
 
 void JsonReader::fail(std::string_view key, const std::string& rule) const {
@@ -74,8 +85,13 @@ int JsonReader::integer(std::string_view key, int fallback) const {
     }
     fail(key, "must be an integer, got " + describeJson(*value));
   }
+  constexpr long long kLimit = 1'000'000'000;
+  // JSON integers from 2^63 up arrive unsigned; read as signed they would wrap to negatives.
+  if (value->is_number_unsigned() && value->get<unsigned long long>() > static_cast<unsigned long long>(kLimit)) {
+    fail(key, fmt::format("out of range [{}, {}], got {}", -kLimit, kLimit, value->get<unsigned long long>()));
+  }
   const auto number = value->get<long long>();
-  if (number < -1'000'000'000 || number > 1'000'000'000) fail(key, fmt::format("out of range, got {}", number));
+  if (number < -kLimit || number > kLimit) fail(key, fmt::format("out of range [{}, {}], got {}", -kLimit, kLimit, number));
   return static_cast<int>(number);
 }
 

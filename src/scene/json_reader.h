@@ -41,4 +41,9 @@ class JsonReader {
 // "string \"long\"", "number -1", "object", ... for "got ..." in messages.
 std::string describeJson(const nlohmann::json& value);
 
+// A key from a scene file as a message shows it: as it is when it is printable, otherwise as a
+// JSON string with its control characters escaped ("ab\u0000c"), so a key cannot cut a message
+// short at a NUL or send escape sequences to the user's terminal.
+std::string printableKey(std::string_view key);
+
 }  // namespace coinroll::scene

@@ -4,10 +4,15 @@
 
 #include <algorithm>
 #include <array>
+#include <cerrno>
+#include <charconv>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <numbers>
+#include <set>
 #include <string>
+#include <vector>
 
 #include "integrate/solver_config.h"
 #include "scene/json_reader.h"
@@ -61,6 +66,9 @@ constexpr double kMaxRate = 1e6;                       // rad/s
 constexpr double kMaxSpeed = 1e3;                      // m/s, a launched coin; faster is a typo
 constexpr double kMaxPosition = 1e6;                   // m
 constexpr double kMaxGravity = 1e4;                    // m/s^2
+// deg. Heading and spin angles mean the same modulo 360; past a million degrees a double's spacing
+// grows towards the steps the integrator adds to them (at 1e20 the heading no longer moves).
+constexpr double kMaxAngleDegrees = 1e6;
 
 double inRange(const JsonReader& r, std::string_view key, double value, double lower, double upper, std::string_view unit) {
   if (!(value >= lower && value <= upper)) {
@@ -70,6 +78,15 @@ double inRange(const JsonReader& r, std::string_view key, double value, double l
 }
 
 double rate(const JsonReader& r, std::string_view key) { return inRange(r, key, r.number(key, 0), -kMaxRate, kMaxRate, "rad/s"); }
+
+double angleDegrees(const JsonReader& r, std::string_view key) {
+  const double degrees = r.number(key, 0);
+  if (!(std::abs(degrees) <= kMaxAngleDegrees)) {
+    r.fail(key, fmt::format("must be in [{:g}, {:g}] deg (an angle is the same modulo 360; reduce it), got {}",
+                            -kMaxAngleDegrees, kMaxAngleDegrees, degrees));
+  }
+  return degrees * kRadiansPerDegree;
+}
 
 double position(const JsonReader& r, std::string_view key) {
   return inRange(r, key, r.number(key, 0), -kMaxPosition, kMaxPosition, "m");
@@ -180,8 +197,8 @@ InitialSpec parseInitial(const JsonReader& top) {
     const std::string branch = r.optionalString("branch").value_or("+");
     if (branch != "+" && branch != "-") r.fail("branch", fmt::format("must be \"+\" or \"-\", got \"{}\"", branch));
     s.branch = branch == "+" ? 1 : -1;
-    s.phi = r.number("phi", 0) * kRadiansPerDegree;
-    s.psi = r.number("psi", 0) * kRadiansPerDegree;
+    s.phi = angleDegrees(r, "phi");
+    s.psi = angleDegrees(r, "psi");
     s.x = position(r, "x");
     s.z = position(r, "z");
     return s;
@@ -189,8 +206,8 @@ InitialSpec parseInitial(const JsonReader& top) {
   const JsonReader r(*node, "initial", "", {"theta", "phi", "psi", "omega_X", "omega_Y", "omega_Z", "x", "z", "v_x", "v_z"});
   ExplicitInitial e;
   e.theta = tiltDegrees(r, "theta", 0);
-  e.phi = r.number("phi", 0) * kRadiansPerDegree;
-  e.psi = r.number("psi", 0) * kRadiansPerDegree;
+  e.phi = angleDegrees(r, "phi");
+  e.psi = angleDegrees(r, "psi");
   e.omega_X = rate(r, "omega_X");
   e.omega_Y = rate(r, "omega_Y");
   e.omega_Z = rate(r, "omega_Z");
@@ -247,7 +264,14 @@ std::array<double, 3> parsePoint(const JsonReader& r, std::string_view key) {
       })) {
     r.fail(key, "must be an array of three finite numbers [x, y, z] in m, got " + describeJson(*node));
   }
-  return {(*node)[0].get<double>(), (*node)[1].get<double>(), (*node)[2].get<double>()};
+  const std::array<double, 3> point{(*node)[0].get<double>(), (*node)[1].get<double>(), (*node)[2].get<double>()};
+  // The coin is centimetres across: a camera farther than the positions allowed sees nothing, and
+  // squares of its distance would overflow.
+  if (std::any_of(point.begin(), point.end(), [](double v) { return std::abs(v) > kMaxPosition; })) {
+    r.fail(key, fmt::format("coordinates must be within [{:g}, {:g}] m, got [{}, {}, {}]", -kMaxPosition, kMaxPosition,
+                            point[0], point[1], point[2]));
+  }
+  return point;
 }
 
 CameraSpec parseCamera(const JsonReader& render) {
@@ -473,6 +497,66 @@ std::string parseErrorReason(const nlohmann::json::parse_error& error) {
   return reason;
 }
 
+// A key given twice in one object: nlohmann keeps the last value silently, so a scene that says
+// theta twice would run with whichever came last. Thrown from the parser's callback.
+struct DuplicateKey {
+  std::string path;  // "initial.theta", "effects.0.length"
+};
+
+// The parser's callback, refusing duplicate keys. It follows the nesting: each open object keeps
+// the keys seen so far, each open array its element count, so a duplicate is named by its path.
+class DuplicateKeyGuard {
+ public:
+  bool operator()(int /*depth*/, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
+    using Event = nlohmann::json::parse_event_t;
+    switch (event) {
+      case Event::object_start:
+      case Event::array_start:
+        frames_.push_back(
+            {.name = nameOfNextValue(), .isArray = event == Event::array_start, .elements = 0, .keys = {}, .pendingKey = {}});
+        break;
+      case Event::object_end:
+      case Event::array_end:
+        frames_.pop_back();
+        break;
+      case Event::key: {
+        std::string key = parsed.get<std::string>();
+        if (!frames_.back().keys.insert(key).second) throw DuplicateKey{joinedPath(key)};
+        frames_.back().pendingKey = std::move(key);
+        break;
+      }
+      case Event::value:
+        nameOfNextValue();
+        break;
+    }
+    return true;
+  }
+
+ private:
+  struct Frame {
+    std::string name;  // the key or index this object or array has in its parent
+    bool isArray = false;
+    long elements = 0;
+    std::set<std::string> keys;
+    std::string pendingKey;
+  };
+
+  // The name of the value that starts now in the innermost open object or array.
+  std::string nameOfNextValue() {
+    if (frames_.empty()) return {};
+    Frame& parent = frames_.back();
+    return parent.isArray ? std::to_string(parent.elements++) : parent.pendingKey;
+  }
+
+  std::string joinedPath(const std::string& key) const {
+    std::string path;
+    for (std::size_t i = 1; i < frames_.size(); ++i) path += printableKey(frames_[i].name) + ".";
+    return path + printableKey(key);
+  }
+
+  std::vector<Frame> frames_;
+};
+
 }  // namespace
 
 SceneConfig parseScene(const nlohmann::json& document, std::string_view sourceName, const ParseOptions& options) {
@@ -541,7 +625,7 @@ nlohmann::json readSceneDocument(const std::filesystem::path& file) {
     throw SceneError(fmt::format("{}: is a directory; give a scene file (JSON)", file.string()));
   }
   std::ifstream in(file, std::ios::binary);
-  if (!in) throw SceneError(fmt::format("{}: cannot open the scene file (does it exist?)", file.string()));
+  if (!in) throw SceneError(fmt::format("{}: cannot open the scene file: {}", file.string(), std::strerror(errno)));
   // Scenes are a few hundred bytes. The read stops past this, so a huge file given by mistake, or
   // a device that never ends (/dev/zero), is refused instead of filling memory; pipes still work.
   constexpr std::size_t kMaxSceneBytes = 16 << 20;
@@ -556,7 +640,10 @@ nlohmann::json readSceneDocument(const std::filesystem::path& file) {
 
 nlohmann::json parseSceneText(std::string_view text, std::string_view sourceName) {
   try {
-    return nlohmann::json::parse(text);
+    return nlohmann::json::parse(text, DuplicateKeyGuard());
+  } catch (const DuplicateKey& duplicate) {
+    throw SceneError(fmt::format("{}: {}: given twice; give each key once (which value was meant?)", sourceName,
+                                 duplicate.path));
   } catch (const nlohmann::json::parse_error& e) {
     // nlohmann reports the byte just past the offending token; its own text says what was expected.
     const auto [line, column] = lineAndColumn(text, e.byte == 0 ? 0 : e.byte - 1);
@@ -588,20 +675,48 @@ void applyOverride(nlohmann::json& document, std::string_view assignment) {
   nlohmann::json value = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
   if (value.is_discarded()) value = text;
 
+  // Objects are walked by key, lists (effects) by index: effects.0.length is the first effect's
+  // length. A missing key is created as an object; a list is never created or lengthened, since
+  // a half-given entry (an effect without its type) would only fail later with a vaguer message.
   nlohmann::json* node = &document;
   std::string_view rest = path;
+  std::string walked;  // the path so far, for messages
   while (true) {
     const auto dot = rest.find('.');
     const std::string key(rest.substr(0, dot));
-    if (!node->is_object()) {
-      throw SceneError(fmt::format("--set {}: '{}' is not inside an object", assignment, key), SceneError::Kind::UnknownKey);
+    const bool isIndex = !key.empty() && std::all_of(key.begin(), key.end(), [](char c) { return c >= '0' && c <= '9'; });
+    if (node->is_array()) {
+      std::size_t index = 0;
+      const auto [end, error] = std::from_chars(key.data(), key.data() + key.size(), index);
+      if (!isIndex || error != std::errc() || end != key.data() + key.size() || index >= node->size()) {
+        throw SceneError(fmt::format("--set {}: {} is a list of {} entries, numbered 0 to {}; '{}' is none of them (--set "
+                                     "changes an entry, it cannot add one: add it in the scene file)", assignment, walked,
+                                     node->size(), static_cast<long>(node->size()) - 1, key),
+                         SceneError::Kind::UnknownKey);
+      }
+      if (dot == std::string_view::npos) {
+        (*node)[index] = std::move(value);
+        return;
+      }
+      node = &(*node)[index];
+    } else if (node->is_object()) {
+      if (isIndex && node != &document && node->empty()) {
+        throw SceneError(fmt::format("--set {}: the scene has no {} list; --set changes an entry of a list but cannot make "
+                                     "one: write {} in the scene file", assignment, walked, walked),
+                         SceneError::Kind::UnknownKey);
+      }
+      if (dot == std::string_view::npos) {
+        (*node)[key] = std::move(value);
+        return;
+      }
+      node = &(*node)[key];
+      if (node->is_null()) *node = nlohmann::json::object();
+    } else {
+      throw SceneError(fmt::format("--set {}: {} is {}, which has no field '{}'", assignment, walked,
+                                   describeJson(*node), key),
+                       SceneError::Kind::UnknownKey);
     }
-    if (dot == std::string_view::npos) {
-      (*node)[key] = std::move(value);
-      return;
-    }
-    node = &(*node)[key];
-    if (node->is_null()) *node = nlohmann::json::object();
+    walked += (walked.empty() ? "" : ".") + key;
     rest = rest.substr(dot + 1);
   }
 }

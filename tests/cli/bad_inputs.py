@@ -113,18 +113,24 @@ def deep_arrays(path):
         out.write(b"[" * 2_000_000 + b"]" * 2_000_000)
 
 
-def png(width, height, shade=128):
-    """A grey RGBA PNG written with the standard library, for compare's inputs."""
+def png(width, height, shade=128, bit_depth=8, damage_at=None):
+    """A grey RGBA PNG written with the standard library, for compare's inputs: 8 or 16 bits per
+    channel (16: every low byte `shade`, every high byte 0), and with the byte `damage_at` bytes
+    from the end flipped, if given (inside the IDAT chunk's CRC)."""
     import struct
     import zlib
 
     def chunk(kind, data):
         return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
 
-    rows = b"".join(b"\0" + bytes([shade, shade, shade, 255]) * width for _ in range(height))
-    header = struct.pack(">IIBBBBB", width, height, 8, 6, 0, 0, 0)
-    return lambda path: Path(path).write_bytes(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header)
-                                               + chunk(b"IDAT", zlib.compress(rows)) + chunk(b"IEND", b""))
+    pixel = bytes([shade, shade, shade, 255]) if bit_depth == 8 else bytes([0, shade] * 3 + [255, 255])
+    rows = b"".join(b"\0" + pixel * width for _ in range(height))
+    header = struct.pack(">IIBBBBB", width, height, bit_depth, 6, 0, 0, 0)
+    data = bytearray(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"IDAT", zlib.compress(rows))
+                     + chunk(b"IEND", b""))
+    if damage_at is not None:
+        data[-damage_at] ^= 0xFF
+    return lambda path: Path(path).write_bytes(bytes(data))
 
 
 # ----------------------------------------------------------------------------------------------
@@ -188,7 +194,7 @@ SIM = "simulate scene.json --csv o.csv"
 # --- the scene file itself
 C = "scene file"
 case("file-missing", C, "scene file does not exist", "simulate missing.json --csv o.csv", 2,
-     "missing.json: cannot open the scene file (does it exist?)", key="missing.json", gtest=(G_CMDLINE,))
+     "missing.json: cannot open the scene file: No such file or directory", key="missing.json", gtest=(G_CMDLINE,))
 case("file-directory", C, "a directory given as the scene", "simulate sub --csv o.csv", 2,
      "sub: is a directory; give a scene file (JSON)", key="sub", files={"sub": Dir}, gtest=(G_ABSURD,))
 case("file-empty", C, "empty scene file (0 bytes)", SIM, 2,
@@ -297,6 +303,30 @@ case("huge-spin", C, "initial.omega_Z 1e300 rad/s", SIM, 2, "initial.omega_Z", k
      files={"scene.json": scene(initial={"omega_Z": 1e300})})
 
 # --- the coin's rim: coin.thickness makes the coin a solid, coin.edge_radius rounds its rim (INTERFACE.md "The coin's rim")
+# Meaning (issue 21, section 5): what a scene says is what runs, or it is refused.
+MEANING = "accepted before, with another meaning (issue 21, section 5)"
+case("theta-beyond-flat-euler", C, "initial.theta 89.5 in the Euler-angle formulation, whose flat stop is 89 deg",
+     SIM + " --set initial.theta=89.5 --set solver.formulation=euler-angles", 2,
+     'initial.theta: 89.5 deg is at or beyond ±89 deg, where this run stops (coin-flat: the formulation\'s limit near '
+     'flat); start inside (-89, 89) deg, or use solver.formulation "quaternion" (limit ±89.99 deg)', key="initial.theta",
+     na_before=MEANING)
+case("theta-beyond-flat-negative", C, "initial.theta -89.995, beyond the quaternion formulation's -89.99",
+     SIM + " --set initial.theta=-89.995 --set solver.formulation=quaternion", 2,
+     "initial.theta: -89.995 deg is at or beyond ±89.99 deg", key="initial.theta", na_before=MEANING)
+case("duplicate-key", C, "initial.theta given twice in one object", SIM, 2,
+     "scene.json: initial.theta: given twice; give each key once", key="initial.theta",
+     files={"scene.json": VALID.replace('"initial": {', '"initial": {"theta": 3, ')}, na_before=MEANING)
+case("duplicate-key-top", C, "duration given twice at the top level", SIM, 2,
+     "scene.json: duration: given twice", key="duration",
+     files={"scene.json": VALID[:-1] + ', "duration": 2}'}, na_before=MEANING)
+case("phi-huge", C, "initial.phi 1e20 deg (the heading froze)", SIM + " --set initial.phi=1e20", 2,
+     "initial.phi: must be in [-1e+06, 1e+06] deg (an angle is the same modulo 360; reduce it), got 1e+20",
+     key="initial.phi", na_before=MEANING)
+case("steady-infinite-rate", C, "steady circle at 1e-200 deg without spin: omega_Y would be inf",
+     "steady --kind circle --theta 1e-200 --omega-Z 0", 2,
+     "initial.steady: this steady motion needs rates beyond any number (omega_X = 0, omega_Y = inf", key="initial.steady",
+     na_before=MEANING)
+
 C = "coin's rim"
 NO_RIM = "no coin.edge_radius (thickness drawn only) before"
 CORNERED = {"thickness": 0.013, "edge_radius": 0.001}  # rho < h/2: two corners meet at upright
@@ -520,7 +550,7 @@ case("set-no-equals", C, "--set coin (no =)", SIM + " --set coin", 2,
 case("set-leading-dot", C, "--set .coin.radius=1", SIM + " --set .coin.radius=1", 2,
      "--set .coin.radius=1: expected KEY.PATH=VALUE", key="--set")
 case("set-through-number", C, "--set duration.x=1 (duration is a number)", SIM + " --set duration.x=1", 2,
-     "--set duration.x=1: 'x' is not inside an object", key="duration.x")
+     "--set duration.x=1: duration is 0.5, which has no field 'x'", key="duration")
 case("set-nan", C, "--set duration=NaN", SIM + " --set duration=NaN", 2,
      'duration: must be a number, got string "NaN"', key="duration")
 case("set-overflow", C, "--set duration=1e999", SIM + " --set duration=1e999", 2,
@@ -529,6 +559,32 @@ case("set-wrong-type", C, "--set initial=[1,2]", SIM + " --set 'initial=[1,2]'",
      "initial: must be an object, got an array", key="initial")
 case("set-range", C, "--set initial.theta=100", SIM + " --set initial.theta=100", 2, "initial.theta: must be in",
      key="theta", gtest=(G_CMDLINE,))
+# Messages (issue 21, section 6): each says what happened and what to do.
+MESSAGES = "a misleading message before (issue 21, section 6)"
+EFFECTS2 = scene(effects=[{"type": "air_drag"}, {"type": "rolling_resistance", "length": 1e-6}])
+case("set-list-index", C, "--set effects.1.length=2e-6 changes the second effect (must work)",
+     SIM + " --set effects.1.length=2e-6", 0, None, files={"scene.json": EFFECTS2}, produces=("o.csv",))
+case("set-list-past-end", C, "--set effects.5.length=1 on a list of two effects", SIM + " --set effects.5.length=1", 2,
+     "--set effects.5.length=1: effects is a list of 2 entries, numbered 0 to 1; '5' is none of them", key="effects",
+     files={"scene.json": EFFECTS2}, na_before=MESSAGES)
+case("set-list-missing", C, "--set effects.0.length=1 on a scene without effects", SIM + " --set effects.0.length=1", 2,
+     "--set effects.0.length=1: the scene has no effects list; --set changes an entry of a list but cannot make one",
+     key="effects", na_before=MESSAGES)
+case("set-unsigned-64", C, "--set render.width=18446744073709551615 (read as -1 before)",
+     SIM + " --set render.width=18446744073709551615", 2,
+     "render.width: out of range [-1000000000, 1000000000], got 18446744073709551615", key="render.width",
+     na_before=MESSAGES)
+case("key-control-characters", C, "a scene key holding a NUL and a terminal escape: shown escaped, never raw", SIM, 2,
+     'scene.json: "ab\\u0000c\\u001b[31m": unknown key', key="unknown key",
+     files={"scene.json": VALID[:-1] + ', "ab\\u0000c\\u001b[31m": 1}'}, na_before=MESSAGES)
+case("camera-far-away", C, "render.camera.eye 1e300 m away (was called 'straight above')",
+     "still scene.json -o s.png --time 0 --set 'render.camera.eye=[1e300,0.1,0]' --set 'render.camera.target=[0,0,0]'",
+     2, "render.camera.eye: coordinates must be within [-1e+06, 1e+06] m, got [1e+300, 0.1, 0]", key="render.camera.eye",
+     na_before=MESSAGES)
+case("shader-dir-directory", C, "$COINROLL_SHADER_DIR holding a directory named coin.vert (was 'does not compile')",
+     "COINROLL_SHADER_DIR=sd exec {bin} still scene.json -o s.png --time 0", 1,
+     "shader: sd/coin.vert is a directory; $COINROLL_SHADER_DIR must hold the shader files", key="coin.vert", shell=True,
+     files={"scene.json": VALID, "sd/coin.vert": Dir}, na_before=MESSAGES)
 
 # --- the command line
 C = "command line"
@@ -1081,6 +1137,13 @@ case("compare-different", C, "every pixel differs by 2 levels", "compare a.png b
      "", key=None, files=PNGS, na_before=NO_COMPARE)
 case("compare-within-tolerance", C, "the same pictures within --channel-tolerance 2",
      "compare a.png b.png --channel-tolerance 2", 0, "", key=None, files=PNGS, na_before=NO_COMPARE)
+ISSUE21_5 = "accepted before (issue 21, section 5)"
+case("compare-16-bit", C, "two 16-bit PNGs that differ in every low byte (read as 8 bits they were equal)",
+     "compare a16.png b16.png", 2, "a16.png: 16 bits per channel; compare reads 8-bit PNGs", key="16 bits",
+     files={"a16.png": png(8, 8, 10, bit_depth=16), "b16.png": png(8, 8, 20, bit_depth=16)}, na_before=ISSUE21_5)
+case("compare-bad-crc", C, "a PNG whose IDAT chunk fails its CRC (the decoder ignores CRCs)",
+     "compare a.png bad.png", 2, "bad.png: chunk IDAT fails its CRC check at byte 33: a damaged or truncated PNG",
+     key="CRC", files={"a.png": png(64, 48), "bad.png": png(64, 48, damage_at=14)}, na_before=ISSUE21_5)
 
 
 

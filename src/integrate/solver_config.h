@@ -33,6 +33,9 @@ struct SolverConfig {
   double dt = 1e-3;     // s, step of the fixed-step methods
   double maxStep = std::numeric_limits<double>::infinity();  // s, cap on adaptive steps
   long maxSteps = 50'000'000;  // a run needing more steps throws, naming t, h and the state
+  // s, where the run will be asked to end, if known: a run whose pace so far would need more than
+  // maxSteps to get there fails early instead of after maxSteps steps.
+  double endTime = std::numeric_limits<double>::infinity();
 };
 
 struct Stats {

@@ -26,7 +26,7 @@ template <int N, class Rhs>
 class Trajectory {
  public:
   Trajectory(Rhs f, double t0, const Vec<N>& y0, const SolverConfig& config, std::vector<Event<N>> events = {})
-      : f_(std::move(f)), config_(config), events_(std::move(events)), t_(t0), y_(y0) {
+      : f_(std::move(f)), config_(config), events_(std::move(events)), t0_(t0), t_(t0), y_(y0) {
     validate();
     f0_ = evaluate(t_, y_);
     for (const Event<N>& e : events_) gAtStart_.push_back(e.g(t_, y_));
@@ -203,6 +203,24 @@ class Trajectory {
       throw std::runtime_error(fmt::format("integration needs more than {} steps: stopped at t = {} s, h = {} s, state ({})",
                                            config_.maxSteps, t_, t1 - previousT, describe(y_)));
     }
+    refuseHopelessPace();
+  }
+
+  // Projects the steps to endTime from the pace so far, at 2^k steps once a hundredth of the run
+  // is done (a short start-up transient does not decide), so a duration that cannot be reached
+  // fails within a second, not after maxSteps steps and minutes.
+  void refuseHopelessPace() const {
+    const long steps = stats_.acceptedSteps;
+    if (!std::isfinite(config_.endTime) || steps < 1024 || (steps & (steps - 1)) != 0) return;
+    const double done = t_ - t0_, whole = config_.endTime - t0_;
+    if (!(done >= 0.01 * whole)) return;
+    const double projected = static_cast<double>(steps) * whole / done;
+    if (projected > static_cast<double>(config_.maxSteps)) {
+      throw std::runtime_error(fmt::format(
+          "integration would need about {:.2g} steps to reach t = {} s at its pace so far ({} steps for the first {:.6g} "
+          "s), more than the {} a run may take; shorten the duration, or loosen solver.rtol and solver.atol",
+          projected, config_.endTime, steps, done, config_.maxSteps));
+    }
   }
 
   void checkEvents(double tStart) {
@@ -249,6 +267,7 @@ class Trajectory {
   SolverConfig config_;
   std::vector<Event<N>> events_;
   std::vector<double> gAtStart_;  // each event's g at the start of the current step
+  double t0_;                     // s, where the run started (the pace is measured from here)
   double t_;                      // s, end of the last accepted step
   Vec<N> y_, f0_;                 // state and slope at t_
   double gridOrigin_ = t_;        // s, origin of the fixed-step grid

@@ -178,6 +178,7 @@ Simulation buildSimulation(const scene::SceneConfig& scene) {
   }
   sim.validityIsTerminal = scene.onInvalid == scene::OnInvalid::Stop;
   sim.duration = scene.duration;
+  sim.solver.endTime = scene.duration;
   requireValidStart(sim);
   return sim;
 }

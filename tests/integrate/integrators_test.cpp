@@ -5,6 +5,7 @@
 #include <limits>
 #include <numbers>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "integrate/dop853.h"
@@ -161,6 +162,27 @@ TEST(Trajectory, FixedStepMethodsLandOnTheirGrid) {
   trajectory.stateAt(1.0);
   EXPECT_EQ(trajectory.stats().acceptedSteps, 100);
   EXPECT_EQ(trajectory.stats().rhsEvaluations, 1 + 4 * 100);
+}
+
+// RK4 at dt = 0.01 takes exactly 100 steps per second, so the pace is known: an end at 1e4 s
+// needs 1e6 steps. With maxSteps 5e5 the run must fail at the first check past a hundredth of
+// the way (2^14 = 16384 steps, t = 163.84 s), not after 5e5 steps; with maxSteps 2e6 it runs on.
+TEST(Trajectory, AnEndOutOfReachAtThePaceSoFarFailsEarly) {
+  SolverConfig config{.method = Method::Rk4, .dt = 0.01, .maxSteps = 500'000, .endTime = 1e4};
+  Trajectory hopeless(Oscillator{}, 0.0, V2(0, 1), config);
+  EXPECT_THROW(
+      try { hopeless.stateAt(1e4); } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("would need about 1e+06 steps to reach t = 10000 s"), std::string::npos)
+            << e.what();
+        throw;
+      },
+      std::runtime_error);
+  EXPECT_EQ(hopeless.stats().acceptedSteps, 16'384);
+
+  config.maxSteps = 2'000'000;
+  Trajectory reachable(Oscillator{}, 0.0, V2(0, 1), config);
+  ASSERT_TRUE(reachable.stateAt(1e4));
+  EXPECT_EQ(reachable.stats().acceptedSteps, 1'000'000);
 }
 
 TEST(Events, FallingZeroIsLocatedToTenNanoseconds) {

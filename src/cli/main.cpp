@@ -18,6 +18,7 @@
 #include "cli/commands.h"
 #include "cli/exit_codes.h"
 #include "cli/interrupts.h"
+#include "cli/version.h"
 #include "pipeline/resources.h"
 #include "scene/scene_loader.h"
 
@@ -65,6 +66,13 @@ int main(int argc, char** argv) {
   coinroll::pipeline::fitAllocatorToAddressSpaceLimit();
   CLI::App app{"coinroll: a coin rolling without slipping on a table, simulated, rendered headless to MP4 and PNG."};
   app.require_subcommand(1);
+  app.set_version_flag("--version", [] {
+    try {
+      return versionText();
+    } catch (const std::invalid_argument& e) {
+      throw CLI::ValidationError("COINROLL_GL", e.what());  // exit 2, as for any command under it
+    }
+  }, "Print the version, the git revision and the OpenGL back ends (COINROLL_GL), and exit");
   app.footer(
       "Examples:\n"
       "  coinroll render                                (the built-in default scene -> coinroll.mp4)\n"

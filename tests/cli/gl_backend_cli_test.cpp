@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <regex>
 #include <set>
 #include <string>
 #include <vector>
@@ -19,7 +20,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
+using coinroll::render::defaultGlBackend;
 using coinroll::render::GlBackend;
+using coinroll::render::glBackendName;
 using coinroll::render::isCompiledIn;
 using coinroll::testing::RunResult;
 using coinroll::testing::runCoinroll;
@@ -96,6 +99,35 @@ TEST_F(GlBackendCliTest, EglDeviceWithoutAGpuExitsOneSayingSoAndWritesNothing) {
   EXPECT_NE(r.output.find("COINROLL_GL=egl-device: no GPU"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("untested on GPU hardware"), std::string::npos) << r.output;
   EXPECT_TRUE(leftovers().empty()) << "left " << leftovers().front();
+}
+
+// INTERFACE.md: `coinroll VERSION` (and the git revision from a checkout), then the back ends
+// compiled in and the one COINROLL_GL selects, without opening a GL context: egl-device without a
+// GPU, which fails any drawing here, still answers.
+TEST_F(GlBackendCliTest, VersionNamesTheReleaseTheRevisionAndTheBackEndsWithoutAContext) {
+  RunResult r = runCoinroll("--version");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const std::string firstLine = r.output.substr(0, r.output.find('\n'));
+  EXPECT_TRUE(std::regex_match(firstLine, std::regex(R"(coinroll \d+\.\d+\.\d+( \(git [0-9a-f]{7,}(-dirty)?\))?)")))
+      << firstLine;
+  const auto listStart = r.output.find("OpenGL back ends: ");
+  ASSERT_NE(listStart, std::string::npos) << r.output;
+  const std::string list = r.output.substr(listStart + 18, r.output.find(';', listStart) - listStart - 18) + ",";
+  for (const GlBackend backend : {GlBackend::OsMesa, GlBackend::Egl, GlBackend::EglDevice}) {
+    const bool listed = ("," + list).find(std::string(" ") + std::string(glBackendName(backend)) + ",") != std::string::npos ||
+                        list.starts_with(std::string(glBackendName(backend)) + ",");
+    EXPECT_EQ(listed, isCompiledIn(backend)) << glBackendName(backend) << ": " << r.output;
+  }
+  EXPECT_NE(r.output.find("; default " + std::string(glBackendName(defaultGlBackend()))), std::string::npos) << r.output;
+
+  if (isCompiledIn(GlBackend::EglDevice)) {
+    r = runCoinroll("--version", "COINROLL_GL=egl-device");
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("COINROLL_GL selects egl-device"), std::string::npos) << r.output;
+  }
+  r = runCoinroll("--version", "COINROLL_GL=bogus");
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find("COINROLL_GL=bogus: not an OpenGL back end"), std::string::npos) << r.output;
 }
 
 }  // namespace

@@ -66,6 +66,13 @@ MAY_INCLUDE = {
         "integrate": "the pipeline drives the integrator and samples dense output at k / fps",
         "scene": "a run is described by a SceneConfig",
     },
+    # The installable library's API (include/coinroll/coinroll.h): a peer of cli, never used by it.
+    "api": {
+        "integrate": "the solver methods a scene may name",
+        "scene": "loads and validates scenes from files or JSON text",
+        "pipeline": "simulate, still and video through the same pipelines as the commands",
+        "video": "picks the sink for a video's file name",
+    },
     # Parse argv, build the pipeline, run, map errors to exit codes: may use everything.
     "cli": {
         "io": "commands write their outputs through io::OutputFile",

@@ -16,6 +16,12 @@
 namespace coinroll::pipeline {
 
 StillResult renderStill(const scene::SceneConfig& scene, const StillRequest& request) {
+  const StillPicture picture = drawStill(scene, request);
+  image::writePng(picture.image, request.output);
+  return picture.result;
+}
+
+StillPicture drawStill(const scene::SceneConfig& scene, const StillRequest& request) {
   if (!std::isfinite(request.time) || request.time < 0 || request.time > scene.duration) {
     throw std::invalid_argument(
         fmt::format("--time: must be within the scene's duration, 0 to {} s, got {}", scene.duration, request.time));
@@ -44,8 +50,7 @@ StillResult renderStill(const scene::SceneConfig& scene, const StillRequest& req
   // A run that stopped early shows its end; the ghosts then span [ghostsFrom, end) if it is long enough.
   const double from = std::min(request.ghostsFrom, result.shownTime);
   for (int i = 0; i < request.ghosts; ++i) snapshots.addGhost(from + (result.shownTime - from) * i / request.ghosts);
-  image::writePng(renderer.draw(snapshots.makeSnapshot(result.shownTime)), request.output);
-  return result;
+  return {.image = renderer.draw(snapshots.makeSnapshot(result.shownTime)), .result = result};
 }
 
 }  // namespace coinroll::pipeline

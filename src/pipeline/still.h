@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "image/image.h"
 #include "scene/scene_config.h"
 
 namespace coinroll::pipeline {
@@ -26,5 +27,13 @@ struct StillResult {
 // Throws std::invalid_argument naming the option for a bad request, scene::SceneError for a bad
 // scene, std::runtime_error for rendering or writing failures (nothing left under `output`).
 StillResult renderStill(const scene::SceneConfig& scene, const StillRequest& request);
+
+// renderStill's picture, kept in memory (request.output is not used): for callers that want the
+// pixels, not a file. Throws as renderStill does.
+struct StillPicture {
+  image::Image image;
+  StillResult result;
+};
+StillPicture drawStill(const scene::SceneConfig& scene, const StillRequest& request);
 
 }  // namespace coinroll::pipeline

@@ -109,8 +109,10 @@ void requireValidStart(const Simulation& sim) {
   // The flat stop fires on crossing |theta| = tilt; a start beyond it would never cross and run on
   // where the formulation does not hold (the Euler angles from 89.5 deg took the centre 7.5 cm
   // below the floor).
+  // "At" the stop includes its last bits: 89 deg given in a scene converts to a double a rounding
+  // away from the constant's own.
   if (const physics::FlatStop flat = physics::flatStopFor(sim.model, sim.formulation);
-      std::abs(sim.initial.theta) >= flat.tilt) {
+      std::abs(sim.initial.theta) >= flat.tilt * (1 - 1e-12)) {
     const auto degrees = [](double radians) { return radians * 180 / std::numbers::pi; };
     const double quaternionLimit = physics::flatStopFor(sim.model, physics::Formulation::Quaternion).tilt;
     throw scene::SceneError(fmt::format(

@@ -310,6 +310,9 @@ case("theta-beyond-flat-euler", C, "initial.theta 89.5 in the Euler-angle formul
      'initial.theta: 89.5 deg is at or beyond ±89 deg, where this run stops (coin-flat: the formulation\'s limit near '
      'flat); start inside (-89, 89) deg, or use solver.formulation "quaternion" (limit ±89.99 deg)', key="initial.theta",
      na_before=MEANING)
+case("theta-at-flat-euler", C, "initial.theta exactly 89, the Euler-angle formulation's flat stop",
+     SIM + " --set initial.theta=89 --set solver.formulation=euler-angles", 2,
+     "initial.theta: 89 deg is at or beyond ±89 deg", key="initial.theta", na_before=MEANING)
 case("theta-beyond-flat-negative", C, "initial.theta -89.995, beyond the quaternion formulation's -89.99",
      SIM + " --set initial.theta=-89.995 --set solver.formulation=quaternion", 2,
      "initial.theta: -89.995 deg is at or beyond ±89.99 deg", key="initial.theta", na_before=MEANING)

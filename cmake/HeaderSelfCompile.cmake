@@ -19,6 +19,7 @@
 
 # The folders whose target is not coinroll_<folder>.
 set(COINROLL_HEADER_TARGET_cli coinroll)
+set(COINROLL_HEADER_TARGET_api coinroll_library)
 
 function(coinroll_add_header_self_compile)
   file(GLOB folders LIST_DIRECTORIES true RELATIVE ${PROJECT_SOURCE_DIR}/src ${PROJECT_SOURCE_DIR}/src/*)

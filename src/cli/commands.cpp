@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cerrno>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <functional>
@@ -153,9 +154,20 @@ void refuseOverwritingInput(const std::string& option, const std::filesystem::pa
   }
 }
 
+// The files a command reads: its scene, and the files of $COINROLL_ASSET_DIR and
+// $COINROLL_SHADER_DIR when set (a texture or a shader the output must not replace).
 std::vector<std::filesystem::path> inputsOf(const SceneSource& source) {
-  if (!source.file) return {};
-  return {std::filesystem::path(*source.file)};
+  std::vector<std::filesystem::path> inputs;
+  if (source.file) inputs.emplace_back(*source.file);
+  for (const char* variable : {"COINROLL_ASSET_DIR", "COINROLL_SHADER_DIR"}) {
+    const char* directory = std::getenv(variable);
+    if (directory == nullptr || *directory == '\0') continue;
+    std::error_code error;
+    for (const auto& entry : std::filesystem::directory_iterator(directory, error)) {
+      if (entry.is_regular_file(error)) inputs.push_back(entry.path());
+    }
+  }
+  return inputs;
 }
 
 // A default output name made from the scene name (docs/outputs.md): a name of letters, digits,
@@ -347,7 +359,8 @@ void runRender(const RenderOptions& options) {
   refuseOverwritingInput("-o", output, inputsOf(options.scene));
   std::unique_ptr<video::FrameSink> sink;
   try {
-    sink = std::make_unique<video::AsyncSink>(video::makeSinkForPath(output, scene.render.mp4Options()));
+    sink = std::make_unique<video::AsyncSink>(
+        video::makeSinkForPath(output, scene.render.mp4Options(), inputsOf(options.scene)));
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }

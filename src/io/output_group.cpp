@@ -30,6 +30,7 @@ std::filesystem::path OutputGroup::add(const std::filesystem::path& name) {
                              what_ + " of a sequence is a file of its own");
   }
   checkReplaceable(destination);
+  refuseSharedTarget(destination);
   TemporaryFile temporary = createTemporaryFor(destination);
   ::close(temporary.descriptor);  // the caller writes it by path
   Staged file;
@@ -38,6 +39,36 @@ std::filesystem::path OutputGroup::add(const std::filesystem::path& name) {
   file.listedTemporary = std::move(temporary.listed);
   staged_.push_back(std::move(file));
   return staged_.back().temporary;
+}
+
+void OutputGroup::protect(const std::vector<std::filesystem::path>& inputs) {
+  for (const std::filesystem::path& input : inputs) {
+    struct stat info {};
+    if (::stat(input.c_str(), &info) == 0) protected_.emplace(FileIdentity{info.st_dev, info.st_ino}, input);
+  }
+}
+
+// Two frames written to one file would lose one of them without a word, and a frame written to
+// an input would destroy it: names are compared by where they lead, links followed.
+void OutputGroup::refuseSharedTarget(const Destination& destination) {
+  const auto refuse = [&](const std::string& what) {
+    throw std::runtime_error(destination.name.string() + ": cannot write: it leads to " + what);
+  };
+  const auto sameFileAs = [&](const std::filesystem::path& earlier) {
+    refuse("the same file as " + earlier.string() + " (through a link, or as another name of that file); each " + what_ +
+           " of a sequence needs a file of its own");
+  };
+  if (const auto earlier = stagedTargets_.find(destination.path); earlier != stagedTargets_.end()) sameFileAs(earlier->second);
+  stagedTargets_.emplace(destination.path, destination.name);
+  struct stat info {};
+  if (::stat(destination.path.c_str(), &info) != 0) return;  // a new file: no other name has it yet
+  const FileIdentity identity{info.st_dev, info.st_ino};
+  if (const auto input = protected_.find(identity); input != protected_.end()) {
+    refuse(input->second.string() + ", an input of this command (through a link, or as another name of that file); "
+                                    "choose another output name");
+  }
+  if (const auto earlier = stagedIdentities_.find(identity); earlier != stagedIdentities_.end()) sameFileAs(earlier->second);
+  stagedIdentities_.emplace(identity, destination.name);
 }
 
 void OutputGroup::retire(const std::filesystem::path& path) {

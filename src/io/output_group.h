@@ -6,7 +6,10 @@
 // in one step, so a reader looking while commit() runs (a few milliseconds for thousands of
 // files) may see some new files beside old ones; a failure or an interruption never leaves that.
 
+#include <sys/types.h>
+
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -29,6 +32,10 @@ class OutputGroup {
   // mode of the file it replaces, and returns the temporary's path for the caller to write.
   // Throws std::runtime_error naming `name`.
   std::filesystem::path add(const std::filesystem::path& name);
+
+  // Files add() must never lead to (the command's inputs): a frame name that reaches one, through
+  // a link or as another name of the same file, is refused. Files that do not exist are ignored.
+  void protect(const std::vector<std::filesystem::path>& inputs);
 
   // An existing file for commit() to remove along with publishing the staged ones (kept if the
   // commit fails). Links are not followed: the name itself goes.
@@ -56,12 +63,27 @@ class OutputGroup {
     ListedFile listedPrevious;
   };
 
+  // A file as the system knows it (device and inode): a link, a hard link and the name itself
+  // all give the same identity.
+  struct FileIdentity {
+    dev_t device = 0;
+    ino_t inode = 0;
+    bool operator<(const FileIdentity& other) const {
+      return device != other.device ? device < other.device : inode < other.inode;
+    }
+  };
+
   void keepPrevious(Staged& file);
+  void refuseSharedTarget(const Destination& destination);
   std::string rollBack();
 
   std::string what_;
   std::vector<Staged> staged_;
   std::vector<Retired> retired_;
+  std::map<FileIdentity, std::filesystem::path> protected_;  // an input's identity -> its name
+  // Where the staged names lead -> the name that leads there first.
+  std::map<std::filesystem::path, std::filesystem::path> stagedTargets_;
+  std::map<FileIdentity, std::filesystem::path> stagedIdentities_;
   bool committed_ = false;
 };
 

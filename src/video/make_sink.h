@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <vector>
 
 #include "video/frame_sink.h"
 #include "video/mp4_sink.h"
@@ -14,6 +15,8 @@ namespace coinroll::video {
 // gives an Mp4Sink configured by `options` (the PNG sequence ignores them).
 // Anything else throws std::invalid_argument naming the path and the two accepted forms; the
 // sinks' constructors throw for a bad pattern, bad options or a missing directory.
-std::unique_ptr<FrameSink> makeSinkForPath(const std::filesystem::path& path, const Mp4Options& options);
+// `inputs`: the command's input files, which no frame of a sequence may lead to.
+std::unique_ptr<FrameSink> makeSinkForPath(const std::filesystem::path& path, const Mp4Options& options,
+                                           const std::vector<std::filesystem::path>& inputs = {});
 
 }  // namespace coinroll::video

@@ -37,7 +37,8 @@ bool looksLikeSequencePattern(const std::string& fileName) {
   return false;
 }
 
-PngSequenceSink::PngSequenceSink(std::filesystem::path pattern) {
+PngSequenceSink::PngSequenceSink(std::filesystem::path pattern, const std::vector<std::filesystem::path>& inputs) {
+  frames_.protect(inputs);
   const std::string whole = pattern.string();
   const std::string fileName = pattern.filename().string();
   bool haveConversion = false;

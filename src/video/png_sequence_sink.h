@@ -28,8 +28,9 @@ class PngSequenceSink final : public FrameSink {
  public:
   // Throws std::invalid_argument naming the pattern if it is malformed, std::runtime_error if its
   // directory does not exist. A frame's name may be a link (its target is written, as for any
-  // output) but not a device, FIFO or descriptor: frames are published by renames.
-  explicit PngSequenceSink(std::filesystem::path pattern);
+  // output) but not a device, FIFO or descriptor: frames are published by renames. No frame may
+  // lead to one of `inputs` or to another frame's file (io::OutputGroup::protect).
+  explicit PngSequenceSink(std::filesystem::path pattern, const std::vector<std::filesystem::path>& inputs = {});
   ~PngSequenceSink() override;
 
   void push(const image::Image& frame) override;

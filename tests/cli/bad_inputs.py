@@ -971,6 +971,18 @@ case("seq-frame-link", C, "a frame name that is a link: its target gets the fram
      SEQ + "f_%03d.png", 0, None, produces=("f_00[1-3].png",),
      files={"scene.json": VALID, "keep/zero.png": "old", "f_000.png": ("symlink", "keep/zero.png")},
      alters=("keep/zero.png",), check=check_link("f_000.png", "keep/zero.png", is_png))
+PROBE2 = "lost data before (issue 21, second probe)"
+case("seq-frame-link-to-scene", C, "a frame name that is a link to the scene: refused, the scene kept",
+     SEQ + "f_%03d.png", 1, "f_001.png: cannot write: it leads to scene.json, an input of this command",
+     key="f_001.png", files={"scene.json": VALID, "f_001.png": ("symlink", "scene.json")}, na_before=PROBE2)
+case("seq-two-frames-one-file", C, "two frame names linked to one file: refused, not one frame silently lost",
+     SEQ + "f_%03d.png", 1, "f_002.png: cannot write: it leads to the same file as f_001.png", key="f_002.png",
+     files={"scene.json": VALID, "target.png": "old", "f_001.png": ("symlink", "target.png"),
+            "f_002.png": ("symlink", "target.png")}, na_before=PROBE2)
+case("still-over-asset", C, "still -o onto the coin-face texture $COINROLL_ASSET_DIR reads: refused",
+     "COINROLL_ASSET_DIR=ad exec {bin} still scene.json --time 0.1 -o ad/coin_face.png", 2,
+     "-o ad/coin_face.png: that is the input ad/coin_face.png", key="coin_face.png", shell=True,
+     files={"scene.json": VALID, "ad/coin_face.png": png(8, 8)}, na_before=PROBE2)
 case("default-name-cyrillic", C, "render without -o, scenes named 'имя' and 'дом': two files, not one",
      f"{{bin}} render scene.json -q {SMALL} --set duration=0.1 --set 'name=\"имя\"' && "
      f"exec {{bin}} render scene.json -q {SMALL} --set duration=0.1 --set 'name=\"дом\"'", 0, None, shell=True,

@@ -4,6 +4,8 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <array>
 #include <cerrno>
 #include <charconv>
 #include <cstdio>
@@ -223,6 +225,20 @@ int main(int argc, char** argv) {
     std::cerr << "coinroll: error: unknown command '" << printable(argv[1]) << "'; the commands are " << commands
               << " (coinroll --help)\n";
     return kExitBadInput;
+  }
+  // CLI11 reads an empty value of a number as 0 (--time '' drew t = 0; --min-psnr '' dropped the
+  // limit): every numeric option refuses it, naming itself.
+  constexpr std::array<std::string_view, 14> kNumericOptions = {
+      "--sample-dt", "--max-rows", "--theta", "--omega-Z", "--max-frames", "--time", "--strobe", "--strobe-from",
+      "--threads", "--max-points", "--max-differing-pixels", "--max-differing-fraction", "--channel-tolerance",
+      "--min-psnr"};
+  for (CLI::App* command : app.get_subcommands({})) {
+    for (CLI::Option* option : command->get_options()) {
+      if (std::find(kNumericOptions.begin(), kNumericOptions.end(), option->get_name()) == kNumericOptions.end()) continue;
+      option->check(CLI::Validator(
+          [](std::string& text) { return text.empty() ? std::string("the value is empty; give a number") : std::string(); },
+          ""));
+    }
   }
   try {
     app.parse(argc, argv);

@@ -596,6 +596,13 @@ case("shader-dir-directory", C, "$COINROLL_SHADER_DIR holding a directory named 
 
 # --- the command line
 C = "command line"
+EMPTY = "read as 0 or as absent before (issue 21, second probe)"
+for command, option in (("still scene.json -o s.png --time ''", "--time"),
+                        ("compare a.png b.png --min-psnr ''", "--min-psnr"),
+                        ("sweep scene.json -o o.csv --grid initial.theta=1:2:2 --threads ''", "--threads")):
+    case(f"empty-number{option}", C, f"{option} '' (an empty number)", command, 2,
+         f"{option}: the value is empty; give a number", key=option, na_before=EMPTY,
+         files={"scene.json": VALID, "a.png": png(8, 8), "b.png": png(8, 8)})
 case("cmd-none", C, "no command", "", 2, "A subcommand is required", key="subcommand")
 case("cmd-unknown", C, "unknown command frobnicate", "frobnicate", 2,
      "unknown command 'frobnicate'; the commands are simulate, steady, render, still, sweep, sweep-merge",

@@ -197,15 +197,21 @@ std::optional<std::pair<double, double>> solveTurning(const CoinModel& model, co
 
 }  // namespace
 
-std::optional<Creep> findCreep(const CoinModel& model, const SlidingStateVec& y, double mu) {
+std::optional<Creep> findCreep(const CoinModel& model, const SlidingStateVec& y, double mu,
+                               const std::optional<Eigen::Vector3d>& neutralStart) {
   // Newton starts against the rolling friction force (the contract's direction at a slide's onset);
-  // where rolling needs next to no friction that direction is noise, and the slip's own is taken.
+  // where rolling needs next to no friction that direction is noise, and the caller's or the slip's
+  // own is taken.
   const Forward rolling = forward(model, toQuaternionState(y.head<kQuaternionStateSize>()));
   const Eigen::Vector3d& rollingFriction = rolling.reaction.R;
   const Eigen::Vector2d slip = y.tail<2>();
-  const bool slipLeads = Eigen::Vector2d(rollingFriction.x(), rollingFriction.z()).norm() < kLeastRestoring * mu * std::abs(rolling.reaction.N) &&
-                         slip.norm() > kSlipRoundOff;
-  const double start = slipLeads ? angleOf(slip) : std::atan2(-rollingFriction.z(), -rollingFriction.x());
+  const bool neutral = Eigen::Vector2d(rollingFriction.x(), rollingFriction.z()).norm() < kLeastRestoring * mu * std::abs(rolling.reaction.N);
+  double start = std::atan2(-rollingFriction.z(), -rollingFriction.x());
+  if (neutral && neutralStart) {
+    start = std::atan2(neutralStart->z(), neutralStart->x());
+  } else if (neutral && slip.norm() > kSlipRoundOff) {
+    start = angleOf(slip);
+  }
   const auto rest = solveTurning(model, y, mu, start, 0);
   if (!rest) return std::nullopt;
   const auto [restAngle, restoring] = *rest;

@@ -60,8 +60,11 @@ struct Creep {
   double restRate = 0;      // rad/s, the rest's turn rate
 };
 // std::nullopt when there is no attracting rest next to the direction opposite the rolling friction
-// force (an upright coin rolling straight needs no friction: every direction is neutral).
-std::optional<Creep> findCreep(const CoinModel& model, const SlidingStateVec& y, double mu);
+// force. Where rolling needs next to no friction (an upright coin rolling straight: every direction
+// is neutral) the search starts from `neutralStart` when given, else from the slip's own direction:
+// a creeping segment passes its own so that the rest keeps its side while the slip passes zero.
+std::optional<Creep> findCreep(const CoinModel& model, const SlidingStateVec& y, double mu,
+                               const std::optional<Eigen::Vector3d>& neutralStart = std::nullopt);
 
 // The sliding coin with friction along -slipHat whatever the slip's own direction (the creeping slide).
 SlidingRates slidingRatesAlong(const CoinModel& model, const SlidingStateVec& y, double mu, const Eigen::Vector3d& slipHat);

@@ -44,10 +44,11 @@ struct SlidingRhs {
   SlipMode mode = SlipMode::Free;
   Eigen::Vector3d direction;  // free: s_hat while the slip is below round-off
 
-  // Creeping: along the rest; where a trial state has none (rolling needs next to no friction and
-  // the direction is neutral) along the slip itself, as when free.
+  // Creeping: along the rest, searched from the segment's direction where rolling leaves every
+  // direction neutral (a trial state past zero slip must not flip friction with it, or the slip's
+  // stop is never crossed); where a trial state has no rest, along the slip itself, as when free.
   Eigen::Vector3d frictionDirection(const physics::SlidingStateVec& y) const {
-    if (const std::optional<physics::Creep> creep = physics::findCreep(model, y, mu)) return creep->slipHat;
+    if (const std::optional<physics::Creep> creep = physics::findCreep(model, y, mu, direction)) return creep->slipHat;
     const Eigen::Vector2d slip = y.tail<2>();
     return slip.norm() > physics::kSlipRoundOff ? Eigen::Vector3d(slip.x() / slip.norm(), 0, slip.y() / slip.norm()) : direction;
   }

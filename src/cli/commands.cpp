@@ -249,13 +249,20 @@ void runSimulate(const SimulateOptions& options) {
 
 void runSteady(const SteadyOptions& options) {
   SceneSource source = options.scene;
+  for (const auto& [name, value] : {std::pair{"--theta", options.thetaDegrees}, std::pair{"--omega-Z", options.omega_Z}}) {
+    // JSON has no NaN or infinity: passed on, they would come back as a null the scene names.
+    if (value && !std::isfinite(*value)) throw UsageError(fmt::format("{}: must be a finite number, got {}", name, *value));
+  }
   if (options.kind) {
     nlohmann::json initial = {{"steady", *options.kind}};
     if (options.thetaDegrees) initial["theta"] = *options.thetaDegrees;
     if (options.omega_Z) initial["omega_Z"] = *options.omega_Z;
     if (options.branch) initial["branch"] = *options.branch;
-    // Replacement characters keep argv that is not UTF-8 an input error the parser names.
-    source.overrides.push_back("initial=" + initial.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
+    // The kind replaces the scene's initial block first, so that --set initial.phi=45 lands on it
+    // instead of being replaced by it. Replacement characters keep argv that is not UTF-8 an input
+    // error the parser names.
+    source.overrides.insert(source.overrides.begin(),
+                            "initial=" + initial.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
   } else if (options.thetaDegrees || options.omega_Z || options.branch) {
     throw UsageError("--theta, --omega-Z and --branch describe a steady state: give --kind too");
   }

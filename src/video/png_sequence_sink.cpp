@@ -113,6 +113,10 @@ std::vector<std::filesystem::path> PngSequenceSink::framesFrom(int count) const 
     const long long number = std::stoll(digits);
     // Only the exact name the pattern gives that number: "f_0004.png" is no frame of f_%03d.png.
     if (number < count || number > INT_MAX || pathOfFrame(static_cast<int>(number)).filename() != name) continue;
+    // A directory or a device named like a frame was never one of ours: it stays where it is.
+    const std::filesystem::file_type type = entry->symlink_status(error).type();
+    if (error) break;
+    if (type != std::filesystem::file_type::regular && type != std::filesystem::file_type::symlink) continue;
     frames.push_back(directory_ / name);
   }
   if (error) {

@@ -668,6 +668,15 @@ case("steady-theta", C, "steady --theta 95", "steady --kind circle --theta 95 --
      "initial.theta: must be in (-90, 90) degrees", key="theta")
 case("steady-branch", C, "steady --branch x", "steady --kind circle --theta 20 --omega-Z 10 --branch x", 2,
      "--branch: x not in {+,-}", key="--branch")
+for option, value in (("--theta", "nan"), ("--omega-Z", "-inf")):
+    case(f"steady-{option[2:].lower()}-{value.strip('-')}", C, f"steady {option} {value}",
+         f"steady --kind circle {'--omega-Z 10' if option == '--theta' else '--theta 20'} {option} {value}", 2,
+         f"{option}: must be a finite number, got {value}", key=option, na_before="said 'got null' before (issue 21)")
+case("steady-kind-with-set", C, "steady --kind circle with --set initial.phi=45: the --set lands on the kind's block",
+     "exec {bin} steady --kind circle --omega-Z 10 --set initial.theta=20 --set initial.phi=45 > out.txt", 0, None,
+     shell=True, produces=("out.txt",),
+     check=lambda d: None if '"theta": 20, "phi": 45,' in (d / "out.txt").read_text() else "the --set values were dropped",
+     na_before="--set initial.* was dropped before (issue 21)")
 
 # --- sweep and sweep-merge
 C = "sweep"
@@ -980,6 +989,11 @@ case("seq-frame-link", C, "a frame name that is a link: its target gets the fram
      files={"scene.json": VALID, "keep/zero.png": "old", "f_000.png": ("symlink", "keep/zero.png")},
      alters=("keep/zero.png",), check=check_link("f_000.png", "keep/zero.png", is_png))
 PROBE2 = "lost data before (issue 21, second probe)"
+case("seq-stale-name-is-dir", C, "a directory named like a stale frame (f_005.png/ over 4 frames): left as it is",
+     SEQ + "f_%03d.png", 0, None, produces=("f_00[0-3].png",), files={"scene.json": VALID, "f_005.png/keep.txt": "precious"},
+     check=lambda d: None if (d / "f_005.png/keep.txt").read_text() == "precious" and
+     not any(p.name.startswith(".") for p in d.iterdir()) else "the directory f_005.png was moved or a hidden name left",
+     na_before="hidden under .f_005.png.previous-* before (issue 21, second probe)")
 case("seq-frame-link-to-scene", C, "a frame name that is a link to the scene: refused, the scene kept",
      SEQ + "f_%03d.png", 1, "f_001.png: cannot write: it leads to scene.json, an input of this command",
      key="f_001.png", files={"scene.json": VALID, "f_001.png": ("symlink", "scene.json")}, na_before=PROBE2)

@@ -414,6 +414,10 @@ void refuseMisnamedAxes(const pipeline::SweepSpec& spec) {
       if (e.kind() == scene::SceneError::Kind::UnknownKey) {
         throw std::invalid_argument(fmt::format("--grid {}: not a scene field: {}", axis.key, e.what()));
       }
+      // Every point would fail the same way: a grid varies numbers only.
+      if (e.kind() == scene::SceneError::Kind::WrongType) {
+        throw std::invalid_argument(fmt::format("--grid {}: not a number field, so a grid cannot vary it: {}", axis.key, e.what()));
+      }
     }
   }
 }

@@ -37,7 +37,8 @@ JsonReader::JsonReader(const nlohmann::json& object, std::string path, std::stri
     : object_(object), path_(std::move(path)), source_(source) {
   if (!object_.is_object()) {
     throw SceneError(fmt::format("{}: {}: must be an object, got {}", source_, path_.empty() ? "(top level)" : path_,
-                                 describeJson(object_)));
+                                 describeJson(object_)),
+                     SceneError::Kind::WrongType);
   }
   for (const auto& [key, value] : object_.items()) {
     bool known = false;
@@ -56,8 +57,8 @@ std::string JsonReader::where(std::string_view key) const {
                        : fmt::format("{}: {}.{}", source_, path_, printableKey(key));
 }
 
-void JsonReader::fail(std::string_view key, const std::string& rule) const {
-  throw SceneError(fmt::format("{}: {}", where(key), rule));
+void JsonReader::fail(std::string_view key, const std::string& rule, SceneError::Kind kind) const {
+  throw SceneError(fmt::format("{}: {}", where(key), rule), kind);
 }
 
 std::optional<double> JsonReader::optionalNumber(std::string_view key) const {
@@ -98,14 +99,14 @@ int JsonReader::integer(std::string_view key, int fallback) const {
 bool JsonReader::boolean(std::string_view key, bool fallback) const {
   const nlohmann::json* value = child(key);
   if (value == nullptr) return fallback;
-  if (!value->is_boolean()) fail(key, "must be true or false, got " + describeJson(*value));
+  if (!value->is_boolean()) fail(key, "must be true or false, got " + describeJson(*value), SceneError::Kind::WrongType);
   return value->get<bool>();
 }
 
 std::optional<std::string> JsonReader::optionalString(std::string_view key) const {
   const nlohmann::json* value = child(key);
   if (value == nullptr) return std::nullopt;
-  if (!value->is_string()) fail(key, "must be a string, got " + describeJson(*value));
+  if (!value->is_string()) fail(key, "must be a string, got " + describeJson(*value), SceneError::Kind::WrongType);
   return value->get<std::string>();
 }
 

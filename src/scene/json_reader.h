@@ -10,6 +10,8 @@
 #include <string_view>
 #include <vector>
 
+#include "scene/scene_error.h"
+
 namespace coinroll::scene {
 
 class JsonReader {
@@ -30,7 +32,7 @@ class JsonReader {
 
   // "<source>: <path>.<key>" for messages.
   std::string where(std::string_view key) const;
-  [[noreturn]] void fail(std::string_view key, const std::string& rule) const;
+  [[noreturn]] void fail(std::string_view key, const std::string& rule, SceneError::Kind kind = SceneError::Kind::BadValue) const;
 
  private:
   const nlohmann::json& object_;

@@ -179,6 +179,12 @@ InitialSpec parseInitial(const JsonReader& top) {
                         "\"omega_Z\": 10}");
   }
   if (node->is_object() && node->contains("steady")) {
+    // Before the keys: with a steady kind that is not a name, the message is about the kind, not
+    // about the explicit start's rates beside it.
+    if (const nlohmann::json& kind = node->at("steady"); !kind.is_string()) {
+      JsonReader(nlohmann::json::object(), "initial", "", {}).fail(
+          "steady", "must be \"straight\", \"circle\" or \"spin-in-place\", got " + describeJson(kind), SceneError::Kind::WrongType);
+    }
     const JsonReader r(*node, "initial", "", {"steady", "theta", "omega_Z", "branch", "phi", "psi", "x", "z"});
     SteadyInitial s;
     const std::string kind = r.optionalString("steady").value();
@@ -262,7 +268,8 @@ std::array<double, 3> parsePoint(const JsonReader& r, std::string_view key) {
   if (!node->is_array() || node->size() != 3 || !std::all_of(node->begin(), node->end(), [](const auto& v) {
         return v.is_number() && std::isfinite(v.template get<double>());
       })) {
-    r.fail(key, "must be an array of three finite numbers [x, y, z] in m, got " + describeJson(*node));
+    r.fail(key, "must be an array of three finite numbers [x, y, z] in m, got " + describeJson(*node),
+           node->is_array() ? SceneError::Kind::BadValue : SceneError::Kind::WrongType);
   }
   const std::array<double, 3> point{(*node)[0].get<double>(), (*node)[1].get<double>(), (*node)[2].get<double>()};
   // The coin is centimetres across: a camera farther than the positions allowed sees nothing, and
@@ -394,7 +401,8 @@ double nonNegative(const JsonReader& r, std::string_view key, double value) {
 physics::Effect parseEffect(const nlohmann::json& node, const std::string& path) {
   if (!node.is_object() || !node.contains("type") || !node["type"].is_string()) {
     throw SceneError(fmt::format("{}: must be an object with a \"type\": \"air_drag\", \"rolling_resistance\" or "
-                                 "\"spin_friction\", got {}", path, describeJson(node)));
+                                 "\"spin_friction\", got {}", path, describeJson(node)),
+                     node.is_object() ? SceneError::Kind::BadValue : SceneError::Kind::WrongType);
   }
   const std::string type = node["type"].get<std::string>();
   if (type == "air_drag") {
@@ -455,7 +463,8 @@ void refuseLeverArmsPastTheRim(const std::vector<physics::Effect>& effects, doub
 std::vector<physics::Effect> parseEffects(const JsonReader& top) {
   const nlohmann::json* node = top.child("effects");
   if (node == nullptr) return {};
-  if (!node->is_array()) top.fail("effects", "must be a list of effects, e.g. [{\"type\": \"air_drag\"}], got " + describeJson(*node));
+  if (!node->is_array()) top.fail("effects", "must be a list of effects, e.g. [{\"type\": \"air_drag\"}], got " + describeJson(*node),
+                                  SceneError::Kind::WrongType);
   std::vector<physics::Effect> effects;
   for (std::size_t i = 0; i < node->size(); ++i) {
     const std::string path = fmt::format("effects[{}]", i);

@@ -11,20 +11,9 @@
 #include <string_view>
 
 #include "scene/scene_config.h"
+#include "scene/scene_error.h"
 
 namespace coinroll::scene {
-
-class SceneError : public std::runtime_error {
- public:
-  // UnknownKey: the document or a --set path names a field the scene format does not have (a
-  // typo, usually), as opposed to a field whose value is wrong; sweeps refuse it before any work.
-  enum class Kind { BadValue, UnknownKey };
-  explicit SceneError(const std::string& message, Kind kind = Kind::BadValue) : std::runtime_error(message), kind_(kind) {}
-  Kind kind() const { return kind_; }
-
- private:
-  Kind kind_;
-};
 
 struct ParseOptions {
   std::span<const std::string_view> solverMethods;  // allowed solver.method names

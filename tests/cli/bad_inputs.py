@@ -698,6 +698,16 @@ case("grid-repeated-key", C, "the same key on two --grid axes",
      SW + "--grid initial.theta=1:2:2 --grid initial.theta=3:4:2", 2, "initial.theta")
 case("grid-unknown-key", C, "--grid over a key the scene does not have", SW + "--grid nosuch.key=1:2:3", 2,
      "nosuch")
+PROBE = "exit 0 with an error on every row before (issue 21, probes)"
+for key, holds, message in (("coin", "an object", "coin: must be an object, got 1"),
+                            ("name", "text", "name: must be a string, got 1"),
+                            ("sliding", "true or false", "sliding: must be true or false, got 1"),
+                            ("render.camera.eye", "a point", "render.camera.eye: must be an array of three"),
+                            ("initial.steady", "a steady kind's name",
+                             'initial.steady: must be "straight", "circle" or "spin-in-place", got 1')):
+    case(f"grid-not-number-{key.replace('.', '-')}", C, f"--grid over {key}, which holds {holds}",
+         SW + f"--grid {key}=1:2:2", 2, f"--grid {key}: not a number field, so a grid cannot vary it: scene.json: {message}",
+         key="--grid", na_before=PROBE)
 case("grid-too-many", C, "10^12 points", SW + "--grid initial.theta=1:2:1000000 --grid initial.omega_Z=1:2:1000000", 2,
      "--grid: the grid has more than 10000000 points (--max-points); raise it if you mean it", key="--max-points",
      timeout=10)

@@ -2,7 +2,9 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <algorithm>
 #include <array>
+#include <initializer_list>
 #include <memory>
 #include <new>
 #include <stdexcept>
@@ -46,8 +48,10 @@ std::vector<unsigned char> encodePng(const Image& image, const std::filesystem::
 }
 
 // stb reports a failed allocation as "outofmem"; it is not a fault of the file.
+// Some of its failures (compressed data that does not inflate) leave no reason at all.
 [[noreturn]] void throwDecodeFailure(const std::string& context) {
-  const std::string reason = stbi_failure_reason();
+  const char* failure = stbi_failure_reason();
+  const std::string reason = failure != nullptr ? failure : "its compressed pixel data does not inflate";
   if (reason == "outofmem") throw std::bad_alloc();
   throw std::runtime_error(context + reason);
 }
@@ -80,7 +84,7 @@ PngSize readPngSize(const std::filesystem::path& path) {
   // The signature, then the IHDR chunk, which PNG requires first: length 13, "IHDR", width and
   // height as big-endian 32-bit numbers.
   constexpr unsigned char kStart[16] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n', 0, 0, 0, 13, 'I', 'H', 'D', 'R'};
-  unsigned char head[25] = {};
+  unsigned char head[26] = {};
   std::FILE* in = std::fopen(path.c_str(), "rb");
   if (in == nullptr) throw std::runtime_error(path.string() + ": cannot open: " + std::strerror(errno));
   const std::size_t got = std::fread(head, 1, sizeof head, in);
@@ -98,7 +102,21 @@ PngSize readPngSize(const std::filesystem::path& path) {
     throw std::runtime_error(path.string() + ": cannot read the PNG header: a side of " +
                              std::to_string(width == 0 || width > 0x7fffffffu ? width : height) + " pixels");
   }
-  return {static_cast<int>(width), static_cast<int>(height), head[24]};
+  // PNG's table of depths per colour type: stb takes some other pairs for another fault ("invalid
+  // width" for a 4-bit RGB picture), so they are named here.
+  const int depth = head[24], colourType = head[25];
+  const auto depthAllowed = [&](std::initializer_list<int> depths) {
+    return std::find(depths.begin(), depths.end(), depth) != depths.end();
+  };
+  const bool allowed = colourType == 0   ? depthAllowed({1, 2, 4, 8, 16})
+                       : colourType == 3 ? depthAllowed({1, 2, 4, 8})
+                       : colourType == 2 || colourType == 4 || colourType == 6 ? depthAllowed({8, 16})
+                                                                                 : false;
+  if (!allowed) {
+    throw std::runtime_error(path.string() + ": cannot read the PNG header: bit depth " + std::to_string(depth) +
+                             " with colour type " + std::to_string(colourType) + " is not allowed in PNG");
+  }
+  return {static_cast<int>(width), static_cast<int>(height), depth};
 }
 
 void checkPngChunks(const std::filesystem::path& path) {
@@ -138,7 +156,10 @@ void checkPngChunks(const std::filesystem::path& path) {
 
 Image readPng(const std::filesystem::path& path) {
   int width = 0, height = 0, channels = 0;
-  stbi_uc* data = stbi_load(path.c_str(), &width, &height, &channels, 4);
+  // Opened here, not by stb, whose message for an unopenable file is "can't fopen", without errno's.
+  const std::unique_ptr<std::FILE, int (*)(std::FILE*)> in(std::fopen(path.c_str(), "rb"), &std::fclose);
+  if (!in) throw std::runtime_error(path.string() + ": cannot read PNG: " + std::strerror(errno));
+  stbi_uc* data = stbi_load_from_file(in.get(), &width, &height, &channels, 4);
   if (data == nullptr) throwDecodeFailure(path.string() + ": cannot read PNG: ");
   Image image(width, height);
   std::copy(data, data + image.rgba.size(), image.rgba.begin());

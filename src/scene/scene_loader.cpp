@@ -683,6 +683,14 @@ void applyOverride(nlohmann::json& document, std::string_view assignment) {
   const std::string text(assignment.substr(equals + 1));
   nlohmann::json value = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
   if (value.is_discarded()) value = text;
+  try {
+    // A scene is JSON, so UTF-8: refused here, the bytes would fail later wherever the document
+    // is written out again (a sweep's identity) with a library's message.
+    (void)value.dump();
+  } catch (const nlohmann::json::type_error&) {
+    throw SceneError(fmt::format("--set {}: the value is not UTF-8 text; scene values are UTF-8, as in a JSON file",
+                                 printableKey(path)));
+  }
 
   // Objects are walked by key, lists (effects) by index: effects.0.length is the first effect's
   // length. A missing key is created as an object; a list is never created or lengthened, since

@@ -113,10 +113,11 @@ def deep_arrays(path):
         out.write(b"[" * 2_000_000 + b"]" * 2_000_000)
 
 
-def png(width, height, shade=128, bit_depth=8, damage_at=None):
+def png(width, height, shade=128, bit_depth=8, damage_at=None, colour_type=6, idat=None):
     """A grey RGBA PNG written with the standard library, for compare's inputs: 8 or 16 bits per
     channel (16: every low byte `shade`, every high byte 0), and with the byte `damage_at` bytes
-    from the end flipped, if given (inside the IDAT chunk's CRC)."""
+    from the end flipped, if given (inside the IDAT chunk's CRC). `colour_type` goes into the
+    header only; `idat`, if given, replaces the compressed pixels (with a valid CRC)."""
     import struct
     import zlib
 
@@ -125,8 +126,8 @@ def png(width, height, shade=128, bit_depth=8, damage_at=None):
 
     pixel = bytes([shade, shade, shade, 255]) if bit_depth == 8 else bytes([0, shade] * 3 + [255, 255])
     rows = b"".join(b"\0" + pixel * width for _ in range(height))
-    header = struct.pack(">IIBBBBB", width, height, bit_depth, 6, 0, 0, 0)
-    data = bytearray(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"IDAT", zlib.compress(rows))
+    header = struct.pack(">IIBBBBB", width, height, bit_depth, colour_type, 0, 0, 0)
+    data = bytearray(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"IDAT", idat or zlib.compress(rows))
                      + chunk(b"IEND", b""))
     if damage_at is not None:
         data[-damage_at] ^= 0xFF
@@ -543,6 +544,10 @@ case("on-invalid", C, "on_invalid ignore", SIM + " --set on_invalid=ignore", 2,
 
 # --- --set
 C = "--set"
+case("set-not-utf8", C, "--set name=<byte 0xFF> on a sweep (a scene is UTF-8)",
+     "exec {bin} sweep scene.json -q -o o.csv --grid initial.theta=5:10:2 --set $'name=\\xff'", 2,
+     "--set name: the value is not UTF-8 text; scene values are UTF-8, as in a JSON file", key="--set name", shell=True,
+     na_before="a library's message, exit 1, before (issue 21, second probe)")
 case("set-negative", C, "--set coin.radius=-1", SIM + " --set coin.radius=-1", 2,
      "scene.json: coin.radius: must be in [1e-06, 1000] m, got -1", key="coin.radius")
 case("set-unknown-key", C, "--set nosuch=1", SIM + " --set nosuch=1", 2, "nosuch: unknown key; allowed here:",
@@ -1195,6 +1200,20 @@ case("compare-16-bit", C, "two 16-bit PNGs that differ in every low byte (read a
 case("compare-bad-crc", C, "a PNG whose IDAT chunk fails its CRC (the decoder ignores CRCs)",
      "compare a.png bad.png", 2, "bad.png: chunk IDAT fails its CRC check at byte 33: a damaged or truncated PNG",
      key="CRC", files={"a.png": png(64, 48), "bad.png": png(64, 48, damage_at=14)}, na_before=ISSUE21_5)
+UNCLEAR_BEFORE = "a library's message before (issue 21, second probe)"
+case("compare-bad-zlib", C, "a PNG whose IDAT is not zlib data (its CRC right)", "compare a.png bad.png", 2,
+     "bad.png: cannot read PNG: its compressed pixel data does not inflate", key="bad.png",
+     files={"a.png": png(8, 8), "bad.png": png(8, 8, idat=b"\x78\x9cnot deflate data")}, na_before=UNCLEAR_BEFORE)
+case("compare-bad-depth", C, "a PNG header with 4 bits per channel of RGB (PNG allows 8 or 16)", "compare bad.png a.png", 2,
+     "bad.png: cannot read the PNG header: bit depth 4 with colour type 2 is not allowed in PNG", key="bit depth",
+     files={"a.png": png(8, 8), "bad.png": png(8, 8, bit_depth=4, colour_type=2)}, na_before=UNCLEAR_BEFORE)
+for id_, files, message in (
+        ("missing", {}, "ad/coin_face.png: cannot read PNG: No such file or directory ($COINROLL_ASSET_DIR names"),
+        ("bad-zlib", {"ad/coin_face.png": png(8, 8, idat=b"\x78\x9cnot deflate data")},
+         "ad/coin_face.png: cannot read PNG: its compressed pixel data does not inflate ($COINROLL_ASSET_DIR names")):
+    case(f"asset-dir-{id_}", C, f"$COINROLL_ASSET_DIR without a readable coin_face.png ({id_})",
+         "COINROLL_ASSET_DIR=ad exec {bin} still scene.json --time 0.1 -o o.png", 1, message,
+         key="$COINROLL_ASSET_DIR", shell=True, files={"scene.json": VALID, **files}, na_before=UNCLEAR_BEFORE)
 
 
 

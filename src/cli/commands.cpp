@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -138,7 +139,7 @@ void refuseOverwritingInput(const std::string& option, const std::filesystem::pa
                             const std::vector<std::filesystem::path>& inputs) {
   std::error_code error;
   const std::string outputName = output.filename().string();
-  const bool isSequence = outputName.find('%') != std::string::npos;
+  const bool isSequence = video::namesPngSequence(output);
   for (const std::filesystem::path& input : inputs) {
     const std::filesystem::path outputDirectory = output.parent_path().empty() ? "." : output.parent_path();
     const std::filesystem::path inputDirectory = input.parent_path().empty() ? "." : input.parent_path();
@@ -464,6 +465,12 @@ void runSweep(const SweepOptions& options) {
 
 void runSweepMerge(const SweepMergeOptions& options) {
   const std::vector<std::filesystem::path> shards(options.shards.begin(), options.shards.end());
+  // Checked before any file is opened: a closed descriptor 0 is the first one open() hands out, and
+  // then reads as an empty shard (or as the output's temporary file).
+  if (std::find(shards.begin(), shards.end(), "-") != shards.end() && ::fcntl(STDIN_FILENO, F_GETFD) == -1) {
+    throw std::runtime_error("standard input: closed, so there is no shard to read from it; redirect the shard into it "
+                             "(- < part.csv) or give its file name instead of -");
+  }
   refuseEmptyOutputName("-o", options.output, "merged.csv (or - for standard output)");
   if (options.output != "-") refuseOverwritingInput("-o", options.output, shards);
   ProgressLine noProgress(false);

@@ -6,6 +6,7 @@
 
 #include <atomic>
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -86,11 +87,15 @@ TemporaryFile createTemporaryFor(const Destination& destination) {
 }
 
 TemporaryFile createScratchFileFor(const Destination& destination) {
+  // POSIX's rule, which std::filesystem::temp_directory_path does not keep: an empty $TMPDIR is
+  // as good as none, and none means /tmp.
+  const char* variable = std::getenv("TMPDIR");
+  const std::filesystem::path directory = variable != nullptr && *variable != '\0' ? variable : "/tmp";
   std::error_code error;
-  const std::filesystem::path directory = std::filesystem::temp_directory_path(error);
-  if (error) {
-    throw std::runtime_error(destination.name.string() + ": no temporary directory to encode in ($TMPDIR): " +
-                             error.message());
+  if (!std::filesystem::is_directory(directory, error)) {
+    throw std::runtime_error(destination.name.string() + ": no temporary directory to encode in: " + directory.string() +
+                             (error ? ": " + error.message() : std::string(" is not a directory")) +
+                             (variable != nullptr && *variable != '\0' ? " (from $TMPDIR)" : ""));
   }
   return createExclusive(directory, "coinroll-output", "partial", kPrivateMode, destination.name);
 }

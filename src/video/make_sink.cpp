@@ -18,9 +18,13 @@ bool hasMp4Extension(const std::filesystem::path& path) {
 
 }  // namespace
 
+bool namesPngSequence(const std::filesystem::path& path) {
+  return !hasMp4Extension(path) && looksLikeSequencePattern(path.filename().string());
+}
+
 std::unique_ptr<FrameSink> makeSinkForPath(const std::filesystem::path& path, const Mp4Options& options,
                                            const std::vector<std::filesystem::path>& inputs) {
-  if (looksLikeSequencePattern(path.filename().string())) return std::make_unique<PngSequenceSink>(path, inputs);
+  if (namesPngSequence(path)) return std::make_unique<PngSequenceSink>(path, inputs);
   // A device, FIFO or descriptor has no extension of its own to choose by (/dev/null,
   // /dev/fd/63 from `-o >(...)`): it gets the default kind, as the default name does.
   if (hasMp4Extension(path) || io::namesStream(path)) return std::make_unique<Mp4Sink>(path, options);

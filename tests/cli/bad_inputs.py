@@ -735,6 +735,10 @@ case("merge-missing-point", C, "sweep-merge of one shard of two", MERGE + "p1.cs
      "sweep-merge: points missing (of 40 in the grid): 1, 3, 5", key="missing", files=SHARDS, gtest=(G_MERGE,))
 case("merge-repeated", C, "sweep-merge with a shard given twice", MERGE + "p1.csv p2.csv p2.csv", 1,
      "sweep-merge: points repeated: 1, 3, 5", key="repeated", files=SHARDS, gtest=(G_MERGE,))
+case("merge-stdin-closed", C, "sweep-merge - with standard input closed (it read as an empty shard)",
+     "exec {bin} " + MERGE + "p1.csv - <&-", 1,
+     "standard input: closed, so there is no shard to read from it", key="standard input", shell=True, files=SHARDS,
+     na_before="called an empty shard before (issue 21, second probe)")
 case("merge-no-file", C, "sweep-merge of a shard that does not exist", MERGE + "p1.csv p3.csv", 1,
      "p3.csv: cannot open the shard", key="p3.csv", files=SHARDS)
 case("merge-other-sweep", C, "shards of different sweeps (headers differ)", MERGE + "p1.csv q2.csv", 1,
@@ -954,6 +958,12 @@ case("dev-null-sweep", C, "sweep -o /dev/null", "sweep scene.json -q --grid init
 case("dev-null-mp4", C, "render -o /dev/null (MP4 made in $TMPDIR, then copied; nothing left there)",
      "mkdir tmp && TMPDIR=$PWD/tmp exec {bin} " + SEQ + "/dev/null", 0, None, shell=True, produces=("tmp",),
      check=lambda d: None if not any((d / "tmp").iterdir()) else "left a file in $TMPDIR")
+case("tmpdir-empty", C, "render -o /dev/null with TMPDIR='' (POSIX: as if unset, so /tmp)",
+     "TMPDIR= exec {bin} " + SEQ + "/dev/null", 0, None, shell=True,
+     na_before="refused as 'no temporary directory' before (issue 21, second probe)")
+case("mp4-name-with-percent", C, "render -o '100%.mp4': an MP4 named with a literal %", "exec {bin} " + SEQ + "'100%.mp4'", 0, None,
+     shell=True, produces=("100%.mp4",), check=lambda d: None if is_mp4(d / "100%.mp4") else "100%.mp4 is not an MP4",
+     na_before="called a bad PNG sequence pattern before (issue 21, second probe)")
 case("procsub-csv", C, "--csv >(gzip > t.csv.gz) (a pipe under /dev/fd)",
      "{bin} simulate scene.json --csv >(gzip > t.csv.gz); rc=$?; wait $!; exit $rc", 0, None, shell=True,
      produces=("t.csv.gz",), check=lambda d: None if gzip.decompress((d / "t.csv.gz").read_bytes()).startswith(CSV_HEAD)

@@ -45,6 +45,7 @@
 #include "video/async_sink.h"
 #include "video/make_sink.h"
 #include "cli/progress.h"
+#include "cli/terminal_text.h"
 #include "pipeline/trajectory_csv.h"
 #include "scene/scene_loader.h"
 
@@ -354,7 +355,7 @@ void runStill(const StillOptions& options) {
     std::cerr << fmt::format("coinroll: the run stopped early, so the still shows t = {:.6f} s: {}\n", result.shownTime,
                              *result.stopDescription);
   }
-  std::cerr << fmt::format("coinroll: wrote {} ({}x{}, t = {:.6g} s)\n", options.output, scene.render.picture.width, scene.render.picture.height,
+  std::cerr << fmt::format("coinroll: wrote {} ({}x{}, t = {:.6g} s)\n", printable(options.output), scene.render.picture.width, scene.render.picture.height,
                            result.shownTime);
 }
 
@@ -391,7 +392,7 @@ void runRender(const RenderOptions& options) {
   if (!options.quiet) {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::cerr << fmt::format("coinroll: wrote {} ({} frames, {}x{} at {} fps, {:.2f} s of video) in {:.1f} s\n",
-                             output.string(), result.frames, scene.render.picture.width, scene.render.picture.height, scene.render.fps,
+                             printable(output.string()), result.frames, scene.render.picture.width, scene.render.picture.height, scene.render.fps,
                              static_cast<double>(result.frames) / scene.render.fps, seconds);
   }
 }
@@ -457,7 +458,7 @@ void runSweep(const SweepOptions& options) {
   if (!options.quiet) {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::cerr << fmt::format("coinroll: wrote {} ({} points{}, {} failed; {:.1f} s, {:.0f} points/s on {} threads)\n",
-                             options.output == "-" ? "standard output" : options.output, result.points,
+                             options.output == "-" ? "standard output" : printable(options.output), result.points,
                              spec.shard.count > 1 ? fmt::format(", shard {}/{}", spec.shard.index, spec.shard.count) : "",
                              result.failed, seconds, result.points / std::max(seconds, 1e-9), spec.threads);
   }

@@ -20,6 +20,7 @@
 #include "cli/commands.h"
 #include "cli/exit_codes.h"
 #include "cli/interrupts.h"
+#include "cli/terminal_text.h"
 #include "cli/version.h"
 #include "pipeline/resources.h"
 #include "scene/scene_loader.h"
@@ -48,18 +49,6 @@ const CLI::Validator kAtLeastOne(
       return {};
     },
     "INT>=1");
-
-// Messages quote what users gave (file names, --set values, scene text): a control character
-// among them would act on the terminal instead of showing, so it is shown as \xNN.
-std::string printable(std::string_view message) {
-  std::string shown;
-  for (const char c : message) {
-    const auto byte = static_cast<unsigned char>(c);
-    if ((byte < 0x20 && c != '\n' && c != '\t') || byte == 0x7f) shown += fmt::format("\\x{:02x}", byte);
-    else shown += c;
-  }
-  return shown;
-}
 
 }  // namespace
 

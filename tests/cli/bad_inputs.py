@@ -590,6 +590,13 @@ case("set-unsigned-64", C, "--set render.width=18446744073709551615 (read as -1 
 case("key-control-characters", C, "a scene key holding a NUL and a terminal escape: shown escaped, never raw", SIM, 2,
      'scene.json: "ab\\u0000c\\u001b[31m": unknown key', key="unknown key",
      files={"scene.json": VALID[:-1] + ', "ab\\u0000c\\u001b[31m": 1}'}, na_before=MESSAGES)
+ESCAPED = "shown raw before (issue 21, second probe)"
+case("name-escape-in-summary", C, "still -o with a terminal escape in the name: the summary shows it escaped",
+     "exec {bin} still scene.json --time 0.1 " + SMALL + " -o $'\\e[31mred.png'", 0,
+     "coinroll: wrote \\x1b[31mred.png (64x48", key="wrote", shell=True, produces=("\x1b[31mred.png",), na_before=ESCAPED)
+case("name-newline-in-error", C, "a scene name with a line break: the error stays on one line",
+     "exec {bin} simulate $'a\\nb.json' --csv o.csv", 2,
+     "coinroll: error: a\\nb.json: cannot open the scene file", key="b.json", shell=True, na_before=ESCAPED)
 case("camera-far-away", C, "render.camera.eye 1e300 m away (was called 'straight above')",
      "still scene.json -o s.png --time 0 --set 'render.camera.eye=[1e300,0.1,0]' --set 'render.camera.target=[0,0,0]'",
      2, "render.camera.eye: coordinates must be within [-1e+06, 1e+06] m, got [1e+300, 0.1, 0]", key="render.camera.eye",

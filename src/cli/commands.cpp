@@ -335,6 +335,9 @@ void runStill(const StillOptions& options) {
   if (output.extension() != ".png" && !io::namesStream(output)) {
     throw UsageError(fmt::format("-o: a still is written as PNG; give a name ending in .png, got \"{}\"", options.output));
   }
+  if (options.strobeFrom && options.strobe == 0) {
+    throw UsageError("--strobe-from: places the first of the --strobe copies, and there are none; give --strobe N too");
+  }
   refuseOverwritingInput("-o", output, inputsOf(options.scene));
   io::checkOutputName(output);  // the PNG is written after the rendering: a name that cannot work fails first
   const scene::SceneConfig scene = loadScene(options.scene);
@@ -343,7 +346,7 @@ void runStill(const StillOptions& options) {
   try {
     result = pipeline::renderStill(scene, {.time = options.time,
                                            .ghosts = options.strobe,
-                                           .ghostsFrom = options.strobeFrom,
+                                           .ghostsFrom = options.strobeFrom.value_or(0),
                                            .output = output,
                                            .cancel = &interruptRequested()});
   } catch (const std::invalid_argument& e) {
@@ -473,6 +476,9 @@ void runSweepMerge(const SweepMergeOptions& options) {
                              "(- < part.csv) or give its file name instead of -");
   }
   refuseEmptyOutputName("-o", options.output, "merged.csv (or - for standard output)");
+  if (std::find(shards.begin(), shards.end(), "") != shards.end()) {
+    throw UsageError("a shard name is empty; give the shard files (e.g. part_*.csv), or - for standard input");
+  }
   if (options.output != "-") refuseOverwritingInput("-o", options.output, shards);
   ProgressLine noProgress(false);
   withProgress(noProgress, options.output, [&] {
@@ -488,6 +494,7 @@ namespace {
 // file and says what to give instead.
 image::PngSize checkComparedPng(const std::string& name) {
   const std::filesystem::path path(name);
+  if (name.empty()) throw UsageError("a PNG name is empty; give the paths of the two PNGs to compare, e.g. golden.png new.png");
   std::error_code error;
   if (!std::filesystem::exists(path, error)) {
     throw UsageError(fmt::format("{}: no such file; give the path of a PNG to compare", name));

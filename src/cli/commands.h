@@ -40,7 +40,7 @@ struct StillOptions {
   double time = 0;       // s of simulated time
   std::string output;    // PNG path
   int strobe = 0;        // earlier copies of the coin overlaid, evenly spaced over [strobeFrom, time)
-  double strobeFrom = 0;  // s
+  std::optional<double> strobeFrom;  // s; 0 when absent, and only with strobe >= 1
 };
 void runStill(const StillOptions& options);
 

@@ -50,6 +50,16 @@ const CLI::Validator kAtLeastOne(
     },
     "INT>=1");
 
+// Flushes stdout; false, with the reason on stderr, when what was printed did not all reach it.
+// errno is the caller's to clear before the printing.
+bool standardOutputWritten() {
+  std::cout.flush();
+  if (std::cout && std::fflush(stdout) == 0 && !std::ferror(stdout)) return true;
+  std::cerr << "coinroll: error: writing to standard output failed: "
+            << (errno != 0 ? std::strerror(errno) : "the stream reported an error") << '\n';
+  return false;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -131,8 +141,7 @@ int main(int argc, char** argv) {
                            "Overlay N semi-transparent copies of the coin at evenly spaced earlier times (a figure)")
       ->capture_default_str();
   stillCommand->add_option("--strobe-from", still.strobeFrom,
-                           "Simulated time of the first copy, s (default 0): e.g. the last second of a spin-down")
-      ->capture_default_str();
+                           "Simulated time of the first copy, s (default 0): e.g. the last second of a spin-down");
   stillCommand->footer(
       "Size, anti-aliasing, camera, trace and overlay come from the scene's render block, e.g.\n"
       "  coinroll still examples/steady_circle.json --time 1.5 -o circle.png --set render.width=640 --set render.height=360\n"
@@ -232,7 +241,10 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
+    errno = 0;
     const int code = app.exit(e);
+    // --help and --version are output too: a full device or a closed stdout is no success.
+    if (code == 0 && !standardOutputWritten()) return kExitFailure;
     return code == 0 ? kExitSuccess : kExitBadInput;
   }
 
@@ -251,12 +263,7 @@ int main(int argc, char** argv) {
     // Reports printed to stdout (steady, summaries) are output too: a full device or a closed
     // stdout must not pass as success.
     errno = 0;
-    std::cout.flush();
-    if (!std::cout || std::fflush(stdout) != 0 || std::ferror(stdout)) {
-      throw std::runtime_error(fmt::format("writing to standard output failed: {}",
-                                           errno != 0 ? std::strerror(errno) : "the stream reported an error"));
-    }
-    return exitCode;
+    return standardOutputWritten() ? exitCode : kExitFailure;
   } catch (const coinroll::scene::SceneError& e) {
     std::cerr << "coinroll: error: " << printable(e.what()) << '\n';
     return kExitBadInput;

@@ -578,8 +578,9 @@ SceneConfig parseScene(const nlohmann::json& document, std::string_view sourceNa
     render::CoinShape drawnCoin;
     scene.coin = parseCoin(top, drawnCoin);
     scene.gravity = top.number("gravity", scene.gravity);
-    positive(top, "gravity", scene.gravity);
-    inRange(top, "gravity", scene.gravity, 0, kMaxGravity, "m/s^2");
+    if (!(scene.gravity > 0 && scene.gravity <= kMaxGravity)) {
+      top.fail("gravity", fmt::format("must be in (0, {:g}] m/s^2, got {}", kMaxGravity, scene.gravity));
+    }
     scene.friction = top.optionalNumber("friction");
     if (scene.friction && !(*scene.friction >= 0)) top.fail("friction", fmt::format("must be >= 0, got {}", *scene.friction));
     scene.frictionStatic = top.optionalNumber("friction_static");
@@ -629,6 +630,10 @@ SceneConfig parseScene(const nlohmann::json& document, std::string_view sourceNa
 }
 
 nlohmann::json readSceneDocument(const std::filesystem::path& file) {
+  if (file.empty()) {
+    throw SceneError("the scene file name is empty; give a scene file (e.g. examples/steady_circle.json), or none for "
+                     "the built-in scene");
+  }
   std::error_code error;
   if (std::filesystem::is_directory(file, error)) {
     throw SceneError(fmt::format("{}: is a directory; give a scene file (JSON)", file.string()));
@@ -648,6 +653,13 @@ nlohmann::json readSceneDocument(const std::filesystem::path& file) {
 }
 
 nlohmann::json parseSceneText(std::string_view text, std::string_view sourceName) {
+  // nlohmann's lexer takes a NUL byte for the end of the input, so whatever follows one would go
+  // unread: a damaged file, or a binary one, would pass as the scene before it.
+  if (const std::size_t nul = text.find('\0'); nul != std::string_view::npos) {
+    const auto [line, column] = lineAndColumn(text, nul);
+    throw SceneError(fmt::format("{}: invalid JSON at line {}, column {}: a NUL byte; a scene file is JSON text "
+                                 "(a damaged or binary file?)", sourceName, line, column));
+  }
   try {
     return nlohmann::json::parse(text, DuplicateKeyGuard());
   } catch (const DuplicateKey& duplicate) {

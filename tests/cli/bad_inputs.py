@@ -216,6 +216,12 @@ case("file-not-utf8", C, "Latin-1 byte in a string (not UTF-8)", SIM, 2,
      files={"scene.json": VALID.encode()[:-1] + b', "name": "caf\xe9"}'})
 case("file-bom", C, "UTF-8 byte-order mark before the JSON (must work)", SIM, 0, None,
      files={"scene.json": b"\xef\xbb\xbf" + VALID.encode()}, produces=("o.csv",))
+PROBE3 = "accepted or unclear before (issue 21, third probe)"
+case("file-nul-then-garbage", C, "a valid scene, then a NUL byte and garbage (the NUL ended the parse)", SIM, 2,
+     "scene.json: invalid JSON at line 1, column", key="NUL", files={"scene.json": VALID.encode() + b"\0 xyz {"},
+     na_before=PROBE3)
+case("file-name-empty", C, "simulate '' (an empty scene name)", "simulate '' --csv o.csv", 2,
+     "the scene file name is empty; give a scene file", key="scene file name", na_before=PROBE3)
 case("file-deep-nesting", C, "2 000 000 nested arrays (4 MB)", SIM, 2,
      "(top level): must be an object, got an array", key="top level", files={"scene.json": deep_arrays}, timeout=30)
 case("file-deep-in-field", C, "a million nested arrays as render.camera.eye", SIM, 2,
@@ -268,7 +274,7 @@ case("range-radius", C, "coin.radius -1", SIM, 2, "coin.radius: must be in [1e-0
      files={"scene.json": scene(coin={"radius": -1})}, gtest=(G_SCENES,))
 case("range-mass", C, "coin.mass 0", SIM, 2, "coin.mass: must be in [1e-09, 1e+09] kg, got 0", key="coin.mass",
      files={"scene.json": scene(coin={"mass": 0})}, gtest=(G_SCENES,))
-case("range-gravity", C, "gravity 0", SIM, 2, "gravity: must be > 0, got 0", key="gravity",
+case("range-gravity", C, "gravity 0", SIM, 2, "gravity: must be in (0, 10000] m/s^2, got 0", key="gravity",
      files={"scene.json": scene(gravity=0)})
 case("range-friction", C, "friction -0.1", SIM, 2, "friction: must be >= 0, got -0.1", key="friction",
      files={"scene.json": scene(friction=-0.1)})
@@ -671,6 +677,11 @@ case("strobe-negative", C, "still --strobe -3", "still scene.json --time 0.1 -o 
 case("strobe-from-late", C, "--strobe-from after --time",
      "still scene.json --time 0.3 -o o.png --strobe 4 --strobe-from 0.4", 2,
      "--strobe-from: must be at least 0 and before --time (0.3 s), got 0.4", key="--strobe-from")
+for strobe in ("", "--strobe 0 "):
+    case(f"strobe-from-alone{'-zero' if strobe else ''}", C, f"still {strobe}--strobe-from 0.05 (no copies to place)",
+         f"still scene.json --time 0.1 -o o.png {strobe}--strobe-from 0.05", 2,
+         "--strobe-from: places the first of the --strobe copies, and there are none; give --strobe N too",
+         key="--strobe-from", na_before=PROBE3)
 case("steady-kind", C, "steady --kind wobble", "steady --kind wobble", 2,
      "--kind: wobble not in {straight,circle,spin-in-place}", key="--kind")
 case("steady-no-kind", C, "steady --theta without --kind", "steady --theta 20", 2,
@@ -746,6 +757,8 @@ case("merge-stdin-closed", C, "sweep-merge - with standard input closed (it read
      "exec {bin} " + MERGE + "p1.csv - <&-", 1,
      "standard input: closed, so there is no shard to read from it", key="standard input", shell=True, files=SHARDS,
      na_before="called an empty shard before (issue 21, second probe)")
+case("merge-empty-name", C, "sweep-merge with an empty shard name", MERGE + "p1.csv ''", 2,
+     "a shard name is empty; give the shard files", key="shard name", files=SHARDS, na_before=PROBE3)
 case("merge-no-file", C, "sweep-merge of a shard that does not exist", MERGE + "p1.csv p3.csv", 1,
      "p3.csv: cannot open the shard", key="p3.csv", files=SHARDS)
 case("merge-other-sweep", C, "shards of different sweeps (headers differ)", MERGE + "p1.csv q2.csv", 1,
@@ -1123,6 +1136,11 @@ def interrupted(sig, output):
 
 
 G_INT_SIM = "CliTest.InterruptedSimulateExitsOneAndLeavesNothing"
+for id_, command in (("version-full", "--version > /dev/full"), ("help-full", "--help > /dev/full"),
+                     ("help-closed", "simulate --help >&-")):
+    case(id_, "pipes", f"coinroll {command}: the failed write is an error", "exec {bin} " + command, 1,
+         "writing to standard output failed: " + ("Bad file descriptor" if "&-" in command else "No space left on device"),
+         key="standard output", shell=True, na_before=PROBE3)
 case("sigint-simulate", C, "SIGINT during a long simulate", LONG_SIM, 1, interrupted(INT, "o.csv"), key="interrupted",
      signal=INT, gtest=(G_INT_SIM,))
 case("sigterm-simulate", C, "SIGTERM during a long simulate", LONG_SIM, 1, interrupted(TERM, "o.csv"),
@@ -1218,6 +1236,8 @@ case("compare-bad-crc", C, "a PNG whose IDAT chunk fails its CRC (the decoder ig
      "compare a.png bad.png", 2, "bad.png: chunk IDAT fails its CRC check at byte 33: a damaged or truncated PNG",
      key="CRC", files={"a.png": png(64, 48), "bad.png": png(64, 48, damage_at=14)}, na_before=ISSUE21_5)
 UNCLEAR_BEFORE = "a library's message before (issue 21, second probe)"
+case("compare-empty-name", C, "compare '' a.png", "compare '' a.png", 2, "a PNG name is empty", key="PNG name",
+     files={"a.png": png(8, 8)}, na_before=PROBE3)
 case("compare-bad-zlib", C, "a PNG whose IDAT is not zlib data (its CRC right)", "compare a.png bad.png", 2,
      "bad.png: cannot read PNG: its compressed pixel data does not inflate", key="bad.png",
      files={"a.png": png(8, 8), "bad.png": png(8, 8, idat=b"\x78\x9cnot deflate data")}, na_before=UNCLEAR_BEFORE)

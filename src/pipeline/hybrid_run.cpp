@@ -19,15 +19,17 @@ constexpr int kSlidingSize = physics::kSlidingStateSize + 1;
 
 // The switches' event ids, past ModelEvent's values.
 constexpr int kSlideOnset = 1000;  // rolling: the reaction reaches the cone
-constexpr int kSlipStops = 1001;   // sliding: the slip speed falls to kStoppedSlip
+constexpr int kSlipStops = 1001;   // sliding: the slip speed falls to stoppedSlip(t)
 constexpr int kSlipFrees = 1002;   // creeping: the slip's direction is slow enough to integrate
 constexpr int kSlipCreeps = 1003;  // sliding: the slip's direction is too fast to integrate
 
 // m/s. Sliding ends when the slip speed falls to this, not to 0, where friction's direction is no
-// longer defined: the last 1e-12 m/s is closed by friction at once, its kinetic energy booked as
-// dissipated (docs/sliding.md §4), and the switch lands about 1e-13 s early for a slip that
-// decelerates at mu g.
-constexpr double kStoppedSlip = 1e-12;
+// longer defined: the last of the slip is closed by friction at once, its kinetic energy booked as
+// dissipated (docs/sliding.md §4.5). A free slip's direction turns at restoring / |s|, so the steps
+// near the stop shrink with |s|; the stop must come while they are still above the integrator's
+// floor of 1e-14 |t|, hence a threshold growing with t (10^-11 m/s up to 1 s: a skid switches about
+// 3e-12 s early at mu g = 3 m/s^2; at 1e-12 m/s a skid at t = 4.8 s stalled).
+double stoppedSlip(double t) { return 1e-11 * std::max(1.0, std::abs(t)); }
 
 // Stick-slip: more switches than this within one simulated second end the run (docs/sliding.md §4).
 constexpr std::size_t kMaxSwitchesPerSecond = 1000;
@@ -104,7 +106,7 @@ HybridRun::HybridRun(const Simulation& simulation) : simulation_(simulation) {
   const Eigen::Vector2d velocity = simulation.initialVelocity.value_or(Eigen::Vector2d(rollingVelocity.x(), rollingVelocity.z()));
   const physics::SlidingState sliding{.attitude = start, .slip = physics::slipOf(simulation_.model, start, velocity)};
   const physics::Forward slipping = physics::slidingForward(simulation_.model, sliding, simulation.kineticFriction, Eigen::Vector3d::UnitX());
-  if (slipping.slip.norm() > kStoppedSlip) {
+  if (slipping.slip.norm() > stoppedSlip(0)) {
     startSliding(0, sliding, 0, SlipMode::Free);
   } else if (physics::slipMargin(simulation_.model, rolling, *simulation.friction) < 0) {
     startSliding(0, {.attitude = start}, 0, SlipMode::Creeping);
@@ -147,7 +149,7 @@ void HybridRun::startSliding(double t, const physics::SlidingState& state, doubl
   events.push_back(modelEvent<kSlidingSize>(
       ModelEvent::Painleve, [forwardOf](double, const Y& y) { return forwardOf(y).normalEffectiveMass; }, -1, true));
   if (mode == SlipMode::Free) {
-    events.push_back(switchEvent<kSlidingSize>(kSlipStops, "rolls", [](double, const Y& y) { return slidingStateOf(y).slip.norm() - kStoppedSlip; }));
+    events.push_back(switchEvent<kSlidingSize>(kSlipStops, "rolls", [](double at, const Y& y) { return slidingStateOf(y).slip.norm() - stoppedSlip(at); }));
     // A slip that falls back to half the creep's threshold hands its direction to its rest, once it
     // has come to the rest: the threshold fades to zero as the slip's angle from the rest grows to
     // kCreepLag, so a slide that ends across the rest's pull (a skid) is integrated to its end.
@@ -164,11 +166,11 @@ void HybridRun::startSliding(double t, const physics::SlidingState& state, doubl
   } else {
     // Friction keeps to the rest while the slip passes zero, so the slip crosses it smoothly and its
     // length has a kink there that a step can jump: the stop is found on the slip along the rest.
-    events.push_back(switchEvent<kSlidingSize>(kSlipStops, "rolls", [rhs](double, const Y& y) {
+    events.push_back(switchEvent<kSlidingSize>(kSlipStops, "rolls", [rhs](double at, const Y& y) {
       const physics::SlidingStateVec coin = y.head<physics::kSlidingStateSize>();
       const Eigen::Vector3d rest = rhs.frictionDirection(coin);
       const Eigen::Vector2d slip = physics::toSlidingState(coin).slip;
-      return slip.x() * rest.x() + slip.y() * rest.z() - kStoppedSlip;
+      return slip.x() * rest.x() + slip.y() * rest.z() - stoppedSlip(at);
     }));
     events.push_back(switchEvent<kSlidingSize>(
         kSlipFrees, "slips freely",
@@ -242,7 +244,7 @@ bool HybridRun::switchIfDue() {
   const physics::Forward slipping = sliding.forward(hit->y.head<physics::kSlidingStateSize>());
   retire(trajectory);
   const physics::Forward rolling = physics::forward(simulation_.model, state.attitude);
-  // Friction takes the last kStoppedSlip of slip at once: the kinetic energy it removes is dissipated.
+  // Friction takes the last stoppedSlip(t) of slip at once: the kinetic energy it removes is dissipated.
   const double afterStop = dissipated + (slipping.energy - rolling.energy);
   if (physics::slipMargin(simulation_.model, rolling, *simulation_.friction) < 0) {
     // At zero slip the rolling reaction does not fit the cone: the coin slides on from zero slip,

@@ -48,6 +48,14 @@ void OutputGroup::protect(const std::vector<std::filesystem::path>& inputs) {
   }
 }
 
+std::optional<std::filesystem::path> OutputGroup::inputBehind(const std::filesystem::path& name) const {
+  struct stat info {};
+  if (::stat(name.c_str(), &info) != 0) return std::nullopt;
+  const auto input = protected_.find(FileIdentity{info.st_dev, info.st_ino});
+  if (input == protected_.end()) return std::nullopt;
+  return input->second;
+}
+
 // Two frames written to one file would lose one of them without a word, and a frame written to
 // an input would destroy it: names are compared by where they lead, links followed.
 void OutputGroup::refuseSharedTarget(const Destination& destination) {

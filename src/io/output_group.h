@@ -10,6 +10,7 @@
 
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,9 @@ class OutputGroup {
   // Files add() must never lead to (the command's inputs): a frame name that reaches one, through
   // a link or as another name of the same file, is refused. Files that do not exist are ignored.
   void protect(const std::vector<std::filesystem::path>& inputs);
+  // The protected input `name` leads to now, if any: for a caller that can check names before any
+  // work is done.
+  std::optional<std::filesystem::path> inputBehind(const std::filesystem::path& name) const;
 
   // An existing file for commit() to remove along with publishing the staged ones (kept if the
   // commit fails). Links are not followed: the name itself goes.

@@ -2,6 +2,7 @@
 
 #include <cctype>
 #include <climits>
+#include <optional>
 #include <stdexcept>
 #include <system_error>
 
@@ -78,6 +79,15 @@ PngSequenceSink::PngSequenceSink(std::filesystem::path pattern, const std::vecto
   std::error_code ec;
   if (!std::filesystem::is_directory(directory_.empty() ? "." : directory_, ec)) {
     throw std::runtime_error(whole + ": cannot write: directory '" + directory_.string() + "' does not exist");
+  }
+  // Only a name that exists can lead to an input: refused here, before any frame is rendered, as
+  // an output named like an input is (exit 2). add() checks again when the frame is written.
+  for (const std::filesystem::path& frame : framesFrom(0)) {
+    if (const std::optional<std::filesystem::path> input = frames_.inputBehind(frame)) {
+      throw std::invalid_argument(frame.string() + ": cannot write: it leads to " + input->string() +
+                                  ", an input of this command (through a link, or as another name of that file); "
+                                  "choose another output name");
+    }
   }
 }
 

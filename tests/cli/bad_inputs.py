@@ -1039,9 +1039,12 @@ case("seq-stale-name-is-dir", C, "a directory named like a stale frame (f_005.pn
      check=lambda d: None if (d / "f_005.png/keep.txt").read_text() == "precious" and
      not any(p.name.startswith(".") for p in d.iterdir()) else "the directory f_005.png was moved or a hidden name left",
      na_before="hidden under .f_005.png.previous-* before (issue 21, second probe)")
-case("seq-frame-link-to-scene", C, "a frame name that is a link to the scene: refused, the scene kept",
-     SEQ + "f_%03d.png", 1, "f_001.png: cannot write: it leads to scene.json, an input of this command",
+case("seq-frame-link-to-scene", C, "a frame name that is a link to the scene: refused before rendering, the scene kept",
+     SEQ + "f_%03d.png", 2, "f_001.png: cannot write: it leads to scene.json, an input of this command",
      key="f_001.png", files={"scene.json": VALID, "f_001.png": ("symlink", "scene.json")}, na_before=PROBE2)
+case("seq-stale-link-to-scene", C, "a stale frame name (f_007.png of 4 frames) linked to the scene: refused too",
+     SEQ + "f_%03d.png", 2, "f_007.png: cannot write: it leads to scene.json, an input of this command", key="f_007.png",
+     files={"scene.json": VALID, "f_007.png": ("symlink", "scene.json")}, na_before=PROBE2)
 case("seq-two-frames-one-file", C, "two frame names linked to one file: refused, not one frame silently lost",
      SEQ + "f_%03d.png", 1, "f_002.png: cannot write: it leads to the same file as f_001.png", key="f_002.png",
      files={"scene.json": VALID, "target.png": "old", "f_001.png": ("symlink", "target.png"),

@@ -20,7 +20,7 @@ ROOT = pathlib.Path(__file__).resolve().parent.parent
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--time", type=float, default=3.0, help="simulated time of each still, s (clamped to the scene)")
-    parser.add_argument("--columns", type=int, default=4)
+    parser.add_argument("--columns", type=int, default=5)
     parser.add_argument("--output", default=str(ROOT / "docs" / "gallery.png"))
     args = parser.parse_args()
 

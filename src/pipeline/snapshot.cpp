@@ -27,23 +27,30 @@ glm::vec2 contactOnFloor(const physics::Forward& forward) {
   return {static_cast<float>(forward.contactPoint.x()), static_cast<float>(forward.contactPoint.z())};
 }
 
+// A rate that rounds to zero is shown as 0.00, never as -0.00.
+double shownToTwoDecimals(double value) { return std::abs(value) < 0.005 ? 0.0 : value; }
+
 // Overlay lines: time, tilt, the contact point's rate, the face's spin, energy (and power
-// dissipated), then `extra`.
+// dissipated, and the slip while sliding), then `extra`.
 std::vector<std::string> hudLines(const physics::CoinModel& model, const RunSample& sample, double time,
                                   const std::vector<std::string>& extra) {
   const physics::CoinState& state = sample.state;
   const physics::Forward& f = sample.forward;
   // Near flat psi-dot grows with the contact point's rate while the face itself turns slowly, so
   // the overlay names what it shows: Omega = phi-dot (the contact point round the floor, in Hz,
-  // what the ear hears and the eye follows) and the face's own turning omega_Z = psi-dot - phi-dot sin(theta).
+  // what the ear hears and the eye follows) and the face's own turning omega_Z = psi-dot - phi-dot sin(theta),
+  // both in Hz, so that the two rates read side by side.
+  constexpr double kTurn = 2 * std::numbers::pi;
   std::vector<std::string> lines = {
       fmt::format("t        {:9.3f} s", time),
       fmt::format("tilt     {:9.2f} deg above floor", 90 - std::abs(state.theta) * 180 / std::numbers::pi),
-      fmt::format("contact  {:9.2f} Hz round the floor", std::abs(f.precessionRate) / (2 * std::numbers::pi)),
-      fmt::format("face     {:9.2f} rad/s about its axis", state.omega_Z),
+      fmt::format("contact  {:9.2f} Hz round the floor", std::abs(f.precessionRate) / kTurn),
+      fmt::format("face     {:9.2f} Hz about its axis", shownToTwoDecimals(state.omega_Z / kTurn)),
       fmt::format("E        {:9.5f} J", f.energy),
   };
   if (!model.effects.empty()) lines.push_back(fmt::format("P        {:9.3f} mW dissipated", 1e3 * f.loads.power));
+  // What is drawn is what is simulated: a sliding coin says so, with the slip of its contact.
+  if (f.sliding) lines.push_back(fmt::format("sliding  {:9.2f} mm/s slip", 1e3 * f.slip.norm()));
   lines.insert(lines.end(), extra.begin(), extra.end());
   return lines;
 }

@@ -2,15 +2,19 @@
 // form, pure rolling as friction grows without bound, the energy budget across switches, and the
 // rolling run's own slip event for the instant sliding begins.
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <optional>
 #include <sstream>
+#include <string>
 #include <string_view>
 #include <vector>
 
 #include "pipeline/coin_run.h"
+#include "pipeline/motion_survey.h"
+#include "pipeline/snapshot.h"
 #include "pipeline/simulation.h"
 #include "pipeline/trajectory_csv.h"
 #include "scene/scene_loader.h"
@@ -164,3 +168,26 @@ TEST(Sliding, TheCsvCarriesTheSlipAndTheSwitches) {
 }
 
 }  // namespace
+
+namespace {
+
+std::string hudLineStartingWith(const std::vector<std::string>& lines, std::string_view start) {
+  for (const std::string& line : lines) {
+    if (line.starts_with(start)) return line;
+  }
+  return {};
+}
+
+}  // namespace
+
+TEST(Sliding, TheOverlayShowsTheSlipWhileSlidingAndOnlyThen) {
+  // The upright skid's slip falls as v0 - mu g (1 + M a^2 / I_Z) t, 3 mu g t for a disk.
+  const double v0 = 0.5, mu = 0.3, g = 9.81, t = 0.01;
+  const scene::SceneConfig scene =
+      scene::parseScene(skid({{"radius", 0.0375}, {"mass", 0.4}}, v0, mu), "test", {.solverMethods = kMethods});
+  const pipeline::Simulation sim = pipeline::buildSimulation(scene);
+  pipeline::SnapshotMaker maker(scene, sim, pipeline::surveyMotion(sim));
+  const std::string slip = hudLineStartingWith(maker.makeSnapshot(t).hudLines, "sliding");
+  EXPECT_EQ(slip, fmt::format("sliding  {:9.2f} mm/s slip", 1e3 * (v0 - 3 * mu * g * t)));
+  EXPECT_EQ(hudLineStartingWith(maker.makeSnapshot(0.2).hudLines, "sliding"), "");  // rolling from t = 0.0566 s
+}

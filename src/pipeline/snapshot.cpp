@@ -85,10 +85,15 @@ RunSample SnapshotMaker::sampleAt(double time) {
 void SnapshotMaker::extendTraceTo(double time) {
   if (!showTrace_) return;
   // The contact point of the previous snapshot is off the trace's grid of times: replace it.
-  if (traceEndsWithNow_) snapshot_.trace.pop_back();
+  if (traceEndsWithNow_) {
+    snapshot_.trace.pop_back();
+    snapshot_.traceSlides.pop_back();
+  }
   traceEndsWithNow_ = false;
   for (; static_cast<double>(nextTracePoint_) * traceDt_ < time; ++nextTracePoint_) {
-    snapshot_.trace.push_back(contactOnFloor(sampleAt(static_cast<double>(nextTracePoint_) * traceDt_).forward));
+    const physics::Forward forward = sampleAt(static_cast<double>(nextTracePoint_) * traceDt_).forward;
+    snapshot_.trace.push_back(contactOnFloor(forward));
+    snapshot_.traceSlides.push_back(forward.sliding);
   }
 }
 
@@ -102,6 +107,7 @@ const render::FrameSnapshot& SnapshotMaker::makeSnapshot(double time, const std:
   sample_ = sampleAt(time);
   if (showTrace_) {
     snapshot_.trace.push_back(contactOnFloor(sample_.forward));
+    snapshot_.traceSlides.push_back(sample_.forward.sliding);
     traceEndsWithNow_ = true;
   }
   snapshot_.coin = coinPose(sample_);

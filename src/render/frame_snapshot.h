@@ -30,6 +30,9 @@ struct FrameSnapshot {
   // Contact points (x, z) on the floor, oldest first, evenly spaced in time; the newest is the
   // current contact point. Drawn as a ribbon that fades with age.
   std::vector<glm::vec2> trace;
+  // Which trace points the coin slid at (the contact slipping): drawn in another colour. Empty, or
+  // one entry per trace point.
+  std::vector<bool> traceSlides;
   float traceWidth = 0.0015f;  // m
   bool showContact = true;     // a marker at the newest trace point
   // Text for the corner overlay, one entry per line; empty for no overlay.

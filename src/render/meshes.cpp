@@ -111,7 +111,7 @@ std::vector<CoinVertex> coinTriangles(const CoinShape& shape, int segments) {
   return triangles;
 }
 
-std::vector<RibbonVertex> ribbonStrip(const std::vector<glm::vec2>& points, float width) {
+std::vector<RibbonVertex> ribbonStrip(const std::vector<glm::vec2>& points, float width, const std::vector<bool>& slides) {
   std::vector<glm::vec2> distinct;
   std::vector<std::size_t> index;
   distinct.reserve(points.size());
@@ -131,8 +131,9 @@ std::vector<RibbonVertex> ribbonStrip(const std::vector<glm::vec2>& points, floa
     const glm::vec2 tangent = glm::normalize(after - before);
     const glm::vec2 side = 0.5f * width * glm::vec2(-tangent.y, tangent.x);
     const float age = 1.0f - static_cast<float>(index[i]) / last;
-    strip.push_back({distinct[i] + side, age});
-    strip.push_back({distinct[i] - side, age});
+    const float sliding = index[i] < slides.size() && slides[index[i]] ? 1.0f : 0.0f;
+    strip.push_back({distinct[i] + side, age, sliding});
+    strip.push_back({distinct[i] - side, age, sliding});
   }
   return strip;
 }

@@ -26,11 +26,13 @@ std::vector<CoinVertex> coinTriangles(const CoinShape& shape, int segments);
 struct RibbonVertex {
   glm::vec2 position;  // m, on the floor (x, z)
   float age;           // 0 at the newest point, 1 at the oldest
+  float sliding;       // 1 where the coin slid, else 0
 };
 
 // A triangle strip of the given width along `points` (oldest first). Consecutive duplicates
 // are skipped; fewer than two distinct points give an empty strip.
-std::vector<RibbonVertex> ribbonStrip(const std::vector<glm::vec2>& points, float width);
+// `slides`: empty, or which points the coin slid at.
+std::vector<RibbonVertex> ribbonStrip(const std::vector<glm::vec2>& points, float width, const std::vector<bool>& slides = {});
 
 struct TextVertex {
   glm::vec2 position;  // pixels, origin top-left

@@ -212,6 +212,7 @@ Renderer::Renderer(const RenderSettings& settings, GlBackend backend) : settings
   gl.BindBuffer(GL_ARRAY_BUFFER, state.traceBuffer.get());
   floatAttribute(gl, 0, 2, sizeof(RibbonVertex), offsetof(RibbonVertex, position));
   floatAttribute(gl, 1, 1, sizeof(RibbonVertex), offsetof(RibbonVertex, age));
+  floatAttribute(gl, 2, 1, sizeof(RibbonVertex), offsetof(RibbonVertex, sliding));
 
   gl.BindVertexArray(state.hudArray.get());
   gl.BindBuffer(GL_ARRAY_BUFFER, state.hudBuffer.get());
@@ -342,7 +343,8 @@ void Renderer::draw(const FrameSnapshot& snapshot, image::Image& out) {
     }
     gl.Disable(GL_STENCIL_TEST);
   }
-  if (const std::vector<RibbonVertex> ribbon = ribbonStrip(snapshot.trace, snapshot.traceWidth); !ribbon.empty()) {
+  if (const std::vector<RibbonVertex> ribbon = ribbonStrip(snapshot.trace, snapshot.traceWidth, snapshot.traceSlides);
+      !ribbon.empty()) {
     state.traceProgram.use();
     state.traceProgram.set("viewProjection", viewProjection);
     gl.BindVertexArray(state.traceArray.get());

@@ -640,4 +640,14 @@ TEST(TraceRibbon, SkipsRepeatsAndKeepsTheWidth) {
   EXPECT_TRUE(ribbonStrip({{1, 1}, {1, 1}}, 0.1f).empty());
 }
 
+TEST(TraceRibbon, CarriesWhereTheCoinSlidToBothSidesOfItsPoint) {
+  // A repeated point is dropped with its flag: the vertices keep the flag of the point they stand for.
+  const std::vector<glm::vec2> points = {{0, 0}, {1, 0}, {1, 0}, {2, 0}};
+  const std::vector<RibbonVertex> strip = ribbonStrip(points, 0.1f, {false, true, false, true});
+  ASSERT_EQ(strip.size(), 6u);
+  const std::vector<float> expected = {0, 0, 1, 1, 1, 1};
+  for (std::size_t i = 0; i < strip.size(); ++i) EXPECT_EQ(strip[i].sliding, expected[i]) << "vertex " << i;
+  for (const RibbonVertex& v : ribbonStrip(points, 0.1f)) EXPECT_EQ(v.sliding, 0.0f);  // no flags: all rolling
+}
+
 }  // namespace

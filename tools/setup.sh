@@ -14,6 +14,7 @@ packages=(
   libboost-dev libsundials-dev
   python3 python3-matplotlib python3-numpy python3-scipy python3-sympy
   parallel
+  slurm-wlm munge  # tests/slurm/slurm_test.py starts a one-node Slurm
 )
 
 missing=()

@@ -237,7 +237,7 @@ void runSimulate(const SimulateOptions& options) {
   simulation.cancel = &interruptRequested();
   reportSteadyStart(scene);
 
-  ProgressLine noProgress(false);
+  ProgressLine noProgress(ProgressLine::Style::Off, "", "");
   const pipeline::CsvRunResult result = withProgress(noProgress, options.csvPath, [&] {
     pipeline::CsvRunResult r;
     writeTextOutput(options.csvPath, "CSV",
@@ -376,7 +376,9 @@ void runRender(const RenderOptions& options) {
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
-  ProgressLine progress(!options.quiet && isatty(STDERR_FILENO) == 1);
+  // A render's log keeps to its summary line (its progress only on a terminal, as before).
+  ProgressLine progress(options.quiet || isatty(STDERR_FILENO) != 1 ? ProgressLine::Style::Off : ProgressLine::Style::Terminal,
+                        "render", "frame");
   const auto start = std::chrono::steady_clock::now();
   const pipeline::VideoRunResult result = withProgress(
       progress, output.string(),
@@ -438,7 +440,10 @@ void runSweep(const SweepOptions& options) {
   try {
     for (const std::string& axis : options.grid) spec.axes.push_back(pipeline::parseGridAxis(axis));
     refuseMisnamedAxes(spec);
-    if (options.shard) spec.shard = pipeline::parseShard(*options.shard);
+    if (options.shard) {
+      const char* arrayTaskId = std::getenv("SLURM_ARRAY_TASK_ID");
+      spec.shard = pipeline::parseShard(*options.shard, arrayTaskId ? std::optional<std::string_view>(arrayTaskId) : std::nullopt);
+    }
     if (options.maxPoints > 0) spec.maxPoints = options.maxPoints;
     if (options.threads < 0 || options.threads > 1024) {
       throw std::invalid_argument(fmt::format("--threads: must be 1 to 1024 (0: every hardware thread), got {}", options.threads));
@@ -449,7 +454,10 @@ void runSweep(const SweepOptions& options) {
   }
   spec.threads = options.threads > 0 ? options.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 
-  ProgressLine progress(!options.quiet && isatty(STDERR_FILENO) == 1);
+  // In a batch job (Slurm, parallel) stderr is a log file: the progress comes as lines that name the shard.
+  ProgressLine progress(ProgressLine::styleFor(options.quiet),
+                        spec.shard.count > 1 ? fmt::format("sweep shard {}/{}", spec.shard.index, spec.shard.count) : "sweep",
+                        "point");
   const auto start = std::chrono::steady_clock::now();
   const pipeline::SweepResult result = withProgress(progress, options.output, [&] {
     pipeline::SweepResult r;
@@ -480,7 +488,7 @@ void runSweepMerge(const SweepMergeOptions& options) {
     throw UsageError("a shard name is empty; give the shard files (e.g. part_*.csv), or - for standard input");
   }
   if (options.output != "-") refuseOverwritingInput("-o", options.output, shards);
-  ProgressLine noProgress(false);
+  ProgressLine noProgress(ProgressLine::Style::Off, "", "");
   withProgress(noProgress, options.output, [&] {
     writeTextOutput(options.output, "merged sweep",
                     [&](std::ostream& out) { pipeline::mergeSweepShards(shards, out, &interruptRequested()); });

@@ -54,9 +54,9 @@ void runRender(const RenderOptions& options);
 
 struct SweepOptions {
   SceneSource scene;
-  std::vector<std::string> grid;  // KEY.PATH=START:STOP:COUNT
+  std::vector<std::string> grid;  // KEY.PATH=START:STOP:COUNT[:log] or KEY.PATH=V1,V2,...
   std::string output;             // CSV path
-  std::optional<std::string> shard;  // "K/N"
+  std::optional<std::string> shard;  // "K/N" or "auto/N"
   int threads = 0;                // 0: every hardware thread
   long maxPoints = 0;             // 0: pipeline::kDefaultMaxPoints
   bool quiet = false;

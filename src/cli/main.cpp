@@ -154,20 +154,27 @@ int main(int argc, char** argv) {
   addSceneOptions(*sweepCommand, sweep.scene, false);
   sweepCommand->add_option("--grid", sweep.grid,
                            "KEY.PATH=START:STOP:COUNT: COUNT evenly spaced values of a scene field, in the scene's units "
-                           "(degrees for angles); repeatable, the last axis runs fastest")
+                           "(degrees for angles); START:STOP:COUNT:log: geometrically spaced (START, STOP > 0); "
+                           "V1,V2,V3: the values listed; repeatable, the last axis runs fastest")
       ->required()
-      ->type_name("KEY=START:STOP:COUNT");
+      ->type_name("KEY=START:STOP:COUNT[:log]|KEY=V1,V2,...");
   sweepCommand->add_option("-o,--output", sweep.output, "Output CSV path (written atomically), or - for standard output")->required();
-  sweepCommand->add_option("--shard", sweep.shard, "Compute only the points p with p mod N = K - 1 (K/N, 1 <= K <= N)")
-      ->type_name("K/N");
+  sweepCommand->add_option("--shard", sweep.shard,
+                           "Compute only the points p with p mod N = K - 1 (K/N, 1 <= K <= N); auto/N: K from a Slurm "
+                           "array task ($SLURM_ARRAY_TASK_ID, sbatch --array=1-N)")
+      ->type_name("K/N|auto/N");
   sweepCommand->add_option("--threads", sweep.threads, "Worker threads (default 0: every hardware thread)");
   sweepCommand->add_option("--max-points", sweep.maxPoints, "Refuse grids larger than this (default 10000000)")->check(kAtLeastOne);
-  sweepCommand->add_flag("-q,--quiet", sweep.quiet, "No progress line and no summary on stderr");
+  sweepCommand->add_flag("-q,--quiet", sweep.quiet,
+                         "No progress and no summary on stderr (progress is a line in place on a terminal, else a line "
+                         "per tenth of the points and at least one every 30 s)");
   sweepCommand->footer(
       "Rows: point, the grid values, end (duration, or the event that ended the run, or error: why), t_end, theta_min,\n"
       "theta_max (rad, over samples every 0.01 s and the end), energy_start, energy_end (J). Same bytes for any --threads.\n"
       "  coinroll sweep examples/straight_stable.json --grid initial.omega_Z=2:20:10 --grid initial.theta=1:10:10 -o map.csv\n"
-      "  coinroll sweep scene.json --grid coin.mass=0.1:1:10 --shard 3/8 -o part3.csv   (one Slurm array task)\n"
+      "  coinroll sweep scene.json --grid coin.mass=0.01:1:5:log --grid initial.theta=5,10,20 -o mass.csv\n"
+      "  coinroll sweep scene.json --grid coin.mass=0.1:1:10 --shard auto/8 -o part_${SLURM_ARRAY_TASK_ID}.csv\n"
+      "      (one task of a Slurm array, sbatch --array=1-8)\n"
       "  coinroll sweep-merge -o all.csv part*.csv\n"
       "Clusters (Slurm job arrays, GNU parallel): docs/sweeps.md.");
 

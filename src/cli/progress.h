@@ -1,22 +1,33 @@
 #pragma once
-// The progress line of long renders: frames, rate and time left, rewritten in place on a
-// terminal, at most a few times per second so printing never costs frames.
+// Progress of long work: on a terminal one line rewritten in place, at most a few times per
+// second so printing never costs frames; in a log (a batch job's output file, where a rewritten
+// line piles up as one endless line) a line of its own now and then.
 
 #include <chrono>
 #include <cstdio>
+#include <string>
 
 namespace coinroll::cli {
 
 class ProgressLine {
  public:
-  // Prints only when `enabled` (stderr is a terminal and --quiet was not given).
-  explicit ProgressLine(bool enabled);
+  enum class Style { Off, Terminal, Log };
+
+  // Off with --quiet, Terminal when stderr is a terminal, else Log.
+  static Style styleFor(bool quiet);
+
+  // `task` and `unit` name the work in the line: "render", "frame"; "sweep shard 3/8", "point".
+  ProgressLine(Style style, std::string task, std::string unit);
   void update(long done, long total);
   void finish();  // ends the line so later messages start on their own
 
  private:
-  bool enabled_;
+  void printLog(long done, long total, double elapsed, double rate);
+
+  Style style_;
+  std::string task_, unit_;
   bool printed_ = false;
+  long lastDone_ = 0;
   std::chrono::steady_clock::time_point start_, lastPrint_;
 };
 

@@ -41,15 +41,6 @@ constexpr long kBlockSize = 512;
 // The header's last two columns: SweepIdentity, after the contract's columns.
 constexpr std::string_view kIdentityColumns = ",grid_points,sweep";
 
-double parseNumber(std::string_view text, std::string_view what, std::string_view whole) {
-  double value = 0;
-  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (error != std::errc() || end != text.data() + text.size() || !std::isfinite(value)) {
-    throw std::invalid_argument(fmt::format("--grid {}: {} must be a finite number, got \"{}\"", whole, what, text));
-  }
-  return value;
-}
-
 // RFC 4180: a field with a comma, a quote or a line break goes in quotes, quotes doubled.
 std::string csvField(std::string_view text) {
   if (text.find_first_of(",\"\n\r") == std::string_view::npos) return std::string(text);
@@ -133,51 +124,6 @@ std::string pointRow(const SweepSpec& spec, long point, const std::atomic<bool>*
 
 }  // namespace
 
-double GridAxis::valueAt(long i) const {
-  if (count == 1) return start;
-  const double n = static_cast<double>(count - 1), k = static_cast<double>(i);
-  return (start * (n - k) + stop * k) / n;
-}
-
-GridAxis parseGridAxis(std::string_view text) {
-  const auto equals = text.find('=');
-  const std::string_view key = text.substr(0, std::min(equals, text.size()));
-  const std::string_view range = equals == std::string_view::npos ? std::string_view() : text.substr(equals + 1);
-  const auto colon1 = range.find(':');
-  const auto colon2 = colon1 == std::string_view::npos ? colon1 : range.find(':', colon1 + 1);
-  if (key.empty() || colon2 == std::string_view::npos || range.find(':', colon2 + 1) != std::string_view::npos) {
-    throw std::invalid_argument(
-        fmt::format("--grid {}: expected KEY.PATH=START:STOP:COUNT, e.g. --grid initial.theta=5:40:8", text));
-  }
-  GridAxis axis;
-  axis.key = key;
-  axis.start = parseNumber(range.substr(0, colon1), "START", text);
-  axis.stop = parseNumber(range.substr(colon1 + 1, colon2 - colon1 - 1), "STOP", text);
-  const std::string_view count = range.substr(colon2 + 1);
-  const auto [end, error] = std::from_chars(count.data(), count.data() + count.size(), axis.count);
-  if (error != std::errc() || end != count.data() + count.size() || axis.count < 1) {
-    throw std::invalid_argument(fmt::format("--grid {}: COUNT must be a whole number >= 1, got \"{}\"", text, count));
-  }
-  if (axis.count == 1 && axis.start != axis.stop) {
-    throw std::invalid_argument(fmt::format("--grid {}: COUNT 1 takes one value; give START = STOP", text));
-  }
-  return axis;
-}
-
-Shard parseShard(std::string_view text) {
-  Shard shard;
-  const auto slash = text.find('/');
-  const auto number = [](std::string_view digits, long& value) {
-    const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
-    return error == std::errc() && end == digits.data() + digits.size() && !digits.empty();
-  };
-  if (slash == std::string_view::npos || !number(text.substr(0, slash), shard.index) ||
-      !number(text.substr(slash + 1), shard.count) || shard.count < 1 || shard.index < 1 || shard.index > shard.count) {
-    throw std::invalid_argument(fmt::format("--shard {}: expected K/N with 1 <= K <= N, e.g. --shard 2/8", text));
-  }
-  return shard;
-}
-
 std::string sweepHeader(const std::vector<GridAxis>& axes) {
   std::string header = "point";
   for (const GridAxis& axis : axes) header.append(",").append(csvField(axis.key));
@@ -210,6 +156,10 @@ SweepResult runSweep(const SweepSpec& spec, std::ostream& out, const std::functi
 
   out << sweepHeader(spec.axes) << '\n';
   SweepResult result;
+  // Counted as points finish, not as blocks are written: a shard of fewer than kBlockSize points
+  // would otherwise report nothing until its end.
+  std::mutex progressMutex;
+  long computed = 0;
   std::vector<std::string> rows;
   for (long blockStart = 0; blockStart < mine; blockStart += kBlockSize) {
     const long blockSize = std::min(kBlockSize, mine - blockStart);
@@ -224,6 +174,10 @@ SweepResult runSweep(const SweepSpec& spec, std::ostream& out, const std::functi
         try {
           throwIfCancelled(cancel);
           rows[static_cast<std::size_t>(i)] = pointRow(spec, first + (blockStart + i) * step, cancel);
+          if (onPoint) {
+            const std::lock_guard lock(progressMutex);
+            onPoint(++computed, mine);
+          }
         } catch (...) {
           const std::lock_guard lock(failureMutex);
           if (!failure) failure = std::current_exception();
@@ -252,7 +206,6 @@ SweepResult runSweep(const SweepSpec& spec, std::ostream& out, const std::functi
       out << row << rowEnd;
       if (row.find(",error: ") != std::string::npos || row.find(",\"error: ") != std::string::npos) ++result.failed;
       ++result.points;
-      if (onPoint) onPoint(result.points, mine);
     }
     if (!out) throw std::runtime_error("writing the sweep's rows failed");
   }

@@ -13,31 +13,10 @@
 #include <string_view>
 #include <vector>
 
+#include "pipeline/sweep_grid.h"
 #include "scene/scene_loader.h"
 
 namespace coinroll::pipeline {
-
-// One --grid KEY.PATH=START:STOP:COUNT axis, in the scene file's units.
-struct GridAxis {
-  std::string key;  // e.g. "initial.theta", as for --set
-  double start = 0, stop = 0;
-  long count = 1;
-
-  // The i-th of `count` evenly spaced values; exactly start at 0 and stop at count - 1.
-  double valueAt(long i) const;
-};
-
-// Throws std::invalid_argument naming --grid and the rule for a malformed axis.
-GridAxis parseGridAxis(std::string_view text);
-
-// --shard K/N: the points p with p mod N = K - 1.
-struct Shard {
-  long index = 1;  // K, 1-based
-  long count = 1;  // N
-};
-
-// Throws std::invalid_argument naming --shard for anything but 1 <= K <= N.
-Shard parseShard(std::string_view text);
 
 // Points above this need --max-points: a typo in a COUNT should not start a week-long run.
 inline constexpr long kDefaultMaxPoints = 10'000'000;
@@ -77,9 +56,9 @@ struct SweepResult {
 
 // Simulates every point of the shard and writes the header and the rows to `out`, in point order.
 // A point whose scene is invalid or whose integration fails gets "error: <reason>" in its end
-// column. `onPoint(done, total)` is called from the writing thread; a set `cancel` stops the
-// sweep between points with Cancelled. Rows are computed in blocks, so memory does not grow with
-// the number of points.
+// column. `onPoint(done, total)` is called as each point finishes, by the thread that computed
+// it, one call at a time; a set `cancel` stops the sweep between points with Cancelled. Rows are
+// computed in blocks, so memory does not grow with the number of points.
 SweepResult runSweep(const SweepSpec& spec, std::ostream& out, const std::function<void(long, long)>& onPoint,
                      const std::atomic<bool>* cancel);
 

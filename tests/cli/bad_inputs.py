@@ -744,6 +744,39 @@ for value, gt in (("4/3", True), ("0/3", True), ("1/0", False), ("x", False)):
          SW + "--grid initial.theta=1:2:3 --shard " + value, 2,
          f"--shard {value}: expected K/N with 1 <= K <= N, e.g. --shard 2/8", key="--shard",
          gtest=(G_SWEEP,) if gt else ())
+# Listed and geometric axes, --shard auto/N (issue 25).
+ISSUE25 = "no listed or geometric axes, no --shard auto/N before (issue 25)"
+case("grid-list-repeated", C, "a value listed twice", SW + "--grid initial.theta=5,10,5", 2,
+     "--grid initial.theta=5,10,5: 5 is listed twice; list each value once", key="--grid", gtest=(G_SWEEP,),
+     na_before=ISSUE25)
+case("grid-list-empty-value", C, "an empty value in a list", SW + "--grid initial.theta=5,,10", 2,
+     '--grid initial.theta=5,,10: value 2 must be a finite number, got ""', key="--grid", na_before=ISSUE25)
+case("grid-list-text", C, "a value that is no number in a list", SW + "--grid initial.theta=5,ten", 2,
+     '--grid initial.theta=5,ten: value 2 must be a finite number, got "ten"', key="--grid", na_before=ISSUE25)
+case("grid-list-and-range", C, "a list mixed into a range", SW + "--grid initial.theta=1:10:3,4", 2,
+     "--grid initial.theta=1:10:3,4: expected KEY.PATH=START:STOP:COUNT, KEY.PATH=START:STOP:COUNT:log or "
+     "KEY.PATH=V1,V2,...", key="--grid")
+case("grid-log-zero", C, "a log axis from 0", SW + "--grid coin.mass=0:1:3:log", 2,
+     "--grid coin.mass=0:1:3:log: a log axis needs START > 0 and STOP > 0", key="--grid", na_before=ISSUE25)
+case("grid-log-negative", C, "a log axis to a negative STOP", SW + "--grid initial.theta=1:-10:3:log", 2,
+     "a log axis needs START > 0 and STOP > 0", key="--grid", na_before=ISSUE25)
+case("grid-not-log", C, "a fourth field other than log", SW + "--grid initial.theta=1:10:3:lin", 2,
+     '--grid initial.theta=1:10:3:lin: the field after COUNT must be log (geometric spacing), got "lin"', key="--grid",
+     gtest=(G_SWEEP,))
+case("shard-auto-no-task", C, "--shard auto/4 outside a Slurm array task",
+     "exec env -u SLURM_ARRAY_TASK_ID {bin} " + SW + "--grid initial.theta=1:2:3 --shard auto/4", 2,
+     "--shard auto/4: auto takes K from $SLURM_ARRAY_TASK_ID, which is not set: this is not a task of a Slurm job "
+     "array; submit it with sbatch --array=1-4, or give K, e.g. --shard 1/4", key="--shard", shell=True,
+     gtest=("SweepCliTest.ShardAutoTakesKFromTheSlurmArrayTask",), na_before=ISSUE25)
+for task in ("0", "5", "x"):
+    case(f"shard-auto-task-{task}", C, f"--shard auto/4 in array task {task}",
+         f"SLURM_ARRAY_TASK_ID={task} exec {{bin}} " + SW + "--grid initial.theta=1:2:3 --shard auto/4", 2,
+         f'--shard auto/4: $SLURM_ARRAY_TASK_ID is "{task}", not a shard number 1 to 4; submit the array as '
+         "--array=1-4 (task K computes shard K/4)", key="--shard", shell=True,
+         gtest=("SweepCliTest.ShardAutoTakesKFromTheSlurmArrayTask",) if task == "5" else (), na_before=ISSUE25)
+case("shard-auto-zero", C, "--shard auto/0", SW + "--grid initial.theta=1:2:3 --shard auto/0", 2,
+     "--shard auto/0: expected K/N with 1 <= K <= N, e.g. --shard 2/8, or auto/N in a Slurm array task", key="--shard",
+     na_before=ISSUE25)
 case("threads-negative", C, "--threads -1", SW + "--grid initial.theta=1:2:3 --threads -1", 2,
      "--threads: must be 1 to 1024 (0: every hardware thread), got -1", key="--threads", gtest=(G_SWEEP,))
 case("threads-huge", C, "--threads 100000", SW + "--grid initial.theta=1:2:3 --threads 100000", 2,

@@ -1,5 +1,6 @@
 // coinroll sweep and sweep-merge through the command line (INTERFACE.md "Sweeps"): the same bytes
-// for any thread count and for shards run as separate processes by GNU parallel, merge refusing
+// for any thread count and for shards run as separate processes by GNU parallel (the Slurm array of
+// docs/sweeps.md: tests/slurm/slurm_test.py), listed and geometric axes, --shard auto/N, merge refusing
 // missing or repeated points by number, failed points kept as rows, and the summary columns
 // against an independent computation (the trajectory CSV of the same point).
 
@@ -189,6 +190,57 @@ TEST_F(SweepCliTest, ShardsKnowTheirSweep) {
   EXPECT_EQ(slurp(merged), slurp(whole));
 }
 
+// A listed axis keeps its order; a geometric one is even in log10, so decades read as typed.
+TEST_F(SweepCliTest, ListedAndGeometricAxesGiveTheirValuesInOrder) {
+  const fs::path sweep = dir_ / "sweep.csv";
+  ASSERT_EQ(runCoinroll("sweep " + scene().string() + " --grid initial.theta=20,5,10 --grid solver.rtol=1e-3:1e-9:7:log "
+                        "--set duration=0.2 -q -o " + sweep.string()).exitCode, 0);
+  std::ifstream in(sweep);
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::string> theta, rtol;
+  while (std::getline(in, line)) {
+    const std::vector<std::string> f = fields(line);
+    if (rtol.size() < 7) rtol.push_back(f[2]);
+    if (theta.empty() || theta.back() != f[1]) theta.push_back(f[1]);
+  }
+  EXPECT_EQ(theta, (std::vector<std::string>{"20", "5", "10"}));
+  EXPECT_EQ(rtol, (std::vector<std::string>{"0.001", "0.0001", "1e-05", "1e-06", "1e-07", "1e-08", "1e-09"}));
+}
+
+// --shard auto/N is --shard K/N with K the Slurm array task's number, and refuses to guess
+// outside an array task or for a task number that is no shard.
+TEST_F(SweepCliTest, ShardAutoTakesKFromTheSlurmArrayTask) {
+  const fs::path automatic = dir_ / "auto.csv", given = dir_ / "given.csv";
+  const std::string sweep = "sweep " + scene().string() + kGrid + " -q --set duration=0.2";
+  ASSERT_EQ(runCoinroll(sweep + " --shard auto/3 -o " + automatic.string(), "SLURM_ARRAY_TASK_ID=2").exitCode, 0);
+  ASSERT_EQ(runCoinroll(sweep + " --shard 2/3 -o " + given.string(), "SLURM_ARRAY_TASK_ID=1").exitCode, 0);
+  EXPECT_EQ(slurp(automatic), slurp(given));
+
+  const fs::path refused = dir_ / "refused.csv";
+  RunResult r = runCoinroll(sweep + " --shard auto/3 -o " + refused.string(), "env -u SLURM_ARRAY_TASK_ID");
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.output.find("$SLURM_ARRAY_TASK_ID, which is not set"), std::string::npos) << r.output;
+  r = runCoinroll(sweep + " --shard auto/3 -o " + refused.string(), "SLURM_ARRAY_TASK_ID=4");
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.output.find("$SLURM_ARRAY_TASK_ID is \"4\", not a shard number 1 to 3"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(refused));
+}
+
+// Where stderr is a file (a batch job's log), progress comes as whole lines naming points: one per
+// tenth of the work, never a carriage return that would pile up into one endless line.
+TEST_F(SweepCliTest, ABatchLogGetsProgressLinesNamingPoints) {
+  const RunResult r = runCoinroll("sweep " + scene().string() + kGrid + " --set duration=0.2 --shard 2/2 -o " +
+                                  (dir_ / "part.csv").string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_EQ(r.output.find('\r'), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("frame"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("coinroll: sweep shard 2/2: 28/28 points (100 %) after "), std::string::npos) << r.output;
+  const long lines = std::count(r.output.begin(), r.output.end(), '\n');
+  EXPECT_GE(lines, 10 + 1) << r.output;  // ten tenths and the summary
+  EXPECT_LE(lines, 28 + 1) << r.output;
+}
+
 TEST_F(SweepCliTest, AFailingPointKeepsItsRowAndItsReason) {
   const fs::path sweep = dir_ / "sweep.csv";
   const RunResult r = runCoinroll("sweep " + scene().string() + " --grid initial.theta=80:100:3 -o " + sweep.string());
@@ -204,6 +256,8 @@ TEST_F(SweepCliTest, BadGridsAndShardsExitTwoWithoutAFile) {
   const fs::path out = dir_ / "out.csv";
   for (const std::string& bad : {std::string(" --grid initial.theta=5:40"), std::string(" --grid initial.theta=5:40:0"),
                                  std::string(" --grid =5:40:3"), std::string(" --grid initial.theta=a:40:3"),
+                                 std::string(" --grid initial.theta=5,10,5"), std::string(" --grid initial.theta=0:10:3:log"),
+                                 std::string(" --grid initial.theta=1:10:3:lin"),
                                  std::string(kGrid + " --shard 4/3"), std::string(kGrid + " --shard 0/3"),
                                  std::string(kGrid + " --max-points 10"), std::string(kGrid + " --threads -1")}) {
     const RunResult r = runCoinroll("sweep " + scene().string() + bad + " -o " + out.string());

@@ -11,6 +11,7 @@ uniform vec3 eye;
 uniform vec3 lightDirection;
 uniform float radius;
 uniform float opacity;
+uniform vec4 tint;  // rgb, and how much of it replaces the metal's colour (a strobe copy's age)
 uniform sampler2D face;
 
 out vec4 fragColour;
@@ -52,6 +53,7 @@ void main() {
   else if (surface == kBackFace) albedo = faceColour(silver, vec3(0.36, 0.03, 0.03));
   else if (surface == kOuterRim) albedo = rimColour(brass);
   else albedo = brass * 0.7;
+  albedo = mix(albedo, tint.rgb, tint.a);
 
   vec3 n = normalize(worldNormal);
   vec3 v = normalize(eye - worldPosition);

@@ -5,6 +5,9 @@
 // changes the formulation's forward pass and nothing downstream. Floor frame xyz, y up.
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include <cmath>
 
 #include "physics/contact_kinematics.h"
 
@@ -44,6 +47,21 @@ struct Forward {
 // stays accurate near flat where pi/2 - |theta| would cancel.
 inline double tiltAboveFloor(const Forward& f) {
   return std::atan2(f.axes(1, 1), std::abs(f.axes(2, 1)));
+}
+
+// Whether Omega = phi-dot is a rate something goes round at: the coin's axis (e_Z) circles the
+// vertical faster than it nods towards or away from it. A coin rocking through flat (falling_flat)
+// whips its heading through tens of degrees in milliseconds, a phi-dot of kHz that nothing on the
+// floor goes round at; an exactly flat axis has no heading at all.
+inline bool axisGoesRound(const Forward& f) {
+  const Eigen::Vector3d axis = f.axes.row(2).transpose();
+  const Eigen::Vector3d azimuthal = Eigen::Vector3d::UnitY().cross(axis);  // |.| = sin(axis to vertical)
+  if (azimuthal.norm() < 1e-12) return false;
+  const Eigen::Vector3d around = azimuthal.normalized();
+  const Eigen::Vector3d axisVelocity = f.omega.cross(axis);
+  const double circling = axisVelocity.dot(around);
+  const double nodding = (axisVelocity - circling * around).norm();
+  return std::abs(circling) >= nodding;
 }
 
 }  // namespace coinroll::physics

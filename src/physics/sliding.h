@@ -40,6 +40,12 @@ SlidingState toSlidingState(const SlidingStateVec& y);
 // Forward::slip, ::sliding and ::normalEffectiveMass are set.
 Forward slidingForward(const CoinModel& model, const SlidingState& state, double mu, const Eigen::Vector3d& slipDirection);
 
+// The normal effective mass D at which a sliding run stops with `painleve` (docs/sliding.md §3.1).
+// N = (N0 - ...) / D, so a slide driven towards D = 0 with a positive numerator meets an unbounded
+// normal force before it: N ~ 1 / (t* - t), and the integrator's steps shrink to nothing short of
+// t*. At D = 1e-3 the held contact already needs about a thousand times its static load.
+inline constexpr double kPainleveMargin = 1e-3;
+
 // dy/dt and the power dissipated (the effects' and friction's mu N |s|), W.
 struct SlidingRates {
   SlidingStateVec dy;

@@ -147,7 +147,8 @@ void HybridRun::startSliding(double t, const physics::SlidingState& state, doubl
       ModelEvent::LiftOff, [model, forwardOf](double, const Y& y) { return physics::liftOffMargin(model, forwardOf(y)); }, -1,
       simulation_.validityIsTerminal));
   events.push_back(modelEvent<kSlidingSize>(
-      ModelEvent::Painleve, [forwardOf](double, const Y& y) { return forwardOf(y).normalEffectiveMass; }, -1, true));
+      ModelEvent::Painleve, [forwardOf](double, const Y& y) { return forwardOf(y).normalEffectiveMass - physics::kPainleveMargin; }, -1,
+      true));
   if (mode == SlipMode::Free) {
     events.push_back(switchEvent<kSlidingSize>(kSlipStops, "rolls", [](double at, const Y& y) { return slidingStateOf(y).slip.norm() - stoppedSlip(at); }));
     // A slip that falls back to half the creep's threshold hands its direction to its rest, once it

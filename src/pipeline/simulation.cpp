@@ -142,11 +142,11 @@ void requireValidStart(const Simulation& sim) {
       const Eigen::Vector3d direction = Eigen::Vector3d(slip.x(), 0, slip.y()).normalized();
       const physics::Forward sliding =
           physics::slidingForward(sim.model, {.attitude = start, .slip = slip}, sim.kineticFriction, direction);
-      if (!(sliding.normalEffectiveMass > 0)) {
+      if (!(sliding.normalEffectiveMass > physics::kPainleveMargin)) {
         throw scene::SceneError(fmt::format(
-            "initial: the coin starts sliding with no unique normal force (Painleve: normal effective mass {:.3g} <= 0 "
+            "initial: the coin starts sliding with no unique normal force (Painleve: normal effective mass {:.3g} <= {:g} "
             "with friction {}; docs/sliding.md §3); lower friction, the tilt, or slide the other way",
-            sliding.normalEffectiveMass, sim.kineticFriction));
+            sliding.normalEffectiveMass, physics::kPainleveMargin, sim.kineticFriction));
       }
     }
     return;

@@ -39,12 +39,14 @@ std::vector<std::string> hudLines(const physics::CoinModel& model, const RunSamp
   // Near flat psi-dot grows with the contact point's rate while the face itself turns slowly, so
   // the overlay names what it shows: Omega = phi-dot (the contact point round the floor, in Hz,
   // what the ear hears and the eye follows) and the face's own turning omega_Z = psi-dot - phi-dot sin(theta),
-  // both in Hz, so that the two rates read side by side.
+  // both in Hz, so that the two rates read side by side. A coin that rocks rather than precesses has
+  // no contact rate to show (physics::axisGoesRound).
   constexpr double kTurn = 2 * std::numbers::pi;
   std::vector<std::string> lines = {
       fmt::format("t        {:9.3f} s", time),
       fmt::format("tilt     {:9.2f} deg above floor", 90 - std::abs(state.theta) * 180 / std::numbers::pi),
-      fmt::format("contact  {:9.2f} Hz round the floor", std::abs(f.precessionRate) / kTurn),
+      physics::axisGoesRound(f) ? fmt::format("contact  {:9.2f} Hz round the floor", std::abs(f.precessionRate) / kTurn)
+                                : std::string("contact         -- rocking, not going round"),
       fmt::format("face     {:9.2f} Hz about its axis", shownToTwoDecimals(state.omega_Z / kTurn)),
       fmt::format("E        {:9.5f} J", f.energy),
   };

@@ -5,12 +5,15 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "image/image.h"
 #include "pipeline/motion_survey.h"
 #include "pipeline/resources.h"
 #include "pipeline/simulation.h"
 #include "pipeline/snapshot.h"
+#include "render/floor_tile.h"
 #include "render/renderer.h"
 
 namespace coinroll::pipeline {
@@ -50,7 +53,14 @@ StillPicture drawStill(const scene::SceneConfig& scene, const StillRequest& requ
   // A run that stopped early shows its end; the ghosts then span [ghostsFrom, end) if it is long enough.
   const double from = std::min(request.ghostsFrom, result.shownTime);
   for (int i = 0; i < request.ghosts; ++i) snapshots.addGhost(from + (result.shownTime - from) * i / request.ghosts);
-  return {.image = renderer.draw(snapshots.makeSnapshot(result.shownTime)), .result = result};
+  // A strobe still is a figure: its overlay says how to read the copies and gives the scale.
+  std::vector<std::string> legend;
+  if (request.ghosts > 0) {
+    legend = {fmt::format("copies   {:5d} every {:.4g} ms from t = {:.3f} s, blue first, yellow last", request.ghosts,
+                          1e3 * (result.shownTime - from) / request.ghosts, from),
+              fmt::format("grid     {:5g} mm squares", 1e3 * render::kFloorGridMetres)};
+  }
+  return {.image = renderer.draw(snapshots.makeSnapshot(result.shownTime, legend)), .result = result};
 }
 
 }  // namespace coinroll::pipeline

@@ -40,6 +40,15 @@ namespace {
 
 }  // namespace
 
+double playbackRate(const scene::RenderSpec& render, double rate) {
+  if (!render.timeRemap || !(rate > render.timeRemap->limit)) return render.timeScale;
+  const scene::TimeRemap& remap = *render.timeRemap;
+  const double held = render.timeScale * remap.limit;
+  const double quarterTurnPerFrame = std::numbers::pi / 2 * render.fps;
+  const double visible = std::max(held, std::min(held * std::pow(rate / remap.limit, remap.growth), quarterTurnPerFrame));
+  return std::min(render.timeScale, visible / rate);
+}
+
 std::vector<double> frameTimes(const scene::SceneConfig& scene, const Simulation& simulation, double endTime,
                                long maxFrames) {
   std::vector<double> times;
@@ -59,9 +68,8 @@ std::vector<double> frameTimes(const scene::SceneConfig& scene, const Simulation
     times.push_back(std::min(t, endTime));
     const std::optional<RunSample> y = trajectory.sampleAt(t);
     if (!y) break;
-    const scene::TimeRemap& remap = *scene.render.timeRemap;
-    const double rate = std::abs(remap.rate == scene::TimeRemap::Rate::Spin ? y->forward.spinRate : y->forward.precessionRate);
-    t += perFrame * std::min(1.0, remap.limit / rate);
+    const bool bySpin = scene.render.timeRemap->rate == scene::TimeRemap::Rate::Spin;
+    t += playbackRate(scene.render, std::abs(bySpin ? y->forward.spinRate : y->forward.precessionRate)) / scene.render.fps;
   }
   return times;
 }

@@ -32,12 +32,17 @@ inline constexpr double kLandingHoldSeconds = 1.5;
 // Frames in a clip of `simulatedSeconds` at `fps` and `timeScale`: k = 0 .. floor(video length * fps).
 long frameCount(double simulatedSeconds, double timeScale, int fps);
 
-// Simulated time of every frame up to `endTime`. Without a remap, t_k = k time_scale / fps.
-// With render.time_remap.spin_rate S, each frame advances by (time_scale / fps) min(1, S / |psi-dot(t_k)|):
-// the picture slows down while the coin spins faster than S; precession_rate does the same with
-// phi-dot, the contact point's rate round the floor.
-// Throws std::invalid_argument naming the render fields when there would be more than
-// `maxFrames`; stops planning there, so memory stays bounded whatever the time remap.
+// Simulated seconds per video second at a moment whose remapped rate (|psi-dot| or |phi-dot|, per
+// render.time_remap) is `rate`. Without a remap it is time_scale. With a remap of limit S and
+// growth g the picture shows the rate at
+//   v = max(time_scale S, min(time_scale S (rate / S)^g, pi fps / 2))   rad per video second
+// once rate > S, so the playback rate is min(time_scale, v / rate). g = 0 holds the visible rate at
+// time_scale S (the remap's original rule); g > 0 lets it grow with the real rate, slower than it,
+// so an Euler's disk's whirl is seen to speed up, up to a quarter turn per frame, beyond which a
+// turning marker would alias (a half turn per frame is the Nyquist limit).
+double playbackRate(const scene::RenderSpec& render, double rate);
+
+// Simulated time of every frame up to `endTime`: t_(k+1) = t_k + playbackRate(rate(t_k)) / fps.
 std::vector<double> frameTimes(const scene::SceneConfig& scene, const Simulation& simulation, double endTime,
                                long maxFrames = kDefaultMaxFrames);
 

@@ -39,7 +39,7 @@ image::Image floorTile(int pixels) {
         const float cx = lineCoverage(x, step, spacing, width), cz = lineCoverage(z, step, spacing, width);
         return cx + cz - cx * cz;
       };
-      const float minor = covered(0.01f, kMinorWidth), major = covered(kFloorTileMetres, kMajorWidth);
+      const float minor = covered(kFloorGridMetres, kMinorWidth), major = covered(kFloorTileMetres, kMajorWidth);
       std::uint8_t* p = tile.pixel(i, j);
       for (int c = 0; c < 3; ++c) {
         const float withMinor = kFloor[c] + (kMinorLine[c] - kFloor[c]) * minor;

@@ -9,6 +9,7 @@
 namespace coinroll::render {
 
 inline constexpr float kFloorTileMetres = 0.10f;
+inline constexpr float kFloorGridMetres = 0.01f;  // the thin lines' spacing
 
 // `pixels` x `pixels` RGBA; texel (i, j) covers floor [i, i+1) x [j, j+1) * tile / pixels.
 image::Image floorTile(int pixels);

@@ -25,7 +25,8 @@ struct CameraView {
 struct FrameSnapshot {
   CameraView camera;
   CoinPose coin;
-  // Earlier poses drawn semi-transparent, for stroboscopic figures; oldest first.
+  // Earlier poses drawn semi-transparent, for stroboscopic figures; oldest first, tinted by age from
+  // dark blue (oldest) through grey to yellow (newest).
   std::vector<CoinPose> ghosts;
   // Contact points (x, z) on the floor, oldest first, evenly spaced in time; the newest is the
   // current contact point. Drawn as a ribbon that fades with age.

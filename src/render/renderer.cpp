@@ -31,6 +31,15 @@ const glm::vec3 kBackgroundSrgb(0.86f, 0.89f, 0.93f);
 const glm::vec4 kShadowColour(0.0f, 0.0f, 0.0f, 0.45f);
 const glm::vec4 kContactColour(0.85f, 0.1f, 0.08f, 1.0f);
 
+// A strobe copy's tint, linear: dark blue (oldest) through grey to yellow (newest), cividis' ends,
+// rising in lightness so the copies read in order where they overlap, in grey print and for
+// colour-blind readers.
+glm::vec3 ghostColour(std::size_t age, std::size_t count) {
+  const glm::vec3 oldest(0.0f, 0.05f, 0.45f), middle(0.22f, 0.22f, 0.24f), newest(0.95f, 0.80f, 0.02f);
+  const float f = count > 1 ? static_cast<float>(age) / static_cast<float>(count - 1) : 1.0f;
+  return f < 0.5f ? glm::mix(oldest, middle, 2.0f * f) : glm::mix(middle, newest, 2.0f * f - 1.0f);
+}
+
 void validate(const RenderSettings& s) {
   for (const auto& [field, side] : {std::pair{"width", s.width}, std::pair{"height", s.height}}) {
     if (side < kMinImageSide || side > kMaxImageSide) {
@@ -377,15 +386,16 @@ void Renderer::draw(const FrameSnapshot& snapshot, image::Image& out) {
   gl.ActiveTexture(GL_TEXTURE0);
   gl.BindTexture(GL_TEXTURE_2D, state.coinFace.get());
   gl.BindVertexArray(state.coinArray.get());
-  auto drawCoin = [&](const CoinPose& pose, float opacity) {
+  auto drawCoin = [&](const CoinPose& pose, float opacity, glm::vec4 tint) {
     const glm::mat4 model = modelMatrix(pose);
     state.coinProgram.set("model", model);
     state.coinProgram.set("normalMatrix", glm::mat3_cast(pose.attitude));
     state.coinProgram.set("opacity", opacity);
+    state.coinProgram.set("tint", tint);
     gl.DrawArrays(GL_TRIANGLES, 0, state.coinVertices);
   };
   gl.Disable(GL_BLEND);
-  drawCoin(snapshot.coin, 1.0f);
+  drawCoin(snapshot.coin, 1.0f, glm::vec4(0.0f));
   if (!snapshot.ghosts.empty()) {
     std::vector<const CoinPose*> farToNear;
     for (const CoinPose& ghost : snapshot.ghosts) farToNear.push_back(&ghost);
@@ -393,7 +403,10 @@ void Renderer::draw(const FrameSnapshot& snapshot, image::Image& out) {
       return glm::length(a->centre - snapshot.camera.eye) > glm::length(b->centre - snapshot.camera.eye);
     });
     gl.Enable(GL_BLEND);
-    for (const CoinPose* ghost : farToNear) drawCoin(*ghost, 0.45f);
+    for (const CoinPose* ghost : farToNear) {
+      const auto age = static_cast<std::size_t>(ghost - snapshot.ghosts.data());
+      drawCoin(*ghost, 0.5f, glm::vec4(ghostColour(age, snapshot.ghosts.size()), 0.85f));
+    }
   }
 
   // The overlay goes on after anti-aliasing: FXAA would soften the text, MSAA gains nothing on it.

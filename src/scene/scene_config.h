@@ -89,7 +89,8 @@ struct TimeRemap {
     Precession,  // precession_rate: |phi-dot| = Omega, the contact point going round the floor
   };
   Rate rate = Rate::Precession;
-  double limit = 0;  // rad/s, > 0
+  double limit = 0;   // rad/s, > 0
+  double growth = 0;  // in [0, 1): the visible rate grows as (rate / limit)^growth (video_frames.h)
 };
 
 // render.audio: a sound track synthesised from the motion (docs/sound.md).

@@ -360,7 +360,7 @@ RenderSpec parseRender(const JsonReader& top) {
   render.timeScale = r.number("time_scale", render.timeScale);
   positive(r, "time_scale", render.timeScale);
   if (const nlohmann::json* remap = r.child("time_remap")) {
-    const JsonReader m(*remap, "render.time_remap", "", {"spin_rate", "precession_rate"});
+    const JsonReader m(*remap, "render.time_remap", "", {"spin_rate", "precession_rate", "growth"});
     if (m.has("spin_rate") == m.has("precession_rate")) {
       r.fail("time_remap", "give exactly one of spin_rate (slow down by psi-dot) or precession_rate (by phi-dot, the "
                            "contact point's rate round the floor), in rad/s");
@@ -368,8 +368,14 @@ RenderSpec parseRender(const JsonReader& top) {
     const std::string_view key = m.has("spin_rate") ? "spin_rate" : "precession_rate";
     const double limit = m.number(key, 0);
     if (!(limit > 0)) m.fail(key, fmt::format("must be a rate > 0 rad/s, got {}", limit));
+    const double growth = m.number("growth", 0);
+    if (!(growth >= 0 && growth < 1)) {
+      m.fail("growth", fmt::format("must be in [0, 1) (0 holds the visible rate constant, 0.5 lets it grow as the "
+                                   "square root of the real one), got {}", growth));
+    }
     render.timeRemap = TimeRemap{.rate = key == "spin_rate" ? TimeRemap::Rate::Spin : TimeRemap::Rate::Precession,
-                                 .limit = limit};
+                                 .limit = limit,
+                                 .growth = growth};
   }
   render.camera = parseCamera(r);
   render.trace = r.boolean("trace", render.trace);
@@ -426,12 +432,17 @@ physics::Effect parseEffect(const nlohmann::json& node, const std::string& path)
     return law;
   }
   if (type == "rolling_resistance") {
-    const JsonReader r(node, path, "", {"type", "length", "load_exponent"});
+    const JsonReader r(node, path, "", {"type", "length", "load_exponent", "rate_exponent"});
     physics::RollingResistance law;
     law.length = nonNegative(r, "length", r.number("length", law.length));
     law.loadExponent = r.number("load_exponent", law.loadExponent);
     if (!(law.loadExponent > 0 && law.loadExponent <= 2)) {
       r.fail("load_exponent", fmt::format("must be in (0, 2] (1: couple proportional to the load), got {}", law.loadExponent));
+    }
+    law.rateExponent = r.number("rate_exponent", law.rateExponent);
+    if (!(law.rateExponent >= 1 && law.rateExponent <= 3)) {
+      r.fail("rate_exponent", fmt::format("must be in [1, 3] (1: a constant couple, power ~ |psi-dot|; 2: power ~ "
+                                          "|psi-dot|^2, McDonald and McDonald's measurement), got {}", law.rateExponent));
     }
     return law;
   }

@@ -482,6 +482,9 @@ case("audio-number", C, "render.audio 1", REN + "render.audio=1", 2,
 case("remap-both", C, "time_remap with spin_rate and precession_rate",
      REN + "render.time_remap.spin_rate=1 --set render.time_remap.precession_rate=1", 2,
      "render.time_remap: give exactly one of spin_rate", key="render.time_remap")
+case("remap-growth-one", C, "time_remap growth 1 (would never slow down)",
+     REN + "render.time_remap.precession_rate=10 --set render.time_remap.growth=1", 2,
+     "render.time_remap.growth: must be in [0, 1)", key="render.time_remap.growth")
 
 # --- solver
 C = "solver"
@@ -538,6 +541,9 @@ case("effects-length-negative", C, "rolling_resistance length -2e-6",
 case("effects-load-exponent", C, "rolling_resistance load_exponent 2.5",
      EFF + '[{"type":"rolling_resistance","load_exponent":2.5}]\'', 2,
      "effects[0].load_exponent: must be in (0, 2]", key="effects[0].load_exponent")
+case("effects-rate-exponent", C, "rolling_resistance rate_exponent 0.5",
+     EFF + '[{"type":"rolling_resistance","rate_exponent":0.5}]\'', 2,
+     "effects[0].rate_exponent: must be in [1, 3]", key="effects[0].rate_exponent")
 case("effects-length-string", C, 'spin_friction length "5um"', EFF + '[{"type":"spin_friction","length":"5um"}]\'', 2,
      'effects[0].length: must be a number, got string "5um"', key="effects[0].length")
 case("effects-length-huge", C, "spin_friction length 1e300 m", EFF + '[{"type":"spin_friction","length":1e300}]\'', 2,

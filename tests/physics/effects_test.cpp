@@ -151,6 +151,7 @@ std::vector<BudgetCase> budgetCases() {
   return {{"moffatt", {AirDrag{.viscosity = 1.8e-4}}, 1e4},
           {"boundary_layer", {AirDrag{.model = AirFlow::BoundaryLayer}}, 1e4},
           {"rolling_resistance", {RollingResistance{.length = 3.75e-6}}, 1e4},
+          {"rolling_resistance_rate_2", {RollingResistance{.length = 1e-7, .rateExponent = 2}}, 1e4},
           {"spin_friction", {SpinFriction{.length = 5e-6}}, 30},
           {"all", {AirDrag{.model = AirFlow::BoundaryLayer}, RollingResistance{.length = 3.75e-6}, SpinFriction{}}, 1e4}};
 }
@@ -275,7 +276,9 @@ struct ExponentCase {
 TEST(SpinDownExponents, MatchTheQuasiSteadyTheoryOverTwoDecades) {
   for (const ExponentCase& c : {ExponentCase{"moffatt", AirDrag{}, -2, 4 * kDeg, 0.4 * kDeg},
                                 ExponentCase{"boundary_layer", AirDrag{.model = AirFlow::BoundaryLayer}, -1.25, 6 * kDeg, 0.3 * kDeg},
-                                ExponentCase{"rolling_resistance", RollingResistance{.length = 3.75e-6}, -0.5, 6 * kDeg, 0.1 * kDeg}}) {
+                                ExponentCase{"rolling_resistance", RollingResistance{.length = 3.75e-6}, -0.5, 6 * kDeg, 0.1 * kDeg},
+                                // McDonald and McDonald's P ~ Omega^2: alpha ~ (t0 - t)^(1/2), Omega ~ (t0 - t)^(-1/4)
+                                ExponentCase{"rolling_resistance_rate_2", RollingResistance{.length = 3e-10, .rateExponent = 2}, -1, 6 * kDeg, 0.3 * kDeg}}) {
     const CoinModel m = toyWith({c.law});
     const LogLogRun run = runTowardsFlat(m, c.alpha0, c.alphaLow / 2);
     const SpinDownSample& low = sampleAtTilt(run, c.alphaLow);

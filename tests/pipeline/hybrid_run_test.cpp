@@ -6,12 +6,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <optional>
 #include <sstream>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "physics/sliding.h"
 #include "pipeline/coin_run.h"
 #include "pipeline/motion_survey.h"
 #include "pipeline/snapshot.h"
@@ -126,6 +128,39 @@ TEST(Sliding, SlidingBeginsWhereTheRollingRunFirstNeedsMuN) {
   ASSERT_FALSE(hybrid.switches().empty());
   EXPECT_TRUE(hybrid.switches()[0].toSliding);
   EXPECT_TRUE(isNear(hybrid.switches()[0].t, rolling.stoppedBy()->t, 1e-12));
+}
+
+TEST(Sliding, ASlideDrivenIntoPainlevesBandStopsWithPainleveAtTheClosedFormTilt) {
+  // A thin disk at 60 deg, no spin, slipping sideways at 3 m/s under mu 2: the motion stays in one
+  // plane with the slip along -h, friction tips it upright, and the normal force grows like
+  // 1 / (t* - t) as D falls. D = (k + sin^2 theta - mu sin theta cos theta) / k (docs/sliding.md
+  // (3.3)-(3.5), k = 1/4) reaches kPainleveMargin at the upper root of
+  // sin^2 theta - mu sin theta cos theta + k (1 - margin) = 0, the truth for the stop's tilt. (The
+  // run once stalled there, its steps shrinking to 1e-14 s.)
+  const double mu = 2, k = 0.25;
+  const nlohmann::json doc = {{"coin", {{"radius", 0.0375}, {"mass", 0.4}}},
+                              {"initial", {{"theta", 60}, {"omega_Z", 0}, {"v_z", -3}}},
+                              {"sliding", true},
+                              {"friction", mu},
+                              {"duration", 1},
+                              {"solver", kTightSolver}};
+  const pipeline::Simulation sim = simulationOf(doc);
+  pipeline::CoinRun run(sim);
+  EXPECT_FALSE(run.sampleAt(1.0).has_value());
+  ASSERT_TRUE(run.stoppedBy().has_value());
+  EXPECT_EQ(run.stoppedBy()->event, physics::ModelEvent::Painleve);
+  const auto residual = [&](double theta) {
+    return std::sin(theta) * std::sin(theta) - mu * std::sin(theta) * std::cos(theta) + k * (1 - physics::kPainleveMargin);
+  };
+  double lo = 45 * std::numbers::pi / 180, hi = 60 * std::numbers::pi / 180;  // residual < 0 at lo, > 0 at hi
+  ASSERT_LT(residual(lo), 0);
+  ASSERT_GT(residual(hi), 0);
+  for (int i = 0; i < 100; ++i) (residual(0.5 * (lo + hi)) < 0 ? lo : hi) = 0.5 * (lo + hi);
+  EXPECT_TRUE(isNear(run.stoppedBy()->state.theta, lo, 1e-9)) << run.stoppedBy()->state.theta * 180 / std::numbers::pi;
+  pipeline::CoinRun again(sim);  // a run answers forward in time only
+  const pipeline::RunSample last = *again.sampleAt(run.stoppedBy()->t);
+  EXPECT_TRUE(last.forward.sliding);
+  EXPECT_GT(last.forward.reaction.N, 100 * sim.model.M * sim.model.g);  // the normal force running away
 }
 
 TEST(Sliding, TheEnergyBudgetClosesAcrossSwitches) {

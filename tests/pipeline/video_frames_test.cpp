@@ -121,6 +121,44 @@ TEST(FrameTimes, RemapHoldsTheOnScreenSpinRateAtTheLimit) {
   }
 }
 
+TEST(FrameTimes, RemapWithGrowthShowsTheRateGrowingAsItsPowerOfTheRealOne) {
+  scene::SceneConfig scene = toyScene(1.0, 0.5);
+  const pipeline::Simulation simulation = pipeline::buildSimulation(scene);
+  scene.render.timeRemap = scene::TimeRemap{.rate = scene::TimeRemap::Rate::Spin, .limit = 2, .growth = 0.5};
+  const std::vector<double> remapped = pipeline::frameTimes(scene, simulation, 1.0);
+  pipeline::CoinRun trajectory(simulation);
+  for (std::size_t k = 0; k + 1 < remapped.size(); ++k) {
+    const double spin = std::abs(physics::spinRate(*trajectory.stateAt(remapped[k])));
+    ASSERT_GT(spin, 2);
+    // On screen, time_scale S (spin / S)^(1/2) rad per video second: about 2.7 for ~15 rad/s, far
+    // below the quarter turn per frame (15.7 at 10 fps).
+    EXPECT_NEAR(spin * (remapped[k + 1] - remapped[k]) * scene.render.fps, 0.5 * 2 * std::sqrt(spin / 2), 1e-12) << "frame " << k;
+  }
+}
+
+TEST(PlaybackRate, TheVisibleRateRisesWithTheRealOneUpToAQuarterTurnPerFrame) {
+  scene::RenderSpec render;
+  render.fps = 60;
+  render.timeScale = 2;
+  render.timeRemap = scene::TimeRemap{.rate = scene::TimeRemap::Rate::Precession, .limit = 10, .growth = 0.5};
+  const auto visible = [&](double rate) { return rate * pipeline::playbackRate(render, rate); };
+  EXPECT_DOUBLE_EQ(pipeline::playbackRate(render, 5), 2);  // below the limit: time_scale
+  EXPECT_DOUBLE_EQ(visible(10), 20);
+  EXPECT_NEAR(visible(40), 40, 1e-12);  // 2 x 10 x (40 / 10)^(1/2)
+  EXPECT_NEAR(visible(90), 60, 1e-12);
+  const double quarterTurnPerFrame = std::numbers::pi / 2 * 60;
+  EXPECT_NEAR(visible(1e6), quarterTurnPerFrame, 1e-9);
+  for (double rate = 10; rate < 1e4; rate *= 1.1) EXPECT_LE(visible(rate), visible(rate * 1.1) + 1e-12) << rate;
+
+  render.timeRemap->growth = 0;  // the original rule: held at time_scale S
+  EXPECT_NEAR(visible(40), 20, 1e-12);
+  EXPECT_NEAR(visible(1e6), 20, 1e-9);
+  // A held rate above the quarter turn stays held: growth never makes a clip faster.
+  render.timeRemap->limit = 100;
+  render.timeRemap->growth = 0.5;
+  EXPECT_NEAR(visible(1e4), 200, 1e-9);
+}
+
 TEST(RenderVideo, PushesOneDistinctFramePerFrameTimeAndFinishesOnce) {
   const scene::SceneConfig scene = toyScene(1.0, 0.5);
   RecordingSink sink;

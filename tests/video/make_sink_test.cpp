@@ -21,6 +21,25 @@ TEST(MakeSinkForPath, ChoosesBySuffixOrPattern) {
   EXPECT_EQ(directory.fileCount(), 0);
 }
 
+TEST(MakeSinkForPath, TheExtensionNamesTheVideoKindInAnyCase) {
+  using coinroll::video::VideoFormat;
+  using coinroll::video::videoFormatOf;
+  EXPECT_EQ(videoFormatOf("a.mp4"), VideoFormat::Mp4);
+  EXPECT_EQ(videoFormatOf("a.GIF"), VideoFormat::Gif);
+  EXPECT_EQ(videoFormatOf("dir/a.WebM"), VideoFormat::WebM);
+  EXPECT_EQ(videoFormatOf("a.Mov"), VideoFormat::Mov);
+  EXPECT_EQ(videoFormatOf("100%d.gif"), VideoFormat::Gif);  // a video name: its % is a literal character
+  EXPECT_EQ(videoFormatOf("/dev/null"), VideoFormat::Mp4);  // no extension to go by: the default kind
+  EXPECT_EQ(videoFormatOf("f_%05d.png"), std::nullopt);
+  EXPECT_EQ(videoFormatOf("a.avi"), std::nullopt);
+  ScratchDirectory directory;
+  for (const char* name : {"a.gif", "a.WEBM", "a.mov"}) {
+    EXPECT_NE(dynamic_cast<coinroll::video::EncoderSink*>(makeSinkForPath(directory / name, VideoOptions{}).get()), nullptr)
+        << name;
+  }
+  EXPECT_EQ(directory.fileCount(), 0);  // unfinished sinks leave nothing
+}
+
 TEST(MakeSinkForPath, AnEscapedPercentInAVideoNameIsNoPattern) {
   // "%%" is a literal percent sign, not a conversion: this is a video, not a PNG sequence.
   ScratchDirectory directory;

@@ -62,6 +62,8 @@ constexpr int kVp9CpuUsed = 8;
 constexpr int kVp9Crf = 32;
 // Fixed, as x264's are (X264Options::threads): the output must not follow the machine.
 constexpr int kVp9Threads = 2;
+// ProRes's quantiser, 1 (finest) .. 31 (prores_ks's qscale); 4 is near-lossless for these pictures.
+constexpr int kProResQuantiser = 4;
 
 }  // namespace
 
@@ -159,6 +161,10 @@ void EncoderSink::Encoder::configureVideoCodec(const VideoOptions& options) {
     case VideoFormat::Mov:
       // One thread, as x264 (X264Options::threads): the renderer keeps the cores busy already.
       codec->thread_count = 1;
+      // A fixed quantiser: prores_ks's default searches each slice's quantiser for the profile's
+      // bit budget, 6x slower for no visible gain (docs/outputs.md "Video formats").
+      codec->flags |= AV_CODEC_FLAG_QSCALE;
+      codec->global_quality = kProResQuantiser * FF_QP2LAMBDA;
       checkAv(av_opt_set(settings, "profile", "4444", 0), context + "setting the ProRes 4444 profile");
       return;
     case VideoFormat::Gif:

@@ -133,7 +133,8 @@ struct RenderSpec {
             .fps = fps,
             .x264 = video,
             .audio = audio.has_value(),
-            .alpha = picture.transparentBackground};
+            .alpha = picture.transparentBackground,
+            .provenance = {}};  // the command's to fill: it knows the release and the scene document
   }
 };
 

@@ -633,9 +633,10 @@ case("flag-unknown", C, "unknown flag --bogus", SIM + " --bogus", 2,
      "The following argument was not expected: --bogus", key="--bogus")
 case("flag-fps", C, "render --fps 30 (fps is render.fps in the scene)", "render scene.json -o o.mp4 --fps 30", 2,
      "The following arguments were not expected: 30 --fps", key="--fps")
-case("flag-size", C, "render --size 64x48 (the size is render.width/height)",
+case("flag-size", C, "render --size 64x48 (--size takes a name; any other size is render.width/height)",
      "render scene.json -o o.mp4 --size 64x48", 2,
-     "The following arguments were not expected: 64x48 --size", key="--size")
+     "--size 64x48: unknown size; give 480p, 720p, 1080p, 1440p or 2160p (or set render.width and render.height "
+     "with --set)", key="--size")
 case("csv-missing", C, "simulate without --csv", "simulate scene.json", 2, "--csv is required", gtest=(G_CMDLINE,))
 case("extra-positional", C, "two scene files", "simulate scene.json scene.json --csv o.csv", 2,
      "The following argument was not expected: scene.json", key="scene.json")

@@ -20,7 +20,7 @@
 #include "scene/scene_loader.h"
 #include "integrate/solver_config.h"
 #include "video/async_sink.h"
-#include "video/mp4_sink.h"
+#include "video/encoder_sink.h"
 
 namespace {
 
@@ -41,7 +41,7 @@ scene::SceneConfig benchScene(const std::string& cameraMode, int encoderThreads)
   return scene::parseScene(doc, "pipeline_bench", {.solverMethods = integrate::methodNames()});
 }
 
-video::Mp4Options encoding(const scene::SceneConfig& s) { return s.render.mp4Options(); }  // no render.audio: no track
+video::VideoOptions encoding(const scene::SceneConfig& s) { return s.render.mp4Options(); }  // no render.audio: no track
 
 class DiscardSink final : public video::FrameSink {
  public:
@@ -72,14 +72,14 @@ Timings measure(const scene::SceneConfig& s, const std::filesystem::path& out) {
   {
     KeepSink keep;
     pipeline::renderVideo(s, keep);
-    video::Mp4Sink sink(out, encoding(s));
+    video::EncoderSink sink(out, encoding(s));
     const auto start = Clock::now();
     for (const image::Image& frame : keep.frames) sink.push(frame);
     sink.finish();
     t.encodeOnly = secondsSince(start);
   }
   {
-    video::AsyncSink sink(std::make_unique<video::Mp4Sink>(out, encoding(s)));
+    video::AsyncSink sink(std::make_unique<video::EncoderSink>(out, encoding(s)));
     const auto start = Clock::now();
     pipeline::renderVideo(s, sink);
     t.pipeline = secondsSince(start);

@@ -1,6 +1,6 @@
 // Video output speed and colour accuracy, as a table. Run: build/bench/video_bench
 //
-// 1. Encode-only throughput of Mp4Sink: 300 synthetic 1280x720 frames, preset veryfast, crf 18,
+// 1. Encode-only throughput of EncoderSink: 300 synthetic 1280x720 frames, preset veryfast, crf 18,
 //    x264 threads 1 and 2 (frame generation is not timed; conversion, encoding and muxing are).
 // 2. References timed in the same run, so the ratios hold on any machine: the ffmpeg tool encoding
 //    its testsrc2 pattern (auto threads, no output file), and the ffmpeg tool encoding our very
@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "video/mp4_sink.h"
+#include "video/encoder_sink.h"
 #include "video/rgba_to_yuv.h"
 
 namespace {
@@ -57,7 +57,7 @@ Image syntheticFrame(int index) {
 }
 
 double encodeSeconds(const std::vector<Image>& distinctFrames, int threads, const std::filesystem::path& path) {
-  coinroll::video::Mp4Options options;
+  coinroll::video::VideoOptions options;
   options.width = kWidth;
   options.height = kHeight;
   options.fps = kFps;
@@ -65,7 +65,7 @@ double encodeSeconds(const std::vector<Image>& distinctFrames, int threads, cons
   options.x264.preset = "veryfast";
   options.x264.threads = threads;
   const Clock::time_point start = Clock::now();
-  coinroll::video::Mp4Sink sink(path, options);
+  coinroll::video::EncoderSink sink(path, options);
   for (int i = 0; i < kFrames; ++i) sink.push(distinctFrames[static_cast<std::size_t>(i)]);
   sink.finish();
   return secondsSince(start);
@@ -233,7 +233,7 @@ int main() {
                 seconds / sameFramesReference);
   };
   for (const int threads : {1, 2}) {
-    printRow("Mp4Sink threads=" + std::to_string(threads), ours[threads - 1], sameFrames[threads - 1]);
+    printRow("EncoderSink threads=" + std::to_string(threads), ours[threads - 1], sameFrames[threads - 1]);
   }
   for (const int threads : {1, 2}) {
     printRow("ffmpeg CLI, same frames piped, threads=" + std::to_string(threads), sameFrames[threads - 1],

@@ -32,8 +32,10 @@ void main() {
   float scale = 1.0 / (min(abs(along.x), abs(along.y)) + reduce);
   along = clamp(along * scale, vec2(-kSpanMax), vec2(kSpanMax)) * texelSize;
 
-  vec3 narrow = 0.5 * (texture(scene, uv + along * (1.0 / 3.0 - 0.5)).rgb + texture(scene, uv + along * (2.0 / 3.0 - 0.5)).rgb);
-  vec3 wide = 0.5 * narrow + 0.25 * (texture(scene, uv - 0.5 * along).rgb + texture(scene, uv + 0.5 * along).rgb);
-  float lumaWide = luma(wide);
-  fragColour = vec4((lumaWide < lumaMin || lumaWide > lumaMax) ? narrow : wide, 1.0);
+  // Alpha is averaged with the colour: on a transparent background the colour is premultiplied, and
+  // an edge's coverage must blur as its colour does. On an opaque one every alpha is 1.
+  vec4 narrow = 0.5 * (texture(scene, uv + along * (1.0 / 3.0 - 0.5)) + texture(scene, uv + along * (2.0 / 3.0 - 0.5)));
+  vec4 wide = 0.5 * narrow + 0.25 * (texture(scene, uv - 0.5 * along) + texture(scene, uv + 0.5 * along));
+  float lumaWide = luma(wide.rgb);
+  fragColour = (lumaWide < lumaMin || lumaWide > lumaMax) ? narrow : wide;
 }

@@ -54,7 +54,7 @@ MAY_INCLUDE = {
         # Planned (issue 12): settings-only headers, so a scene can hold render/video options
         # without seeing the renderer or the encoder.
         "render/render_settings.h": "a scene holds RenderSettings (camera, size), not the renderer",
-        "video/mp4_options.h": "a scene holds Mp4Options (codec, crf), not the encoder",
+        "video/video_options.h": "a scene holds VideoOptions (codec, crf), not the encoder",
     },
     # The frame loop: wires everything below it; never argv or exit codes (those are cli's).
     "pipeline": {
@@ -101,7 +101,7 @@ WHY_NOT = {
     ("integrate", "physics"): "integrators know nothing about coins: they take any f(t, y)",
     ("integrate", None): "integrate uses only itself, Eigen and std",
     ("scene", "render"): "scene may read only render/render_settings.h, not the renderer",
-    ("scene", "video"): "scene may read only video/mp4_options.h, not the encoder",
+    ("scene", "video"): "scene may read only video/video_options.h, not the encoder",
     ("scene", None): "scene builds physics/integrate types from JSON and nothing else",
     ("image", None): "image is a leaf utility (io only)",
     ("io", None): "io is the bottom leaf utility",

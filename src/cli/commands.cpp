@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cctype>
 #include <chrono>
@@ -69,6 +70,29 @@ scene::SceneConfig loadScene(const SceneSource& source) {
   for (const std::string& assignment : source.overrides) scene::applyOverride(document, assignment);
   return scene::parseScene(document, "built-in default scene", options);
 }
+
+// A scene as a command that writes pictures resolves it (--set applied), with the provenance its
+// outputs carry: the release, and a digest of the scene document as resolved (compact JSON, keys
+// sorted), so the same release and scene give the same bytes (docs/outputs.md "Provenance").
+struct ResolvedScene {
+  scene::SceneConfig config;
+  video::Provenance provenance;  // empty with render.provenance: false
+};
+
+ResolvedScene resolveScene(const SceneSource& source) {
+  const auto [document, sourceName] = loadSceneDocument(source);
+  ResolvedScene resolved{scene::parseScene(document, sourceName, {.solverMethods = integrate::methodNames()}), {}};
+  if (resolved.config.render.provenance) {
+    const std::string canonical = document.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+    resolved.provenance = {.software = fmt::format("coinroll {}", COINROLL_VERSION),
+                           .sceneDigest = fmt::format("fnv1a64:{:016x}", io::fnv1a64(canonical))};
+  }
+  return resolved;
+}
+
+// --size's names: the usual video heights with 16:9 sides, even for 4:2:0 chroma (854 for 480p).
+constexpr std::array<std::tuple<std::string_view, int, int>, 5> kSizes = {
+    {{"480p", 854, 480}, {"720p", 1280, 720}, {"1080p", 1920, 1080}, {"1440p", 2560, 1440}, {"2160p", 3840, 2160}}};
 
 void reportStop(const pipeline::CsvRunResult& result) {
   for (const pipeline::ModeSwitch& w : result.switches) {
@@ -340,7 +364,7 @@ void runStill(const StillOptions& options) {
   }
   refuseOverwritingInput("-o", output, inputsOf(options.scene));
   io::checkOutputName(output);  // the PNG is written after the rendering: a name that cannot work fails first
-  const scene::SceneConfig scene = loadScene(options.scene);
+  const auto [scene, provenance] = resolveScene(options.scene);
   reportSteadyStart(scene);
   pipeline::StillResult result;
   try {
@@ -348,6 +372,7 @@ void runStill(const StillOptions& options) {
                                            .ghosts = options.strobe,
                                            .ghostsFrom = options.strobeFrom.value_or(0),
                                            .output = output,
+                                           .text = provenance.pngText(),
                                            .cancel = &interruptRequested()});
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
@@ -364,15 +389,55 @@ void runStill(const StillOptions& options) {
 
 void runRender(const RenderOptions& options) {
   if (options.output) refuseEmptyOutputName("-o", *options.output, "clip.mp4");
-  const scene::SceneConfig scene = loadScene(options.scene);
+  SceneSource source = options.scene;
+  if (options.size) {
+    const auto size = std::find_if(kSizes.begin(), kSizes.end(), [&](const auto& s) { return std::get<0>(s) == *options.size; });
+    if (size == kSizes.end()) {
+      throw UsageError(fmt::format("--size {}: unknown size; give 480p, 720p, 1080p, 1440p or 2160p (or set render.width and "
+                                   "render.height with --set)", printable(*options.size)));
+    }
+    // After the --set ones, so the option names the size whatever the scene or a --set says.
+    source.overrides.push_back(fmt::format("render.width={}", std::get<1>(*size)));
+    source.overrides.push_back(fmt::format("render.height={}", std::get<2>(*size)));
+  }
+  pipeline::TimeWindow window;
+  for (const auto& [name, value] : {std::pair{"--from", options.from}, std::pair{"--to", options.to}}) {
+    if (value && !(std::isfinite(*value) && *value >= 0)) {
+      throw UsageError(fmt::format("{} {}: must be a simulated time >= 0 s", name, *value));
+    }
+  }
+  if (options.from) window.from = *options.from;
+  if (options.to) window.to = *options.to;
+  if (window.from > window.to) {
+    throw UsageError(fmt::format("--from {} --to {}: the window ends before it starts; give --from <= --to", window.from, window.to));
+  }
+  const auto [scene, provenance] = resolveScene(source);
+  if (window.from > scene.duration) {
+    throw UsageError(fmt::format("--from {}: beyond the run's end at {} s (the scene's duration); give a time in [0, {}]",
+                                 window.from, scene.duration, scene.duration));
+  }
   reportSteadyStart(scene);
   const std::filesystem::path output = options.output ? std::filesystem::path(*options.output)
                                                       : std::filesystem::path(fileNameFrom(scene.name) + ".mp4");
+  const std::optional<video::VideoFormat> format = video::videoFormatOf(output);
+  if (format == video::VideoFormat::Mp4 || format == video::VideoFormat::Gif) {
+    const std::string kind = format == video::VideoFormat::Gif ? ".gif" : ".mp4";
+    if (scene.render.picture.transparentBackground) {
+      throw UsageError(fmt::format("render.background: \"transparent\" needs an output with alpha, and {} has none; write "
+                                   "a .mov, a .webm or a PNG sequence (out_%05d.png), or set render.background to \"opaque\"",
+                                   kind));
+    }
+  }
+  if (scene.render.audio && (format == video::VideoFormat::Gif || format == video::VideoFormat::WebM)) {
+    throw UsageError(fmt::format("render.audio: a {} gets no sound track; write a .mp4 or a .mov, or remove render.audio",
+                                 format == video::VideoFormat::Gif ? ".gif" : ".webm"));
+  }
   refuseOverwritingInput("-o", output, inputsOf(options.scene));
+  video::VideoOptions encoding = scene.render.mp4Options();
+  encoding.provenance = provenance;
   std::unique_ptr<video::FrameSink> sink;
   try {
-    sink = std::make_unique<video::AsyncSink>(
-        video::makeSinkForPath(output, scene.render.mp4Options(), inputsOf(options.scene)));
+    sink = std::make_unique<video::AsyncSink>(video::makeSinkForPath(output, encoding, inputsOf(options.scene)));
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
@@ -387,7 +452,8 @@ void runRender(const RenderOptions& options) {
             scene, *sink,
             {.onFrame = [&](const pipeline::FrameProgress& p) { progress.update(p.frame, p.total); },
              .cancel = &interruptRequested(),
-             .maxFrames = options.maxFrames > 0 ? options.maxFrames : pipeline::kDefaultMaxFrames});
+             .maxFrames = options.maxFrames > 0 ? options.maxFrames : pipeline::kDefaultMaxFrames,
+             .window = window});
       },
       [&] { sink.reset(); });  // removes the partial output before we report
   if (result.stopDescription) {

@@ -115,11 +115,24 @@ int main(int argc, char** argv) {
 
   RenderOptions render;
   CLI::App* renderCommand = app.add_subcommand(
-      "render", "Render a scene to an MP4 (H.264) or a PNG sequence; without a scene, the built-in default");
+      "render",
+      "Render a scene to an MP4 (H.264), a GIF, a WebM (VP9), a MOV (ProRes 4444) or a PNG sequence; without a scene, "
+      "the built-in default");
   addSceneOptions(*renderCommand, render.scene, false);
   renderCommand->add_option("-o,--output", render.output,
-                            "Output: NAME.mp4, or a PNG sequence pattern like frames_%05d.png (frames numbered from 0); "
-                            "default: the scene's name + .mp4 (coinroll.mp4 for the built-in scene)");
+                            "Output, its kind by the extension (any case): NAME.mp4 (H.264), NAME.gif (looping), NAME.webm "
+                            "(VP9), NAME.mov (ProRes 4444), or a PNG sequence pattern like frames_%05d.png (frames "
+                            "numbered from 0); default: the scene's name + .mp4 (coinroll.mp4 for the built-in scene)");
+  renderCommand->add_option("--size", render.size,
+                            "Picture size, setting render.width x render.height: 480p (854x480), 720p (1280x720), 1080p "
+                            "(1920x1080), 1440p (2560x1440) or 2160p (3840x2160)")
+      ->type_name("480p|720p|1080p|1440p|2160p");
+  renderCommand->add_option("--from", render.from,
+                            "Write only the frames whose simulated time is at least T0 s (default 0); the simulation still "
+                            "runs from 0, so they are the full render's frames")
+      ->type_name("T0");
+  renderCommand->add_option("--to", render.to, "Write only the frames whose simulated time is at most T1 s (default: the end)")
+      ->type_name("T1");
   renderCommand->add_flag("-q,--quiet", render.quiet, "No progress line and no summary on stderr");
   renderCommand->add_option("--max-frames", render.maxFrames, "Refuse clips of more frames than this (default 1000000; a duration alone giving 1000 times as many is refused before any work)")->check(kAtLeastOne);
   renderCommand->footer(
@@ -129,6 +142,8 @@ int main(int argc, char** argv) {
       "  coinroll render examples/steady_circle.json -o circle.mp4\n"
       "  coinroll render examples/ring.json -o ring_%04d.png --set render.fps=10\n"
       "  coinroll render scene.json --set render.time_scale=0.25 --set render.camera.mode=follow\n"
+      "  coinroll render scene.json -o loop.gif --size 480p --from 1 --to 3\n"
+      "  coinroll render scene.json -o coin.mov --set render.background=\\\"transparent\\\"   (alpha for an editor)\n"
       "Outputs appear only when complete (written under a temporary name, then renamed); Ctrl-C leaves nothing.");
 
   StillOptions still;
@@ -233,8 +248,8 @@ int main(int argc, char** argv) {
   }
   // CLI11 reads an empty value of a number as 0 (--time '' drew t = 0; --min-psnr '' dropped the
   // limit): every numeric option refuses it, naming itself.
-  constexpr std::array<std::string_view, 14> kNumericOptions = {
-      "--sample-dt", "--max-rows", "--theta", "--omega-Z", "--max-frames", "--time", "--strobe", "--strobe-from",
+  constexpr std::array<std::string_view, 16> kNumericOptions = {
+      "--sample-dt", "--max-rows", "--theta", "--omega-Z", "--max-frames", "--from", "--to", "--time", "--strobe", "--strobe-from",
       "--threads", "--max-points", "--max-differing-pixels", "--max-differing-fraction", "--channel-tolerance",
       "--min-psnr"};
   for (CLI::App* command : app.get_subcommands({})) {

@@ -5,7 +5,9 @@
 #include <cstdint>
 #include <filesystem>
 #include <span>
+#include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace coinroll::image {
@@ -24,14 +26,19 @@ struct Image {
   }
 };
 
+// Key and text pairs a PNG carries as tEXt chunks, in order, right after its header (keys of 1 to
+// 79 Latin-1 characters, no NUL in either; std::invalid_argument otherwise).
+using PngText = std::vector<std::pair<std::string, std::string>>;
+
 // Writes `image` as PNG to `path` atomically (temporary file, then rename). Throws
 // std::runtime_error naming the path on failure; nothing is left under `path` then.
-void writePng(const Image& image, const std::filesystem::path& path);
+void writePng(const Image& image, const std::filesystem::path& path, const PngText& text = {});
 
 // Encodes `image` and writes the bytes to `path` itself, checking every write and the close
 // (std::runtime_error naming `name`, the output the user asked for, with the system's reason on a
 // full disk or any other failure); making the result appear atomically is the caller's business.
-void writePngBytes(const Image& image, const std::filesystem::path& path, const std::filesystem::path& name);
+void writePngBytes(const Image& image, const std::filesystem::path& path, const std::filesystem::path& name,
+                   const PngText& text = {});
 
 // The size a PNG's header declares, pixels, and its bits per channel (1, 2, 4, 8 or 16).
 struct PngSize {

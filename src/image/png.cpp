@@ -26,9 +26,31 @@ namespace {
 // stb's zlib output depends only on the pixels and this level, so equal pixels give equal bytes.
 constexpr int kPngCompressionLevel = 8;
 
+void appendBigEndian32(std::vector<unsigned char>& bytes, std::uint32_t value) {
+  for (int shift = 24; shift >= 0; shift -= 8) bytes.push_back(static_cast<unsigned char>(value >> shift));
+}
+
+// stb writes no text; the chunks go right after IHDR (the 8-byte signature, then IHDR's 4-byte
+// length, type, 13 data bytes and CRC), where readers that stop early still find them.
+void insertTextChunks(std::vector<unsigned char>& png, const PngText& text) {
+  constexpr std::size_t kAfterHeader = 8 + 4 + 4 + 13 + 4;
+  std::vector<unsigned char> chunks;
+  for (const auto& [key, value] : text) {
+    if (key.empty() || key.size() > 79 || key.find('\0') != std::string::npos || value.find('\0') != std::string::npos) {
+      throw std::invalid_argument("PNG text key '" + key + "': must be 1 to 79 characters with no NUL, as must its text");
+    }
+    const std::size_t start = chunks.size();
+    appendBigEndian32(chunks, static_cast<std::uint32_t>(key.size() + 1 + value.size()));
+    for (const char c : std::string("tEXt") + key + '\0' + value) chunks.push_back(static_cast<unsigned char>(c));
+    const uLong crc = crc32(crc32(0L, Z_NULL, 0), chunks.data() + start + 4, static_cast<uInt>(chunks.size() - start - 4));
+    appendBigEndian32(chunks, static_cast<std::uint32_t>(crc));
+  }
+  png.insert(png.begin() + kAfterHeader, chunks.begin(), chunks.end());
+}
+
 // The PNG file's bytes. Encoded in memory and written by the caller: stbi_write_png's own file
 // output ignores fwrite's and fclose's results, so a full disk would pass as success.
-std::vector<unsigned char> encodePng(const Image& image, const std::filesystem::path& name) {
+std::vector<unsigned char> encodePng(const Image& image, const std::filesystem::path& name, const PngText& text) {
   if (image.width <= 0 || image.height <= 0 ||
       image.rgba.size() != static_cast<std::size_t>(image.width) * image.height * 4) {
     throw std::runtime_error(name.string() + ": refusing to write an empty or inconsistent image");
@@ -44,6 +66,7 @@ std::vector<unsigned char> encodePng(const Image& image, const std::filesystem::
   if (stbi_write_png_to_func(append, &png, image.width, image.height, 4, image.rgba.data(), image.width * 4) == 0) {
     throw std::bad_alloc();
   }
+  insertTextChunks(png, text);
   return png;
 }
 
@@ -58,8 +81,9 @@ std::vector<unsigned char> encodePng(const Image& image, const std::filesystem::
 
 }  // namespace
 
-void writePngBytes(const Image& image, const std::filesystem::path& path, const std::filesystem::path& name) {
-  const std::vector<unsigned char> png = encodePng(image, name);
+void writePngBytes(const Image& image, const std::filesystem::path& path, const std::filesystem::path& name,
+                   const PngText& text) {
+  const std::vector<unsigned char> png = encodePng(image, name, text);
   std::FILE* out = std::fopen(path.c_str(), "wb");
   if (out == nullptr) throw std::runtime_error(name.string() + ": cannot open for writing: " + std::strerror(errno));
   const bool written = std::fwrite(png.data(), 1, png.size(), out) == png.size() && std::fflush(out) == 0;
@@ -72,9 +96,9 @@ void writePngBytes(const Image& image, const std::filesystem::path& path, const 
 
 // Through the output layer: atomic for a file (a link's target included), streamed to a device,
 // FIFO or descriptor (io/output_file.h).
-void writePng(const Image& image, const std::filesystem::path& path) {
+void writePng(const Image& image, const std::filesystem::path& path, const PngText& text) {
   io::OutputFile file(path, "PNG");
-  const std::vector<unsigned char> png = encodePng(image, path);
+  const std::vector<unsigned char> png = encodePng(image, path, text);
   file.write(std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
   file.commit();
 }

@@ -20,7 +20,7 @@ namespace coinroll::pipeline {
 
 StillResult renderStill(const scene::SceneConfig& scene, const StillRequest& request) {
   const StillPicture picture = drawStill(scene, request);
-  image::writePng(picture.image, request.output);
+  image::writePng(picture.image, request.output, request.text);
   return picture.result;
 }
 

@@ -83,8 +83,10 @@ class SoundTrack {
  public:
   SoundTrack(const scene::AudioSpec& spec, int fps) : spec_(spec), fps_(fps), synth_(spec, video::kAudioSampleRate) {}
 
+  // Each call's block of sound ends at frame k; it goes to `sink`, or nowhere when that is null (a
+  // frame outside the window), still synthesised so the sound is the full render's.
   // `landing`: frame k is the coin's landing, where the sound fades out to the silence of the hold.
-  void reachFrame(long k, const physics::Forward& forward, double playbackRate, video::FrameSink& sink, bool landing) {
+  void reachFrame(long k, const physics::Forward& forward, double playbackRate, video::FrameSink* sink, bool landing) {
     // Omega = |phi-dot|, the contact point's rate round the floor; with pitch "video" the sound is
     // played at the picture's speed, so its frequency scales with simulated seconds per video second.
     const double rate = spec_.pitch == scene::AudioSpec::Pitch::Video ? playbackRate : 1.0;
@@ -94,13 +96,13 @@ class SoundTrack {
   }
 
   // The block up to frame k of a coin lying still: silence.
-  void rest(long k, video::FrameSink& sink) {
+  void rest(long k, video::FrameSink* sink) {
     block_.assign(static_cast<std::size_t>(sampleAt(k) - sampleAt(k - 1)), 0.0f);
-    sink.pushAudio(block_);
+    if (sink != nullptr) sink->pushAudio(block_);
   }
 
   // The last frame's block, so the track lasts exactly as long as the video.
-  void finish(long frames, video::FrameSink& sink, bool resting) {
+  void finish(long frames, video::FrameSink* sink, bool resting) {
     if (resting) rest(frames, sink);
     else emit(frames, frequency_, sink, true);
   }
@@ -111,12 +113,12 @@ class SoundTrack {
     return static_cast<std::int64_t>(k) * video::kAudioSampleRate / fps_;
   }
 
-  void emit(long k, double f, video::FrameSink& sink, bool last) {
+  void emit(long k, double f, video::FrameSink* sink, bool last) {
     block_.clear();
     synth_.synthesize(frequency_, f, static_cast<std::size_t>(sampleAt(k) - sampleAt(k - 1)), block_);
     if (k == 1) synth_.fadeIn(block_);
     if (last) synth_.fadeOut(block_);
-    sink.pushAudio(block_);
+    if (sink != nullptr) sink->pushAudio(block_);
   }
 
   scene::AudioSpec spec_;
@@ -159,17 +161,43 @@ VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& si
   const long holdFrames = landed ? std::lround(kLandingHoldSeconds * scene.render.fps) : 0;
   const long total = simulatedFrames + holdFrames;
 
+  // Frame k's simulated time: the hold repeats the landing, at the run's end.
+  const auto timeOf = [&](long k) { return k < simulatedFrames ? times[static_cast<std::size_t>(k)] : survey.endTime; };
+  const TimeWindow& window = options.window;
+  const auto written = [&](long k) {
+    const double t = timeOf(k);
+    return t >= window.from - kWindowTolerance && t <= window.to + kWindowTolerance;
+  };
+  long toWrite = 0;
+  for (long k = 0; k < total; ++k) toWrite += written(k) ? 1 : 0;
+  if (toWrite == 0) {
+    if (window.from > survey.endTime + kWindowTolerance) {
+      throw std::invalid_argument(fmt::format("--from {}: beyond the run's end at {:.9g} s{}; give a time in [0, {:.9g}]",
+                                              window.from, survey.endTime,
+                                              survey.stoppedBy ? " (" + describeStop(*survey.stoppedBy) + ")" : "",
+                                              survey.endTime));
+    }
+    throw std::invalid_argument(fmt::format("--from {} --to {}: no frame's simulated time lies in this window (frames are "
+                                            "{:.6g} s of simulated time apart{}); widen it",
+                                            window.from, window.to, scene.render.timeScale / scene.render.fps,
+                                            scene.render.timeRemap ? ", less where render.time_remap slows them" : ""));
+  }
+
   SnapshotMaker snapshots(scene, simulation, survey);
   image::Image frame;
   std::optional<SoundTrack> sound;
   if (scene.render.audio) sound.emplace(*scene.render.audio, scene.render.fps);
+  // The sound between frames k - 1 and k plays with frame k - 1: it is kept when that frame is.
+  const auto soundSink = [&](long k) { return k > 0 && written(k - 1) ? &sink : nullptr; };
   for (long k = 0; k < total; ++k) {
     if (options.cancel != nullptr && options.cancel->load()) throw Cancelled();
     if (k >= simulatedFrames) {  // the hold: the landing's picture again, in silence
-      if (sound) sound->rest(k, sink);
-      sink.push(frame);
-      result.frames = k + 1;
-      if (options.onFrame) options.onFrame({k + 1, total});
+      if (sound) sound->rest(k, soundSink(k));
+      if (written(k)) {
+        sink.push(frame);
+        ++result.frames;
+        if (options.onFrame) options.onFrame({result.frames, toWrite});
+      }
       continue;
     }
     const double t = times[static_cast<std::size_t>(k)];
@@ -188,14 +216,16 @@ VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& si
       if (slowdown > 1 + 1e-9) speed.push_back(fmt::format("slow motion x{:.3g}", slowdown));
       if (slowdown < 1 - 1e-9) speed.push_back(fmt::format("fast forward x{:.3g}", 1 / slowdown));
     }
+    // Made for every frame: the trace and the sound are built in time order from the start.
     const render::FrameSnapshot& snapshot = snapshots.makeSnapshot(t, speed);
-    if (sound) sound->reachFrame(k, snapshots.forward(), playbackRate, sink, landed && k + 1 == simulatedFrames);
+    if (sound) sound->reachFrame(k, snapshots.forward(), playbackRate, soundSink(k), landed && k + 1 == simulatedFrames);
+    if (!written(k)) continue;
     renderer.draw(snapshot, frame);
     sink.push(frame);
-    result.frames = k + 1;
-    if (options.onFrame) options.onFrame({k + 1, total});
+    ++result.frames;
+    if (options.onFrame) options.onFrame({result.frames, toWrite});
   }
-  if (sound) sound->finish(total, sink, landed);
+  if (sound) sound->finish(total, soundSink(total), landed);
   sink.finish();
   return result;
 }

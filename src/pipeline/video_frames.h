@@ -6,6 +6,7 @@
 
 #include <atomic>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -51,15 +52,26 @@ struct FrameProgress {
   long total = 0;
 };
 
+// The frames a render writes: those whose simulated time lies in [from, to] (within
+// kWindowTolerance), exactly as the full render draws them. `to` past the run's end means the end.
+struct TimeWindow {
+  double from = 0;                                      // s of simulated time
+  double to = std::numeric_limits<double>::infinity();  // s of simulated time
+};
+inline constexpr double kWindowTolerance = 1e-9;  // s: a frame time computed as a sum may miss a bound by round-off
+
 struct VideoRunOptions {
   std::function<void(const FrameProgress&)> onFrame;  // called after each frame; may be empty
   const std::atomic<bool>* cancel = nullptr;          // when set and true, the loop stops (Cancelled)
   long maxFrames = kDefaultMaxFrames;                 // more frames: std::invalid_argument, before any work
   bool reuseStaticBackground = true;  // render::RenderSettings; off only to measure what it saves
+  // Frames outside it are neither drawn nor pushed (the simulation and the trace still run from 0),
+  // nor is their sound. std::invalid_argument naming --from and --to when no frame lies in it.
+  TimeWindow window;
 };
 
 struct VideoRunResult {
-  long frames = 0;
+  long frames = 0;  // frames written
   double simulatedSeconds = 0;  // s shown; less than the duration when a validity event ended the run
   std::optional<std::string> stopDescription;
 };

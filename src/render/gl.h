@@ -33,6 +33,7 @@ namespace coinroll::render {
   X(PFNGLCLEARCOLORPROC, ClearColor)                                           \
   X(PFNGLCLEARDEPTHPROC, ClearDepth)                                           \
   X(PFNGLCLEARSTENCILPROC, ClearStencil)                                       \
+  X(PFNGLCOLORMASKPROC, ColorMask)                                             \
   X(PFNGLCOMPILESHADERPROC, CompileShader)                                     \
   X(PFNGLCREATEPROGRAMPROC, CreateProgram)                                     \
   X(PFNGLCREATESHADERPROC, CreateShader)                                       \

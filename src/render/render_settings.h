@@ -44,6 +44,10 @@ struct RenderSettings {
   int msaa = 4;                    // samples per pixel, one of kMsaaSampleCounts (1: none)
   CoinShape coin;
   bool showShadow = true;
+  // render.background "transparent": no sky and no visible floor (it still hides what lies below
+  // it); where nothing is drawn alpha is 0, and the coin, its shadow, the trace and the overlay
+  // keep their own alpha (docs/outputs.md "Transparent background").
+  bool transparentBackground = false;
   // When a frame's camera equals the previous frame's, the sky and the floor are copied from the
   // first such frame instead of shaded again (the largest part of a frame on llvmpipe). The bytes
   // are the same either way; off only to measure or test the saving.

@@ -269,7 +269,9 @@ void Renderer::drawBackground(const CameraView& camera, const glm::mat4& viewPro
   GlState& state = *state_;
   const GlFunctions& gl = state.gl;
   const float cameraDistance = glm::length(camera.eye - camera.target);
-  gl.ClearColor(kBackgroundSrgb.r, kBackgroundSrgb.g, kBackgroundSrgb.b, 1.0f);
+  const bool transparent = settings_.transparentBackground;
+  if (transparent) gl.ClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+  else gl.ClearColor(kBackgroundSrgb.r, kBackgroundSrgb.g, kBackgroundSrgb.b, 1.0f);
   gl.ClearStencil(0);
   gl.ClearDepth(1.0);
   gl.DepthMask(GL_TRUE);
@@ -290,7 +292,9 @@ void Renderer::drawBackground(const CameraView& camera, const glm::mat4& viewPro
   gl.ActiveTexture(GL_TEXTURE0);
   gl.BindTexture(GL_TEXTURE_2D, state.floorGrid.get());
   gl.BindVertexArray(state.floorArray.get());
+  if (transparent) gl.ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
   gl.DrawArrays(GL_TRIANGLES, 0, 6);
+  if (transparent) gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 }
 
 void Renderer::draw(const FrameSnapshot& snapshot, image::Image& out) {
@@ -307,8 +311,14 @@ void Renderer::draw(const FrameSnapshot& snapshot, image::Image& out) {
   gl.Enable(GL_DEPTH_TEST);
   gl.DepthFunc(GL_LESS);
   gl.Enable(GL_CULL_FACE);
-  // Keep the destination alpha at 1 so the PNG is opaque whatever was blended over it.
-  gl.BlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
+  // Opaque: keep the destination alpha at 1 so the PNG is opaque whatever was blended over it.
+  // Transparent: over a clear (0, 0, 0, 0) this blend leaves premultiplied colour and the coverage
+  // in alpha, which MSAA resolves and FXAA average correctly; undone after the readback.
+  if (settings_.transparentBackground) {
+    gl.BlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  } else {
+    gl.BlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
+  }
   gl.Disable(GL_BLEND);
   constexpr GLbitfield kAllBuffers = GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT;
   if (state.backgroundCamera == snapshot.camera) {
@@ -459,6 +469,16 @@ void Renderer::draw(const FrameSnapshot& snapshot, image::Image& out) {
     std::memcpy(row.data(), top, rowBytes);
     std::memcpy(top, bottom, rowBytes);
     std::memcpy(bottom, row.data(), rowBytes);
+  }
+  // Images, PNG and the video encoders hold straight (not premultiplied) alpha.
+  if (settings_.transparentBackground) {
+    for (std::size_t i = 0; i < out.rgba.size(); i += 4) {
+      const unsigned alpha = out.rgba[i + 3];
+      if (alpha == 0 || alpha == 255) continue;
+      for (std::size_t c = 0; c < 3; ++c) {
+        out.rgba[i + c] = static_cast<std::uint8_t>(std::min(255u, (out.rgba[i + c] * 255u + alpha / 2) / alpha));
+      }
+    }
   }
   if (const GLenum error = gl.GetError(); error != GL_NO_ERROR) {
     throw std::runtime_error(fmt::format("OpenGL error 0x{:04x} while drawing a frame", error));

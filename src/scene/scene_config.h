@@ -3,7 +3,7 @@
 // (the file's degrees are converted once, in scene_loader.cpp). Field names follow the JSON keys
 // of INTERFACE.md; README "Scene format" lists each with unit and default. What the renderer and
 // the encoder are built with is held in their own types (render/render_settings.h,
-// video/mp4_options.h), whose defaults and limits are the scene's: defined there, once.
+// video/video_options.h), whose defaults and limits are the scene's: defined there, once.
 
 #include <array>
 #include <optional>
@@ -15,7 +15,7 @@
 #include "physics/effects.h"
 #include "physics/formulation.h"
 #include "render/render_settings.h"
-#include "video/mp4_options.h"
+#include "video/video_options.h"
 
 namespace coinroll::scene {
 
@@ -114,7 +114,7 @@ struct RenderSpec {
   // render.antialiasing and msaa, and the coin as drawn (coin.thickness; a ring's hole narrowed
   // so a thin hoop still shows as a band).
   render::RenderSettings picture;
-  int fps = video::Mp4Options{}.fps;  // frames per second of video, 1..240; the encoder's default
+  int fps = video::VideoOptions{}.fps;  // frames per second of video, 1..240; the encoder's default
   double timeScale = 1.0;          // video seconds per simulated second
   // When set, playback slows further whenever the chosen rate exceeds its limit, so that rate seen
   // on screen never exceeds the limit times time_scale (an Euler's disk stays readable).
@@ -123,11 +123,19 @@ struct RenderSpec {
   bool trace = true, hud = true;
   video::X264Options video;        // render.video
   std::optional<AudioSpec> audio;  // absent: no sound track
+  // render.provenance: outputs name coinroll, its release and the scene's digest (docs/outputs.md).
+  bool provenance = true;
 
   // The encoder's options for these pictures: the same size and frame rate, render.video, and an
   // audio track when render.audio asks for one.
-  video::Mp4Options mp4Options() const {
-    return {.width = picture.width, .height = picture.height, .fps = fps, .x264 = video, .audio = audio.has_value()};
+  video::VideoOptions mp4Options() const {
+    return {.width = picture.width,
+            .height = picture.height,
+            .fps = fps,
+            .x264 = video,
+            .audio = audio.has_value(),
+            .alpha = picture.transparentBackground,
+            .provenance = {}};  // the command's to fill: it knows the release and the scene document
   }
 };
 

@@ -340,7 +340,7 @@ RenderSpec parseRender(const JsonReader& top) {
   RenderSpec render;
   const nlohmann::json* node = top.child("render");
   if (node == nullptr) return render;
-  const JsonReader r(*node, "render", "", {"width", "height", "fps", "antialiasing", "msaa", "time_scale", "time_remap", "camera", "trace", "hud", "video", "audio"});
+  const JsonReader r(*node, "render", "", {"width", "height", "fps", "antialiasing", "msaa", "time_scale", "time_remap", "camera", "trace", "hud", "video", "audio", "background", "provenance"});
   render::RenderSettings& picture = render.picture;
   for (auto [key, field] : {std::pair{"width", &picture.width}, std::pair{"height", &picture.height}}) {
     *field = r.integer(key, *field);
@@ -395,6 +395,13 @@ RenderSpec parseRender(const JsonReader& top) {
     }
   }
   render.audio = parseAudio(r);
+  if (const std::optional<std::string> background = r.optionalString("background")) {
+    if (*background != "opaque" && *background != "transparent") {
+      r.fail("background", fmt::format("expected \"opaque\" or \"transparent\", got \"{}\"", *background));
+    }
+    picture.transparentBackground = *background == "transparent";
+  }
+  render.provenance = r.boolean("provenance", render.provenance);
   return render;
 }
 

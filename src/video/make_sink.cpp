@@ -1,5 +1,6 @@
 #include "video/make_sink.h"
 
+#include <array>
 #include <cctype>
 #include <stdexcept>
 
@@ -10,27 +11,44 @@ namespace coinroll::video {
 
 namespace {
 
-bool hasMp4Extension(const std::filesystem::path& path) {
+std::string lowerExtension(const std::filesystem::path& path) {
   std::string extension = path.extension().string();
   for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return extension == ".mp4";
+  return extension;
 }
 
 }  // namespace
 
-bool namesPngSequence(const std::filesystem::path& path) {
-  return !hasMp4Extension(path) && looksLikeSequencePattern(path.filename().string());
-}
-
-std::unique_ptr<FrameSink> makeSinkForPath(const std::filesystem::path& path, const Mp4Options& options,
-                                           const std::vector<std::filesystem::path>& inputs) {
-  if (namesPngSequence(path)) return std::make_unique<PngSequenceSink>(path, inputs);
+std::optional<VideoFormat> videoFormatOf(const std::filesystem::path& path) {
+  const std::string extension = lowerExtension(path);
+  for (const VideoFormat format : {VideoFormat::Mp4, VideoFormat::Gif, VideoFormat::WebM, VideoFormat::Mov}) {
+    if (extension == extensionOf(format)) return format;
+  }
   // A device, FIFO or descriptor has no extension of its own to choose by (/dev/null,
   // /dev/fd/63 from `-o >(...)`): it gets the default kind, as the default name does.
-  if (hasMp4Extension(path) || io::namesStream(path)) return std::make_unique<Mp4Sink>(path, options);
+  if (!namesPngSequence(path) && io::namesStream(path)) return VideoFormat::Mp4;
+  return std::nullopt;
+}
+
+bool namesPngSequence(const std::filesystem::path& path) {
+  const std::string extension = lowerExtension(path);
+  for (const VideoFormat format : {VideoFormat::Mp4, VideoFormat::Gif, VideoFormat::WebM, VideoFormat::Mov}) {
+    if (extension == extensionOf(format)) return false;
+  }
+  return looksLikeSequencePattern(path.filename().string());
+}
+
+std::unique_ptr<FrameSink> makeSinkForPath(const std::filesystem::path& path, const VideoOptions& options,
+                                           const std::vector<std::filesystem::path>& inputs) {
+  if (namesPngSequence(path)) return std::make_unique<PngSequenceSink>(path, inputs, options.provenance);
+  if (const std::optional<VideoFormat> format = videoFormatOf(path)) {
+    VideoOptions chosen = options;
+    chosen.format = *format;
+    return std::make_unique<EncoderSink>(path, chosen);
+  }
   throw std::invalid_argument(path.string() +
-                              ": unknown output kind: expected a video ending in .mp4 (out.mp4) or a PNG "
-                              "sequence pattern with one %d or %0Nd conversion (out_%05d.png)");
+                              ": unknown output kind: expected a video ending in .mp4, .gif, .webm or .mov (out.mp4) "
+                              "or a PNG sequence pattern with one %d or %0Nd conversion (out_%05d.png)");
 }
 
 }  // namespace coinroll::video

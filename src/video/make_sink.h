@@ -3,22 +3,28 @@
 
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <vector>
 
+#include "video/encoder_sink.h"
 #include "video/frame_sink.h"
-#include "video/mp4_sink.h"
 
 namespace coinroll::video {
 
-// A path ending in ".mp4" (any case; a % in it is a literal character: 100%.mp4), or naming a
-// device, FIFO or descriptor (/dev/null, /dev/stdout, /dev/fd/N), gives an Mp4Sink configured by
-// `options`; a path whose file name has a % conversion ("out/frame_%05d.png") gives a
-// PngSequenceSink (which ignores them).
-// Anything else throws std::invalid_argument naming the path and the two accepted forms; the
-// sinks' constructors throw for a bad pattern, bad options or a missing directory.
-// `inputs`: the command's input files, which no frame of a sequence may lead to.
+// The video kind a path names by its extension, in any case (.mp4, .gif, .webm, .mov; a % in such
+// a name is a literal character: 100%.mp4), or MP4 for a device, FIFO or descriptor (/dev/null,
+// /dev/stdout, /dev/fd/N); nothing for a PNG sequence pattern or any other name.
+std::optional<VideoFormat> videoFormatOf(const std::filesystem::path& path);
+
+// A file name with a % conversion ("out/frame_%05d.png") that does not end in a video extension.
 bool namesPngSequence(const std::filesystem::path& path);
-std::unique_ptr<FrameSink> makeSinkForPath(const std::filesystem::path& path, const Mp4Options& options,
+
+// A video path gives an EncoderSink configured by `options` with the path's kind as its format;
+// a PNG sequence pattern gives a PngSequenceSink (which takes only the provenance and the frames'
+// alpha as they are). Anything else throws std::invalid_argument naming the path and the accepted
+// forms; the sinks' constructors throw for a bad pattern, bad options or a missing directory.
+// `inputs`: the command's input files, which no frame of a sequence may lead to.
+std::unique_ptr<FrameSink> makeSinkForPath(const std::filesystem::path& path, const VideoOptions& options,
                                            const std::vector<std::filesystem::path>& inputs = {});
 
 }  // namespace coinroll::video

@@ -38,7 +38,9 @@ bool looksLikeSequencePattern(const std::string& fileName) {
   return false;
 }
 
-PngSequenceSink::PngSequenceSink(std::filesystem::path pattern, const std::vector<std::filesystem::path>& inputs) {
+PngSequenceSink::PngSequenceSink(std::filesystem::path pattern, const std::vector<std::filesystem::path>& inputs,
+                                 const Provenance& provenance)
+    : text_(provenance.pngText()) {
   frames_.protect(inputs);
   const std::string whole = pattern.string();
   const std::string fileName = pattern.filename().string();
@@ -102,7 +104,7 @@ std::filesystem::path PngSequenceSink::pathOfFrame(int index) const {
 void PngSequenceSink::push(const image::Image& frame) {
   if (finished_) throw std::logic_error(pathOfFrame(0).string() + ": push() after finish()");
   const std::filesystem::path name = pathOfFrame(static_cast<int>(frames_.size()));
-  image::writePngBytes(frame, frames_.add(name), name);
+  image::writePngBytes(frame, frames_.add(name), name, text_);
 }
 
 std::vector<std::filesystem::path> PngSequenceSink::framesFrom(int count) const {

@@ -8,6 +8,7 @@
 #include "io/output_group.h"
 
 #include "video/frame_sink.h"
+#include "video/video_options.h"
 
 namespace coinroll::video {
 
@@ -29,8 +30,10 @@ class PngSequenceSink final : public FrameSink {
   // Throws std::invalid_argument naming the pattern if it is malformed, std::runtime_error if its
   // directory does not exist. A frame's name may be a link (its target is written, as for any
   // output) but not a device, FIFO or descriptor: frames are published by renames. No frame may
-  // lead to one of `inputs` or to another frame's file (io::OutputGroup::protect).
-  explicit PngSequenceSink(std::filesystem::path pattern, const std::vector<std::filesystem::path>& inputs = {});
+  // lead to one of `inputs` or to another frame's file (io::OutputGroup::protect). Every frame
+  // carries `provenance` as tEXt chunks (Provenance::pngText), and the alpha it is pushed with.
+  explicit PngSequenceSink(std::filesystem::path pattern, const std::vector<std::filesystem::path>& inputs = {},
+                           const Provenance& provenance = {});
   ~PngSequenceSink() override;
 
   void push(const image::Image& frame) override;
@@ -48,6 +51,7 @@ class PngSequenceSink final : public FrameSink {
   std::string prefix_;  // file name before the number
   std::string suffix_;  // file name after the number
   int minimumDigits_ = 0;
+  image::PngText text_;
   io::OutputGroup frames_{"PNG"};  // frame i is the i-th file staged
   bool finished_ = false;
 

@@ -1,6 +1,11 @@
 #include "video/rgba_to_yuv.h"
 
 #include <stdexcept>
+#include <string>
+
+extern "C" {
+#include <libavutil/pixdesc.h>
+}
 
 namespace coinroll::video::detail {
 
@@ -18,11 +23,12 @@ namespace coinroll::video::detail {
 // numbers); its input-side twin FULL_CHR_H_INP was worse (chroma rms 1.91).
 const int kRgbaToYuvScalerFlags = SWS_BICUBIC | SWS_ACCURATE_RND;
 
-ScalerPtr makeRgbaToYuvScaler(int width, int height, int flags) {
-  ScalerPtr scaler(sws_getContext(width, height, AV_PIX_FMT_RGBA, width, height, AV_PIX_FMT_YUV420P, flags,
+ScalerPtr makeRgbaToYuvScaler(int width, int height, int flags, AVPixelFormat destination) {
+  ScalerPtr scaler(sws_getContext(width, height, AV_PIX_FMT_RGBA, width, height, destination, flags,
                                   nullptr, nullptr, nullptr));
+  const std::string name = av_get_pix_fmt_name(destination);
   if (!scaler) {
-    throw std::runtime_error("cannot create the RGBA to yuv420p converter for " + std::to_string(width) + "x" +
+    throw std::runtime_error("cannot create the RGBA to " + name + " converter for " + std::to_string(width) + "x" +
                              std::to_string(height));
   }
   // swscale defaults to the BT.601 matrix; the stream is tagged BT.709, so convert with BT.709.
@@ -30,7 +36,7 @@ ScalerPtr makeRgbaToYuvScaler(int width, int height, int flags) {
   // what players assume for H.264 and what the stream says.
   const int* bt709 = sws_getCoefficients(SWS_CS_ITU709);
   setScalerColorDetails(*scaler, bt709, true, bt709, false,
-                        "setting BT.709 limited range on the RGBA to yuv420p converter");
+                        "setting BT.709 limited range on the RGBA to " + name + " converter");
   return scaler;
 }
 
@@ -38,7 +44,7 @@ void convertRgbaToYuv(SwsContext& scaler, const image::Image& rgba, AVFrame& yuv
   const std::uint8_t* const sourcePlanes[] = {rgba.rgba.data()};
   const int sourceStrides[] = {rgba.width * 4};
   checkAv(sws_scale(&scaler, sourcePlanes, sourceStrides, 0, rgba.height, yuv.data, yuv.linesize),
-          "converting a frame from RGBA to yuv420p");
+          "converting a frame from RGBA to YUV");
 }
 
 }  // namespace coinroll::video::detail

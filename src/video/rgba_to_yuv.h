@@ -10,11 +10,12 @@ namespace coinroll::video::detail {
 // Chosen by bench/video_bench.cpp (see the comment at the definition for the numbers).
 extern const int kRgbaToYuvScalerFlags;
 
-// A scaler from width x height RGBA (full range, as rendered) to yuv420p with BT.709 matrix and
-// limited range, the tags Mp4Sink writes. `flags` are SWS_* flags. Throws std::runtime_error.
-ScalerPtr makeRgbaToYuvScaler(int width, int height, int flags);
+// A scaler from width x height RGBA (full range, as rendered) to `destination` (a YUV format,
+// with or without alpha) with BT.709 matrix and limited range, the tags EncoderSink writes.
+// `flags` are SWS_* flags. Throws std::runtime_error.
+ScalerPtr makeRgbaToYuvScaler(int width, int height, int flags, AVPixelFormat destination = AV_PIX_FMT_YUV420P);
 
-// Converts `rgba` into the planes of `yuv` (allocated, yuv420p, same size as `rgba`).
+// Converts `rgba` into the planes of `yuv` (allocated, the scaler's format, same size as `rgba`).
 void convertRgbaToYuv(SwsContext& scaler, const image::Image& rgba, AVFrame& yuv);
 
 }  // namespace coinroll::video::detail

@@ -91,6 +91,13 @@ VideoInfo readVideoInfo(const std::filesystem::path& path) {
     av_packet_unref(packet.get());
   }
   info.moovBeforeMdat = moovPrecedesMdat(path);
+  const AVPixFmtDescriptor* descriptor = av_pix_fmt_desc_get(static_cast<AVPixelFormat>(parameters.format));
+  const AVDictionaryEntry* alphaMode = av_dict_get(stream.metadata, "alpha_mode", nullptr, 0);
+  info.alpha = (descriptor != nullptr && (descriptor->flags & AV_PIX_FMT_FLAG_ALPHA) != 0) ||
+               (alphaMode != nullptr && std::string(alphaMode->value) == "1");
+  for (const AVDictionaryEntry* tag = nullptr; (tag = av_dict_get(format->metadata, "", tag, AV_DICT_IGNORE_SUFFIX));) {
+    info.tags[tag->key] = tag->value;
+  }
   return info;
 }
 
@@ -98,6 +105,10 @@ image::Image decodeFrame(const std::filesystem::path& path, std::int64_t index) 
   InputFormatPtr format = openInput(path);
   const AVCodec* decoder = nullptr;
   const int streamIndex = findVideoStream(*format, path, &decoder);
+  // FFmpeg's own VP9 decoder drops the alpha that WebM carries beside the picture; libvpx's keeps it.
+  if (format->streams[streamIndex]->codecpar->codec_id == AV_CODEC_ID_VP9) {
+    if (const AVCodec* libvpx = avcodec_find_decoder_by_name("libvpx-vp9")) decoder = libvpx;
+  }
   CodecContextPtr codec(checkAllocated(avcodec_alloc_context3(decoder), path.string() + ": allocating a decoder"));
   checkAv(avcodec_parameters_to_context(codec.get(), format->streams[streamIndex]->codecpar),
           path.string() + ": configuring the decoder");

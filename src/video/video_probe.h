@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -22,7 +23,11 @@ struct VideoInfo {
   std::string colorTransfer;    // e.g. "bt709"
   std::string colorSpace;       // the YUV matrix, e.g. "bt709"
   std::string colorRange;       // "tv" (limited) or "pc" (full)
-  bool moovBeforeMdat = false;  // MP4 top-level boxes: the index precedes the media data
+  bool moovBeforeMdat = false;  // MP4 and MOV top-level boxes: the index precedes the media data
+  // The stream carries alpha: its pixel format has it, or (VP9 in WebM, whose alpha travels beside
+  // the picture) the container says so (alpha_mode 1).
+  bool alpha = false;
+  std::map<std::string, std::string> tags;  // the container's metadata, keys as FFmpeg names them
 };
 
 // Opens `path` with libavformat and describes its first video stream. Throws std::runtime_error
@@ -31,7 +36,7 @@ VideoInfo readVideoInfo(const std::filesystem::path& path);
 
 // Decodes frame `index` (0-based, in presentation order) of the first video stream to RGBA,
 // converting with the matrix and range the stream is tagged with (BT.601 when untagged, as
-// FFmpeg assumes). Throws std::runtime_error naming the path if the file has fewer frames.
+// FFmpeg assumes), alpha included (VP9 through libvpx's decoder, which reads the alpha beside it). Throws std::runtime_error naming the path if the file has fewer frames.
 image::Image decodeFrame(const std::filesystem::path& path, std::int64_t index);
 
 // The first audio stream: its codec, rate and duration, and every sample decoded to mono floats

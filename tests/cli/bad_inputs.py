@@ -639,9 +639,10 @@ case("flag-unknown", C, "unknown flag --bogus", SIM + " --bogus", 2,
      "The following argument was not expected: --bogus", key="--bogus")
 case("flag-fps", C, "render --fps 30 (fps is render.fps in the scene)", "render scene.json -o o.mp4 --fps 30", 2,
      "The following arguments were not expected: 30 --fps", key="--fps")
-case("flag-size", C, "render --size 64x48 (the size is render.width/height)",
+case("flag-size", C, "render --size 64x48 (--size takes a name; any other size is render.width/height)",
      "render scene.json -o o.mp4 --size 64x48", 2,
-     "The following arguments were not expected: 64x48 --size", key="--size")
+     "--size 64x48: unknown size; give 480p, 720p, 1080p, 1440p or 2160p (or set render.width and render.height "
+     "with --set)", key="--size")
 case("csv-missing", C, "simulate without --csv", "simulate scene.json", 2, "--csv is required", gtest=(G_CMDLINE,))
 case("extra-positional", C, "two scene files", "simulate scene.json scene.json --csv o.csv", 2,
      "The following argument was not expected: scene.json", key="scene.json")
@@ -664,7 +665,40 @@ case("max-frames-negative", C, "--max-frames -1", REN.replace("--set ", "") + "-
 case("max-frames-text", C, "--max-frames abc", REN.replace("--set ", "") + "--max-frames abc", 2,
      "--max-frames: must be a whole number >= 1, got abc", key="--max-frames", na_before="no --max-frames before")
 case("render-avi", C, "render -o o.avi", "render scene.json -o o.avi", 2,
-     "o.avi: unknown output kind: expected a video ending in .mp4", key=".mp4", gtest=(G_RENDER,))
+     "o.avi: unknown output kind: expected a video ending in .mp4, .gif, .webm or .mov", key=".mp4", gtest=(G_RENDER,))
+FORMATS = "no such option or scene field before (issue 24)"
+RW = "render scene.json -q -o o.mp4 "
+case("size-unknown", C, "render --size 4k", RW + "--size 4k", 2,
+     "--size 4k: unknown size; give 480p, 720p, 1080p, 1440p or 2160p", key="--size", gtest=(G_RENDER,),
+     na_before=FORMATS)
+case("from-after-to", C, "render --from 0.4 --to 0.1", RW + "--from 0.4 --to 0.1", 2,
+     "--from 0.4 --to 0.1: the window ends before it starts; give --from <= --to", key="--from", gtest=(G_RENDER,),
+     na_before=FORMATS)
+case("from-beyond-end", C, "render --from 2 past a 0.5 s run", RW + "--from 2", 2,
+     "--from 2: beyond the run's end at 0.5 s (the scene's duration); give a time in [0, 0.5]", key="--from",
+     gtest=(G_RENDER,), na_before=FORMATS)
+case("from-negative", C, "render --from -1", RW + "--from -1", 2, "--from -1: must be a simulated time >= 0 s",
+     key="--from", gtest=(G_RENDER,), na_before=FORMATS)
+case("to-nan", C, "render --to nan", RW + "--to nan", 2, "--to nan: must be a simulated time >= 0 s", key="--to",
+     na_before=FORMATS)
+case("from-empty", C, "render --from ''", RW + "--from ''", 2, "--from: the value is empty; give a number",
+     key="--from", na_before=FORMATS)
+case("window-without-frames", C, "render --from 0.21 --to 0.22: no frame at 30 fps in between",
+     RW + "--from 0.21 --to 0.22", 2, "--from 0.21 --to 0.22: no frame's simulated time lies in this window",
+     key="--from", gtest=(G_RENDER,), na_before=FORMATS)
+for ext in ("mp4", "GIF"):
+    case(f"transparent-{ext.lower()}", C, f"render.background transparent with .{ext}",
+         f"render scene.json -q -o o.{ext} --set 'render.background=\"transparent\"'", 2,
+         f'render.background: "transparent" needs an output with alpha, and .{ext.lower()} has none; write a .mov, '
+         'a .webm or a PNG sequence', key="render.background", gtest=(G_RENDER,), na_before=FORMATS)
+case("background-bad", C, "render.background \"clear\"", "render scene.json -q -o o.mov --set 'render.background=\"clear\"'",
+     2, 'render.background: expected "opaque" or "transparent", got "clear"', key="render.background",
+     gtest=(G_RENDER,), na_before=FORMATS)
+case("provenance-bad", C, "render.provenance \"yes\"", "render scene.json -q -o o.mov --set 'render.provenance=\"yes\"'",
+     2, 'render.provenance: must be true or false, got string "yes"', key="render.provenance", na_before=FORMATS)
+case("audio-webm", C, "render.audio with .webm", "render scene.json -q -o o.webm --set render.audio=true", 2,
+     "render.audio: a .webm gets no sound track; write a .mp4 or a .mov, or remove render.audio", key="render.audio",
+     na_before=FORMATS)
 case("render-two-patterns", C, "PNG pattern with two %d", "render scene.json -o o_%d_%d.png", 2,
      "o_%d_%d.png: bad PNG sequence pattern: more than one % conversion", key="%")
 case("render-pattern-s", C, "PNG pattern with %s", "render scene.json -o o_%s.png", 2,

@@ -19,6 +19,7 @@
 #include <string>
 #include <thread>
 
+#include "image/image.h"
 #include "video/video_probe.h"
 
 namespace {
@@ -100,6 +101,15 @@ TEST_F(RenderCliTest, BadRequestsExitTwoAndLeaveNothing) {
       {"-o " + (dir_ / "bad.mp4").string() + " --set render.video.preset=\\\"warp\\\"", "preset", 2},
       {"-o " + (dir_ / "bad.avi").string(), ".mp4", 2},
       {"-o " + (dir_ / "missing_dir/bad.mp4").string(), "missing_dir", 1},
+      {"-o " + (dir_ / "bad.mp4").string() + " --size 4k", "--size", 2},
+      {"-o " + (dir_ / "bad.mp4").string() + " --from 0.8 --to 0.2", "--from", 2},
+      {"-o " + (dir_ / "bad.mp4").string() + " --from 5", "--from", 2},
+      {"-o " + (dir_ / "bad.mp4").string() + " --from -1", "--from", 2},
+      {"-o " + (dir_ / "bad.mp4").string() + " --from 0.51 --to 0.52", "no frame", 2},
+      {"-o " + (dir_ / "bad.mp4").string() + " --set render.background=\\\"transparent\\\"", "render.background", 2},
+      {"-o " + (dir_ / "bad.GIF").string() + " --set render.background=\\\"transparent\\\"", "render.background", 2},
+      {"-o " + (dir_ / "bad.mov").string() + " --set render.background=\\\"clear\\\"", "render.background", 2},
+      {"-o " + (dir_ / "bad.gif").string() + " --set render.audio=true", "render.audio", 2},
   };
   for (const Case& c : cases) {
     const RunResult r = run("render " + scene_.string() + " " + c.arguments);
@@ -111,6 +121,90 @@ TEST_F(RenderCliTest, BadRequestsExitTwoAndLeaveNothing) {
   EXPECT_EQ(still.exitCode, 2);
   EXPECT_NE(still.output.find("--time"), std::string::npos) << still.output;
   EXPECT_TRUE(leftovers().empty());
+}
+
+TEST_F(RenderCliTest, EachExtensionGivesItsKindInAnyCase) {
+  struct Kind {
+    const char* name;
+    const char* codec;
+  };
+  for (const Kind& kind : {Kind{"clip.GIF", "gif"}, Kind{"clip.webm", "vp9"}, Kind{"clip.Mov", "prores"}}) {
+    const fs::path out = dir_ / kind.name;
+    const RunResult r = run("render " + scene_.string() + " -q -o " + out.string());
+    ASSERT_EQ(r.exitCode, 0) << kind.name << ": " << r.output;
+    const coinroll::video::VideoInfo info = coinroll::video::readVideoInfo(out);
+    EXPECT_EQ(info.codecName, kind.codec) << kind.name;
+    EXPECT_EQ(info.frameCount, 31) << kind.name;
+    EXPECT_EQ(info.width, 160) << kind.name;
+  }
+}
+
+TEST_F(RenderCliTest, SizeSetsTheRenderWidthAndHeight) {
+  const fs::path out = dir_ / "small.mp4";
+  ASSERT_EQ(run("render " + scene_.string() + " -q --size 480p --set duration=0.1 -o " + out.string()).exitCode, 0);
+  const coinroll::video::VideoInfo info = coinroll::video::readVideoInfo(out);
+  EXPECT_EQ(info.width, 854);
+  EXPECT_EQ(info.height, 480);
+}
+
+TEST_F(RenderCliTest, AWindowWritesTheFullRendersFramesForItsSimulatedTimes) {
+  ASSERT_EQ(run("render " + scene_.string() + " -q -o " + (dir_ / "all_%02d.png").string()).exitCode, 0);
+  const RunResult r = run("render " + scene_.string() + " -q --from 0.5 --to 1.0 -o " + (dir_ / "win_%02d.png").string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  // 0.5 s is frame 15 of 0 .. 30; the window holds 15 .. 30, renumbered from 0.
+  for (int k = 0; k <= 15; ++k) {
+    const auto name = [](const char* prefix, int n) { return prefix + std::string(n < 10 ? "0" : "") + std::to_string(n) + ".png"; };
+    const std::string window = name("win_", k), whole = name("all_", k + 15);
+    ASSERT_TRUE(fs::exists(dir_ / window)) << window;
+    EXPECT_EQ(bytesOf(dir_ / window), bytesOf(dir_ / whole)) << window << " is not " << whole;
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "win_16.png"));
+  const fs::path clip = dir_ / "window.mp4";
+  ASSERT_EQ(run("render " + scene_.string() + " -q --from 0.5 --to 1.0 -o " + clip.string()).exitCode, 0);
+  EXPECT_EQ(coinroll::video::readVideoInfo(clip).frameCount, 16);
+}
+
+TEST_F(RenderCliTest, ATransparentBackgroundReachesThePngsAlpha) {
+  const fs::path opaque = dir_ / "opaque.png", clear = dir_ / "clear.png";
+  // No overlay: at 160x90 its translucent panel covers a third of the picture.
+  const std::string still = "still " + scene_.string() + " --time 0.5 --set render.hud=false -o ";
+  ASSERT_EQ(run(still + opaque.string()).exitCode, 0);
+  const RunResult r = run(still + clear.string() + " --set render.background=\\\"transparent\\\"");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const coinroll::image::Image a = coinroll::image::readPng(opaque), b = coinroll::image::readPng(clear);
+  long transparent = 0, opaquePixels = 0;
+  for (std::size_t i = 3; i < b.rgba.size(); i += 4) {
+    EXPECT_EQ(a.rgba[i], 255);
+    transparent += b.rgba[i] == 0 ? 1 : 0;
+    opaquePixels += b.rgba[i] == 255 ? 1 : 0;
+  }
+  const long pixels = static_cast<long>(b.rgba.size() / 4);
+  EXPECT_GT(transparent, pixels / 2) << "the sky and the floor should be gone";
+  EXPECT_GT(opaquePixels, 0) << "the coin should be there";
+  EXPECT_EQ(b.pixel(b.width - 1, b.height - 1)[3], 0);  // a corner: nothing at all
+}
+
+TEST_F(RenderCliTest, ProvenanceNamesTheReleaseAndSceneUnlessTurnedOff) {
+  const fs::path tagged = dir_ / "tagged.png", again = dir_ / "again.png", plain = dir_ / "plain.png";
+  ASSERT_EQ(run("still " + scene_.string() + " --time 0.5 -o " + tagged.string()).exitCode, 0);
+  ASSERT_EQ(run("still " + scene_.string() + " --time 0.5 -o " + again.string()).exitCode, 0);
+  ASSERT_EQ(run("still " + scene_.string() + " --time 0.5 -o " + plain.string() + " --set render.provenance=false").exitCode, 0);
+  const std::string bytes = bytesOf(tagged);
+  EXPECT_NE(bytes.find(std::string("tEXtSoftware\0coinroll ", 22)), std::string::npos);
+  EXPECT_NE(bytes.find("coinroll-scene-digest"), std::string::npos);
+  EXPECT_EQ(bytes, bytesOf(again)) << "the same release and scene must give the same bytes";
+  EXPECT_EQ(bytesOf(plain).find("tEXt"), std::string::npos);
+  // Another scene, another digest.
+  const fs::path other = dir_ / "other.png";
+  ASSERT_EQ(run("still " + scene_.string() + " --time 0.5 -o " + other.string() + " --set initial.theta=21").exitCode, 0);
+  const auto digestOf = [](const std::string& png) { return png.substr(png.find("fnv1a64:"), 24); };
+  EXPECT_NE(digestOf(bytes), digestOf(bytesOf(other)));
+
+  const fs::path clip = dir_ / "tagged.mov";
+  ASSERT_EQ(run("render " + scene_.string() + " -q -o " + clip.string()).exitCode, 0);  // the still's scene, unchanged
+  const coinroll::video::VideoInfo info = coinroll::video::readVideoInfo(clip);
+  EXPECT_EQ(info.tags.at("encoder").rfind("coinroll ", 0), 0u) << info.tags.at("encoder");
+  EXPECT_EQ(info.tags.at("comment"), info.tags.at("encoder") + ", scene " + digestOf(bytes));
 }
 
 TEST_F(RenderCliTest, InterruptLeavesNoFileAndExitsOne) {

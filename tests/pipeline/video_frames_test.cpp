@@ -193,6 +193,52 @@ TEST(RenderVideo, AFrameDependsOnlyOnItsTimeNotOnTheFrameRate) {
   for (std::size_t k = 0; k < five.frames.size(); ++k) EXPECT_EQ(five.frames[k].rgba, ten.frames[2 * k].rgba) << "frame " << k;
 }
 
+// The frames a window writes (--from/--to), against the full render's: the same frames, byte for
+// byte, for exactly the times in the window; also where a time remap makes the steps uneven.
+void expectWindowIsASliceOfTheFullRender(const scene::SceneConfig& scene, double from, double to) {
+  RecordingSink full, window;
+  pipeline::renderVideo(scene, full);
+  const pipeline::Simulation simulation = pipeline::buildSimulation(scene);
+  const std::vector<double> times = pipeline::frameTimes(scene, simulation, scene.duration);
+  ASSERT_EQ(times.size(), full.frames.size());
+  const pipeline::VideoRunResult result = pipeline::renderVideo(scene, window, {.window = {.from = from, .to = to}});
+  std::vector<std::size_t> inside;
+  for (std::size_t k = 0; k < times.size(); ++k) {
+    if (times[k] >= from - 1e-9 && times[k] <= to + 1e-9) inside.push_back(k);
+  }
+  ASSERT_FALSE(inside.empty());
+  ASSERT_EQ(window.frames.size(), inside.size());
+  EXPECT_EQ(result.frames, static_cast<long>(inside.size()));
+  EXPECT_EQ(window.finishes, 1);
+  for (std::size_t i = 0; i < inside.size(); ++i) {
+    EXPECT_EQ(window.frames[i].rgba, full.frames[inside[i]].rgba) << "window frame " << i << " (t = " << times[inside[i]] << " s)";
+  }
+}
+
+TEST(RenderVideo, AWindowWritesTheFullRendersFramesWithinIt) {
+  expectWindowIsASliceOfTheFullRender(toyScene(1.0, 1.0), 0.5, 1.0);  // 0.5 .. 1.0 s at 10 fps: 6 frames
+  expectWindowIsASliceOfTheFullRender(toyScene(1.0, 0.5), 0.3, 0.6);  // half speed: frames every 0.05 s
+}
+
+TEST(RenderVideo, AWindowFollowsSimulatedTimeUnderATimeRemap) {
+  scene::SceneConfig scene = toyScene(1.0, 1.0);
+  scene.render.timeRemap = scene::TimeRemap{.rate = scene::TimeRemap::Rate::Spin, .limit = 5};  // about 3x slower
+  expectWindowIsASliceOfTheFullRender(scene, 0.4, 0.7);
+}
+
+TEST(RenderVideo, AWindowWithoutFramesIsRefusedNamingTheOptions) {
+  const scene::SceneConfig scene = toyScene(1.0, 1.0);
+  RecordingSink sink;
+  try {
+    pipeline::renderVideo(scene, sink, {.window = {.from = 0.51, .to = 0.52}});
+    ADD_FAILURE() << "no frame lies in 0.51 .. 0.52 s at 10 fps";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("--from 0.51 --to 0.52"), std::string::npos) << e.what();
+  }
+  EXPECT_TRUE(sink.frames.empty());
+  EXPECT_EQ(sink.finishes, 0);
+}
+
 // Keeps the sound track and counts the frames.
 class AudioRecordingSink final : public video::FrameSink {
  public:
@@ -218,6 +264,18 @@ TEST(RenderVideo, TheSoundTrackLastsExactlyAsLongAsTheVideo) {
     pipeline::renderVideo(sceneWithSound(fps), sink);
     ASSERT_EQ(sink.frames, fps + 1) << fps << " fps";  // 1 s at time scale 1, both ends
     EXPECT_EQ(static_cast<long>(sink.samples.size()), sink.frames * video::kAudioSampleRate / fps) << fps << " fps";
+  }
+}
+
+TEST(RenderVideo, AWindowsSoundIsTheFullTracksStretchUnderItsFrames) {
+  AudioRecordingSink full, window;
+  pipeline::renderVideo(sceneWithSound(10), full);
+  pipeline::renderVideo(sceneWithSound(10), window, {.window = {.from = 0.3, .to = 0.6}});
+  ASSERT_EQ(window.frames, 4);  // 0.3, 0.4, 0.5, 0.6 s
+  const std::size_t perFrame = video::kAudioSampleRate / 10;
+  ASSERT_EQ(window.samples.size(), 4 * perFrame);  // as long as its frames play
+  for (std::size_t i = 0; i < window.samples.size(); ++i) {
+    ASSERT_EQ(window.samples[i], full.samples[3 * perFrame + i]) << "sample " << i;
   }
 }
 

@@ -70,7 +70,7 @@ SceneConfig smallScene() {
 }
 
 void renderClip(const SceneConfig& scene, const fs::path& output) {
-  coinroll::video::Mp4Options encoding = scene.render.mp4Options();
+  coinroll::video::VideoOptions encoding = scene.render.mp4Options();
   encoding.audio = output.extension() == ".mp4";
   coinroll::video::AsyncSink sink(coinroll::video::makeSinkForPath(output, encoding));
   coinroll::pipeline::renderVideo(scene, sink);

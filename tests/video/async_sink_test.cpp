@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "synthetic_frames.h"
-#include "video/mp4_sink.h"
+#include "video/encoder_sink.h"
 #include "video/png_sequence_sink.h"
 
 using coinroll::image::Image;
@@ -166,12 +166,12 @@ TEST(AsyncSink, DestroyedWithoutFinishLeavesNoOutput) {
 
 TEST(AsyncSink, Mp4ThroughTheWorkerIsByteIdenticalToDirect) {
   ScratchDirectory directory;
-  coinroll::video::Mp4Options options;
+  coinroll::video::VideoOptions options;
   options.width = 160;
   options.height = 90;
   {
-    coinroll::video::Mp4Sink direct(directory / "direct.mp4", options);
-    AsyncSink async(std::make_unique<coinroll::video::Mp4Sink>(directory / "async.mp4", options));
+    coinroll::video::EncoderSink direct(directory / "direct.mp4", options);
+    AsyncSink async(std::make_unique<coinroll::video::EncoderSink>(directory / "async.mp4", options));
     for (int i = 0; i < 15; ++i) {
       direct.push(movingSquareFrame(160, 90, i));
       async.push(movingSquareFrame(160, 90, i));

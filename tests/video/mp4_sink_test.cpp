@@ -1,4 +1,4 @@
-#include "video/mp4_sink.h"
+#include "video/encoder_sink.h"
 
 #include <gtest/gtest.h>
 
@@ -18,8 +18,8 @@
 
 namespace fs = std::filesystem;
 using coinroll::image::Image;
-using coinroll::video::Mp4Options;
-using coinroll::video::Mp4Sink;
+using coinroll::video::VideoOptions;
+using coinroll::video::EncoderSink;
 using namespace coinroll::video::testing;
 using coinroll::testing::isBelow;
 using coinroll::testing::isNear;
@@ -28,8 +28,8 @@ namespace {
 
 constexpr int kWidth = 320, kHeight = 180, kFps = 30, kFrames = 60;
 
-Mp4Options smallOptions() {
-  Mp4Options options;
+VideoOptions smallOptions() {
+  VideoOptions options;
   options.width = kWidth;
   options.height = kHeight;
   options.fps = kFps;
@@ -38,8 +38,8 @@ Mp4Options smallOptions() {
   return options;
 }
 
-void encodeMovingSquare(const fs::path& path, int frames, const Mp4Options& options = smallOptions()) {
-  Mp4Sink sink(path, options);
+void encodeMovingSquare(const fs::path& path, int frames, const VideoOptions& options = smallOptions()) {
+  EncoderSink sink(path, options);
   for (int i = 0; i < frames; ++i) sink.push(movingSquareFrame(options.width, options.height, i));
   sink.finish();
 }
@@ -60,7 +60,7 @@ std::string messageOf(const std::function<void()>& action) {
 
 }  // namespace
 
-TEST(Mp4Sink, WritesConstantRateH264WithBt709TagsAndMoovFirst) {
+TEST(EncoderSink, WritesConstantRateH264WithBt709TagsAndMoovFirst) {
   ScratchDirectory directory;
   const fs::path path = directory / "clip.mp4";
   encodeMovingSquare(path, kFrames);
@@ -95,7 +95,7 @@ std::string ffprobe(const fs::path& path, const std::string& stream, const std::
   return output;
 }
 
-TEST(Mp4Sink, FramesStartAtZeroAndTheLastLastsOneFramePeriod) {
+TEST(EncoderSink, FramesStartAtZeroAndTheLastLastsOneFramePeriod) {
   // N frames at fps: shown from t = 0, the last until N / fps exactly, as a player reads the file.
   ScratchDirectory directory;
   const fs::path path = directory / "clip.mp4";
@@ -104,19 +104,19 @@ TEST(Mp4Sink, FramesStartAtZeroAndTheLastLastsOneFramePeriod) {
   EXPECT_TRUE(isNear(coinroll::video::readVideoInfo(path).durationSeconds, static_cast<double>(kFrames) / kFps, 1e-9));
 }
 
-TEST(Mp4Sink, AudioTrackHoldsEverySamplePushedUpToTheLastShortBlock) {
+TEST(EncoderSink, AudioTrackHoldsEverySamplePushedUpToTheLastShortBlock) {
   // AAC codes blocks of 1024 samples; 10 frames at 30 fps carry 16 000 samples, 15 whole blocks
   // and 640 over. A 1 kHz tone decoded back (the encoder's priming dropped) must keep all 16 000,
   // the last ones at the pushed amplitude too.
   constexpr int kSamples = 16000, kPerFrame = kSamples / 10;
   ScratchDirectory directory;
   const fs::path path = directory / "clip.mp4";
-  Mp4Options options = smallOptions();
+  VideoOptions options = smallOptions();
   options.audio = true;
   std::vector<float> tone(kSamples);
   for (int i = 0; i < kSamples; ++i) tone[i] = static_cast<float>(0.5 * std::sin(2 * std::numbers::pi * 1000.0 * i / 48000));
   {
-    Mp4Sink sink(path, options);
+    EncoderSink sink(path, options);
     for (int frame = 0; frame < 10; ++frame) {
       sink.push(movingSquareFrame(kWidth, kHeight, frame));
       sink.pushAudio(std::span<const float>(tone).subspan(static_cast<std::size_t>(frame) * kPerFrame, kPerFrame));
@@ -134,7 +134,7 @@ TEST(Mp4Sink, AudioTrackHoldsEverySamplePushedUpToTheLastShortBlock) {
   EXPECT_TRUE(isNear(std::sqrt(squares / 400), 0.5 / std::sqrt(2.0), 0.05));
 }
 
-TEST(Mp4Sink, SameFramesGiveByteIdenticalFiles) {
+TEST(EncoderSink, SameFramesGiveByteIdenticalFiles) {
   ScratchDirectory directory;
   encodeMovingSquare(directory / "first.mp4", 20);
   encodeMovingSquare(directory / "second.mp4", 20);
@@ -143,7 +143,7 @@ TEST(Mp4Sink, SameFramesGiveByteIdenticalFiles) {
   EXPECT_TRUE(first == fileBytes(directory / "second.mp4"));
 }
 
-TEST(Mp4Sink, DecodedFramesMatchTheSourceAtCrf18) {
+TEST(EncoderSink, DecodedFramesMatchTheSourceAtCrf18) {
   // 4.5 levels RMS = PSNR 35 dB: crf 18 is "visually lossless", while a wrong matrix, range or
   // channel order costs tens of levels.
   constexpr double kMaxRmsErrorLevels = 4.5;
@@ -159,16 +159,16 @@ TEST(Mp4Sink, DecodedFramesMatchTheSourceAtCrf18) {
 
 // Pure colours catch what a smooth gradient can hide: swapped channels, the BT.601 matrix
 // where BT.709 is tagged, or full-range values tagged as limited range.
-TEST(Mp4Sink, PrimaryColoursDecodeToThemselves) {
+TEST(EncoderSink, PrimaryColoursDecodeToThemselves) {
   constexpr int kTolerance = 2;  // 8-bit levels: rounding to YUV and back; BT.601 for BT.709 is off by ~25
   struct Colour { std::uint8_t r, g, b; };
   const Colour colours[] = {{255, 0, 0}, {0, 255, 0}, {0, 0, 255}, {255, 255, 255}, {0, 0, 0}, {128, 128, 128}};
   ScratchDirectory directory;
   const fs::path path = directory / "colours.mp4";
-  Mp4Options options = smallOptions();
+  VideoOptions options = smallOptions();
   options.x264.crf = 0;  // lossless, so only the colour conversion is being tested
   {
-    Mp4Sink sink(path, options);
+    EncoderSink sink(path, options);
     for (const Colour& c : colours) sink.push(solidFrame(kWidth, kHeight, c.r, c.g, c.b));
     sink.finish();
   }
@@ -181,52 +181,52 @@ TEST(Mp4Sink, PrimaryColoursDecodeToThemselves) {
   }
 }
 
-TEST(Mp4Sink, DestroyedWithoutFinishLeavesNoFile) {
+TEST(EncoderSink, DestroyedWithoutFinishLeavesNoFile) {
   ScratchDirectory directory;
   {
-    Mp4Sink sink(directory / "clip.mp4", smallOptions());
+    EncoderSink sink(directory / "clip.mp4", smallOptions());
     for (int i = 0; i < 5; ++i) sink.push(movingSquareFrame(kWidth, kHeight, i));
   }
   EXPECT_EQ(directory.fileCount(), 0);
 }
 
-TEST(Mp4Sink, BadOptionsAreRefusedNamingTheField) {
+TEST(EncoderSink, BadOptionsAreRefusedNamingTheField) {
   ScratchDirectory directory;
   const fs::path path = directory / "clip.mp4";
   auto messageFor = [&](auto change) {
-    Mp4Options options = smallOptions();
+    VideoOptions options = smallOptions();
     change(options);
-    return messageOf([&] { Mp4Sink sink(path, options); });
+    return messageOf([&] { EncoderSink sink(path, options); });
   };
-  EXPECT_NE(messageFor([](Mp4Options& o) { o.width = 321; }).find("width"), std::string::npos);
-  EXPECT_NE(messageFor([](Mp4Options& o) { o.height = 0; }).find("height"), std::string::npos);
-  EXPECT_NE(messageFor([](Mp4Options& o) { o.fps = 0; }).find("fps"), std::string::npos);
-  EXPECT_NE(messageFor([](Mp4Options& o) { o.x264.crf = 52; }).find("crf"), std::string::npos);
-  EXPECT_NE(messageFor([](Mp4Options& o) { o.x264.threads = 0; }).find("threads"), std::string::npos);
-  EXPECT_NE(messageFor([](Mp4Options& o) { o.x264.threads = 17; }).find("threads"), std::string::npos);  // 1..16
-  EXPECT_NE(messageFor([](Mp4Options& o) { o.x264.preset = "speedy"; }).find("'speedy'"), std::string::npos);
-  EXPECT_NE(messageFor([](Mp4Options& o) { o.x264.crf = -1; }).find("crf"), std::string::npos);
+  EXPECT_NE(messageFor([](VideoOptions& o) { o.width = 321; }).find("width"), std::string::npos);
+  EXPECT_NE(messageFor([](VideoOptions& o) { o.height = 0; }).find("height"), std::string::npos);
+  EXPECT_NE(messageFor([](VideoOptions& o) { o.fps = 0; }).find("fps"), std::string::npos);
+  EXPECT_NE(messageFor([](VideoOptions& o) { o.x264.crf = 52; }).find("crf"), std::string::npos);
+  EXPECT_NE(messageFor([](VideoOptions& o) { o.x264.threads = 0; }).find("threads"), std::string::npos);
+  EXPECT_NE(messageFor([](VideoOptions& o) { o.x264.threads = 17; }).find("threads"), std::string::npos);  // 1..16
+  EXPECT_NE(messageFor([](VideoOptions& o) { o.x264.preset = "speedy"; }).find("'speedy'"), std::string::npos);
+  EXPECT_NE(messageFor([](VideoOptions& o) { o.x264.crf = -1; }).find("crf"), std::string::npos);
   EXPECT_EQ(directory.fileCount(), 0);
 }
 
-TEST(Mp4Sink, MissingDirectoryIsReportedByPath) {
+TEST(EncoderSink, MissingDirectoryIsReportedByPath) {
   ScratchDirectory directory;
   const fs::path path = directory / "no_such_directory" / "clip.mp4";
-  EXPECT_NE(messageOf([&] { Mp4Sink sink(path, smallOptions()); }).find(path.string()), std::string::npos);
+  EXPECT_NE(messageOf([&] { EncoderSink sink(path, smallOptions()); }).find(path.string()), std::string::npos);
 }
 
-TEST(Mp4Sink, FrameOfTheWrongSizeIsRefused) {
+TEST(EncoderSink, FrameOfTheWrongSizeIsRefused) {
   ScratchDirectory directory;
-  Mp4Sink sink(directory / "clip.mp4", smallOptions());
+  EncoderSink sink(directory / "clip.mp4", smallOptions());
   EXPECT_THROW(sink.push(movingSquareFrame(kWidth * 2, kHeight, 0)), std::invalid_argument);
   EXPECT_THROW(sink.push(movingSquareFrame(kWidth, kHeight * 2, 0)), std::invalid_argument);
   EXPECT_THROW(sink.push(movingSquareFrame(kWidth, kHeight / 2, 0)), std::invalid_argument);
 }
 
-TEST(Mp4Sink, FinishWithoutFramesThrowsAndLeavesNoFile) {
+TEST(EncoderSink, FinishWithoutFramesThrowsAndLeavesNoFile) {
   ScratchDirectory directory;
   {
-    Mp4Sink sink(directory / "clip.mp4", smallOptions());
+    EncoderSink sink(directory / "clip.mp4", smallOptions());
     EXPECT_THROW(sink.finish(), std::runtime_error);
   }
   EXPECT_EQ(directory.fileCount(), 0);

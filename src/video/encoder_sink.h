@@ -1,5 +1,6 @@
 #pragma once
-// H.264 (libx264) in an MP4 container, through libavformat/libavcodec/libswscale.
+// A video file through libavformat/libavcodec/libswscale: H.264 in MP4, GIF, VP9 in WebM or
+// ProRes 4444 in MOV (VideoOptions::format).
 
 #include <cstdint>
 #include <filesystem>
@@ -7,27 +8,31 @@
 #include <span>
 
 #include "video/frame_sink.h"
-#include "video/mp4_options.h"
+#include "video/video_options.h"
 
 namespace coinroll::video {
 
 // Throws std::invalid_argument naming the field, the rule and the value if `options` is unusable.
-void validate(const Mp4Options& options);
+void validate(const VideoOptions& options);
 
-// Writes <destination> (any name; the container is MP4 regardless of the extension).
-// Properties of the file: constant frame rate (time base 1/fps, pts = frame index), yuv420p with
-// BT.709 primaries, transfer and matrix, limited ("TV") range, all tagged; moov before mdat
-// (faststart, so players can start before the download ends); byte-identical for identical
-// frames and options on the same FFmpeg/x264 build (bit-exact flags, no dates or version tags).
+// Writes <destination> (any name; the container is options.format's regardless of the extension).
+// Every kind: constant frame rate (time base 1/fps, pts = frame index, the last frame one period
+// long); byte-identical for identical frames and options on the same FFmpeg and codec libraries
+// (bit-exact flags, no dates or library versions; tested for each kind); the provenance, when
+// given, as the container's "encoder" and "comment" tags (MP4, MOV, WebM; a GIF has none).
+// MP4: yuv420p H.264; MOV: ProRes 4444, yuv444p10le or yuva444p10le; WebM: VP9, yuv420p or
+// yuva420p; all with BT.709 primaries, transfer and matrix, limited ("TV") range, all tagged.
+// MP4 and MOV put moov before mdat (faststart, so players can start before the download ends).
+// GIF: a fixed palette with ordered dithering (gif_palette.h), looping for ever.
 // The file is written under a temporary name beside the destination and renamed in finish();
 // for a stream destination (a device, FIFO or descriptor, which the muxer cannot seek) it is
 // encoded in $TMPDIR and copied to the stream in finish() (io::OutputFile::Access::ByPath).
-class Mp4Sink final : public FrameSink {
+class EncoderSink final : public FrameSink {
  public:
   // Throws std::invalid_argument for bad options, std::runtime_error naming the destination if
   // its directory does not exist or the encoder cannot be set up.
-  Mp4Sink(std::filesystem::path destination, const Mp4Options& options);
-  ~Mp4Sink() override;
+  EncoderSink(std::filesystem::path destination, const VideoOptions& options);
+  ~EncoderSink() override;
 
   // The frame must be options.width x options.height (std::invalid_argument otherwise).
   void push(const image::Image& frame) override;
@@ -37,7 +42,7 @@ class Mp4Sink final : public FrameSink {
   // Drains the encoder, writes the trailer (moving moov to the front) and renames the file into
   // place. Throws std::runtime_error if no frame was pushed.
   void finish() override;
-  // x264's frames in flight (lookahead, references, B-frames) for the preset, from measurements.
+  // The encoder's frames in flight (for x264, lookahead, references and B-frames by preset, measured).
   std::uint64_t workingMemory(std::uint64_t frameBytes) const override;
 
   std::int64_t framesPushed() const { return framesPushed_; }
@@ -45,7 +50,7 @@ class Mp4Sink final : public FrameSink {
  private:
   struct Encoder;  // the FFmpeg state; keeps libav headers out of this header
   std::filesystem::path destination_;
-  Mp4Options options_;
+  VideoOptions options_;
   std::unique_ptr<Encoder> encoder_;
   std::int64_t framesPushed_ = 0;
   bool finished_ = false;

@@ -4,6 +4,7 @@ Ctrl-C stops a long call cleanly, and Python threads run while it works."""
 import csv
 import json
 import math
+import multiprocessing
 import os
 import re
 import signal
@@ -172,3 +173,20 @@ def test_python_threads_run_while_simulating():
     # With the GIL held for the whole call the counter could not tick at all in between; a loaded
     # machine slows it, so a few ticks are proof enough.
     assert finished - started > 0.2 and len(during) >= 10
+
+
+def rows_of_toy_run(duration):
+    return coinroll.simulate({**TOY, "duration": duration}).rows
+
+
+def test_calls_from_threads_at_once_and_from_forked_processes():
+    rows = {}
+    callers = [threading.Thread(target=lambda i=i: rows.update({i: rows_of_toy_run(100 + i)})) for i in range(3)]
+    for caller in callers:
+        caller.start()
+    for caller in callers:
+        caller.join()
+    assert rows == {0: 10001, 1: 10101, 2: 10201}
+    # multiprocessing's fork copies none of the module's worker threads: the child starts its own.
+    with multiprocessing.get_context("fork").Pool(2) as children:
+        assert children.map(rows_of_toy_run, [0.5, 1.0, 1.5]) == [51, 101, 151]

@@ -1,8 +1,9 @@
 // coinroll._coinroll: the C++ API (include/coinroll/coinroll.h) for the Python package beside it
 // (python/coinroll/__init__.py), which turns its tuples into tables and documents the calls.
-// Every call that runs a simulation or draws does so with the GIL released, on a thread of its
-// own, while the calling thread keeps running Python's signal handlers: Ctrl-C then stops the
-// work through the library's cancel flag, and no signal handler of ours is ever installed.
+// Every call that runs a simulation or draws does so with the GIL released. Drawing and sweeping
+// run on a thread of their own while the calling thread keeps running Python's signal handlers:
+// Ctrl-C then stops the work through the library's cancel flag, and no signal handler of ours is
+// ever installed.
 
 #include <coinroll/coinroll.h>
 
@@ -36,8 +37,8 @@ constexpr std::chrono::milliseconds kSignalPollInterval{50};
 
 // The threads the calls' work runs on, kept once started and shared by the calls, a new one
 // started only when every one is busy (Python threads calling at once run at once). A thread
-// started per call cost 65-90 us a call against 20-30 us with the pool (a 0.01 s simulate beside
-// the C++ call, on the loaded 2-core machine): 1.5 % of a 10 s toy run, whose budget is 5 %.
+// started per call cost 65-90 us a call against 20-30 us with the pool (measured on a 0.01 s
+// simulate beside the C++ call, on the loaded 2-core machine).
 class WorkerPool {
  public:
   void post(std::function<void()> job) {
@@ -129,9 +130,15 @@ py::list arraysOwning(std::vector<std::vector<double>>&& columns) {
   return arrays;
 }
 
+// On the calling thread, the GIL released, and so not cut short by Ctrl-C (its KeyboardInterrupt is
+// raised when the run returns): handed to a pool thread, the run waited for two wake-ups, which on
+// the loaded 2-core machine cost 11-30 % of a 10 s toy run (bench/python_overhead.py, whose budget
+// is 5 %). The examples' runs take at most 1.2 s.
 py::tuple simulate(const coinroll::Scene& scene, double sampleDt) {
-  coinroll::Columns columns =
-      interruptible([&](const std::atomic<bool>* cancel) { return coinroll::simulate(scene, sampleDt, cancel); });
+  coinroll::Columns columns = [&] {
+    const py::gil_scoped_release released;
+    return coinroll::simulate(scene, sampleDt);
+  }();
   return py::make_tuple(columns.names, arraysOwning(std::move(columns.values)), columns.end.event, columns.end.time,
                         columns.end.description);
 }

@@ -11,8 +11,9 @@ The same library as the ``coinroll`` command, with its scenes, numbers and pixel
 A ``scene`` is a dict in the scene file's JSON format, a path (str or os.PathLike) to a scene
 file, or None for the built-in default scene; ``overrides`` are the command line's --set
 ("initial.theta=12", the value read as JSON). A bad scene or request raises ValueError with the
-command's message, which names the field. Simulating, drawing and sweeping release the GIL, and
-Ctrl-C stops them cleanly (no partial file is left) with KeyboardInterrupt.
+command's message, which names the field. Simulating, drawing and sweeping release the GIL, so
+Python threads run meanwhile; Ctrl-C stops a still, a render or a sweep cleanly (no partial file
+is left) with KeyboardInterrupt, and comes after a simulate returns.
 """
 
 import json

@@ -151,6 +151,13 @@ def test_ctrl_c_stops_a_long_sweep(tmp_path):
     assert coinroll.simulate(TOY).rows == 51  # the module works on after an interruption
 
 
+def test_ctrl_c_during_simulate_comes_when_it_returns():
+    interrupt_after(0.1)
+    with pytest.raises(KeyboardInterrupt):
+        rows_of_toy_run(2000)
+        time.sleep(10)  # Python's own check for signals, which the run did not cut short
+
+
 def test_python_threads_run_while_simulating():
     ticks = []
     stop = threading.Event()

@@ -12,16 +12,10 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
-#include <unistd.h>
-
 #include <atomic>
 #include <chrono>
-#include <condition_variable>
-#include <deque>
-#include <functional>
 #include <future>
 #include <memory>
-#include <mutex>
 #include <string>
 #include <thread>
 #include <utility>
@@ -35,54 +29,8 @@ namespace {
 // How long a Ctrl-C may wait to be noticed while the work runs.
 constexpr std::chrono::milliseconds kSignalPollInterval{50};
 
-// The threads the calls' work runs on, kept once started and shared by the calls, a new one
-// started only when every one is busy (Python threads calling at once run at once). A thread
-// started per call cost 65-90 us a call against 20-30 us with the pool (measured on a 0.01 s
-// simulate beside the C++ call, on the loaded 2-core machine).
-class WorkerPool {
- public:
-  void post(std::function<void()> job) {
-    const std::lock_guard lock(mutex_);
-    jobs_.push_back(std::move(job));
-    if (jobs_.size() > idle_) std::thread([this] { serve(); }).detach();
-    wake_.notify_one();
-  }
-
- private:
-  void serve() {
-    std::unique_lock lock(mutex_);
-    for (;;) {
-      ++idle_;
-      wake_.wait(lock, [this] { return !jobs_.empty(); });
-      --idle_;
-      std::function<void()> job = std::move(jobs_.front());
-      jobs_.pop_front();
-      lock.unlock();
-      job();
-      lock.lock();
-    }
-  }
-
-  std::mutex mutex_;
-  std::condition_variable wake_;
-  std::deque<std::function<void()>> jobs_;
-  std::size_t idle_ = 0;
-};
-
-// This process's pool, never destroyed: its idle threads end with the process, which never waits
-// for them. A child made by fork (multiprocessing) has none of its parent's threads, so it starts
-// a pool of its own. Called with the GIL held, which guards the statics.
-WorkerPool& workers() {
-  static pid_t owner = ::getpid();
-  static WorkerPool* pool = new WorkerPool;
-  if (::getpid() != owner) {
-    owner = ::getpid();
-    pool = new WorkerPool;  // the parent's, copied by fork, may hold a lock no thread here will free
-  }
-  return *pool;
-}
-
-// Runs work(cancel) on a pool thread, the GIL released. When a Python signal handler raises
+// Runs work(cancel) on a thread of its own, the GIL released (a thread's start, tens of
+// microseconds, is nothing beside a picture, a clip or a sweep). When a Python signal handler raises
 // (Ctrl-C's KeyboardInterrupt, or any exception a user's handler raises), the work is cancelled,
 // waited for, and that exception is raised in its place; Python threads run meanwhile.
 // Signal handlers run only on Python's main thread: a call from another thread is not
@@ -90,12 +38,12 @@ WorkerPool& workers() {
 template <class Work>
 auto interruptible(Work work) -> decltype(work(nullptr)) {
   std::atomic<bool> cancel{false};
-  auto task = std::make_shared<std::packaged_task<decltype(work(nullptr))()>>([&] { return work(&cancel); });
-  auto result = task->get_future();
-  workers().post([task] { (*task)(); });
+  std::packaged_task<decltype(work(nullptr))()> task([&] { return work(&cancel); });
+  auto result = task.get_future();
   bool raised = false;
   {
     const py::gil_scoped_release released;
+    const std::jthread worker(std::move(task));  // joined before the GIL is taken back
     while (result.wait_for(kSignalPollInterval) != std::future_status::ready) {
       const py::gil_scoped_acquire held;
       if (PyErr_CheckSignals() != 0) {
@@ -104,7 +52,6 @@ auto interruptible(Work work) -> decltype(work(nullptr)) {
         break;
       }
     }
-    result.wait();  // the work refers to this frame's variables
   }
   if (raised) throw py::error_already_set();
   return result.get();
@@ -131,7 +78,7 @@ py::list arraysOwning(std::vector<std::vector<double>>&& columns) {
 }
 
 // On the calling thread, the GIL released, and so not cut short by Ctrl-C (its KeyboardInterrupt is
-// raised when the run returns): handed to a pool thread, the run waited for two wake-ups, which on
+// raised when the run returns): handed to a thread of its own, the run waited for two wake-ups, which on
 // the loaded 2-core machine cost 11-30 % of a 10 s toy run (bench/python_overhead.py, whose budget
 // is 5 %). The examples' runs take at most 1.2 s.
 py::tuple simulate(const coinroll::Scene& scene, double sampleDt) {

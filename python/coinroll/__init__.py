@@ -32,7 +32,7 @@ __version__ = _coinroll.version()
 class Table(Mapping):
     """Columns by name, in the CSV's order: ``table["energy"]`` is a numpy array.
 
-    A read-only mapping, so ``dict(table)`` or ``pandas.DataFrame(table)`` take it as it is.
+    A read-only mapping: ``dict(table)``, ``pandas.DataFrame(dict(table))``.
     """
 
     def __init__(self, names, arrays):

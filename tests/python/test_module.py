@@ -194,6 +194,6 @@ def test_calls_from_threads_at_once_and_from_forked_processes():
     for caller in callers:
         caller.join()
     assert rows == {0: 10001, 1: 10101, 2: 10201}
-    # multiprocessing's fork copies none of the module's worker threads: the child starts its own.
+    # multiprocessing's fork copies the module but none of its threads.
     with multiprocessing.get_context("fork").Pool(2) as children:
         assert children.map(rows_of_toy_run, [0.5, 1.0, 1.5]) == [51, 101, 151]

@@ -13,6 +13,7 @@ packages=(
   ffmpeg
   libboost-dev libsundials-dev
   python3 python3-matplotlib python3-numpy python3-scipy python3-sympy
+  python3-dev pybind11-dev python3-pybind11 python3-pytest  # the Python module (python/) and its tests
   parallel
   slurm-wlm munge  # tests/slurm/slurm_test.py starts a one-node Slurm
 )

@@ -468,33 +468,6 @@ void runRender(const RenderOptions& options) {
   }
 }
 
-// A grid key that names no field, or names one twice, would give a whole grid of identical or
-// failed rows; both are typos to refuse before any work. A value that is wrong at some points is
-// not: those rows carry their error.
-void refuseMisnamedAxes(const pipeline::SweepSpec& spec) {
-  for (std::size_t i = 0; i < spec.axes.size(); ++i) {
-    const pipeline::GridAxis& axis = spec.axes[i];
-    for (std::size_t j = 0; j < i; ++j) {
-      if (spec.axes[j].key == axis.key) {
-        throw std::invalid_argument(fmt::format("--grid {}: given twice; give each field one axis", axis.key));
-      }
-    }
-    nlohmann::json document = spec.scene;
-    try {
-      scene::applyOverride(document, fmt::format("{}={}", axis.key, axis.valueAt(0)));
-      scene::parseScene(document, spec.sourceName, spec.parseOptions);
-    } catch (const scene::SceneError& e) {
-      if (e.kind() == scene::SceneError::Kind::UnknownKey) {
-        throw std::invalid_argument(fmt::format("--grid {}: not a scene field: {}", axis.key, e.what()));
-      }
-      // Every point would fail the same way: a grid varies numbers only.
-      if (e.kind() == scene::SceneError::Kind::WrongType) {
-        throw std::invalid_argument(fmt::format("--grid {}: not a number field, so a grid cannot vary it: {}", axis.key, e.what()));
-      }
-    }
-  }
-}
-
 void runSweep(const SweepOptions& options) {
   refuseEmptyOutputName("-o", options.output, "sweep.csv (or - for standard output)");
   if (options.output != "-") refuseOverwritingInput("-o", options.output, inputsOf(options.scene));
@@ -505,7 +478,7 @@ void runSweep(const SweepOptions& options) {
   scene::parseScene(spec.scene, spec.sourceName, spec.parseOptions);
   try {
     for (const std::string& axis : options.grid) spec.axes.push_back(pipeline::parseGridAxis(axis));
-    refuseMisnamedAxes(spec);
+    pipeline::refuseMisnamedAxes(spec);
     if (options.shard) {
       const char* arrayTaskId = std::getenv("SLURM_ARRAY_TASK_ID");
       spec.shard = pipeline::parseShard(*options.shard, arrayTaskId ? std::optional<std::string_view>(arrayTaskId) : std::nullopt);

@@ -131,6 +131,30 @@ std::string sweepHeader(const std::vector<GridAxis>& axes) {
   return header;
 }
 
+void refuseMisnamedAxes(const SweepSpec& spec) {
+  for (std::size_t i = 0; i < spec.axes.size(); ++i) {
+    const GridAxis& axis = spec.axes[i];
+    for (std::size_t j = 0; j < i; ++j) {
+      if (spec.axes[j].key == axis.key) {
+        throw std::invalid_argument(fmt::format("--grid {}: given twice; give each field one axis", axis.key));
+      }
+    }
+    nlohmann::json document = spec.scene;
+    try {
+      scene::applyOverride(document, fmt::format("{}={}", axis.key, axis.valueAt(0)));
+      scene::parseScene(document, spec.sourceName, spec.parseOptions);
+    } catch (const scene::SceneError& e) {
+      if (e.kind() == scene::SceneError::Kind::UnknownKey) {
+        throw std::invalid_argument(fmt::format("--grid {}: not a scene field: {}", axis.key, e.what()));
+      }
+      // Every point would fail the same way: a grid varies numbers only.
+      if (e.kind() == scene::SceneError::Kind::WrongType) {
+        throw std::invalid_argument(fmt::format("--grid {}: not a number field, so a grid cannot vary it: {}", axis.key, e.what()));
+      }
+    }
+  }
+}
+
 long gridPointCount(const SweepSpec& spec) {
   long points = 1;
   for (const GridAxis& axis : spec.axes) {

@@ -35,6 +35,11 @@ struct SweepSpec {
 // contract's columns, then the sweep's identity (SweepIdentity).
 std::string sweepHeader(const std::vector<GridAxis>& axes);
 
+// A grid key that names no field, or names one twice, would give a whole grid of identical or
+// failed rows; both are typos, refused here with std::invalid_argument before any work. A value
+// that is wrong at some points is not: those rows carry their error.
+void refuseMisnamedAxes(const SweepSpec& spec);
+
 // Points in the whole grid; throws std::invalid_argument naming --grid when it exceeds maxPoints.
 long gridPointCount(const SweepSpec& spec);
 

@@ -3,7 +3,8 @@
 # against the installed package twice, with find_package and with pkg-config, and checks what
 # it prints: the columns equal the CSV of the installed `coinroll simulate` (same scene, to the
 # last digit), the still has the coin in it, a bad scene is refused. Also checks the man page
-# and the bash completion that were installed.
+# and the bash completion that were installed, and the Python package where Debian's python3
+# finds it, when the build has it.
 # Usage: tests/install/install_test.sh SOURCE_DIR BUILD_DIR
 set -euo pipefail
 source_dir=$1 build_dir=$2
@@ -63,3 +64,17 @@ completed=$(bash -c 'source "$1"; COMP_WORDS=(coinroll sweep --sh); COMP_CWORD=2
             "$prefix/share/bash-completion/completions/coinroll")
 [[ $completed == "--shard" ]] || { echo "completion of 'coinroll sweep --sh' gave '$completed'"; exit 1; }
 echo "man page and completion installed and working"
+
+if [[ -f $build_dir/python/coinroll/__init__.py ]]; then
+  PYTHONPATH=$prefix/lib/python3/dist-packages /usr/bin/python3 - "$work/scene.json" "$work/cli.csv" "$prefix" <<'PY'
+import csv
+import sys
+import coinroll
+scene, cli, prefix = sys.argv[1:4]
+assert coinroll.__file__.startswith(prefix), coinroll.__file__
+run = coinroll.simulate(scene, sample_dt=0.05)
+rows = list(csv.DictReader(open(cli)))
+assert [float(row["energy"]) for row in rows] == list(run["energy"])
+print(f"python package installed: {coinroll.__file__}, {run.rows} rows equal to the CLI's CSV")
+PY
+fi

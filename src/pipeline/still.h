@@ -16,7 +16,7 @@ struct StillRequest {
   int ghosts = 0;                  // > 0: this many earlier poses, evenly spaced over [ghostsFrom, time)
   double ghostsFrom = 0;           // s, the first ghost's time, in [0, time)
   std::filesystem::path output;    // .png, written atomically
-  image::PngText text;             // tEXt chunks of the PNG (its provenance)
+  image::PngText text = {};        // tEXt chunks of the PNG (its provenance)
   const std::atomic<bool>* cancel = nullptr;  // when set and true, stops with Cancelled
 };
 

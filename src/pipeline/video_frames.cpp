@@ -193,6 +193,10 @@ VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& si
     if (options.cancel != nullptr && options.cancel->load()) throw Cancelled();
     if (k >= simulatedFrames) {  // the hold: the landing's picture again, in silence
       if (sound) sound->rest(k, soundSink(k));
+      // Simulated time stands still here, so the overlay says so instead of the landing's playback rate.
+      if (k == simulatedFrames && scene.render.hud && written(k)) {
+        renderer.draw(snapshots.makeSnapshot(survey.endTime, {fmt::format("landed, held {:g} s", kLandingHoldSeconds)}), frame);
+      }
       if (written(k)) {
         sink.push(frame);
         ++result.frames;

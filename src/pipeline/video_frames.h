@@ -61,13 +61,13 @@ struct TimeWindow {
 inline constexpr double kWindowTolerance = 1e-9;  // s: a frame time computed as a sum may miss a bound by round-off
 
 struct VideoRunOptions {
-  std::function<void(const FrameProgress&)> onFrame;  // called after each frame; may be empty
+  std::function<void(const FrameProgress&)> onFrame = {};  // called after each frame; may be empty
   const std::atomic<bool>* cancel = nullptr;          // when set and true, the loop stops (Cancelled)
   long maxFrames = kDefaultMaxFrames;                 // more frames: std::invalid_argument, before any work
   bool reuseStaticBackground = true;  // render::RenderSettings; off only to measure what it saves
   // Frames outside it are neither drawn nor pushed (the simulation and the trace still run from 0),
   // nor is their sound. std::invalid_argument naming --from and --to when no frame lies in it.
-  TimeWindow window;
+  TimeWindow window = {};
 };
 
 struct VideoRunResult {

@@ -131,6 +131,14 @@ TEST_F(RimCliTest, ASpinDownLandsOnItsFaceAndTheClipHoldsStillInSilence) {
   EXPECT_EQ(bytes(frame(simulatedFrames - 1)), bytes(frame(simulatedFrames + 44)));
   EXPECT_NE(bytes(frame(simulatedFrames - 2)), bytes(frame(simulatedFrames - 1)));  // it moved until then
 
+  // With the overlay, the hold says that time stands still ("landed, held 1.5 s") in each of its frames.
+  const fs::path hud = dir_ / "hud";
+  fs::create_directory(hud);
+  ASSERT_EQ(runCoinroll("render " + scene.string() + " -q --set render.hud=true --set render.width=320 --set render.height=180 -o " + (hud / "f_%05d.png").string()).exitCode, 0);
+  const auto hudFrame = [&](long k) { return hud / frame(k).filename(); };
+  EXPECT_TRUE(bytes(hudFrame(simulatedFrames - 1)) != bytes(hudFrame(simulatedFrames)));
+  EXPECT_TRUE(bytes(hudFrame(simulatedFrames)) == bytes(hudFrame(simulatedFrames + 44)));
+
   const coinroll::video::DecodedAudio audio = coinroll::video::decodeAudio(mp4);
   const auto loudest = [&audio](double from, double to) {
     float peak = 0;

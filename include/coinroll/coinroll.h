@@ -96,8 +96,9 @@ struct Image {
 // if a validity event ended it first).
 Image renderStill(const Scene& scene, double time, const std::atomic<bool>* cancel = nullptr);
 
-// The clip `coinroll render -o output` writes; the kind follows the extension (.mp4, or a
-// %d pattern for a PNG sequence). The file appears only once it is complete.
+// The clip `coinroll render -o output` writes; the kind follows the extension (.mp4 H.264, .gif,
+// .webm VP9, .mov ProRes 4444, or a %d pattern for a PNG sequence). The file appears only once it
+// is complete.
 void renderVideo(const Scene& scene, const std::filesystem::path& output, const std::atomic<bool>* cancel = nullptr);
 
 // What `coinroll steady` prints: the steady motion the scene's `initial` names ({"steady":

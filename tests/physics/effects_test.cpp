@@ -218,7 +218,8 @@ TEST(Effects, BothFormulationsFollowTheSameSpinDown) {
 // the coin precesses and the quasi-steady state it assumes ends (docs/euler_disk.md §5).
 struct LogLogRun {
   std::vector<SpinDownSample> samples;
-  double t0 = 0;  // s, from pipeline::SingularTimeFit
+  double t0 = 0;     // s, from pipeline::SingularTimeFit
+  double gamma = 0;  // its E ~ (t0 - t)^gamma over the last decade: what `simulate` prints
   double tFlat = 0;
 };
 
@@ -233,6 +234,7 @@ LogLogRun runTowardsFlat(const CoinModel& m, double alpha0, double endAlpha) {
   pipeline::SingularTimeFit fit;
   for (const SpinDownSample& s : run.samples) fit.add(s.t, energy(m, s.state), forward(m, s.state).loads.power);
   run.t0 = fit.estimate().value().t0;
+  run.gamma = fit.estimate().value().gamma;
   return run;
 }
 
@@ -286,6 +288,9 @@ TEST(SpinDownExponents, MatchTheQuasiSteadyTheoryOverTwoDecades) {
     const Slopes slopes = logLogSlopes(run, shortest, 100 * shortest);
     EXPECT_TRUE(isNear(slopes.alpha, 1 / (1 - c.p), kExponent)) << c.name;
     EXPECT_TRUE(isNear(slopes.Omega, -1 / (2 * (1 - c.p)), kExponent)) << c.name;
+    // The printed estimate, E's exponent over the last decade before the stop, is alpha's on a
+    // quasi-steady run (E = (3/2) M g a alpha, (4.2)).
+    EXPECT_TRUE(isNear(run.gamma, 1 / (1 - c.p), kExponent)) << c.name << ": gamma " << run.gamma;
     // Quasi-steady in the middle of the window: the state is a steady circle of the ideal model
     // (residual of seed 5.2 in units of M g a) and Omega^2 sin(alpha) is 4 g / a (3.1) up to the
     // circle's omega_Z term, ~ omega_Z Omega alpha a / g. (Below the window's lower end the air

@@ -7,9 +7,9 @@
 //   find_package(coinroll REQUIRED)            or   pkg-config --cflags --libs coinroll
 //   target_link_libraries(app PRIVATE coinroll::coinroll)
 //
-// Errors are exceptions: std::invalid_argument for a bad scene or request (the message names the
-// field and the fix, as the command line's exit 2), std::runtime_error for a run or an output that
-// fails. A failed render leaves no file behind.
+// Errors are exceptions: SceneError (a std::invalid_argument) for a bad scene, std::invalid_argument
+// for another bad request (the message names the field and the fix, as the command line's exit 2),
+// std::runtime_error for a run or an output that fails. A failed render leaves no file behind.
 //
 // The long calls take a `cancel` flag (Ctrl-C, a closed window, a deadline): set it from another
 // thread or a signal handler and the call stops at its next sample, frame or grid point, removes
@@ -39,6 +39,13 @@ class Cancelled : public std::runtime_error {
   Cancelled();
 };
 
+// A scene the loader refused: the message names the field, the rule and the value, as
+// `coinroll simulate`'s exit-2 message does.
+class SceneError : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
 // A validated scene. Cheap to copy (the scene is shared and never changes).
 class Scene {
  public:
@@ -58,6 +65,9 @@ class Scene {
   explicit Scene(std::shared_ptr<const Impl> impl) : impl_(std::move(impl)) {}
   std::shared_ptr<const Impl> impl_;
 };
+
+// Scene::fromFile under the name the command-line contract gives it (docs/contract.md §9).
+Scene loadScene(const std::filesystem::path& file, const std::vector<std::string>& overrides = {});
 
 // How a run ended.
 struct RunEnd {
@@ -80,7 +90,11 @@ struct Columns {
   std::size_t rows() const { return values.empty() ? 0 : values.front().size(); }
   // The column named `name` ("t", "theta", "energy", ...); std::out_of_range naming it if absent.
   const std::vector<double>& operator[](std::string_view name) const;
+  const std::vector<double>& column(std::string_view name) const { return (*this)[name]; }
 };
+
+// What simulate returns, under the contract's name for it.
+using Trajectory = Columns;
 
 // Integrates the scene and samples it every `sampleDt` seconds (the CSV's --sample-dt).
 Columns simulate(const Scene& scene, double sampleDt = 0.01, const std::atomic<bool>* cancel = nullptr);

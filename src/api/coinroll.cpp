@@ -39,14 +39,15 @@ namespace {
 
 constexpr double kDegreesPerRadian = 180 / std::numbers::pi;
 
-// The library's promise: a bad scene or request is std::invalid_argument and a cancelled call
+// The library's promise: a bad scene is SceneError (a std::invalid_argument, as any other bad
+// request is) and a cancelled call
 // coinroll::Cancelled, whatever the layer below calls them.
 template <class Work>
 auto translatingErrors(Work&& work) {
   try {
     return work();
   } catch (const scene::SceneError& e) {
-    throw std::invalid_argument(e.what());
+    throw SceneError(e.what());
   } catch (const pipeline::Cancelled&) {
     throw Cancelled();
   }
@@ -99,6 +100,10 @@ Scene Scene::fromFile(const std::filesystem::path& file, const std::vector<std::
   return translatingErrors([&] {
     return Scene(std::make_shared<const Impl>(parsed(scene::readSceneDocument(file), overrides, file.string())));
   });
+}
+
+Scene loadScene(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
+  return Scene::fromFile(file, overrides);
 }
 
 Scene Scene::fromJson(std::string_view json, const std::vector<std::string>& overrides) {

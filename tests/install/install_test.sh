@@ -26,7 +26,7 @@ SCENE
 "$prefix/bin/coinroll" simulate "$work/scene.json" --sample-dt 0.05 --csv "$work/cli.csv" 2>/dev/null
 
 check_consumer() {  # $1: how it was built, $2: the consumer binary
-  LD_LIBRARY_PATH=$libdir "$2" > "$work/out.txt"
+  LD_LIBRARY_PATH=$libdir "$2" "$work/scene.json" > "$work/out.txt"
   /usr/bin/python3 - "$work/cli.csv" "$work/out.txt" "$1" <<'PY'
 import csv
 import sys

@@ -1,4 +1,5 @@
-// Uses the installed coinroll API: a scene from JSON text, its columns, a still in memory.
+// Uses the installed coinroll API: the scene file named on the command line (under the contract's names: loadScene,
+// Trajectory, column, SceneError), its columns, a still in memory.
 // Prints the columns t and energy (every row, 17 digits) for the test to compare with the CSV of
 // `coinroll simulate`, then the still's size and how many of its pixels are not the background.
 #include <coinroll/coinroll.h>
@@ -6,14 +7,16 @@
 #include <cstdio>
 #include <exception>
 
-int main() {
+int main(int argc, char** argv) {
   try {
-    const coinroll::Scene scene = coinroll::Scene::fromJson(
-        R"({"coin": {"shape": "disk", "radius": 0.0375, "mass": 0.4}, "initial": {"theta": 10, "omega_Z": 12},
-            "duration": 0.5, "render": {"width": 160, "height": 120}})");
-    const coinroll::Columns columns = coinroll::simulate(scene, 0.05);
-    for (std::size_t row = 0; row < columns.rows(); ++row) {
-      std::printf("%.17g,%.17g\n", columns["t"][row], columns["energy"][row]);
+    if (argc != 2) {
+      std::fputs("usage: consumer SCENE.json\n", stderr);
+      return 2;
+    }
+    const coinroll::Scene scene = coinroll::loadScene(argv[1]);
+    const coinroll::Trajectory trajectory = coinroll::simulate(scene, 0.05);
+    for (std::size_t row = 0; row < trajectory.rows(); ++row) {
+      std::printf("%.17g,%.17g\n", trajectory.column("t")[row], trajectory.column("energy")[row]);
     }
     const coinroll::Image still = coinroll::renderStill(scene, 0.25);
     long differing = 0;
@@ -28,7 +31,7 @@ int main() {
       coinroll::Scene::fromJson(R"({"coin": {"shape": "disk", "radius": 0.0375, "mass": 0.4}, "initial": {}, "duration": -1})");
       std::puts("a bad scene was accepted");
       return 1;
-    } catch (const std::invalid_argument& e) {
+    } catch (const coinroll::SceneError& e) {
       std::printf("bad scene refused: %s\n", e.what());
     }
     return 0;

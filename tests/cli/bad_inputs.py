@@ -153,7 +153,7 @@ class Case:
     check: object = None           # check(directory) -> problem or None, run on the directory afterwards
     shell: bool = False            # args is a bash command; {bin} is the binary
     signal: int | None = None      # sent once the long work has started
-    wait_for: str = "partial"      # "partial": a temporary in the directory; "stdout": data; "sleep"
+    wait_for: str = "partial"      # "partial": a temporary in the directory; "stdout": data; "sleep"; "fifo": blocked opening a FIFO (every mode also waits until the signal has a handler)
     then: tuple = ()               # (signal, seconds after the one before) sent after `signal`
     settle: float | None = None    # seconds between the start seen and the signal (default 0.3; "sleep": 1)
     timeout: float = 20
@@ -1265,11 +1265,11 @@ case("sigint-twice-render", C, "a second SIGINT 2 ms after the first, during an 
 FIFO_SIM = "simulate scene.json --csv fifo"
 case("sigint-twice-fifo", C, "a second SIGINT while opening a FIFO nobody reads", FIFO_SIM, 1,
      "interrupted by SIGINT twice: stopped at once; no unfinished file is left", key="interrupted",
-     files={"scene.json": VALID, "fifo": Fifo}, signal=INT, then=((INT, 0.5),), wait_for="sleep", settle=0.5,
+     files={"scene.json": VALID, "fifo": Fifo}, signal=INT, then=((INT, 0.5),), wait_for="fifo", settle=0.1,
      na_before=ISSUE21)
 case("sigterm-grace-fifo", C, "one SIGTERM while opening a FIFO nobody reads: ends after the 3 s grace", FIFO_SIM, 1,
      "interrupted by SIGTERM and not stopped within 3 s", key="interrupted", files={"scene.json": VALID, "fifo": Fifo},
-     signal=TERM, wait_for="sleep", settle=0.5, timeout=10, na_before=ISSUE21,
+     signal=TERM, wait_for="fifo", settle=0.1, timeout=10, na_before=ISSUE21,
      gtest=("SignalsCliTest.ARequestToStopNotAnsweredInTimeEndsTheRunAtOnce",))
 # A signal ignored when coinroll starts stays ignored: nohup's SIGHUP.
 case("nohup-sighup", C, "SIGHUP under nohup (ignored from the start): the run goes on to its end",
@@ -1517,6 +1517,24 @@ def command_of(c: Case, binary: str) -> list[str]:
     return [binary, *shlex.split(c.args)]
 
 
+def catches(pid: int, sig: int) -> bool:
+    """Whether the process handles or ignores `sig` (its SigCgt and SigIgn masks in /proc)."""
+    try:
+        status = Path(f"/proc/{pid}/status").read_text()
+    except OSError:
+        return False
+    masks = [int(line.split()[1], 16) for line in status.splitlines() if line.startswith(("SigCgt:", "SigIgn:"))]
+    return any(mask >> (int(sig) - 1) & 1 for mask in masks)
+
+
+def kernel_wait(pid: int) -> str:
+    """The kernel function the process sleeps in ("wait_for_partner": opening a FIFO nobody reads)."""
+    try:
+        return Path(f"/proc/{pid}/wchan").read_text().strip()
+    except OSError:
+        return ""
+
+
 def run_process(c: Case, binary: str, directory: Path):
     """Returns (exit code or None on timeout, stderr text, problem found while running or None)."""
     process = subprocess.Popen(command_of(c, binary), cwd=directory, stdin=subprocess.DEVNULL,
@@ -1528,8 +1546,13 @@ def run_process(c: Case, binary: str, directory: Path):
     if c.signal is not None:
         deadline = time.monotonic() + 10
         started = lambda: (any(".partial" in p.name for p in directory.iterdir()) if c.wait_for == "partial"
-                           else len(out.data) > 0 if c.wait_for == "stdout" else False)
+                           else len(out.data) > 0 if c.wait_for == "stdout"
+                           else kernel_wait(process.pid) == "wait_for_partner" if c.wait_for == "fifo" else False)
         while c.wait_for != "sleep" and process.poll() is None and not started() and time.monotonic() < deadline:
+            time.sleep(0.01)
+        # A fixed sleep alone is too short on a loaded machine: the signal would land before the
+        # handlers exist and kill the process outright. So wait until it catches the signal.
+        while process.poll() is None and not catches(process.pid, c.signal) and time.monotonic() < deadline:
             time.sleep(0.01)
         time.sleep(c.settle if c.settle is not None else 0.3 if c.wait_for != "sleep" else 1.0)  # past any setup
         if process.poll() is not None:

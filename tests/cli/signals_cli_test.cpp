@@ -17,6 +17,7 @@
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <string_view>
 #include <thread>
 #include <vector>
 
@@ -58,6 +59,20 @@ class BackgroundRun {
   BackgroundRun& operator=(const BackgroundRun&) = delete;
 
   bool started() const { return pid_ > 0; }
+  // True once the process sleeps in `kernelFunction` (its /proc wchan), within `timeout`: a fixed
+  // sleep before a signal is too short on a loaded machine, where the signal then lands before the
+  // handlers exist.
+  bool reachesKernelWait(std::string_view kernelFunction, std::chrono::milliseconds timeout) const {
+    const auto deadline = std::chrono::steady_clock::now() + timeout;
+    const std::string wchan = "/proc/" + std::to_string(pid_) + "/wchan";
+    while (std::chrono::steady_clock::now() < deadline) {
+      std::string function;
+      std::getline(std::ifstream(wchan), function);
+      if (function == kernelFunction) return true;
+      std::this_thread::sleep_for(10ms);
+    }
+    return false;
+  }
   void send(int signal) const { ::kill(pid_, signal); }
   // The wait status (waitpid's).
   int wait() {
@@ -153,7 +168,7 @@ TEST_F(SignalsCliTest, ARequestToStopNotAnsweredInTimeEndsTheRunAtOnce) {
   ASSERT_EQ(::mkfifo((dir_ / "fifo").c_str(), 0600), 0);
   BackgroundRun run(dir_, {"simulate", "scene.json", "--csv", "fifo"});
   ASSERT_TRUE(run.started());
-  std::this_thread::sleep_for(300ms);  // past the start, into the open
+  ASSERT_TRUE(run.reachesKernelWait("wait_for_partner", 30s)) << "the run never blocked opening the FIFO";
   const auto sent = std::chrono::steady_clock::now();
   run.send(SIGTERM);
   const int status = run.wait();

@@ -10,6 +10,7 @@
 
 #include "io/output_file.h"
 #include "video/ffmpeg_handles.h"
+#include "video/gif_comment.h"
 #include "video/gif_palette.h"
 #include "video/rgba_to_yuv.h"
 
@@ -385,6 +386,9 @@ void EncoderSink::finish() {
   }
   checkAv(av_write_trailer(encoder.format.get()), encoder.context + "writing the " + encoder.container.label + " trailer");
   checkAv(avio_closep(&encoder.format->pb), encoder.context + "closing the file");
+  if (options_.format == VideoFormat::Gif && !options_.provenance.empty()) {
+    addGifComment(encoder.file.temporaryPath(), options_.provenance.comment());
+  }
   encoder.file.commit();
   finished_ = true;
 }

@@ -14,6 +14,7 @@
 
 #include "synthetic_frames.h"
 #include "video/encoder_sink.h"
+#include "video/gif_comment.h"
 #include "video/video_probe.h"
 
 namespace fs = std::filesystem;
@@ -167,7 +168,7 @@ TEST(VideoFormats, AlphaAndAudioAreRefusedWhereTheContainerHasNone) {
 TEST(VideoFormats, ProvenanceNamesTheReleaseAndTheSceneAndIsLeftOutWhenEmpty) {
   ScratchDirectory directory;
   for (const Kind& kind : kKinds) {
-    if (kind.format == VideoFormat::Gif) continue;  // FFmpeg's GIF muxer writes no comment
+    if (kind.format == VideoFormat::Gif) continue;  // no tags: a comment extension (the test below)
     VideoOptions options = optionsFor(kind.format);
     options.provenance = {.software = "coinroll 9.9.9", .sceneDigest = "fnv1a64:0123456789abcdef"};
     const fs::path tagged = directory.path() / ("tagged_" + std::string(kind.file));
@@ -184,6 +185,38 @@ TEST(VideoFormats, ProvenanceNamesTheReleaseAndTheSceneAndIsLeftOutWhenEmpty) {
     // Matroska names its muxer whatever it is told: "Lavf", never with a version.
     EXPECT_EQ(tagOf(untagged, "encoder"), kind.format == VideoFormat::WebM ? "Lavf" : "") << kind.file;
   }
+}
+
+// FFmpeg's GIF muxer writes no comment: the sink adds a Comment Extension to the finished file,
+// which decoders skip (the frames decode as before) and a reader of the bytes finds.
+TEST(VideoFormats, GifCarriesTheProvenanceInACommentExtensionAndDecodesTheSame) {
+  ScratchDirectory directory;
+  VideoOptions options = optionsFor(VideoFormat::Gif);
+  options.provenance = {.software = "coinroll 9.9.9", .sceneDigest = "fnv1a64:0123456789abcdef"};
+  const fs::path tagged = directory.path() / "tagged.gif";
+  encode(tagged, options);
+  const fs::path plain = directory.path() / "plain.gif";
+  encode(plain, optionsFor(VideoFormat::Gif));
+  EXPECT_EQ(coinroll::video::gifComment(bytesOf(tagged)), "coinroll 9.9.9, scene fnv1a64:0123456789abcdef");
+  EXPECT_EQ(coinroll::video::gifComment(bytesOf(plain)), "");
+  // Introducer, label, one sub-block (its length and the text), terminator.
+  EXPECT_EQ(bytesOf(tagged).size(), bytesOf(plain).size() + 2 + 1 + options.provenance.comment().size() + 1);
+  EXPECT_EQ(coinroll::video::readVideoInfo(tagged).frameCount, kFrames);
+  for (const int frame : {0, kFrames - 1}) {
+    EXPECT_EQ(coinroll::video::decodeFrame(tagged, frame).rgba, coinroll::video::decodeFrame(plain, frame).rgba) << frame;
+  }
+}
+
+TEST(GifComment, ALongCommentIsSplitIntoSubBlocksOfAtMost255BytesAndReadBackWhole) {
+  // The smallest GIF89a header: a 1x1 screen with a 2-colour table, then the trailer.
+  const std::string gif = std::string("GIF89a\x01\x00\x01\x00\x80\x00\x00", 13) + std::string(6, '\0') + ";";
+  const std::string comment(600, 'c');
+  const std::string tagged = coinroll::video::withGifComment(gif, comment);
+  EXPECT_EQ(coinroll::video::gifComment(tagged), comment);
+  EXPECT_EQ(tagged.substr(19, 2), "\x21\xfe");                       // after the 6-byte colour table
+  EXPECT_EQ(static_cast<unsigned char>(tagged[21]), 255);             // first sub-block full
+  EXPECT_EQ(tagged.size(), gif.size() + 2 + (1 + 255) * 2 + (1 + 90) + 1);
+  EXPECT_THROW(coinroll::video::withGifComment("GIF87a", comment), std::invalid_argument);
 }
 
 TEST(VideoFormats, GifLoopsForEver) {

@@ -19,7 +19,7 @@
 
 namespace coinroll::pipeline {
 
-// The coin at one frame time, as compact as the frame needs (a whole RunSample is ~1 kB): 112 bytes,
+// The coin at one frame time, as compact as the frame needs (a whole RunSample is 432 bytes): 112 bytes,
 // so a clip at the default limit of 1 000 000 frames keeps at most 112 MB of them.
 struct FrameState {
   double time = 0;                                        // s of simulated time

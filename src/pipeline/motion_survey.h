@@ -1,12 +1,11 @@
 #pragma once
-// Where the motion goes: a first pass over the whole run, so the camera of the first frame already
-// frames everything the coin will do, and the frame loop knows where the run ends.
+// Where the motion goes: what the whole run covers, so the camera of the first frame already
+// frames everything the coin will do, and the frame loop knows where the run ends. Recorded by the
+// one pass over the run (pipeline/run_record.h).
 
 #include <Eigen/Core>
 #include <optional>
 
-#include "integrate/events.h"
-#include "physics/coin_state.h"
 #include "pipeline/run_event.h"
 #include "pipeline/simulation.h"
 
@@ -18,12 +17,12 @@ namespace coinroll::pipeline {
 double traceInterval(double duration);
 
 struct MotionSurvey {
-  Eigen::Vector3d lower, upper;  // m, box around every centre of mass and contact point
+  Eigen::Vector3d lower = Eigen::Vector3d::Zero(), upper = Eigen::Vector3d::Zero();  // m, box around every centre of mass and contact point
   double endTime = 0;            // s, the duration, or when a validity event stopped the run
-  std::optional<RunEvent> stoppedBy;
+  std::optional<RunEvent> stoppedBy = {};
 };
 
-// Samples the run every traceInterval and at its end.
+// The survey alone: the run sampled every traceInterval and at its end, and no frames.
 MotionSurvey surveyMotion(const Simulation& simulation);
 
 }  // namespace coinroll::pipeline

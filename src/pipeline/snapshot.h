@@ -1,55 +1,46 @@
 #pragma once
 // From the physics to what the renderer reads (house style: the renderer never sees the physics):
-// the FrameSnapshots of one run, built in one place for `still` and `render` alike.
+// the FrameSnapshots of one recorded run, built in one place for `still` and `render` alike.
 
 #include <string>
 #include <vector>
 
 #include "physics/coin_model.h"
-#include "physics/coin_state.h"
 #include "pipeline/camera_rig.h"
-#include "pipeline/coin_run.h"
-#include "pipeline/motion_survey.h"
-#include "pipeline/simulation.h"
+#include "pipeline/run_record.h"
 #include "render/frame_snapshot.h"
 #include "scene/scene_config.h"
 
 namespace coinroll::pipeline {
 
-// Snapshots of one run in time order, streaming its dense output once: the trace (the contact
+// Snapshots of one run in time order, read from its record (run_record.h): the trace (the contact
 // point every traceInterval up to the frame's time, then the contact point now), stroboscopic
 // ghosts, the coin's pose, the camera from render.camera and the survey, the overlay.
 class SnapshotMaker {
  public:
-  // `survey` is surveyMotion(simulation). Times passed to the calls below never go back.
-  SnapshotMaker(const scene::SceneConfig& scene, const Simulation& simulation, const MotionSurvey& survey);
+  // `model` is the run's (buildSimulation(scene).model); `record` outlives the maker.
+  SnapshotMaker(const scene::SceneConfig& scene, const physics::CoinModel& model, const RunRecord& record);
 
-  // Adds a semi-transparent copy of the coin as it is at `time` (s) to every later snapshot.
-  void addGhost(double time);
+  // Adds a semi-transparent copy of the coin as it is at `frame` to every later snapshot.
+  void addGhost(const FrameState& frame);
 
-  // The picture at simulated `time` (s), within the survey's end time; `extraHudLines` follow the
+  // The picture of `frame`, at or after the previous one's time; `extraHudLines` follow the
   // overlay's own lines (e.g. the slow-motion factor). Valid until the next call.
-  const render::FrameSnapshot& makeSnapshot(double time, const std::vector<std::string>& extraHudLines = {});
-
-  // The coin at the time of the last snapshot.
-  const physics::CoinState& state() const { return sample_.state; }
-  const physics::Forward& forward() const { return sample_.forward; }
+  const render::FrameSnapshot& makeSnapshot(const FrameState& frame, const std::vector<std::string>& extraHudLines = {});
 
  private:
-  RunSample sampleAt(double time);
-  // Appends the trace points strictly before `time`.
+  // Appends the recorded trace points strictly before `time`.
   void extendTraceTo(double time);
 
   physics::CoinModel model_;
-  CoinRun run_;
+  const RunRecord& record_;
   CameraRig rig_;
   double traceDt_;       // s, traceInterval(duration)
-  long nextTracePoint_ = 0;
+  std::size_t nextTracePoint_ = 0;
   bool traceEndsWithNow_ = false;  // the trace's last point is the last snapshot's contact point
   bool showTrace_, showHud_;
   int height_;           // pixels, for the trace's width on screen
   render::FrameSnapshot snapshot_;
-  RunSample sample_;
 };
 
 }  // namespace coinroll::pipeline

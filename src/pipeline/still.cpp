@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "image/image.h"
-#include "pipeline/motion_survey.h"
+#include "pipeline/run_record.h"
 #include "pipeline/resources.h"
 #include "pipeline/simulation.h"
 #include "pipeline/snapshot.h"
@@ -23,6 +23,20 @@ StillResult renderStill(const scene::SceneConfig& scene, const StillRequest& req
   image::writePng(picture.image, request.output, request.text);
   return picture.result;
 }
+
+namespace {
+
+// The ghosts' times, evenly spaced over [ghostsFrom, shown) (from `shown` when that is earlier),
+// then `shown`, s.
+std::vector<double> ghostAndStillTimes(const StillRequest& request, double shown) {
+  const double from = std::min(request.ghostsFrom, shown);
+  std::vector<double> times;
+  for (int i = 0; i < request.ghosts; ++i) times.push_back(from + (shown - from) * i / request.ghosts);
+  times.push_back(shown);
+  return times;
+}
+
+}  // namespace
 
 StillPicture drawStill(const scene::SceneConfig& scene, const StillRequest& request) {
   if (!std::isfinite(request.time) || request.time < 0 || request.time > scene.duration) {
@@ -44,15 +58,20 @@ StillPicture drawStill(const scene::SceneConfig& scene, const StillRequest& requ
   // failing, so what it needs is checked first.
   requireRendererAddressSpace(settings);
   render::Renderer renderer(settings);  // before the physics: bad render settings fail fast
-  const MotionSurvey survey = surveyMotion(simulation);
+  FixedFrameTimes asked(ghostAndStillTimes(request, request.time));
+  RunRecord record = recordRun(simulation, asked);
   StillResult result;
-  result.shownTime = std::min(request.time, survey.endTime);
-  if (survey.stoppedBy && survey.endTime < request.time) result.stopDescription = describeStop(*survey.stoppedBy);
-
-  SnapshotMaker snapshots(scene, simulation, survey);
-  // A run that stopped early shows its end; the ghosts then span [ghostsFrom, end) if it is long enough.
+  result.shownTime = std::min(request.time, record.survey.endTime);
+  if (record.survey.stoppedBy && record.survey.endTime < request.time) result.stopDescription = describeStop(*record.survey.stoppedBy);
+  // A run that stopped early shows its end; the ghosts then span [ghostsFrom, end) if it is long
+  // enough. Their times are known only once the end is, so this case alone integrates twice.
+  if (request.ghosts > 0 && result.shownTime < request.time) {
+    FixedFrameTimes toTheEnd(ghostAndStillTimes(request, result.shownTime));
+    record = recordRun(simulation, toTheEnd);
+  }
   const double from = std::min(request.ghostsFrom, result.shownTime);
-  for (int i = 0; i < request.ghosts; ++i) snapshots.addGhost(from + (result.shownTime - from) * i / request.ghosts);
+  SnapshotMaker snapshots(scene, simulation.model, record);
+  for (int i = 0; i < request.ghosts; ++i) snapshots.addGhost(record.frames[static_cast<std::size_t>(i)]);
   // A strobe still is a figure: its overlay says how to read the copies and gives the scale.
   std::vector<std::string> legend;
   if (request.ghosts > 0) {
@@ -60,7 +79,7 @@ StillPicture drawStill(const scene::SceneConfig& scene, const StillRequest& requ
                           1e3 * (result.shownTime - from) / request.ghosts, from),
               fmt::format("grid     {:5g} mm squares", 1e3 * render::kFloorGridMetres)};
   }
-  return {.image = renderer.draw(snapshots.makeSnapshot(result.shownTime, legend)), .result = result};
+  return {.image = renderer.draw(snapshots.makeSnapshot(record.frames.back(), legend)), .result = result};
 }
 
 }  // namespace coinroll::pipeline

@@ -10,10 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "physics/observables.h"
-#include "pipeline/coin_run.h"
 #include "pipeline/coin_sound.h"
 #include "pipeline/motion_survey.h"
+#include "pipeline/run_record.h"
 #include "pipeline/resources.h"
 #include "pipeline/simulation.h"
 #include "pipeline/snapshot.h"
@@ -49,29 +48,58 @@ double playbackRate(const scene::RenderSpec& render, double rate) {
   return std::min(render.timeScale, visible / rate);
 }
 
-std::vector<double> frameTimes(const scene::SceneConfig& scene, const Simulation& simulation, double endTime,
-                               long maxFrames) {
-  std::vector<double> times;
-  const double perFrame = scene.render.timeScale / scene.render.fps;
-  if (!scene.render.timeRemap) {
-    const long total = frameCount(endTime, scene.render.timeScale, scene.render.fps);
-    if (total > maxFrames) refuseFrames(scene, maxFrames, std::to_string(total));
-    for (long k = 0; k < total; ++k) times.push_back(std::min(static_cast<double>(k) * perFrame, endTime));
-    return times;
-  }
-  CoinRun trajectory(simulation);
-  // The sum of steps drifts by round-off; a relative 1e-12 keeps the frame at the very end.
-  for (double t = 0; t <= endTime * (1 + 1e-12);) {
-    if (static_cast<long>(times.size()) == maxFrames) {
-      refuseFrames(scene, maxFrames, fmt::format("more than {} (the time remap slows it at t = {:.6g} s)", maxFrames, t));
+namespace {
+
+// The clip's frames, chosen inside the pass: k time_scale / fps, or with a time remap
+// t_(k+1) = t_k + playbackRate(rate(t_k)) / fps, up to the run's end.
+class ClipPlan final : public FramePlan {
+ public:
+  ClipPlan(const scene::SceneConfig& scene, long maxFrames)
+      : scene_(scene), maxFrames_(maxFrames), perFrame_(scene.render.timeScale / scene.render.fps),
+        ofDuration_(frameCount(scene.duration, scene.render.timeScale, scene.render.fps)) {}
+
+  std::optional<double> timeOf(long k, const RunSample* previous) override {
+    if (!scene_.render.timeRemap) {
+      // Past the limit frames are not recorded: the refusal needs the count to the run's end (recordFrames).
+      if (k >= ofDuration_ || k >= maxFrames_) return std::nullopt;
+      return static_cast<double>(k) * perFrame_;
     }
-    times.push_back(std::min(t, endTime));
-    const std::optional<RunSample> y = trajectory.sampleAt(t);
-    if (!y) break;
-    const bool bySpin = scene.render.timeRemap->rate == scene::TimeRemap::Rate::Spin;
-    t += playbackRate(scene.render, std::abs(bySpin ? y->forward.spinRate : y->forward.precessionRate)) / scene.render.fps;
+    if (k == 0) return 0.0;
+    if (previous == nullptr) return std::nullopt;  // the run ended at frame k - 1
+    const bool bySpin = scene_.render.timeRemap->rate == scene::TimeRemap::Rate::Spin;
+    const double rate = std::abs(bySpin ? previous->forward.spinRate : previous->forward.precessionRate);
+    return lastTime_ += playbackRate(scene_.render, rate) / scene_.render.fps;
   }
-  return times;
+
+  bool keeps(long k, double time, double end) override {
+    if (!scene_.render.timeRemap) return k < frameCount(end, scene_.render.timeScale, scene_.render.fps);
+    // The sum of steps drifts by round-off; a relative 1e-12 keeps the frame at the very end.
+    if (time > end * (1 + 1e-12)) return false;
+    if (k == maxFrames_) {
+      refuseFrames(scene_, maxFrames_, fmt::format("more than {} (the time remap slows it at t = {:.6g} s)", maxFrames_, time));
+    }
+    return true;
+  }
+
+ private:
+  const scene::SceneConfig& scene_;
+  long maxFrames_;
+  double perFrame_;    // s of simulated time, without a remap
+  long ofDuration_;    // frames of a run that lasts its duration, without a remap
+  double lastTime_ = 0;  // s, the remapped frame time last given
+};
+
+}  // namespace
+
+RunRecord recordFrames(const scene::SceneConfig& scene, const Simulation& simulation, long maxFrames) {
+  ClipPlan plan(scene, maxFrames);
+  RunRecord record = recordRun(simulation, plan);
+  if (!scene.render.timeRemap) {
+    if (const long total = frameCount(record.survey.endTime, scene.render.timeScale, scene.render.fps); total > maxFrames) {
+      refuseFrames(scene, maxFrames, std::to_string(total));
+    }
+  }
+  return record;
 }
 
 namespace {
@@ -86,11 +114,12 @@ class SoundTrack {
   // Each call's block of sound ends at frame k; it goes to `sink`, or nowhere when that is null (a
   // frame outside the window), still synthesised so the sound is the full render's.
   // `landing`: frame k is the coin's landing, where the sound fades out to the silence of the hold.
-  void reachFrame(long k, const physics::Forward& forward, double playbackRate, video::FrameSink* sink, bool landing) {
+  // `precessionRate`: phi-dot at frame k, rad/s.
+  void reachFrame(long k, double precessionRate, double playbackRate, video::FrameSink* sink, bool landing) {
     // Omega = |phi-dot|, the contact point's rate round the floor; with pitch "video" the sound is
     // played at the picture's speed, so its frequency scales with simulated seconds per video second.
     const double rate = spec_.pitch == scene::AudioSpec::Pitch::Video ? playbackRate : 1.0;
-    const double f = spec_.frequencyScale * std::abs(forward.precessionRate) / (2 * std::numbers::pi) * rate;
+    const double f = spec_.frequencyScale * std::abs(precessionRate) / (2 * std::numbers::pi) * rate;
     if (k > 0) emit(k, f, sink, landing);
     frequency_ = f;
   }
@@ -132,7 +161,7 @@ class SoundTrack {
 
 VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& sink, const VideoRunOptions& options) {
   // The duration's frames bound what a run that goes the distance shows (a remap only adds):
-  // absurd ones are refused before the first pass (video_frames.h, kUpFrontFrameFactor).
+  // absurd ones are refused before the pass over the run (video_frames.h, kUpFrontFrameFactor).
   if (const double atMost = static_cast<double>(scene.duration) / scene.render.timeScale * scene.render.fps;
       atMost > kUpFrontFrameFactor * static_cast<double>(options.maxFrames)) {
     refuseFrames(scene, options.maxFrames, fmt::format("{:.4g}", atMost));
@@ -146,23 +175,24 @@ VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& si
   const std::uint64_t frameBytes = 4 * static_cast<std::uint64_t>(settings.width) * static_cast<std::uint64_t>(settings.height);
   requireRendererAddressSpace(settings, sink.workingMemory(frameBytes));
   render::Renderer renderer(settings);
-  const MotionSurvey survey = surveyMotion(simulation);
+  RunRecord record = recordFrames(scene, simulation, options.maxFrames);
+  const MotionSurvey& survey = record.survey;
+  std::vector<FrameState>& frames = record.frames;
 
   VideoRunResult result;
   result.simulatedSeconds = survey.endTime;
   if (survey.stoppedBy) result.stopDescription = describeStop(*survey.stoppedBy);
-  std::vector<double> times = frameTimes(scene, simulation, survey.endTime, options.maxFrames);
   // A coin that landed on its face is shown at its landing, then lies still for a while before the
   // clip ends, so the end is seen.
   const bool landed = survey.stoppedBy && survey.stoppedBy->event == physics::ModelEvent::FaceDown;
-  const bool landingFrameAdded = landed && times.back() < survey.endTime;
-  if (landingFrameAdded) times.push_back(survey.endTime);
-  const long simulatedFrames = static_cast<long>(times.size());
+  const bool landingFrameAdded = landed && frames.back().time < survey.endTime;
+  if (landingFrameAdded) frames.push_back(record.end);
+  const long simulatedFrames = static_cast<long>(frames.size());
   const long holdFrames = landed ? std::lround(kLandingHoldSeconds * scene.render.fps) : 0;
   const long total = simulatedFrames + holdFrames;
 
   // Frame k's simulated time: the hold repeats the landing, at the run's end.
-  const auto timeOf = [&](long k) { return k < simulatedFrames ? times[static_cast<std::size_t>(k)] : survey.endTime; };
+  const auto timeOf = [&](long k) { return k < simulatedFrames ? frames[static_cast<std::size_t>(k)].time : survey.endTime; };
   const TimeWindow& window = options.window;
   const auto written = [&](long k) {
     const double t = timeOf(k);
@@ -183,7 +213,7 @@ VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& si
                                             scene.render.timeRemap ? ", less where render.time_remap slows them" : ""));
   }
 
-  SnapshotMaker snapshots(scene, simulation, survey);
+  SnapshotMaker snapshots(scene, simulation.model, record);
   image::Image frame;
   std::optional<SoundTrack> sound;
   if (scene.render.audio) sound.emplace(*scene.render.audio, scene.render.fps);
@@ -195,7 +225,7 @@ VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& si
       if (sound) sound->rest(k, soundSink(k));
       // Simulated time stands still here, so the overlay says so instead of the landing's playback rate.
       if (k == simulatedFrames && scene.render.hud && written(k)) {
-        renderer.draw(snapshots.makeSnapshot(survey.endTime, {fmt::format("landed, held {:g} s", kLandingHoldSeconds)}), frame);
+        renderer.draw(snapshots.makeSnapshot(frames.back(), {fmt::format("landed, held {:g} s", kLandingHoldSeconds)}), frame);
       }
       if (written(k)) {
         sink.push(frame);
@@ -204,14 +234,15 @@ VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& si
       }
       continue;
     }
-    const double t = times[static_cast<std::size_t>(k)];
+    const FrameState& state = frames[static_cast<std::size_t>(k)];
+    const double t = state.time;
     // Simulated seconds per video second at this frame, from the frame times. The clip's last planned
     // frame and an added landing frame keep the pace of the frame before (a remapped clip's end is
     // still in slow motion), not that of the short step to the landing.
     const auto index = static_cast<std::size_t>(k);
-    const std::size_t lastPlanned = times.size() - (landingFrameAdded ? 2 : 1);
-    const double step = index < lastPlanned ? times[index + 1] - t
-                        : lastPlanned > 0   ? times[lastPlanned] - times[lastPlanned - 1]
+    const std::size_t lastPlanned = frames.size() - (landingFrameAdded ? 2 : 1);
+    const double step = index < lastPlanned ? frames[index + 1].time - t
+                        : lastPlanned > 0   ? frames[lastPlanned].time - frames[lastPlanned - 1].time
                                             : scene.render.timeScale / scene.render.fps;
     const double playbackRate = step * scene.render.fps;
     std::vector<std::string> speed;
@@ -220,11 +251,10 @@ VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& si
       if (slowdown > 1 + 1e-9) speed.push_back(fmt::format("slow motion x{:.3g}", slowdown));
       if (slowdown < 1 - 1e-9) speed.push_back(fmt::format("fast forward x{:.3g}", 1 / slowdown));
     }
-    // Made for every frame: the trace and the sound are built in time order from the start.
-    const render::FrameSnapshot& snapshot = snapshots.makeSnapshot(t, speed);
-    if (sound) sound->reachFrame(k, snapshots.forward(), playbackRate, soundSink(k), landed && k + 1 == simulatedFrames);
+    // Synthesised for every frame, so the sound is the full render's; the trace catches up at the next snapshot.
+    if (sound) sound->reachFrame(k, state.precessionRate, playbackRate, soundSink(k), landed && k + 1 == simulatedFrames);
     if (!written(k)) continue;
-    renderer.draw(snapshot, frame);
+    renderer.draw(snapshots.makeSnapshot(state, speed), frame);
     sink.push(frame);
     ++result.frames;
     if (options.onFrame) options.onFrame({result.frames, toWrite});

@@ -1,8 +1,10 @@
 #pragma once
-// The frame loop of `coinroll render`: frame k shows simulated time t_k = k * time_scale / fps,
-// read from the integrator's dense output (one streaming pass, no re-integration, no stepping
-// at the frame rate), drawn by the renderer and pushed to a sink. Memory does not grow with the
-// clip's length beyond the trace, which is capped (traceInterval).
+// The frame loop of `coinroll render`: frame k shows simulated time t_k = k * time_scale / fps
+// (or, with a time remap, t_(k+1) = t_k + playbackRate(rate(t_k)) / fps), read from the
+// integrator's dense output (no stepping at the frame rate). The run is integrated once
+// (run_record.h): one pass records the survey that places the camera, the trace and a compact
+// state per frame (FrameState, 112 bytes); the loop then only draws. Memory grows with the frame
+// count by those records alone (112 MB at kDefaultMaxFrames); the trace is capped (traceInterval).
 
 #include <atomic>
 #include <functional>
@@ -11,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "pipeline/run_record.h"
 #include "pipeline/simulation.h"
 #include "scene/scene_config.h"
 #include "pipeline/cancelled.h"
@@ -20,9 +23,9 @@ namespace coinroll::pipeline {
 
 // Frames above this need --max-frames: 1 000 000 frames is 9 h of video at 30 fps, and a typo in
 // a duration or a time remap should be refused before hours of work, not after. The frames a
-// clip shows are known once the first pass has found where the run ends (an event may end it
+// clip shows are known once the pass over the run has found where it ends (an event may end it
 // long before its duration); before that pass only a duration that alone would give
-// kUpFrontFrameFactor times the limit is refused, since its first pass alone could take hours.
+// kUpFrontFrameFactor times the limit is refused, since the pass alone could take hours.
 inline constexpr long kDefaultMaxFrames = 1'000'000;
 inline constexpr double kUpFrontFrameFactor = 1000;
 
@@ -43,9 +46,10 @@ long frameCount(double simulatedSeconds, double timeScale, int fps);
 // turning marker would alias (a half turn per frame is the Nyquist limit).
 double playbackRate(const scene::RenderSpec& render, double rate);
 
-// Simulated time of every frame up to `endTime`: t_(k+1) = t_k + playbackRate(rate(t_k)) / fps.
-std::vector<double> frameTimes(const scene::SceneConfig& scene, const Simulation& simulation, double endTime,
-                               long maxFrames = kDefaultMaxFrames);
+// The one pass over `simulation` (buildSimulation(scene)): the survey, the trace and the state at
+// every frame time t_(k+1) = t_k + playbackRate(rate(t_k)) / fps up to the run's end. Throws
+// std::invalid_argument when the clip has more than `maxFrames` frames.
+RunRecord recordFrames(const scene::SceneConfig& scene, const Simulation& simulation, long maxFrames = kDefaultMaxFrames);
 
 struct FrameProgress {
   long frame = 0;  // frames done

@@ -15,7 +15,7 @@
 
 #include "physics/sliding.h"
 #include "pipeline/coin_run.h"
-#include "pipeline/motion_survey.h"
+#include "pipeline/run_record.h"
 #include "pipeline/snapshot.h"
 #include "pipeline/simulation.h"
 #include "pipeline/trajectory_csv.h"
@@ -221,8 +221,10 @@ TEST(Sliding, TheOverlayShowsTheSlipWhileSlidingAndOnlyThen) {
   const scene::SceneConfig scene =
       scene::parseScene(skid({{"radius", 0.0375}, {"mass", 0.4}}, v0, mu), "test", {.solverMethods = kMethods});
   const pipeline::Simulation sim = pipeline::buildSimulation(scene);
-  pipeline::SnapshotMaker maker(scene, sim, pipeline::surveyMotion(sim));
-  const std::string slip = hudLineStartingWith(maker.makeSnapshot(t).hudLines, "sliding");
+  pipeline::FixedFrameTimes at({t, 0.2});
+  const pipeline::RunRecord record = pipeline::recordRun(sim, at);
+  pipeline::SnapshotMaker maker(scene, sim.model, record);
+  const std::string slip = hudLineStartingWith(maker.makeSnapshot(record.frames.at(0)).hudLines, "sliding");
   EXPECT_EQ(slip, fmt::format("sliding  {:9.2f} mm/s slip", 1e3 * (v0 - 3 * mu * g * t)));
-  EXPECT_EQ(hudLineStartingWith(maker.makeSnapshot(0.2).hudLines, "sliding"), "");  // rolling from t = 0.0566 s
+  EXPECT_EQ(hudLineStartingWith(maker.makeSnapshot(record.frames.at(1)).hudLines, "sliding"), "");  // rolling from t = 0.0566 s
 }

@@ -11,7 +11,7 @@
 
 #include <fmt/format.h>
 
-#include "pipeline/motion_survey.h"
+#include "pipeline/run_record.h"
 #include "pipeline/simulation.h"
 #include "pipeline/snapshot.h"
 #include "scene/scene_loader.h"
@@ -25,8 +25,10 @@ const std::vector<std::string_view> kMethods = {"dop853"};
 std::string contactLine(const nlohmann::json& doc, double time) {
   const scene::SceneConfig scene = scene::parseScene(doc, "test", {.solverMethods = kMethods});
   const pipeline::Simulation sim = pipeline::buildSimulation(scene);
-  pipeline::SnapshotMaker maker(scene, sim, pipeline::surveyMotion(sim));
-  for (const std::string& line : maker.makeSnapshot(time).hudLines) {
+  pipeline::FixedFrameTimes at({time});
+  const pipeline::RunRecord record = pipeline::recordRun(sim, at);
+  pipeline::SnapshotMaker maker(scene, sim.model, record);
+  for (const std::string& line : maker.makeSnapshot(record.frames.at(0)).hudLines) {
     if (line.starts_with("contact")) return line;
   }
   return {};

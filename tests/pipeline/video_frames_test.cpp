@@ -29,6 +29,13 @@ class RecordingSink final : public video::FrameSink {
   int finishes = 0;
 };
 
+// The frame times the one pass over the run chose.
+std::vector<double> frameTimes(const scene::SceneConfig& scene, const pipeline::Simulation& simulation) {
+  std::vector<double> times;
+  for (const pipeline::FrameState& frame : pipeline::recordFrames(scene, simulation).frames) times.push_back(frame.time);
+  return times;
+}
+
 scene::SceneConfig toyScene(double duration, double timeScale) {
   nlohmann::json doc = {
       {"coin", {{"radius", 0.0375}, {"mass", 0.4}}},
@@ -102,15 +109,15 @@ TEST(FrameCount, LongClipsWhoseProductFallsShortByMoreThanAnAbsoluteNudge) {
 TEST(FrameTimes, RemapHoldsTheOnScreenSpinRateAtTheLimit) {
   scene::SceneConfig scene = toyScene(1.0, 0.5);
   const pipeline::Simulation simulation = pipeline::buildSimulation(scene);
-  const std::vector<double> constant = pipeline::frameTimes(scene, simulation, 1.0);
+  const std::vector<double> constant = frameTimes(scene, simulation);
   ASSERT_EQ(constant.size(), 21u);
   scene.render.timeRemap = scene::TimeRemap{.rate = scene::TimeRemap::Rate::Spin, .limit = 1000};  // far above the coin's ~15 rad/s: no effect
-  const std::vector<double> unchanged = pipeline::frameTimes(scene, simulation, 1.0);
+  const std::vector<double> unchanged = frameTimes(scene, simulation);
   ASSERT_EQ(unchanged.size(), constant.size());
   for (std::size_t k = 0; k < constant.size(); ++k) EXPECT_NEAR(unchanged[k], constant[k], 1e-14);
 
   scene.render.timeRemap = scene::TimeRemap{.rate = scene::TimeRemap::Rate::Spin, .limit = 5};  // the coin spins at about 15 rad/s: about three times slower
-  const std::vector<double> remapped = pipeline::frameTimes(scene, simulation, 1.0);
+  const std::vector<double> remapped = frameTimes(scene, simulation);
   EXPECT_GT(remapped.size(), 2.5 * constant.size());
   pipeline::CoinRun trajectory(simulation);
   for (std::size_t k = 0; k + 1 < remapped.size(); ++k) {
@@ -125,7 +132,7 @@ TEST(FrameTimes, RemapWithGrowthShowsTheRateGrowingAsItsPowerOfTheRealOne) {
   scene::SceneConfig scene = toyScene(1.0, 0.5);
   const pipeline::Simulation simulation = pipeline::buildSimulation(scene);
   scene.render.timeRemap = scene::TimeRemap{.rate = scene::TimeRemap::Rate::Spin, .limit = 2, .growth = 0.5};
-  const std::vector<double> remapped = pipeline::frameTimes(scene, simulation, 1.0);
+  const std::vector<double> remapped = frameTimes(scene, simulation);
   pipeline::CoinRun trajectory(simulation);
   for (std::size_t k = 0; k + 1 < remapped.size(); ++k) {
     const double spin = std::abs(physics::spinRate(*trajectory.stateAt(remapped[k])));
@@ -199,7 +206,7 @@ void expectWindowIsASliceOfTheFullRender(const scene::SceneConfig& scene, double
   RecordingSink full, window;
   pipeline::renderVideo(scene, full);
   const pipeline::Simulation simulation = pipeline::buildSimulation(scene);
-  const std::vector<double> times = pipeline::frameTimes(scene, simulation, scene.duration);
+  const std::vector<double> times = frameTimes(scene, simulation);
   ASSERT_EQ(times.size(), full.frames.size());
   const pipeline::VideoRunResult result = pipeline::renderVideo(scene, window, {.window = {.from = from, .to = to}});
   std::vector<std::size_t> inside;

@@ -15,8 +15,11 @@
 
 namespace coinroll::cli {
 
-std::pair<nlohmann::json, std::string> loadSceneDocument(const SceneSource& source) {
+std::pair<nlohmann::json, std::string> loadSceneDocument(const SceneSource& source,
+                                                         const std::optional<nlohmann::json>& initial) {
   nlohmann::json document = source.file ? scene::readSceneDocument(*source.file) : scene::builtInDefaultScene();
+  // A document that is no object has no initial block to replace: the loader names what it is.
+  if (initial && document.is_object()) document["initial"] = *initial;
   for (const std::string& assignment : source.overrides) scene::applyOverride(document, assignment);
   return {document, source.file ? *source.file : "built-in default scene"};
 }

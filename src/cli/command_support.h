@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <ostream>
 #include <stdexcept>
 #include <string>
@@ -21,8 +22,11 @@
 
 namespace coinroll::cli {
 
-// The scene document with --set applied, and the name its messages use.
-std::pair<nlohmann::json, std::string> loadSceneDocument(const SceneSource& source);
+// The scene document with --set applied, and the name its messages use. A given `initial`
+// replaces the scene's initial block before the --set ones apply, so that --set initial.phi=45
+// lands on it instead of being replaced by it (steady --kind).
+std::pair<nlohmann::json, std::string> loadSceneDocument(const SceneSource& source,
+                                                         const std::optional<nlohmann::json>& initial = std::nullopt);
 
 // An output must never replace a file the command reads: refused before anything runs.
 void refuseOverwritingInput(const std::string& option, const std::filesystem::path& output,

@@ -39,12 +39,9 @@ namespace {
 
 constexpr double kDegreesPerRadian = 180 / std::numbers::pi;
 
-scene::SceneConfig loadScene(const SceneSource& source) {
-  const scene::ParseOptions options{.solverMethods = integrate::methodNames()};
-  if (source.file) return scene::loadScene(*source.file, source.overrides, options);
-  nlohmann::json document = scene::builtInDefaultScene();
-  for (const std::string& assignment : source.overrides) scene::applyOverride(document, assignment);
-  return scene::parseScene(document, "built-in default scene", options);
+scene::SceneConfig loadScene(const SceneSource& source, const std::optional<nlohmann::json>& initial = std::nullopt) {
+  const auto [document, sourceName] = loadSceneDocument(source, initial);
+  return scene::parseScene(document, sourceName, {.solverMethods = integrate::methodNames()});
 }
 
 // A scene as a command that writes pictures resolves it (--set applied), with the provenance its
@@ -144,25 +141,20 @@ void runSimulate(const SimulateOptions& options) {
 }
 
 void runSteady(const SteadyOptions& options) {
-  SceneSource source = options.scene;
   for (const auto& [name, value] : {std::pair{"--theta", options.thetaDegrees}, std::pair{"--omega-Z", options.omega_Z}}) {
     // JSON has no NaN or infinity: passed on, they would come back as a null the scene names.
     if (value && !std::isfinite(*value)) throw UsageError(fmt::format("{}: must be a finite number, got {}", name, *value));
   }
+  std::optional<nlohmann::json> initial;  // the steady state the options name, as the scene file would
   if (options.kind) {
-    nlohmann::json initial = {{"steady", *options.kind}};
-    if (options.thetaDegrees) initial["theta"] = *options.thetaDegrees;
-    if (options.omega_Z) initial["omega_Z"] = *options.omega_Z;
-    if (options.branch) initial["branch"] = *options.branch;
-    // The kind replaces the scene's initial block first, so that --set initial.phi=45 lands on it
-    // instead of being replaced by it. Replacement characters keep argv that is not UTF-8 an input
-    // error the parser names.
-    source.overrides.insert(source.overrides.begin(),
-                            "initial=" + initial.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
+    initial = nlohmann::json{{"steady", *options.kind}};
+    if (options.thetaDegrees) (*initial)["theta"] = *options.thetaDegrees;
+    if (options.omega_Z) (*initial)["omega_Z"] = *options.omega_Z;
+    if (options.branch) (*initial)["branch"] = *options.branch;
   } else if (options.thetaDegrees || options.omega_Z || options.branch) {
     throw UsageError("--theta, --omega-Z and --branch describe a steady state: give --kind too");
   }
-  const scene::SceneConfig scene = loadScene(source);
+  const scene::SceneConfig scene = loadScene(options.scene, initial);
   if (!std::holds_alternative<scene::SteadyInitial>(scene.initial)) {
     throw UsageError("steady: give --kind straight|circle|spin-in-place, or a scene whose initial names a steady state");
   }

@@ -13,6 +13,7 @@
 #include <exception>
 #include <iostream>
 #include <new>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -226,6 +227,57 @@ CLI::App* addCompareCommand(CLI::App& app, CompareOptions& options) {
   return command;
 }
 
+// CLI11 reports a misspelt command only as "a subcommand is required": the message naming it and
+// the choices, when argv[1] is no command.
+std::optional<std::string> unknownCommandMessage(const CLI::App& app, int argc, char** argv) {
+  std::string commands;
+  bool known = false;
+  for (const CLI::App* command : app.get_subcommands({})) {
+    commands += (commands.empty() ? "" : ", ") + command->get_name();
+    known = known || (argc > 1 && command->get_name() == argv[1]);
+  }
+  if (argc > 1 && argv[1][0] != '-' && !known) {
+    return "coinroll: error: unknown command '" + coinroll::scene::printable(argv[1]) + "'; the commands are " + commands +
+           " (coinroll --help)\n";
+  }
+  return std::nullopt;
+}
+
+// CLI11 reads an empty value of a number as 0 (--time '' drew t = 0; --min-psnr '' dropped the
+// limit): every numeric option refuses it, naming itself.
+void refuseEmptyNumbers(CLI::App& app) {
+  constexpr std::array<std::string_view, 16> kNumericOptions = {
+      "--sample-dt", "--max-rows", "--theta", "--omega-Z", "--max-frames", "--from", "--to", "--time", "--strobe", "--strobe-from",
+      "--threads", "--max-points", "--max-differing-pixels", "--max-differing-fraction", "--channel-tolerance",
+      "--min-psnr"};
+  for (CLI::App* command : app.get_subcommands({})) {
+    for (CLI::Option* option : command->get_options()) {
+      if (std::find(kNumericOptions.begin(), kNumericOptions.end(), option->get_name()) == kNumericOptions.end()) continue;
+      option->check(CLI::Validator(
+          [](std::string& text) { return text.empty() ? std::string("the value is empty; give a number") : std::string(); },
+          ""));
+    }
+  }
+}
+
+// The top-level help's footer: examples of every command and the exit codes.
+void addExamplesFooter(CLI::App& app) {
+  app.footer(
+      "Examples:\n"
+      "  coinroll render                                (the built-in default scene -> coinroll.mp4)\n"
+      "  coinroll render examples/steady_circle.json -o circle.mp4\n"
+      "  coinroll simulate --csv default.csv            (the built-in default scene)\n"
+      "  coinroll simulate examples/steady_circle.json --csv circle.csv\n"
+      "  coinroll simulate scene.json --csv - --sample-dt 0.001 --set initial.theta=12 | head\n"
+      "  coinroll still examples/steady_circle.json --time 1.5 -o circle.png\n"
+      "  coinroll steady --kind circle --theta 20 --omega-Z 10\n"
+      "  coinroll steady --kind straight --omega-Z 5 --set coin.shape=\\\"ring\\\"\n"
+      "  coinroll sweep examples/straight_stable.json --grid initial.omega_Z=2:20:10 -o sweep.csv\n"
+      "Exit codes: 0 success, 2 bad command line or scene (nothing written), 1 other failure.\n"
+      "Run 'coinroll COMMAND --help' for a command's options.");
+
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -240,19 +292,7 @@ int main(int argc, char** argv) {
       throw CLI::ValidationError("COINROLL_GL", e.what());  // exit 2, as for any command under it
     }
   }, "Print the version, the git revision and the OpenGL back ends (COINROLL_GL), and exit");
-  app.footer(
-      "Examples:\n"
-      "  coinroll render                                (the built-in default scene -> coinroll.mp4)\n"
-      "  coinroll render examples/steady_circle.json -o circle.mp4\n"
-      "  coinroll simulate --csv default.csv            (the built-in default scene)\n"
-      "  coinroll simulate examples/steady_circle.json --csv circle.csv\n"
-      "  coinroll simulate scene.json --csv - --sample-dt 0.001 --set initial.theta=12 | head\n"
-      "  coinroll still examples/steady_circle.json --time 1.5 -o circle.png\n"
-      "  coinroll steady --kind circle --theta 20 --omega-Z 10\n"
-      "  coinroll steady --kind straight --omega-Z 5 --set coin.shape=\\\"ring\\\"\n"
-      "  coinroll sweep examples/straight_stable.json --grid initial.omega_Z=2:20:10 -o sweep.csv\n"
-      "Exit codes: 0 success, 2 bad command line or scene (nothing written), 1 other failure.\n"
-      "Run 'coinroll COMMAND --help' for a command's options.");
+  addExamplesFooter(app);
 
   SimulateOptions simulate;
   CLI::App* simulateCommand = addSimulateCommand(app, simulate);
@@ -269,32 +309,11 @@ int main(int argc, char** argv) {
   CompareOptions compare;
   CLI::App* compareCommand = addCompareCommand(app, compare);
 
-  // CLI11 reports a misspelt command only as "a subcommand is required": name it and the choices.
-  std::string commands;
-  bool known = false;
-  for (const CLI::App* command : app.get_subcommands({})) {
-    commands += (commands.empty() ? "" : ", ") + command->get_name();
-    known = known || (argc > 1 && command->get_name() == argv[1]);
-  }
-  if (argc > 1 && argv[1][0] != '-' && !known) {
-    std::cerr << "coinroll: error: unknown command '" << coinroll::scene::printable(argv[1]) << "'; the commands are " << commands
-              << " (coinroll --help)\n";
+  if (const std::optional<std::string> message = unknownCommandMessage(app, argc, argv)) {
+    std::cerr << *message;
     return kExitBadInput;
   }
-  // CLI11 reads an empty value of a number as 0 (--time '' drew t = 0; --min-psnr '' dropped the
-  // limit): every numeric option refuses it, naming itself.
-  constexpr std::array<std::string_view, 16> kNumericOptions = {
-      "--sample-dt", "--max-rows", "--theta", "--omega-Z", "--max-frames", "--from", "--to", "--time", "--strobe", "--strobe-from",
-      "--threads", "--max-points", "--max-differing-pixels", "--max-differing-fraction", "--channel-tolerance",
-      "--min-psnr"};
-  for (CLI::App* command : app.get_subcommands({})) {
-    for (CLI::Option* option : command->get_options()) {
-      if (std::find(kNumericOptions.begin(), kNumericOptions.end(), option->get_name()) == kNumericOptions.end()) continue;
-      option->check(CLI::Validator(
-          [](std::string& text) { return text.empty() ? std::string("the value is empty; give a number") : std::string(); },
-          ""));
-    }
-  }
+  refuseEmptyNumbers(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -97,10 +97,11 @@ struct PointRow {
   bool failed = false;  // its end column holds "error: <reason>"
 };
 
-// Each point is a scene document parsed by the loader, like any scene: the point is validated by
-// exactly the loader's rules (ranges and cross-field checks alike), and a failed point's row
-// quotes the loader's message in the scene's own units. Parsing costs microseconds against the
-// milliseconds a point's integration takes.
+// Each point is the scene document with its grid values set as `--set KEY=VALUE` sets them, then
+// parsed by the loader like any scene: the point is validated by exactly the loader's rules
+// (ranges and cross-field checks alike, which read the file's units: degrees, JSON integers), a
+// failed point's row quotes the loader's message, and a value typed as the --set text types it
+// (5 an integer, 5.5 a float) gives the same row as the same --set would.
 PointRow pointRow(const SweepSpec& spec, long point, const std::atomic<bool>* cancel) {
   const std::vector<double> values = pointValues(spec.axes, point);
   PointRow row{.text = fmt::format("{}", point), .failed = false};
@@ -140,6 +141,8 @@ void refuseMisnamedAxes(const SweepSpec& spec) {
         throw std::invalid_argument(fmt::format("--grid {}: given twice; give each field one axis", axis.key));
       }
     }
+    // One parse per axis, with that axis alone changed: a parse stops at its first error, so only
+    // this way does a misnamed key get named by its own axis.
     nlohmann::json document = spec.scene;
     try {
       scene::applyOverride(document, fmt::format("{}={}", axis.key, axis.valueAt(0)));

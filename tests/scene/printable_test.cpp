@@ -19,7 +19,7 @@ TEST(Printable, ControlCharactersAreShownAsEscapesAndLineBreaksAsBackslashN) {
 
 TEST(Printable, AKeyWithControlCharactersIsShownAsAJsonString) {
   EXPECT_EQ(printableKey("theta"), "theta");
-  EXPECT_EQ(printableKey(std::string("ab\0c\x1b[31m", 7)), "\"ab\\u0000c\\u001b[31m\"");
+  EXPECT_EQ(printableKey(std::string("ab\0c\x1b[31m", 9)), "\"ab\\u0000c\\u001b[31m\"");
   EXPECT_EQ(printableKey("a\tb"), "\"a\\tb\"");  // in a key even a tab is escaped: keys are JSON strings
 }
 

@@ -78,10 +78,10 @@ TEST(ReadmeSceneTable, SolverDefaultsAndRangesAreTheIntegratorsOwn) {
   EXPECT_EQ(row("`solver.method`").rule, methods);
   EXPECT_EQ(numbers(row("`solver.rtol`, `solver.atol`").fallback), (std::vector{solver.rtol, solver.atol}));
   const std::string& tolerances = row("`solver.rtol`, `solver.atol`").rule;
-  EXPECT_EQ(range(tolerances, R"(rtol in \[([^,]+), ([^\]]+)\])"), std::pair(integrate::kMinRtol, integrate::kMaxRtol));
+  EXPECT_EQ(range(tolerances, R"(rtol in \[([^,]+), ([^\]]+)\])"), (std::pair(integrate::kMinRtol, integrate::kMaxRtol)));
   EXPECT_EQ(range(tolerances, R"(atol in \((0), ([^\]]+)\])").second, integrate::kMaxAtol);
   EXPECT_EQ(numbers(row("`solver.dt`").fallback), std::vector{solver.dt});
-  EXPECT_EQ(range(row("`solver.dt`").rule, R"(in \[([^,]+), ([^\]]+)\])"), std::pair(integrate::kMinDt, integrate::kMaxDt));
+  EXPECT_EQ(range(row("`solver.dt`").rule, R"(in \[([^,]+), ([^\]]+)\])"), (std::pair(integrate::kMinDt, integrate::kMaxDt)));
 }
 
 TEST(ReadmeSceneTable, RenderDefaultsAndRangesAreTheLoadersOwn) {
@@ -89,9 +89,9 @@ TEST(ReadmeSceneTable, RenderDefaultsAndRangesAreTheLoadersOwn) {
   EXPECT_EQ(numbers(row("`render.width`, `height`").fallback),
             (std::vector<double>{static_cast<double>(render.picture.width), static_cast<double>(render.picture.height)}));
   EXPECT_EQ(range(row("`render.width`, `height`").rule, R"((\d+)\.\.(\d+))"),
-            std::pair<double, double>(render::kMinImageSide, render::kMaxImageSide));
+            (std::pair<double, double>(render::kMinImageSide, render::kMaxImageSide)));
   EXPECT_EQ(numbers(row("`render.fps`").fallback), std::vector<double>{static_cast<double>(render.fps)});
-  EXPECT_EQ(range(row("`render.fps`").rule, R"((\d+)\.\.(\d+))"), std::pair<double, double>(1, kMaxFps));
+  EXPECT_EQ(range(row("`render.fps`").rule, R"((\d+)\.\.(\d+))"), (std::pair<double, double>(1, kMaxFps)));
   EXPECT_EQ(numbers(row("`render.msaa`").fallback), std::vector<double>{static_cast<double>(render.picture.msaa)});
   EXPECT_NE(row("`render.msaa`").rule.find(fmt::format("{}", fmt::join(render::kMsaaSampleCounts, ", "))), std::string::npos);
   EXPECT_EQ(numbers(row("`render.time_scale`").fallback), std::vector{render.timeScale});
@@ -101,9 +101,9 @@ TEST(ReadmeSceneTable, RenderDefaultsAndRangesAreTheLoadersOwn) {
   EXPECT_EQ(row("`render.camera.mode`").fallback, fmt::format("`\"{}\"`", kCameraModeNames[static_cast<std::size_t>(render.camera.mode)]));
   EXPECT_EQ(row("`render.video`").fallback, fmt::format("`{{\"crf\": {}, \"preset\": \"{}\", \"threads\": {}}}`", render.video.crf,
                                                          render.video.preset, render.video.threads));
-  const std::string& video = row("`render.video`").rule;
-  EXPECT_EQ(range(video, R"(crf (\d+)\.\.(\d+))"), std::pair<double, double>(0, video::kMaxCrf));
-  EXPECT_EQ(range(video, R"(threads (\d+)\.\.(\d+))"), std::pair<double, double>(1, video::kMaxX264Threads));
+  const std::string& videoRule = row("`render.video`").rule;
+  EXPECT_EQ(range(videoRule, R"(crf (\d+)\.\.(\d+))"), (std::pair<double, double>(0, video::kMaxCrf)));
+  EXPECT_EQ(range(videoRule, R"(threads (\d+)\.\.(\d+))"), (std::pair<double, double>(1, video::kMaxX264Threads)));
 }
 
 TEST(ReadmeSceneTable, TopLevelDefaultsAreTheLoadersOwn) {

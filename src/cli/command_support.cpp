@@ -21,7 +21,7 @@ std::pair<nlohmann::json, std::string> loadSceneDocument(const SceneSource& sour
   // A document that is no object has no initial block to replace: the loader names what it is.
   if (initial && document.is_object()) document["initial"] = *initial;
   for (const std::string& assignment : source.overrides) scene::applyOverride(document, assignment);
-  return {document, source.file ? *source.file : "built-in default scene"};
+  return {std::move(document), source.file ? *source.file : "built-in default scene"};
 }
 
 namespace {

@@ -13,6 +13,7 @@
 #include <exception>
 #include <iostream>
 #include <new>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -20,9 +21,12 @@
 #include "cli/commands.h"
 #include "cli/exit_codes.h"
 #include "cli/interrupts.h"
-#include "cli/terminal_text.h"
 #include "cli/version.h"
 #include "pipeline/resources.h"
+#include "pipeline/sweep.h"
+#include "pipeline/video_frames.h"
+#include "scene/render_output.h"
+#include "scene/json_reader.h"
 #include "scene/scene_loader.h"
 
 namespace {
@@ -60,20 +64,204 @@ bool standardOutputWritten() {
   return false;
 }
 
-}  // namespace
+CLI::App* addSimulateCommand(CLI::App& app, SimulateOptions& options) {
+  CLI::App* command = app.add_subcommand(
+      "simulate", "Integrate a scene and write the trajectory CSV (t, angles, rates, positions, energy, N, F)");
+  addSceneOptions(*command, options.scene, false);  // no file: the built-in default scene
+  command->add_option("--csv", options.csvPath, "Output CSV path, or - for stdout")->required();
+  command->add_option("--sample-dt", options.sampleDt, "Time between rows, s (rows at t = k S)")
+      ->capture_default_str();
+  command->add_option("--max-rows", options.maxRows, fmt::format("Refuse runs whose duration / sample step exceeds this many rows (default {})", kDefaultMaxRows))->check(kAtLeastOne);
+  return command;
+}
 
-int main(int argc, char** argv) {
-  // Before anything allocates on a second thread (pipeline/resources.h says why).
-  coinroll::pipeline::fitAllocatorToAddressSpaceLimit();
-  CLI::App app{"coinroll: a coin rolling without slipping on a table, simulated, rendered headless to MP4 and PNG."};
-  app.require_subcommand(1);
-  app.set_version_flag("--version", [] {
-    try {
-      return versionText();
-    } catch (const std::invalid_argument& e) {
-      throw CLI::ValidationError("COINROLL_GL", e.what());  // exit 2, as for any command under it
+CLI::App* addSteadyCommand(CLI::App& app, SteadyOptions& options) {
+  CLI::App* command = app.add_subcommand(
+      "steady", "Steady motions (straight, circle, spin in place) of a coin: initial conditions and stability K");
+  addSceneOptions(*command, options.scene, false);
+  command->add_option("--kind", options.kind, "straight | circle | spin-in-place")
+      ->check(CLI::IsMember({"straight", "circle", "spin-in-place"}));
+  command->add_option("--theta", options.thetaDegrees, "Tilt from vertical, degrees (circle, spin-in-place)");
+  command->add_option("--omega-Z", options.omega_Z, "Spin about the coin normal, rad/s (straight, circle)");
+  command->add_option("--branch", options.branch, "Circle root: + (f+, default) or - (f-)")
+      ->check(CLI::IsMember({"+", "-"}));
+  command->footer(
+      "Without a scene file the built-in default coin is used. With coin.thickness (and coin.edge_radius) the coin\n"
+      "is a solid with a rounded rim (docs/rim.md §5): its steady states and K follow the rim, e.g.\n"
+      "  coinroll steady --kind straight --omega-Z 12 --set coin.thickness=0.013\n"
+      "A rim with corners (edge_radius < thickness / 2) switches corners at upright, so it has no straight rolling.");
+  return command;
+}
+
+CLI::App* addRenderCommand(CLI::App& app, RenderOptions& options) {
+  CLI::App* command = app.add_subcommand(
+      "render",
+      "Render a scene to an MP4 (H.264), a GIF, a WebM (VP9), a MOV (ProRes 4444) or a PNG sequence; without a scene, "
+      "the built-in default");
+  addSceneOptions(*command, options.scene, false);
+  command->add_option("-o,--output", options.output,
+                            "Output, its kind by the extension (any case): NAME.mp4 (H.264), NAME.gif (looping), NAME.webm "
+                            "(VP9), NAME.mov (ProRes 4444), or a PNG sequence pattern like frames_%05d.png (frames "
+                            "numbered from 0); default: the scene's name + .mp4 (coinroll.mp4 for the built-in scene)");
+  std::string sizes, sizeNames;
+  for (const coinroll::scene::PictureSize& size : coinroll::scene::kPictureSizes) {
+    const bool last = &size == &coinroll::scene::kPictureSizes.back();
+    sizes += fmt::format("{}{} ({}x{})", sizes.empty() ? "" : last ? " or " : ", ", size.name, size.width, size.height);
+    sizeNames += fmt::format("{}{}", sizeNames.empty() ? "" : "|", size.name);
+  }
+  command->add_option("--size", options.size, "Picture size, setting render.width x render.height: " + sizes)->type_name(sizeNames);
+  command->add_option("--from", options.from,
+                            "Write only the frames whose simulated time is at least T0 s (default 0); the simulation still "
+                            "runs from 0, so they are the full render's frames")
+      ->type_name("T0");
+  command->add_option("--to", options.to, "Write only the frames whose simulated time is at most T1 s (default: the end)")
+      ->type_name("T1");
+  command->add_flag("-q,--quiet", options.quiet, "No progress line and no summary on stderr");
+  command->add_option("--max-frames", options.maxFrames, fmt::format("Refuse clips of more frames than this (default {}; a duration alone giving {} times as many is refused before any work)", coinroll::pipeline::kDefaultMaxFrames, coinroll::pipeline::kUpFrontFrameFactor))->check(kAtLeastOne);
+  command->footer(
+      "Frame k shows simulated time k * render.time_scale / render.fps, from the integrator's dense output.\n"
+      "Size, fps, anti-aliasing, camera, trace, overlay and encoder come from the scene's render block, e.g.\n"
+      "  coinroll render                                    (built-in scene -> coinroll.mp4)\n"
+      "  coinroll render examples/steady_circle.json -o circle.mp4\n"
+      "  coinroll render examples/ring.json -o ring_%04d.png --set render.fps=10\n"
+      "  coinroll render scene.json --set render.time_scale=0.25 --set render.camera.mode=follow\n"
+      "  coinroll render scene.json -o loop.gif --size 480p --from 1 --to 3\n"
+      "  coinroll render scene.json -o coin.mov --set render.background=\\\"transparent\\\"   (alpha for an editor)\n"
+      "Outputs appear only when complete (written under a temporary name, then renamed); Ctrl-C leaves nothing.");
+  return command;
+}
+
+CLI::App* addStillCommand(CLI::App& app, StillOptions& options) {
+  CLI::App* command = app.add_subcommand(
+      "still", "Render one PNG of a scene at a simulated time (optionally a stroboscopic figure)");
+  addSceneOptions(*command, options.scene, false);  // no file: the built-in default scene
+  command->add_option("--time", options.time, "Simulated time to show, s (0 to the scene's duration)")->required();
+  command->add_option("-o,--output", options.output, "Output PNG path (written atomically)")->required();
+  command->add_option("--strobe", options.strobe,
+                           "Overlay N semi-transparent copies of the coin at evenly spaced earlier times (a figure)")
+      ->capture_default_str();
+  command->add_option("--strobe-from", options.strobeFrom,
+                           "Simulated time of the first copy, s (default 0): e.g. the last second of a spin-down");
+  command->footer(
+      "Size, anti-aliasing, camera, trace and overlay come from the scene's render block, e.g.\n"
+      "  coinroll still examples/steady_circle.json --time 1.5 -o circle.png --set render.width=640 --set render.height=360\n"
+      "  coinroll still examples/perturbed_circle.json --time 2 --strobe 12 -o strobe.png --set render.hud=false\n"
+      "  coinroll still examples/euler_disk.json --time 98.77 --strobe 16 --strobe-from 97.77 -o last_second.png");
+  return command;
+}
+
+CLI::App* addSweepCommand(CLI::App& app, SweepOptions& options) {
+  CLI::App* command = app.add_subcommand(
+      "sweep", "Simulate every point of a grid over scene fields; one summary row per point (all cores)");
+  addSceneOptions(*command, options.scene, false);
+  command->add_option("--grid", options.grid,
+                           "KEY.PATH=START:STOP:COUNT: COUNT evenly spaced values of a scene field, in the scene's units "
+                           "(degrees for angles); START:STOP:COUNT:log: geometrically spaced (START, STOP > 0); "
+                           "V1,V2,V3: the values listed; repeatable, the last axis runs fastest")
+      ->required()
+      ->type_name("KEY=START:STOP:COUNT[:log]|KEY=V1,V2,...");
+  command->add_option("-o,--output", options.output, "Output CSV path (written atomically), or - for standard output")->required();
+  command->add_option("--shard", options.shard,
+                           "Compute only the points p with p mod N = K - 1 (K/N, 1 <= K <= N); auto/N: K from a Slurm "
+                           "array task ($SLURM_ARRAY_TASK_ID, sbatch --array=1-N)")
+      ->type_name("K/N|auto/N");
+  command->add_option("--threads", options.threads, "Worker threads (default 0: every hardware thread)");
+  command->add_option("--max-points", options.maxPoints, fmt::format("Refuse grids larger than this (default {})", coinroll::pipeline::kDefaultMaxPoints))->check(kAtLeastOne);
+  command->add_flag("-q,--quiet", options.quiet,
+                         "No progress and no summary on stderr (progress is a line in place on a terminal, else a line "
+                         "per tenth of the points and at least one every 30 s)");
+  command->footer(
+      "Rows: point, the grid values, end (duration, or the event that ended the run, or error: why), t_end, theta_min,\n"
+      "theta_max (rad, over samples every 0.01 s and the end), energy_start, energy_end (J). Same bytes for any --threads.\n"
+      "  coinroll sweep examples/straight_stable.json --grid initial.omega_Z=2:20:10 --grid initial.theta=1:10:10 -o map.csv\n"
+      "  coinroll sweep scene.json --grid coin.mass=0.01:1:5:log --grid initial.theta=5,10,20 -o mass.csv\n"
+      "  coinroll sweep scene.json --grid coin.mass=0.1:1:10 --shard auto/8 -o part_${SLURM_ARRAY_TASK_ID}.csv\n"
+      "      (one task of a Slurm array, sbatch --array=1-8)\n"
+      "  coinroll sweep-merge -o all.csv part*.csv\n"
+      "Clusters (Slurm job arrays, GNU parallel): docs/sweeps.md.");
+  return command;
+}
+
+CLI::App* addSweepMergeCommand(CLI::App& app, SweepMergeOptions& options) {
+  CLI::App* command = app.add_subcommand(
+      "sweep-merge", "Merge the shard files of one sweep into the file the unsharded sweep writes");
+  command->add_option("-o,--output", options.output, "Output CSV path (written atomically), or - for standard output")->required();
+  command->add_option("shards", options.shards, "Shard CSV files (any order)")->required();
+  command->footer("Fails, naming the points, if a point is missing or repeated.");
+  return command;
+}
+
+CLI::App* addCompareCommand(CLI::App& app, CompareOptions& options) {
+  CLI::App* command = app.add_subcommand(
+      "compare", "Compare two PNGs with the rule of coinroll's golden tests: PSNR, differing pixels, exit 0 same / 1 different");
+  command->add_option("a", options.a, "Reference PNG (e.g. the committed golden); the diff image is drawn from it")
+      ->required();
+  command->add_option("b", options.b, "PNG to check against it")->required();
+  command->add_option("--max-differing-pixels", options.maxDifferingPixels,
+                             "Pass with at most N differing pixels (default 0 unless --max-differing-fraction is given)")
+      ->type_name("N");
+  command->add_option("--max-differing-fraction", options.maxDifferingFraction,
+                             "Pass with at most this fraction of the pixels differing, 0..1 (0.01 = 1 %)")
+      ->type_name("F");
+  command->add_option("--channel-tolerance", options.channelTolerance,
+                             "A pixel differs only when a channel (R, G, B, A) differs by more than T levels, 0..255")
+      ->type_name("T")
+      ->capture_default_str();
+  command->add_option("--min-psnr", options.minPsnr, "Pass only with a PSNR (over R, G, B) of at least DB decibels")
+      ->type_name("DB");
+  command->add_option("--diff", options.diff,
+                             "Write a diff PNG here (written atomically, whatever the verdict): equal pixels dim grey of A, "
+                             "differing pixels red (brighter = larger), off by no more than --channel-tolerance amber")
+      ->type_name("PATH.png");
+  command->footer(
+      "The default is an exact match; every limit given must hold. One line on stdout, e.g.\n"
+      "  PSNR 47.31 dB, 12 of 57600 pixels differ (0.02083 %, channel tolerance 0), max channel difference 9: "
+      "DIFFERENT (12 > --max-differing-pixels 0)\n"
+      "PSNR is inf for identical pixels. Exit: 0 within the limits, 1 outside them, 2 could not compare (a missing file,\n"
+      "not a PNG, different sizes, a bad limit, the diff not written).\n"
+      "  coinroll compare golden.png new.png                (exact: the same Mesa and llvmpipe code path, or a pinned one)\n"
+      "  coinroll compare golden.png new.png --max-differing-fraction 0.001 --min-psnr 60 --diff diff.png\n"
+      "      (a CI runner with another x86-64 CPU and the same Mesa, where llvmpipe's shader code rounds a few pixels\n"
+      "       differently: the rule of coinroll's own golden tests under COINROLL_GOLDEN_TOLERANT=1; measured in\n"
+      "       docs/snapshot_testing.md, which also gives the environment that makes the bytes identical instead)");
+  return command;
+}
+
+// CLI11 reports a misspelt command only as "a subcommand is required": the message naming it and
+// the choices, when argv[1] is no command.
+std::optional<std::string> unknownCommandMessage(const CLI::App& app, int argc, char** argv) {
+  std::string commands;
+  bool known = false;
+  for (const CLI::App* command : app.get_subcommands({})) {
+    commands += (commands.empty() ? "" : ", ") + command->get_name();
+    known = known || (argc > 1 && command->get_name() == argv[1]);
+  }
+  if (argc > 1 && argv[1][0] != '-' && !known) {
+    return "coinroll: error: unknown command '" + coinroll::scene::printable(argv[1]) + "'; the commands are " + commands +
+           " (coinroll --help)\n";
+  }
+  return std::nullopt;
+}
+
+// CLI11 reads an empty value of a number as 0 (--time '' drew t = 0; --min-psnr '' dropped the
+// limit): every numeric option refuses it, naming itself.
+void refuseEmptyNumbers(CLI::App& app) {
+  constexpr std::array<std::string_view, 16> kNumericOptions = {
+      "--sample-dt", "--max-rows", "--theta", "--omega-Z", "--max-frames", "--from", "--to", "--time", "--strobe", "--strobe-from",
+      "--threads", "--max-points", "--max-differing-pixels", "--max-differing-fraction", "--channel-tolerance",
+      "--min-psnr"};
+  for (CLI::App* command : app.get_subcommands({})) {
+    for (CLI::Option* option : command->get_options()) {
+      if (std::find(kNumericOptions.begin(), kNumericOptions.end(), option->get_name()) == kNumericOptions.end()) continue;
+      option->check(CLI::Validator(
+          [](std::string& text) { return text.empty() ? std::string("the value is empty; give a number") : std::string(); },
+          ""));
     }
-  }, "Print the version, the git revision and the OpenGL back ends (COINROLL_GL), and exit");
+  }
+}
+
+// The top-level help's footer: examples of every command and the exit codes.
+void addExamplesFooter(CLI::App& app) {
   app.footer(
       "Examples:\n"
       "  coinroll render                                (the built-in default scene -> coinroll.mp4)\n"
@@ -88,178 +276,44 @@ int main(int argc, char** argv) {
       "Exit codes: 0 success, 2 bad command line or scene (nothing written), 1 other failure.\n"
       "Run 'coinroll COMMAND --help' for a command's options.");
 
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // Before anything allocates on a second thread (pipeline/resources.h says why).
+  coinroll::pipeline::fitAllocatorToAddressSpaceLimit();
+  CLI::App app{"coinroll: a coin rolling without slipping on a table, simulated, rendered headless to MP4 and PNG."};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", [] {
+    try {
+      return versionText();
+    } catch (const std::invalid_argument& e) {
+      throw CLI::ValidationError("COINROLL_GL", e.what());  // exit 2, as for any command under it
+    }
+  }, "Print the version, the git revision and the OpenGL back ends (COINROLL_GL), and exit");
+  addExamplesFooter(app);
+
   SimulateOptions simulate;
-  CLI::App* simulateCommand = app.add_subcommand(
-      "simulate", "Integrate a scene and write the trajectory CSV (t, angles, rates, positions, energy, N, F)");
-  addSceneOptions(*simulateCommand, simulate.scene, false);  // no file: the built-in default scene
-  simulateCommand->add_option("--csv", simulate.csvPath, "Output CSV path, or - for stdout")->required();
-  simulateCommand->add_option("--sample-dt", simulate.sampleDt, "Time between rows, s (rows at t = k S)")
-      ->capture_default_str();
-  simulateCommand->add_option("--max-rows", simulate.maxRows, "Refuse runs whose duration / sample step exceeds this many rows (default 1000000000)")->check(kAtLeastOne);
-
+  CLI::App* simulateCommand = addSimulateCommand(app, simulate);
   SteadyOptions steady;
-  CLI::App* steadyCommand = app.add_subcommand(
-      "steady", "Steady motions (straight, circle, spin in place) of a coin: initial conditions and stability K");
-  addSceneOptions(*steadyCommand, steady.scene, false);
-  steadyCommand->add_option("--kind", steady.kind, "straight | circle | spin-in-place")
-      ->check(CLI::IsMember({"straight", "circle", "spin-in-place"}));
-  steadyCommand->add_option("--theta", steady.thetaDegrees, "Tilt from vertical, degrees (circle, spin-in-place)");
-  steadyCommand->add_option("--omega-Z", steady.omega_Z, "Spin about the coin normal, rad/s (straight, circle)");
-  steadyCommand->add_option("--branch", steady.branch, "Circle root: + (f+, default) or - (f-)")
-      ->check(CLI::IsMember({"+", "-"}));
-  steadyCommand->footer(
-      "Without a scene file the built-in default coin is used. With coin.thickness (and coin.edge_radius) the coin\n"
-      "is a solid with a rounded rim (docs/rim.md §5): its steady states and K follow the rim, e.g.\n"
-      "  coinroll steady --kind straight --omega-Z 12 --set coin.thickness=0.013\n"
-      "A rim with corners (edge_radius < thickness / 2) switches corners at upright, so it has no straight rolling.");
-
+  CLI::App* steadyCommand = addSteadyCommand(app, steady);
   RenderOptions render;
-  CLI::App* renderCommand = app.add_subcommand(
-      "render",
-      "Render a scene to an MP4 (H.264), a GIF, a WebM (VP9), a MOV (ProRes 4444) or a PNG sequence; without a scene, "
-      "the built-in default");
-  addSceneOptions(*renderCommand, render.scene, false);
-  renderCommand->add_option("-o,--output", render.output,
-                            "Output, its kind by the extension (any case): NAME.mp4 (H.264), NAME.gif (looping), NAME.webm "
-                            "(VP9), NAME.mov (ProRes 4444), or a PNG sequence pattern like frames_%05d.png (frames "
-                            "numbered from 0); default: the scene's name + .mp4 (coinroll.mp4 for the built-in scene)");
-  renderCommand->add_option("--size", render.size,
-                            "Picture size, setting render.width x render.height: 480p (854x480), 720p (1280x720), 1080p "
-                            "(1920x1080), 1440p (2560x1440) or 2160p (3840x2160)")
-      ->type_name("480p|720p|1080p|1440p|2160p");
-  renderCommand->add_option("--from", render.from,
-                            "Write only the frames whose simulated time is at least T0 s (default 0); the simulation still "
-                            "runs from 0, so they are the full render's frames")
-      ->type_name("T0");
-  renderCommand->add_option("--to", render.to, "Write only the frames whose simulated time is at most T1 s (default: the end)")
-      ->type_name("T1");
-  renderCommand->add_flag("-q,--quiet", render.quiet, "No progress line and no summary on stderr");
-  renderCommand->add_option("--max-frames", render.maxFrames, "Refuse clips of more frames than this (default 1000000; a duration alone giving 1000 times as many is refused before any work)")->check(kAtLeastOne);
-  renderCommand->footer(
-      "Frame k shows simulated time k * render.time_scale / render.fps, from the integrator's dense output.\n"
-      "Size, fps, anti-aliasing, camera, trace, overlay and encoder come from the scene's render block, e.g.\n"
-      "  coinroll render                                    (built-in scene -> coinroll.mp4)\n"
-      "  coinroll render examples/steady_circle.json -o circle.mp4\n"
-      "  coinroll render examples/ring.json -o ring_%04d.png --set render.fps=10\n"
-      "  coinroll render scene.json --set render.time_scale=0.25 --set render.camera.mode=follow\n"
-      "  coinroll render scene.json -o loop.gif --size 480p --from 1 --to 3\n"
-      "  coinroll render scene.json -o coin.mov --set render.background=\\\"transparent\\\"   (alpha for an editor)\n"
-      "Outputs appear only when complete (written under a temporary name, then renamed); Ctrl-C leaves nothing.");
-
+  CLI::App* renderCommand = addRenderCommand(app, render);
   StillOptions still;
-  CLI::App* stillCommand = app.add_subcommand(
-      "still", "Render one PNG of a scene at a simulated time (optionally a stroboscopic figure)");
-  addSceneOptions(*stillCommand, still.scene, false);  // no file: the built-in default scene
-  stillCommand->add_option("--time", still.time, "Simulated time to show, s (0 to the scene's duration)")->required();
-  stillCommand->add_option("-o,--output", still.output, "Output PNG path (written atomically)")->required();
-  stillCommand->add_option("--strobe", still.strobe,
-                           "Overlay N semi-transparent copies of the coin at evenly spaced earlier times (a figure)")
-      ->capture_default_str();
-  stillCommand->add_option("--strobe-from", still.strobeFrom,
-                           "Simulated time of the first copy, s (default 0): e.g. the last second of a spin-down");
-  stillCommand->footer(
-      "Size, anti-aliasing, camera, trace and overlay come from the scene's render block, e.g.\n"
-      "  coinroll still examples/steady_circle.json --time 1.5 -o circle.png --set render.width=640 --set render.height=360\n"
-      "  coinroll still examples/perturbed_circle.json --time 2 --strobe 12 -o strobe.png --set render.hud=false\n"
-      "  coinroll still examples/euler_disk.json --time 98.77 --strobe 16 --strobe-from 97.77 -o last_second.png");
-
+  CLI::App* stillCommand = addStillCommand(app, still);
   SweepOptions sweep;
-  CLI::App* sweepCommand = app.add_subcommand(
-      "sweep", "Simulate every point of a grid over scene fields; one summary row per point (all cores)");
-  addSceneOptions(*sweepCommand, sweep.scene, false);
-  sweepCommand->add_option("--grid", sweep.grid,
-                           "KEY.PATH=START:STOP:COUNT: COUNT evenly spaced values of a scene field, in the scene's units "
-                           "(degrees for angles); START:STOP:COUNT:log: geometrically spaced (START, STOP > 0); "
-                           "V1,V2,V3: the values listed; repeatable, the last axis runs fastest")
-      ->required()
-      ->type_name("KEY=START:STOP:COUNT[:log]|KEY=V1,V2,...");
-  sweepCommand->add_option("-o,--output", sweep.output, "Output CSV path (written atomically), or - for standard output")->required();
-  sweepCommand->add_option("--shard", sweep.shard,
-                           "Compute only the points p with p mod N = K - 1 (K/N, 1 <= K <= N); auto/N: K from a Slurm "
-                           "array task ($SLURM_ARRAY_TASK_ID, sbatch --array=1-N)")
-      ->type_name("K/N|auto/N");
-  sweepCommand->add_option("--threads", sweep.threads, "Worker threads (default 0: every hardware thread)");
-  sweepCommand->add_option("--max-points", sweep.maxPoints, "Refuse grids larger than this (default 10000000)")->check(kAtLeastOne);
-  sweepCommand->add_flag("-q,--quiet", sweep.quiet,
-                         "No progress and no summary on stderr (progress is a line in place on a terminal, else a line "
-                         "per tenth of the points and at least one every 30 s)");
-  sweepCommand->footer(
-      "Rows: point, the grid values, end (duration, or the event that ended the run, or error: why), t_end, theta_min,\n"
-      "theta_max (rad, over samples every 0.01 s and the end), energy_start, energy_end (J). Same bytes for any --threads.\n"
-      "  coinroll sweep examples/straight_stable.json --grid initial.omega_Z=2:20:10 --grid initial.theta=1:10:10 -o map.csv\n"
-      "  coinroll sweep scene.json --grid coin.mass=0.01:1:5:log --grid initial.theta=5,10,20 -o mass.csv\n"
-      "  coinroll sweep scene.json --grid coin.mass=0.1:1:10 --shard auto/8 -o part_${SLURM_ARRAY_TASK_ID}.csv\n"
-      "      (one task of a Slurm array, sbatch --array=1-8)\n"
-      "  coinroll sweep-merge -o all.csv part*.csv\n"
-      "Clusters (Slurm job arrays, GNU parallel): docs/sweeps.md.");
-
+  CLI::App* sweepCommand = addSweepCommand(app, sweep);
   SweepMergeOptions sweepMerge;
-  CLI::App* sweepMergeCommand = app.add_subcommand(
-      "sweep-merge", "Merge the shard files of one sweep into the file the unsharded sweep writes");
-  sweepMergeCommand->add_option("-o,--output", sweepMerge.output, "Output CSV path (written atomically), or - for standard output")->required();
-  sweepMergeCommand->add_option("shards", sweepMerge.shards, "Shard CSV files (any order)")->required();
-  sweepMergeCommand->footer("Fails, naming the points, if a point is missing or repeated.");
-
+  CLI::App* sweepMergeCommand = addSweepMergeCommand(app, sweepMerge);
   CompareOptions compare;
-  CLI::App* compareCommand = app.add_subcommand(
-      "compare", "Compare two PNGs with the rule of coinroll's golden tests: PSNR, differing pixels, exit 0 same / 1 different");
-  compareCommand->add_option("a", compare.a, "Reference PNG (e.g. the committed golden); the diff image is drawn from it")
-      ->required();
-  compareCommand->add_option("b", compare.b, "PNG to check against it")->required();
-  compareCommand->add_option("--max-differing-pixels", compare.maxDifferingPixels,
-                             "Pass with at most N differing pixels (default 0 unless --max-differing-fraction is given)")
-      ->type_name("N");
-  compareCommand->add_option("--max-differing-fraction", compare.maxDifferingFraction,
-                             "Pass with at most this fraction of the pixels differing, 0..1 (0.01 = 1 %)")
-      ->type_name("F");
-  compareCommand->add_option("--channel-tolerance", compare.channelTolerance,
-                             "A pixel differs only when a channel (R, G, B, A) differs by more than T levels, 0..255")
-      ->type_name("T")
-      ->capture_default_str();
-  compareCommand->add_option("--min-psnr", compare.minPsnr, "Pass only with a PSNR (over R, G, B) of at least DB decibels")
-      ->type_name("DB");
-  compareCommand->add_option("--diff", compare.diff,
-                             "Write a diff PNG here (written atomically, whatever the verdict): equal pixels dim grey of A, "
-                             "differing pixels red (brighter = larger), off by no more than --channel-tolerance amber")
-      ->type_name("PATH.png");
-  compareCommand->footer(
-      "The default is an exact match; every limit given must hold. One line on stdout, e.g.\n"
-      "  PSNR 47.31 dB, 12 of 57600 pixels differ (0.02083 %, channel tolerance 0), max channel difference 9: "
-      "DIFFERENT (12 > --max-differing-pixels 0)\n"
-      "PSNR is inf for identical pixels. Exit: 0 within the limits, 1 outside them, 2 could not compare (a missing file,\n"
-      "not a PNG, different sizes, a bad limit, the diff not written).\n"
-      "  coinroll compare golden.png new.png                (exact: the same Mesa and llvmpipe code path, or a pinned one)\n"
-      "  coinroll compare golden.png new.png --max-differing-fraction 0.001 --min-psnr 60 --diff diff.png\n"
-      "      (a CI runner with another x86-64 CPU and the same Mesa, where llvmpipe's shader code rounds a few pixels\n"
-      "       differently: the rule of coinroll's own golden tests under COINROLL_GOLDEN_TOLERANT=1; measured in\n"
-      "       docs/snapshot_testing.md, which also gives the environment that makes the bytes identical instead)");
+  CLI::App* compareCommand = addCompareCommand(app, compare);
 
-  // CLI11 reports a misspelt command only as "a subcommand is required": name it and the choices.
-  std::string commands;
-  bool known = false;
-  for (const CLI::App* command : app.get_subcommands({})) {
-    commands += (commands.empty() ? "" : ", ") + command->get_name();
-    known = known || (argc > 1 && command->get_name() == argv[1]);
-  }
-  if (argc > 1 && argv[1][0] != '-' && !known) {
-    std::cerr << "coinroll: error: unknown command '" << printable(argv[1]) << "'; the commands are " << commands
-              << " (coinroll --help)\n";
+  if (const std::optional<std::string> message = unknownCommandMessage(app, argc, argv)) {
+    std::cerr << *message;
     return kExitBadInput;
   }
-  // CLI11 reads an empty value of a number as 0 (--time '' drew t = 0; --min-psnr '' dropped the
-  // limit): every numeric option refuses it, naming itself.
-  constexpr std::array<std::string_view, 16> kNumericOptions = {
-      "--sample-dt", "--max-rows", "--theta", "--omega-Z", "--max-frames", "--from", "--to", "--time", "--strobe", "--strobe-from",
-      "--threads", "--max-points", "--max-differing-pixels", "--max-differing-fraction", "--channel-tolerance",
-      "--min-psnr"};
-  for (CLI::App* command : app.get_subcommands({})) {
-    for (CLI::Option* option : command->get_options()) {
-      if (std::find(kNumericOptions.begin(), kNumericOptions.end(), option->get_name()) == kNumericOptions.end()) continue;
-      option->check(CLI::Validator(
-          [](std::string& text) { return text.empty() ? std::string("the value is empty; give a number") : std::string(); },
-          ""));
-    }
-  }
+  refuseEmptyNumbers(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -287,16 +341,16 @@ int main(int argc, char** argv) {
     errno = 0;
     return standardOutputWritten() ? exitCode : kExitFailure;
   } catch (const coinroll::scene::SceneError& e) {
-    std::cerr << "coinroll: error: " << printable(e.what()) << '\n';
+    std::cerr << "coinroll: error: " << coinroll::scene::printable(e.what()) << '\n';
     return kExitBadInput;
   } catch (const UsageError& e) {
-    std::cerr << "coinroll: error: " << printable(e.what()) << '\n';
+    std::cerr << "coinroll: error: " << coinroll::scene::printable(e.what()) << '\n';
     return kExitBadInput;
   } catch (const std::bad_alloc&) {
     std::cerr << "coinroll: error: " << coinroll::pipeline::outOfMemoryMessage() << '\n';
     return kExitFailure;
   } catch (const std::exception& e) {
-    std::cerr << "coinroll: error: " << printable(e.what()) << '\n';
+    std::cerr << "coinroll: error: " << coinroll::scene::printable(e.what()) << '\n';
     return kExitFailure;
   }
 }

@@ -29,6 +29,10 @@ ProgressLine::Style ProgressLine::styleFor(bool quiet) {
   return isatty(STDERR_FILENO) == 1 ? Style::Terminal : Style::Log;
 }
 
+ProgressLine::Style ProgressLine::terminalStyleFor(bool quiet) {
+  return styleFor(quiet) == Style::Terminal ? Style::Terminal : Style::Off;
+}
+
 ProgressLine::ProgressLine(Style style, std::string task, std::string unit)
     : style_(style), task_(std::move(task)), unit_(std::move(unit)), start_(std::chrono::steady_clock::now()),
       lastPrint_(start_) {}

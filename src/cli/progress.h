@@ -15,6 +15,8 @@ class ProgressLine {
 
   // Off with --quiet, Terminal when stderr is a terminal, else Log.
   static Style styleFor(bool quiet);
+  // As styleFor, but Off instead of Log: for work whose log keeps to its summary line (a render).
+  static Style terminalStyleFor(bool quiet);
 
   // `task` and `unit` name the work in the line: "render", "frame"; "sweep shard 3/8", "point".
   ProgressLine(Style style, std::string task, std::string unit);

@@ -1,5 +1,7 @@
 #include "image/compare.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -60,26 +62,60 @@ ImageComparison compareImages(const Image& a, const Image& b, int channelToleran
   return result;
 }
 
-bool withinThresholds(const ImageComparison& comparison, const CompareThresholds& thresholds) {
+void checkThresholds(const CompareThresholds& thresholds) {
+  if (thresholds.channelTolerance < 0 || thresholds.channelTolerance > 255) {
+    throw std::invalid_argument(fmt::format("--channel-tolerance: must be a whole number 0..255, got {}", thresholds.channelTolerance));
+  }
   if (thresholds.maxDifferingPixels && *thresholds.maxDifferingPixels < 0) {
-    throw std::invalid_argument("max differing pixels: must be >= 0, got " + std::to_string(*thresholds.maxDifferingPixels));
+    throw std::invalid_argument(fmt::format("--max-differing-pixels: must be >= 0, got {}", *thresholds.maxDifferingPixels));
   }
-  if (thresholds.maxDifferingFraction &&
-      !(*thresholds.maxDifferingFraction >= 0 && *thresholds.maxDifferingFraction <= 1)) {
-    throw std::invalid_argument("max differing fraction: must be in [0, 1], got " +
-                                std::to_string(*thresholds.maxDifferingFraction));
+  if (thresholds.maxDifferingFraction && !(*thresholds.maxDifferingFraction >= 0 && *thresholds.maxDifferingFraction <= 1)) {
+    throw std::invalid_argument(fmt::format("--max-differing-fraction: must be in [0, 1] (0.01 is 1 % of the pixels), got {}",
+                                            *thresholds.maxDifferingFraction));
   }
-  if (thresholds.minPsnr && std::isnan(*thresholds.minPsnr)) throw std::invalid_argument("min PSNR: must be a number, got NaN");
+  if (thresholds.minPsnr && std::isnan(*thresholds.minPsnr)) throw std::invalid_argument("--min-psnr: must be a number of dB, got nan");
+}
+
+CompareVerdict judge(const ImageComparison& comparison, const CompareThresholds& thresholds) {
+  checkThresholds(thresholds);
   if (comparison.channelTolerance != thresholds.channelTolerance) {
-    throw std::invalid_argument("channel tolerance: the pixels were counted with " + std::to_string(comparison.channelTolerance) +
-                                ", the thresholds ask for " + std::to_string(thresholds.channelTolerance));
+    throw std::invalid_argument(fmt::format("--channel-tolerance: the pixels were counted with {}, the thresholds ask for {}",
+                                            comparison.channelTolerance, thresholds.channelTolerance));
   }
   // No pixel limit at all means exact: a tolerance is always something the caller asked for.
   const long maxPixels = thresholds.maxDifferingPixels.value_or(thresholds.maxDifferingFraction ? comparison.pixels : 0);
-  if (comparison.differingPixels > maxPixels) return false;
-  if (thresholds.maxDifferingFraction && comparison.differingFraction() > *thresholds.maxDifferingFraction) return false;
-  if (thresholds.minPsnr && !(comparison.psnr >= *thresholds.minPsnr)) return false;
-  return true;
+  std::string broken, heldTo;
+  const auto add = [](std::string& list, const std::string& item) { list += (list.empty() ? "" : ", ") + item; };
+  if (thresholds.channelTolerance > 0) add(heldTo, fmt::format("--channel-tolerance {}", thresholds.channelTolerance));
+  if (thresholds.maxDifferingPixels || !thresholds.maxDifferingFraction) {
+    add(heldTo, fmt::format("--max-differing-pixels {}", maxPixels));
+    if (comparison.differingPixels > maxPixels) {
+      add(broken, fmt::format("{} > --max-differing-pixels {}", comparison.differingPixels, maxPixels));
+    }
+  }
+  if (const std::optional<double> fraction = thresholds.maxDifferingFraction) {
+    add(heldTo, fmt::format("--max-differing-fraction {}", *fraction));
+    if (comparison.differingFraction() > *fraction) {
+      add(broken, fmt::format("{:.6g} > --max-differing-fraction {}", comparison.differingFraction(), *fraction));
+    }
+  }
+  if (const std::optional<double> minPsnr = thresholds.minPsnr) {
+    add(heldTo, fmt::format("--min-psnr {}", *minPsnr));
+    if (!(comparison.psnr >= *minPsnr)) add(broken, fmt::format("{:.2f} dB < --min-psnr {}", comparison.psnr, *minPsnr));
+  }
+  if (!broken.empty()) return {.pass = false, .text = fmt::format("DIFFERENT ({})", broken)};
+  if (comparison.maxChannelDifference == 0) return {.pass = true, .text = "SAME (identical pixels)"};
+  return {.pass = true, .text = fmt::format("SAME within {}", heldTo)};
+}
+
+bool withinThresholds(const ImageComparison& comparison, const CompareThresholds& thresholds) {
+  return judge(comparison, thresholds).pass;
+}
+
+std::string comparisonLine(const ImageComparison& comparison, const CompareVerdict& verdict) {
+  return fmt::format("PSNR {:.2f} dB, {} of {} pixels differ ({:.4g} %, channel tolerance {}), max channel difference {}: {}",
+                     comparison.psnr, comparison.differingPixels, comparison.pixels, 100 * comparison.differingFraction(),
+                     comparison.channelTolerance, comparison.maxChannelDifference, verdict.text);
 }
 
 Image differenceImage(const Image& a, const Image& b, int channelTolerance) {

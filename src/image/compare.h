@@ -10,6 +10,7 @@
 
 #include <filesystem>
 #include <optional>
+#include <string>
 
 #include "image/image.h"
 
@@ -56,10 +57,26 @@ inline CompareThresholds otherCpuThresholds() {
 // channelTolerance is outside 0..255.
 ImageComparison compareImages(const Image& a, const Image& b, int channelTolerance = 0);
 
-// Whether `comparison` is within every limit of `thresholds`. Throws std::invalid_argument,
-// naming the limit, for a negative pixel count, a fraction outside [0, 1], a NaN PSNR bound, or a
-// comparison counted with another channel tolerance than thresholds.channelTolerance.
-bool withinThresholds(const ImageComparison& comparison, const CompareThresholds& thresholds);
+// Throws std::invalid_argument naming the limit in the words of `coinroll compare`'s options
+// ("--max-differing-fraction: must be in [0, 1] ...") for a channel tolerance outside 0..255, a
+// negative pixel count, a fraction outside [0, 1] or a NaN PSNR bound.
+void checkThresholds(const CompareThresholds& thresholds);
+
+// The verdict on a comparison: whether every limit holds, and in words (the limits named as
+// `coinroll compare`'s options), "DIFFERENT (<each limit broken, with the value that broke it>)",
+// "SAME (identical pixels)", or "SAME within <every limit it was held to>".
+struct CompareVerdict {
+  bool pass = false;
+  std::string text;
+};
+// Throws as checkThresholds, and for a comparison counted with another channel tolerance than
+// thresholds.channelTolerance.
+CompareVerdict judge(const ImageComparison& comparison, const CompareThresholds& thresholds);
+bool withinThresholds(const ImageComparison& comparison, const CompareThresholds& thresholds);  // judge(...).pass
+
+// `coinroll compare`'s one line: "PSNR 47.31 dB, 12 of 57600 pixels differ (0.02083 %, channel
+// tolerance 0), max channel difference 9: <verdict>" (no line break).
+std::string comparisonLine(const ImageComparison& comparison, const CompareVerdict& verdict);
 
 // A picture of where `b` differs from `a`: pixels equal within `channelTolerance` are a dimmed
 // grey of `a` (its luma / 3, so the scene stays recognisable); pixels that differ by more are red,

@@ -25,6 +25,17 @@ std::optional<Method> methodFromName(std::string_view name);
 std::string_view nameOf(Method method);
 std::span<const std::string_view> methodNames();  // in the order of the enum
 bool isAdaptive(Method method);
+int errorEstimateOrder(Method method);  // adaptive methods: the order of the local error estimate (DOP853: 8)
+
+// The ranges a scene's solver block may take (scene files, README "Scene format"). Below 1e-14 the
+// steps a tolerance asks for are lost in round-off (double precision is 2e-16); above 1e-2 the
+// dense output and the events it locates are no longer worth reading. A pure relative tolerance
+// (atol = 0) cannot control a component that is or passes through 0: its error weight is 1 / 0.
+// More than 10^7 fixed steps per simulated second, or steps longer than the coin's own time scale
+// sqrt(a/g) ~ 0.06 s many times over, are typos rather than choices.
+inline constexpr double kMinRtol = 1e-14, kMaxRtol = 1e-2;
+inline constexpr double kMaxAtol = 1e-2;             // atol in (0, kMaxAtol]
+inline constexpr double kMinDt = 1e-7, kMaxDt = 1;   // s
 
 struct SolverConfig {
   Method method = Method::Dop853;

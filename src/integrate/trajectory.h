@@ -85,7 +85,7 @@ class Trajectory {
     const Vec<N> f1 = evaluate(t_ + h0, Vec<N>(y_ + h0 * f0_));
     const double d2 = std::sqrt((f1 - f0_).cwiseQuotient(scale).squaredNorm() / N) / h0;
     const double d = std::max(d1, d2);
-    const double order = config_.method == Method::Dop853 ? 8 : 5;
+    const double order = errorEstimateOrder(config_.method);
     const double h1 = d <= 1e-15 ? std::max(1e-6, h0 * 1e-3) : std::pow(0.01 / d, 1.0 / order);
     return std::min({100 * h0, h1, config_.maxStep});
   }

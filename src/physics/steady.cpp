@@ -219,4 +219,10 @@ CircleRadii circleRadii(const CoinModel& m, const CoinState& s) {
   return {m.a * std::abs(s.omega_Z / phiDot), m.a * std::abs(spinRate(s) / phiDot)};
 }
 
+TiltStability tiltStability(double K) {
+  if (K > 0) return {.kind = TiltStability::Kind::Stable, .rate = std::sqrt(K), .time = 2 * std::numbers::pi / std::sqrt(K)};
+  if (K < 0) return {.kind = TiltStability::Kind::Unstable, .rate = std::sqrt(-K), .time = 1 / std::sqrt(-K)};
+  return {};
+}
+
 }  // namespace coinroll::physics

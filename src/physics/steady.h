@@ -50,6 +50,16 @@ double steadyResidual(const CoinModel& model, const CoinState& state);
 // K = -lambda^2 of seed 5.1. Throws for a cornered rim at theta0 = 0, where K is undefined.
 double wobbleStiffness(const CoinModel& model, double theta0, double omega_Y0, double omega_Z0);
 
+// What K says of a small tilt perturbation of a steady motion: K > 0 wobbles at sqrt(K) rad/s,
+// K < 0 grows like exp(sqrt(-K) t), K = 0 is the marginal case between.
+struct TiltStability {
+  enum class Kind { Stable, Unstable, Marginal };
+  Kind kind = Kind::Marginal;
+  double rate = 0;  // rad/s: sqrt(|K|), the wobble's angular frequency or the growth rate
+  double time = 0;  // s: the wobble's period 2 pi / rate, or the e-folding time 1 / rate; 0 when marginal
+};
+TiltStability tiltStability(double K);
+
 // Radii of the circles traced by the centre of mass and by the contact point in a steady motion
 // with omega_X = 0, m: each point's speed over |phi-dot|. Infinite for straight rolling (phi-dot = 0).
 struct CircleRadii {

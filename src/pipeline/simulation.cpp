@@ -164,9 +164,7 @@ Simulation buildSimulation(const scene::SceneConfig& scene) {
   Simulation sim;
   sim.model = modelFrom(scene.coin, scene.gravity);
   sim.initial = initialFrom(sim.model, scene.initial);
-  const std::optional<integrate::Method> method = integrate::methodFromName(scene.solver.method);
-  if (!method) throw scene::SceneError("solver.method: unknown method '" + scene.solver.method + "'");
-  sim.solver.method = *method;
+  sim.solver.method = scene.solver.method;
   sim.solver.rtol = scene.solver.rtol;
   sim.solver.atol = scene.solver.atol;
   sim.solver.dt = scene.solver.dt;

@@ -3,14 +3,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <cerrno>
-#include <charconv>
 #include <cmath>
-#include <cstring>
-#include <fstream>
-#include <iostream>
 #include <limits>
-#include <map>
 #include <mutex>
 #include <new>
 #include <stdexcept>
@@ -37,9 +31,6 @@ constexpr double kSummarySampleDt = 0.01;
 // Points computed between two writes: large enough that the threads rarely wait for one another
 // at a block's end, small enough that the block's rows are a few hundred kilobytes.
 constexpr long kBlockSize = 512;
-
-// The header's last two columns: SweepIdentity, after the contract's columns.
-constexpr std::string_view kIdentityColumns = ",grid_points,sweep";
 
 // RFC 4180: a field with a comma, a quote or a line break goes in quotes, quotes doubled.
 std::string csvField(std::string_view text) {
@@ -101,23 +92,34 @@ std::vector<double> pointValues(const std::vector<GridAxis>& axes, long point) {
   return values;
 }
 
-std::string pointRow(const SweepSpec& spec, long point, const std::atomic<bool>* cancel) {
+struct PointRow {
+  std::string text;     // the row without its identity columns and line break
+  bool failed = false;  // its end column holds "error: <reason>"
+};
+
+// Each point is the scene document with its grid values set as `--set KEY=VALUE` sets them, then
+// parsed by the loader like any scene: the point is validated by exactly the loader's rules
+// (ranges and cross-field checks alike, which read the file's units: degrees, JSON integers), a
+// failed point's row quotes the loader's message, and a value typed as the --set text types it
+// (5 an integer, 5.5 a float) gives the same row as the same --set would.
+PointRow pointRow(const SweepSpec& spec, long point, const std::atomic<bool>* cancel) {
   const std::vector<double> values = pointValues(spec.axes, point);
-  std::string row = fmt::format("{}", point);
-  for (const double v : values) row += fmt::format(",{}", v);
+  PointRow row{.text = fmt::format("{}", point), .failed = false};
+  for (const double v : values) row.text += fmt::format(",{}", v);
   try {
     nlohmann::json document = spec.scene;
     for (std::size_t i = 0; i < values.size(); ++i) scene::applyOverride(document, fmt::format("{}={}", spec.axes[i].key, values[i]));
     Simulation simulation = buildSimulation(scene::parseScene(document, spec.sourceName, spec.parseOptions));
     simulation.cancel = cancel;
     const PointSummary s = summarize(simulation);
-    row += fmt::format(",{},{},{},{},{},{}", s.end, s.tEnd, s.thetaMin, s.thetaMax, s.energyStart, s.energyEnd);
+    row.text += fmt::format(",{},{},{},{},{},{}", s.end, s.tEnd, s.thetaMin, s.thetaMax, s.energyStart, s.energyEnd);
   } catch (const Cancelled&) {
     throw;  // not the point's failure: the whole sweep stops
   } catch (const std::bad_alloc&) {
     throw;  // nor is memory running out, which would fail every point after it
   } catch (const std::exception& e) {
-    row += "," + csvField(std::string("error: ") + e.what()) + ",,,,,";
+    row.text += "," + csvField(std::string("error: ") + e.what()) + ",,,,,";
+    row.failed = true;
   }
   return row;
 }
@@ -127,7 +129,7 @@ std::string pointRow(const SweepSpec& spec, long point, const std::atomic<bool>*
 std::string sweepHeader(const std::vector<GridAxis>& axes) {
   std::string header = "point";
   for (const GridAxis& axis : axes) header.append(",").append(csvField(axis.key));
-  header.append(",end,t_end,theta_min,theta_max,energy_start,energy_end").append(kIdentityColumns);
+  header.append(",end,t_end,theta_min,theta_max,energy_start,energy_end").append(kSweepIdentityColumns);
   return header;
 }
 
@@ -139,6 +141,8 @@ void refuseMisnamedAxes(const SweepSpec& spec) {
         throw std::invalid_argument(fmt::format("--grid {}: given twice; give each field one axis", axis.key));
       }
     }
+    // One parse per axis, with that axis alone changed: a parse stops at its first error, so only
+    // this way does a misnamed key get named by its own axis.
     nlohmann::json document = spec.scene;
     try {
       scene::applyOverride(document, fmt::format("{}={}", axis.key, axis.valueAt(0)));
@@ -184,10 +188,10 @@ SweepResult runSweep(const SweepSpec& spec, std::ostream& out, const std::functi
   // would otherwise report nothing until its end.
   std::mutex progressMutex;
   long computed = 0;
-  std::vector<std::string> rows;
+  std::vector<PointRow> rows;
   for (long blockStart = 0; blockStart < mine; blockStart += kBlockSize) {
     const long blockSize = std::min(kBlockSize, mine - blockStart);
-    rows.assign(static_cast<std::size_t>(blockSize), std::string());
+    rows.assign(static_cast<std::size_t>(blockSize), PointRow());
     std::atomic<long> next{0};
     // The first exception of any thread (Cancelled, out of memory), rethrown here once all have
     // stopped: one escaping a thread would end the process through std::terminate.
@@ -226,44 +230,15 @@ SweepResult runSweep(const SweepSpec& spec, std::ostream& out, const std::functi
       work();
     }
     if (failure) std::rethrow_exception(failure);
-    for (const std::string& row : rows) {
-      out << row << rowEnd;
-      if (row.find(",error: ") != std::string::npos || row.find(",\"error: ") != std::string::npos) ++result.failed;
+    for (const PointRow& row : rows) {
+      out << row.text << rowEnd;
+      if (row.failed) ++result.failed;
       ++result.points;
     }
     if (!out) throw std::runtime_error("writing the sweep's rows failed");
   }
   return result;
 }
-
-namespace {
-
-// Fields of one CSV row as csvField writes them (quoted fields may hold commas).
-std::size_t csvFieldCount(std::string_view row) {
-  std::size_t fields = 1;
-  bool quoted = false;
-  for (const char c : row) {
-    if (c == '"') quoted = !quoted;
-    else if (c == ',' && !quoted) ++fields;
-  }
-  return fields;
-}
-
-// The row's last two fields, ",<grid points>,<digest>": never quoted, so found from the end.
-std::string_view identityOf(std::string_view row) {
-  const auto last = row.rfind(',');
-  const auto beforeLast = last == std::string_view::npos || last == 0 ? std::string_view::npos : row.rfind(',', last - 1);
-  return beforeLast == std::string_view::npos ? std::string_view() : row.substr(beforeLast);
-}
-
-// A list of point numbers for a message: the first 20, then how many more.
-std::string pointList(const std::vector<long>& points) {
-  const std::size_t shown = std::min<std::size_t>(points.size(), 20);
-  return fmt::format("{}{}", fmt::join(points.begin(), points.begin() + static_cast<long>(shown), ", "),
-                     points.size() > shown ? fmt::format(" and {} more", points.size() - shown) : "");
-}
-
-}  // namespace
 
 SweepIdentity sweepIdentity(const SweepSpec& spec) {
   std::string text = spec.scene.dump();  // nlohmann::json keeps keys sorted: one text per document
@@ -272,138 +247,6 @@ SweepIdentity sweepIdentity(const SweepSpec& spec) {
     for (long i = 0; i < axis.count; ++i) text += fmt::format(" {}", axis.valueAt(i));
   }
   return {.gridPoints = gridPointCount(spec), .digest = fmt::format("{:016x}", io::fnv1a64(text))};
-}
-
-void mergeSweepShards(const std::vector<std::filesystem::path>& shards, std::ostream& out, const std::atomic<bool>* cancel) {
-  if (shards.empty()) throw std::invalid_argument("sweep-merge: give the shard files to merge");
-  if (std::count(shards.begin(), shards.end(), "-") > 1) {
-    throw std::invalid_argument("sweep-merge: - (standard input) is given more than once; it can be read only once");
-  }
-  std::string header, firstHeaderSource;
-  std::string identity, identitySource;  // the first row's ",grid_points,sweep" and where it was read
-  long gridPoints = 0;
-  std::map<long, std::string> rows;  // point -> row
-  std::vector<long> repeated;
-  for (const std::filesystem::path& path : shards) {
-    const bool standardInput = path == "-";
-    const std::string name = standardInput ? "standard input" : path.string();
-    std::ifstream file;
-    if (!standardInput) {
-      std::error_code ignored;
-      if (std::filesystem::is_directory(path, ignored)) {
-        throw std::invalid_argument(fmt::format("{}: is a directory; give the shard files (e.g. {}/*.csv)", name, name));
-      }
-      // A pipe or a FIFO reads as well as a file: the shard is read once, front to back.
-      file.open(path, std::ios::binary);
-      if (!file) throw std::runtime_error(fmt::format("{}: cannot open the shard: {}", name, std::strerror(errno)));
-    }
-    std::istream& in = standardInput ? std::cin : file;
-    long lineNumber = 0;
-    const auto readLine = [&](std::string& line) {
-      if (!std::getline(in, line)) {
-        if (in.bad()) throw std::runtime_error(fmt::format("{}: reading the shard failed: {}", name, std::strerror(errno)));
-        return false;
-      }
-      ++lineNumber;
-      return true;
-    };
-    // getline leaves eof set after a line that had no line break: the shard was cut inside it.
-    const auto refuseCutLine = [&] {
-      if (in.eof()) {
-        throw std::runtime_error(fmt::format("{}:{}: cut short inside a row (no line break at its end): an unfinished "
-                                             "or damaged shard, e.g. an interrupted `sweep -o - > part.csv`; run that "
-                                             "shard again", name, lineNumber));
-      }
-    };
-    std::string line;
-    if (!readLine(line)) throw std::invalid_argument(fmt::format("{}: empty, not a sweep shard", name));
-    if (!line.starts_with("point,")) {
-      throw std::invalid_argument(fmt::format("{}: not a sweep shard (its first line does not start with \"point,\")", name));
-    }
-    refuseCutLine();
-    if (!line.ends_with(kIdentityColumns)) {
-      throw std::invalid_argument(fmt::format("{}: its header has no grid_points and sweep columns, which tell a merge "
-                                              "which sweep a shard belongs to: written by an older coinroll, or "
-                                              "edited; run the sweep again", name));
-    }
-    if (header.empty()) {
-      header = line;
-      firstHeaderSource = name;
-    } else if (line != header) {
-      throw std::runtime_error(fmt::format("{}: its header differs from {}'s: shards of sweeps over different axes; "
-                                           "merge only the shards of one sweep", name, firstHeaderSource));
-    }
-    const std::size_t headerFields = csvFieldCount(header);
-    while (readLine(line)) {
-      throwIfCancelled(cancel);
-      refuseCutLine();
-      long point = -1;
-      const auto comma = line.find(',');
-      const auto [end, error] = std::from_chars(line.data(), line.data() + std::min(comma, line.size()), point);
-      if (error != std::errc() || comma == std::string::npos || end != line.data() + comma || point < 0) {
-        throw std::runtime_error(fmt::format("{}:{}: a row must start with its point number", name, lineNumber));
-      }
-      if (const std::size_t fields = csvFieldCount(line); fields != headerFields) {
-        throw std::runtime_error(fmt::format("{}:{}: {} fields where the header has {}: a damaged shard; run it again",
-                                             name, lineNumber, fields, headerFields));
-      }
-      const std::string_view rowIdentity = identityOf(line);
-      if (identity.empty()) {
-        const std::string_view count = rowIdentity.substr(1, rowIdentity.find(',', 1) - 1);
-        const auto [countEnd, countError] = std::from_chars(count.data(), count.data() + count.size(), gridPoints);
-        if (countError != std::errc() || countEnd != count.data() + count.size() || gridPoints < 1) {
-          throw std::runtime_error(fmt::format("{}:{}: grid_points must be a whole number >= 1, got \"{}\": a damaged "
-                                               "shard; run it again", name, lineNumber, count));
-        }
-        identity = rowIdentity;
-        identitySource = fmt::format("{}:{}", name, lineNumber);
-      } else if (rowIdentity != identity) {
-        throw std::runtime_error(fmt::format(
-            "{}:{}: from another sweep than {} (grid_points,sweep: {} here, {} there): the scene, its --set values or "
-            "the grid differ; merge only the shards of one sweep", name, lineNumber, identitySource,
-            rowIdentity.substr(1), std::string_view(identity).substr(1)));
-      }
-      if (point >= gridPoints) {
-        throw std::runtime_error(fmt::format("{}:{}: point {} is outside the grid of {} points: a damaged shard; run it "
-                                             "again", name, lineNumber, point, gridPoints));
-      }
-      if (!rows.emplace(point, line).second) repeated.push_back(point);
-    }
-  }
-  if (!repeated.empty()) throw std::runtime_error(fmt::format("sweep-merge: points repeated: {}", pointList(repeated)));
-  if (rows.empty()) {
-    throw std::runtime_error("sweep-merge: no shard holds a point, but shard 1 of every sweep holds point 0: a shard is "
-                             "missing or was cut short before its first row");
-  }
-  // Holes are found between the rows present and up to the grid's size, never by visiting every
-  // number: a grid may have 1e7 points. The first holes are named, a run of three or more as a range.
-  constexpr std::size_t kHolesNamed = 20;
-  std::vector<std::string> holes;
-  long missingPoints = 0, namedPoints = 0, expected = 0;
-  const auto missing = [&](long from, long to) {  // points from .. to - 1
-    if (to <= from) return;
-    missingPoints += to - from;
-    if (holes.size() < kHolesNamed) {
-      holes.push_back(to - from == 1   ? fmt::format("{}", from)
-                      : to - from == 2 ? fmt::format("{}, {}", from, from + 1)
-                                       : fmt::format("{} to {}", from, to - 1));
-      namedPoints += to - from;
-    }
-  };
-  for (const auto& [point, row] : rows) {
-    missing(expected, point);
-    expected = point + 1;
-  }
-  missing(expected, gridPoints);
-  if (missingPoints > 0) {
-    throw std::runtime_error(fmt::format("sweep-merge: points missing (of {} in the grid): {}{}", gridPoints,
-                                         fmt::join(holes, ", "),
-                                         missingPoints > namedPoints ? fmt::format(" and {} more", missingPoints - namedPoints)
-                                                                     : ""));
-  }
-  out << header << '\n';
-  for (const auto& [point, row] : rows) out << row << '\n';
-  if (!out) throw std::runtime_error("sweep-merge: writing the merged file failed");
 }
 
 }  // namespace coinroll::pipeline

@@ -6,7 +6,6 @@
 #include <nlohmann/json.hpp>
 
 #include <atomic>
-#include <filesystem>
 #include <functional>
 #include <ostream>
 #include <string>
@@ -30,6 +29,9 @@ struct SweepSpec {
   int threads = 1;
   long maxPoints = kDefaultMaxPoints;
 };
+
+// The header's last two columns, after the contract's: SweepIdentity.
+inline constexpr std::string_view kSweepIdentityColumns = ",grid_points,sweep";
 
 // "point,<keys>,end,t_end,theta_min,theta_max,energy_start,energy_end,grid_points,sweep": the
 // contract's columns, then the sweep's identity (SweepIdentity).
@@ -66,13 +68,5 @@ struct SweepResult {
 // computed in blocks, so memory does not grow with the number of points.
 SweepResult runSweep(const SweepSpec& spec, std::ostream& out, const std::function<void(long, long)>& onPoint,
                      const std::atomic<bool>* cancel);
-
-// Concatenates shard files in point order after checking that they share one header, that every
-// row belongs to one sweep (SweepIdentity), that no file was cut short and that every point of the
-// grid is there exactly once. A shard may be a pipe or a FIFO, or "-" for standard input, and may
-// hold only the header (a shard with no points). Throws std::runtime_error naming the file and
-// line, or the repeated or missing points; a set `cancel` stops the reading with Cancelled.
-void mergeSweepShards(const std::vector<std::filesystem::path>& shards, std::ostream& out,
-                      const std::atomic<bool>* cancel = nullptr);
 
 }  // namespace coinroll::pipeline

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "render/render_settings.h"
+
 namespace coinroll::render {
 
 struct CoinPose {
@@ -17,7 +19,7 @@ struct CoinPose {
 struct CameraView {
   glm::vec3 eye{0.0f, 0.3f, 0.6f};  // m
   glm::vec3 target{0.0f};           // m
-  float fovYDegrees = 35.0f;        // vertical field of view
+  float fovYDegrees = kDefaultFovYDegrees;  // vertical field of view
 
   bool operator==(const CameraView&) const = default;
 };

@@ -14,6 +14,10 @@ namespace coinroll::render {
 inline constexpr int kMinImageSide = 16;
 inline constexpr int kMaxImageSide = 7680;
 
+// Degrees: the vertical field of view of a camera not told otherwise, render.camera.fov's default
+// and a CameraView's, defined once for both.
+inline constexpr float kDefaultFovYDegrees = 35.0f;
+
 // The MSAA sample counts a scene may ask for; the Renderer also refuses more than its OpenGL's
 // GL_MAX_SAMPLES (llvmpipe's is 4 on Debian 12).
 inline constexpr std::array<int, 4> kMsaaSampleCounts = {1, 2, 4, 8};

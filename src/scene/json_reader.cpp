@@ -23,12 +23,28 @@ std::string describeJson(const nlohmann::json& value) {
   }
 }
 
+namespace {
+
+// A byte that a terminal takes for a command rather than a character (DEL included).
+bool isControl(char c) {
+  const auto byte = static_cast<unsigned char>(c);
+  return byte < 0x20 || byte == 0x7f;
+}
+
+}  // namespace
+
+std::string printable(std::string_view text) {
+  std::string shown;
+  for (const char c : text) {
+    if (c == '\n') shown += "\\n";
+    else if (isControl(c) && c != '\t') shown += fmt::format("\\x{:02x}", static_cast<unsigned char>(c));
+    else shown += c;
+  }
+  return shown;
+}
+
 std::string printableKey(std::string_view key) {
-  const bool printable = std::none_of(key.begin(), key.end(), [](char c) {
-    const auto byte = static_cast<unsigned char>(c);
-    return byte < 0x20 || byte == 0x7f;
-  });
-  if (printable) return std::string(key);
+  if (std::none_of(key.begin(), key.end(), isControl)) return std::string(key);
   return nlohmann::json(std::string(key)).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 

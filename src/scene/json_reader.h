@@ -43,6 +43,11 @@ class JsonReader {
 // "string \"long\"", "number -1", "object", ... for "got ..." in messages.
 std::string describeJson(const nlohmann::json& value);
 
+// Text that users gave (file names, --set values, scene text) as a message quotes it: a control
+// character among it would act on the terminal instead of showing, and a line break would split
+// the one-line message a script reads, so each is shown as \xNN (a line break as \n), tabs kept.
+std::string printable(std::string_view text);
+
 // A key from a scene file as a message shows it: as it is when it is printable, otherwise as a
 // JSON string with its control characters escaped ("ab\u0000c"), so a key cannot cut a message
 // short at a NUL or send escape sequences to the user's terminal.

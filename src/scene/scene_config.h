@@ -12,6 +12,7 @@
 #include <variant>
 #include <vector>
 
+#include "integrate/solver_config.h"
 #include "physics/effects.h"
 #include "physics/formulation.h"
 #include "render/render_settings.h"
@@ -60,10 +61,11 @@ struct SolverSpec {
   // example; the quaternion is for runs that must go nearer flat than 89 degrees. Absent: the Euler
   // angles, except for a coin with thickness and effects, whose landing only the quaternion reaches.
   std::optional<Formulation> formulation;
-  std::string method = "dop853";
-  double rtol = 1e-10;  // adaptive methods
-  double atol = 1e-12;  // adaptive methods
-  double dt = 1e-3;     // s, fixed-step methods
+  // The integrator's own defaults (integrate/solver_config.h), its ranges beside them.
+  integrate::Method method = integrate::SolverConfig{}.method;
+  double rtol = integrate::SolverConfig{}.rtol;  // adaptive methods, [kMinRtol, kMaxRtol]
+  double atol = integrate::SolverConfig{}.atol;  // adaptive methods, (0, kMaxAtol]
+  double dt = integrate::SolverConfig{}.dt;      // s, fixed-step methods, [kMinDt, kMaxDt]
 };
 
 enum class CameraMode {
@@ -77,7 +79,7 @@ inline constexpr std::array<std::string_view, 3> kCameraModeNames = {"fixed", "o
 struct CameraSpec {
   CameraMode mode = CameraMode::Fixed;
   std::optional<std::array<double, 3>> eye, target;  // m; absent = framed from the motion
-  double fovDegrees = 35;        // vertical field of view
+  double fovDegrees = render::kDefaultFovYDegrees;  // vertical field of view
   double orbitPeriod = 10;       // s of simulated time per revolution (orbit)
   double elevationDegrees = 30;  // camera elevation above the floor for automatic framing
 };
@@ -109,12 +111,14 @@ struct AudioSpec {
   double volume = 0.5;        // peak amplitude, (0, 1]
 };
 
+inline constexpr int kMaxFps = 240;  // render.fps in [1, kMaxFps]
+
 struct RenderSpec {
   // What the Renderer is built with: render.width and height (even, for H.264's yuv420p),
   // render.antialiasing and msaa, and the coin as drawn (coin.thickness; a ring's hole narrowed
   // so a thin hoop still shows as a band).
   render::RenderSettings picture;
-  int fps = video::VideoOptions{}.fps;  // frames per second of video, 1..240; the encoder's default
+  int fps = video::VideoOptions{}.fps;  // frames per second of video, 1..kMaxFps; the encoder's default
   double timeScale = 1.0;          // video seconds per simulated second
   // When set, playback slows further whenever the chosen rate exceeds its limit, so that rate seen
   // on screen never exceeds the limit times time_scale (an Euler's disk stays readable).

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <numbers>
 #include <set>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -23,33 +24,49 @@ namespace {
 
 constexpr double kRadiansPerDegree = std::numbers::pi / 180;
 
-// In the order of the Formulation enum.
+// The file's names of each enum, in the order of the enum's values.
 constexpr std::array<std::string_view, 2> kFormulationNames = {"euler-angles", "quaternion"};
-// In the order of the render::Antialiasing enum.
 constexpr std::array<std::string_view, 2> kAntialiasingNames = {"msaa", "fxaa"};
-constexpr int kMaxFps = 240;
+constexpr std::array<std::string_view, 3> kShapeNames = {"disk", "ring", "custom"};
+constexpr std::array<std::string_view, 3> kSteadyKindNames = {"straight", "circle", "spin-in-place"};
+constexpr std::array<std::string_view, 2> kPitchNames = {"video", "real"};
+constexpr std::array<std::string_view, 2> kTimbreNames = {"clicks", "tone"};
+constexpr std::array<std::string_view, 2> kAirFlowNames = {"moffatt", "boundary_layer"};
+constexpr std::array<std::string_view, 2> kOnInvalidNames = {"stop", "warn"};
+constexpr std::array<std::string_view, 2> kBackgroundNames = {"opaque", "transparent"};
 
 // "a, b or c" (each item through `show`) for the rule of a message.
-template <class T, std::size_t N, class Show>
-std::string alternatives(const std::array<T, N>& items, Show show) {
+template <class Items, class Show>
+std::string alternatives(const Items& items, Show show) {
+  const std::size_t N = std::size(items);
   std::string text;
   for (std::size_t i = 0; i < N; ++i) text += (i == 0 ? "" : i + 1 == N ? " or " : ", ") + show(items[i]);
   return text;
 }
 
-// The enum value named at `key` (`fallback` when absent); `names` are the file's names in enum order.
+// The one mapping from a file's names to an enum: the value named at `key` (`fallback` when
+// absent), `names` in the enum's order. A name outside them fails with `rule` when given, else
+// with "must be \"a\", \"b\" or \"c\", got \"x\"".
 template <class Enum, std::size_t N>
-Enum enumValue(const JsonReader& r, std::string_view key, const std::array<std::string_view, N>& names, Enum fallback) {
+Enum enumValue(const JsonReader& r, std::string_view key, std::span<const std::string_view, N> names, Enum fallback,
+               std::string_view rule = {}) {
   const std::optional<std::string> name = r.optionalString(key);
   if (!name) return fallback;
   const auto found = std::find(names.begin(), names.end(), *name);
   if (found == names.end()) {
-    r.fail(key, fmt::format("must be {}, got \"{}\"", alternatives(names, [](std::string_view n) { return fmt::format("\"{}\"", n); }),
-                            *name));
+    r.fail(key, rule.empty() ? fmt::format("must be {}, got \"{}\"",
+                                           alternatives(names, [](std::string_view n) { return fmt::format("\"{}\"", n); }), *name)
+                             : fmt::format(fmt::runtime(rule), *name));
   }
   return static_cast<Enum>(found - names.begin());
 }
 
+
+// A power of ten as the messages and the README write it: 1e-3, 1e-14, 1.
+std::string powerOfTen(double value) {
+  const int exponent = static_cast<int>(std::lround(std::log10(value)));
+  return exponent == 0 ? fmt::format("{:g}", value) : fmt::format("{:g}e{}", value / std::pow(10.0, exponent), exponent);
+}
 
 double positive(const JsonReader& r, std::string_view key, std::optional<double> value) {
   if (value && !(*value > 0)) r.fail(key, fmt::format("must be > 0, got {}", *value));
@@ -107,11 +124,8 @@ CoinSpec parseCoin(const JsonReader& top, render::CoinShape& drawn) {
   if (node == nullptr) top.fail("coin", "required (an object with shape, radius, mass)");
   const JsonReader r(*node, "coin", "", {"shape", "radius", "mass", "inner_radius", "thickness", "edge_radius", "I_X", "I_Z"});
   CoinSpec coin;
-  const std::string shape = r.optionalString("shape").value_or("disk");
-  if (shape == "disk") coin.shape = Shape::Disk;
-  else if (shape == "ring") coin.shape = Shape::Ring;
-  else if (shape == "custom") coin.shape = Shape::Custom;
-  else r.fail("shape", fmt::format("must be \"disk\", \"ring\" or \"custom\", got \"{}\"", shape));
+  coin.shape = enumValue(r, "shape", std::span(kShapeNames), coin.shape);
+  const std::string_view shape = kShapeNames[static_cast<std::size_t>(coin.shape)];
 
   coin.radius = inRange(r, "radius", r.requiredNumber("radius"), kMinLength, kMaxLength, "m");
   coin.mass = inRange(r, "mass", r.requiredNumber("mass"), kMinMass, kMaxMass, "kg");
@@ -187,11 +201,8 @@ InitialSpec parseInitial(const JsonReader& top) {
     }
     const JsonReader r(*node, "initial", "", {"steady", "theta", "omega_Z", "branch", "phi", "psi", "x", "z"});
     SteadyInitial s;
-    const std::string kind = r.optionalString("steady").value();
-    if (kind == "straight") s.kind = SteadyKind::Straight;
-    else if (kind == "circle") s.kind = SteadyKind::Circle;
-    else if (kind == "spin-in-place") s.kind = SteadyKind::SpinInPlace;
-    else r.fail("steady", fmt::format("must be \"straight\", \"circle\" or \"spin-in-place\", got \"{}\"", kind));
+    s.kind = enumValue(r, "steady", std::span(kSteadyKindNames), s.kind);
+    const std::string_view kind = kSteadyKindNames[static_cast<std::size_t>(s.kind)];
     const bool needsTheta = s.kind != SteadyKind::Straight, needsSpin = s.kind != SteadyKind::SpinInPlace;
     if (needsTheta && !r.has("theta")) r.fail("theta", fmt::format("required for steady \"{}\" (degrees)", kind));
     if (!needsTheta && r.has("theta")) r.fail("theta", "not allowed for steady \"straight\" (it rolls upright)");
@@ -231,35 +242,35 @@ SolverSpec parseSolver(const JsonReader& top, const ParseOptions& options) {
   const nlohmann::json* node = top.child("solver");
   if (node == nullptr) return solver;
   const JsonReader r(*node, "solver", "", {"formulation", "method", "rtol", "atol", "dt"});
-  if (const std::optional<std::string> formulation = r.optionalString("formulation")) {
-    const auto known = std::find(kFormulationNames.begin(), kFormulationNames.end(), *formulation);
-    if (known == kFormulationNames.end()) {
-      r.fail("formulation",
-             fmt::format("unknown formulation \"{}\"; available: {}", *formulation, fmt::join(kFormulationNames, ", ")));
+  if (r.has("formulation")) {
+    solver.formulation = enumValue(r, "formulation", std::span(kFormulationNames), Formulation{},
+                                   fmt::format("unknown formulation \"{{}}\"; available: {}", fmt::join(kFormulationNames, ", ")));
+  }
+  const std::span<const std::string_view> allowed = options.solverMethods;
+  if (const std::optional<std::string> method = r.optionalString("method")) {
+    const std::optional<integrate::Method> known = integrate::methodFromName(*method);
+    if (!known || std::find(allowed.begin(), allowed.end(), *method) == allowed.end()) {
+      r.fail("method", fmt::format("unknown method \"{}\"; available: {}", *method, fmt::join(allowed, ", ")));
     }
-    solver.formulation = static_cast<Formulation>(known - kFormulationNames.begin());
+    solver.method = *known;
   }
-  solver.method = r.optionalString("method").value_or(solver.method);
-  if (std::find(options.solverMethods.begin(), options.solverMethods.end(), solver.method) == options.solverMethods.end()) {
-    r.fail("method", fmt::format("unknown method \"{}\"; available: {}", solver.method, fmt::join(options.solverMethods, ", ")));
-  }
-  // Below 1e-14 the steps a tolerance asks for are lost in round-off (double precision is 2e-16);
-  // above 1e-2 the dense output and the events it locates are no longer worth reading.
+  // The ranges' reasons are given with them in integrate/solver_config.h.
+  const SolverSpec defaults;
   solver.rtol = r.number("rtol", solver.rtol);
-  if (!(solver.rtol >= 1e-14 && solver.rtol <= 1e-2)) {
-    r.fail("rtol", fmt::format("must be in [1e-14, 1e-2] (default 1e-10), got {}", solver.rtol));
+  if (!(solver.rtol >= integrate::kMinRtol && solver.rtol <= integrate::kMaxRtol)) {
+    r.fail("rtol", fmt::format("must be in [{}, {}] (default {}), got {}", powerOfTen(integrate::kMinRtol),
+                               powerOfTen(integrate::kMaxRtol), powerOfTen(defaults.rtol), solver.rtol));
   }
-  // A pure relative tolerance (atol = 0) cannot control a component that is or passes through 0:
-  // its error weight is 1 / 0.
   solver.atol = r.number("atol", solver.atol);
-  if (!(solver.atol > 0 && solver.atol <= 1e-2)) {
-    r.fail("atol", fmt::format("must be in (0, 1e-2] (default 1e-12; 0 cannot weigh a state component that is 0), got {}",
-                               solver.atol));
+  if (!(solver.atol > 0 && solver.atol <= integrate::kMaxAtol)) {
+    r.fail("atol", fmt::format("must be in (0, {}] (default {}; 0 cannot weigh a state component that is 0), got {}",
+                               powerOfTen(integrate::kMaxAtol), powerOfTen(defaults.atol), solver.atol));
   }
-  // More than 10^7 fixed steps per simulated second, or steps longer than the coin's own time
-  // scale sqrt(a/g) ~ 0.06 s many times over, are typos rather than choices.
   solver.dt = r.number("dt", solver.dt);
-  if (!(solver.dt >= 1e-7 && solver.dt <= 1)) r.fail("dt", fmt::format("must be in [1e-7, 1] s (default 1e-3), got {}", solver.dt));
+  if (!(solver.dt >= integrate::kMinDt && solver.dt <= integrate::kMaxDt)) {
+    r.fail("dt", fmt::format("must be in [{}, {}] s (default {}), got {}", powerOfTen(integrate::kMinDt),
+                             powerOfTen(integrate::kMaxDt), powerOfTen(defaults.dt), solver.dt));
+  }
   return solver;
 }
 
@@ -286,7 +297,7 @@ CameraSpec parseCamera(const JsonReader& render) {
   const nlohmann::json* node = render.child("camera");
   if (node == nullptr) return camera;
   const JsonReader r(*node, "render.camera", "", {"mode", "eye", "target", "fov", "orbit_period", "elevation"});
-  camera.mode = enumValue(r, "mode", kCameraModeNames, camera.mode);
+  camera.mode = enumValue(r, "mode", std::span(kCameraModeNames), camera.mode);
   if (r.has("eye")) camera.eye = parsePoint(r, "eye");
   if (r.has("target")) camera.target = parsePoint(r, "target");
   if (camera.eye && camera.target) {
@@ -319,14 +330,9 @@ std::optional<AudioSpec> parseAudio(const JsonReader& render) {
   if (node->is_boolean()) return audio;
   if (!node->is_object()) render.fail("audio", "must be true, false or an object of options, got " + describeJson(*node));
   const JsonReader a(*node, "render.audio", "", {"pitch", "timbre", "frequency_scale", "volume"});
-  const std::string pitch = a.optionalString("pitch").value_or("video");
-  if (pitch == "video") audio.pitch = AudioSpec::Pitch::Video;
-  else if (pitch == "real") audio.pitch = AudioSpec::Pitch::Real;
-  else a.fail("pitch", fmt::format("must be \"video\" (follows slow motion) or \"real\", got \"{}\"", pitch));
-  const std::string timbre = a.optionalString("timbre").value_or("clicks");
-  if (timbre == "clicks") audio.timbre = AudioSpec::Timbre::Clicks;
-  else if (timbre == "tone") audio.timbre = AudioSpec::Timbre::Tone;
-  else a.fail("timbre", fmt::format("must be \"clicks\" or \"tone\", got \"{}\"", timbre));
+  audio.pitch = enumValue(a, "pitch", std::span(kPitchNames), audio.pitch,
+                          "must be \"video\" (follows slow motion) or \"real\", got \"{}\"");
+  audio.timbre = enumValue(a, "timbre", std::span(kTimbreNames), audio.timbre);
   audio.frequencyScale = a.number("frequency_scale", audio.frequencyScale);
   if (!(audio.frequencyScale > 0 && audio.frequencyScale <= 1000)) {
     a.fail("frequency_scale", fmt::format("must be in (0, 1000], got {}", audio.frequencyScale));
@@ -351,7 +357,7 @@ RenderSpec parseRender(const JsonReader& top) {
   }
   render.fps = r.integer("fps", render.fps);
   if (render.fps < 1 || render.fps > kMaxFps) r.fail("fps", fmt::format("must be in [1, {}], got {}", kMaxFps, render.fps));
-  picture.antialiasing = enumValue(r, "antialiasing", kAntialiasingNames, picture.antialiasing);
+  picture.antialiasing = enumValue(r, "antialiasing", std::span(kAntialiasingNames), picture.antialiasing);
   picture.msaa = r.integer("msaa", picture.msaa);
   if (!render::isMsaaSampleCount(picture.msaa)) {
     r.fail("msaa", fmt::format("must be {} samples, got {}",
@@ -395,12 +401,8 @@ RenderSpec parseRender(const JsonReader& top) {
     }
   }
   render.audio = parseAudio(r);
-  if (const std::optional<std::string> background = r.optionalString("background")) {
-    if (*background != "opaque" && *background != "transparent") {
-      r.fail("background", fmt::format("expected \"opaque\" or \"transparent\", got \"{}\"", *background));
-    }
-    picture.transparentBackground = *background == "transparent";
-  }
+  picture.transparentBackground = enumValue(r, "background", std::span(kBackgroundNames), 0,
+                                            "expected \"opaque\" or \"transparent\", got \"{}\"") == 1;
   render.provenance = r.boolean("provenance", render.provenance);
   return render;
 }
@@ -421,10 +423,7 @@ physics::Effect parseEffect(const nlohmann::json& node, const std::string& path)
   if (type == "air_drag") {
     const JsonReader r(node, path, "", {"type", "model", "viscosity", "density"});
     physics::AirDrag law;
-    const std::string model = r.optionalString("model").value_or("moffatt");
-    if (model == "moffatt") law.model = physics::AirFlow::Moffatt;
-    else if (model == "boundary_layer") law.model = physics::AirFlow::BoundaryLayer;
-    else r.fail("model", fmt::format("must be \"moffatt\" or \"boundary_layer\", got \"{}\"", model));
+    law.model = enumValue(r, "model", std::span(kAirFlowNames), law.model);
     law.viscosity = r.number("viscosity", law.viscosity);
     positive(r, "viscosity", law.viscosity);
     // Air is 1.8e-5 Pa s; the bound admits glycerine and stops overflow in the couple.
@@ -621,21 +620,17 @@ SceneConfig parseScene(const nlohmann::json& document, std::string_view sourceNa
     positive(top, "duration", scene.duration);
     scene.solver = parseSolver(top, options);
     // A fixed-step run's step count is known now; the integrator would only find it after hours.
-    if (const auto method = integrate::methodFromName(scene.solver.method); method && !integrate::isAdaptive(*method)) {
+    if (!integrate::isAdaptive(scene.solver.method)) {
       const double steps = scene.duration / scene.solver.dt;
       if (const long maxSteps = integrate::SolverConfig{}.maxSteps; steps > static_cast<double>(maxSteps)) {
         throw SceneError(fmt::format("solver.dt: duration / dt = {:.3g} steps of {}, more than the {} a run may take; "
                                      "raise solver.dt, shorten the duration or use an adaptive method (dop853)",
-                                     steps, scene.solver.method, maxSteps));
+                                     steps, integrate::nameOf(scene.solver.method), maxSteps));
       }
     }
     scene.effects = parseEffects(top);
     refuseLeverArmsPastTheRim(scene.effects, scene.coin.radius);
-    if (const std::optional<std::string> onInvalid = top.optionalString("on_invalid")) {
-      if (*onInvalid == "stop") scene.onInvalid = OnInvalid::Stop;
-      else if (*onInvalid == "warn") scene.onInvalid = OnInvalid::Warn;
-      else top.fail("on_invalid", fmt::format("must be \"stop\" or \"warn\", got \"{}\"", *onInvalid));
-    }
+    scene.onInvalid = enumValue(top, "on_invalid", std::span(kOnInvalidNames), scene.onInvalid);
     scene.render = parseRender(top);
     scene.render.picture.coin = drawnCoin;
     return scene;

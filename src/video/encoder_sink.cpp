@@ -36,16 +36,15 @@ struct Container {
   const char* muxer;          // libavformat's name; the temporary name has no extension to guess by
   const char* encoder;        // libavcodec's name
   AVPixelFormat pixelFormat;  // without alpha
-  AVPixelFormat alphaFormat;  // with alpha; AV_PIX_FMT_NONE where the codec has none
-  bool holdsAudio;            // an AAC track fits in the container
+  AVPixelFormat alphaFormat;  // with alpha (keepsAlpha); AV_PIX_FMT_NONE where the codec has none
   bool evenSides;             // 4:2:0 chroma: the picture's sides must be even
 };
 
 const Container& containerOf(VideoFormat format) {
-  static const Container mp4{"MP4", "mp4", "libx264", AV_PIX_FMT_YUV420P, AV_PIX_FMT_NONE, true, true};
-  static const Container gif{"GIF", "gif", "gif", AV_PIX_FMT_PAL8, AV_PIX_FMT_NONE, false, false};
-  static const Container webm{"WebM", "webm", "libvpx-vp9", AV_PIX_FMT_YUV420P, AV_PIX_FMT_YUVA420P, false, true};
-  static const Container mov{"MOV", "mov", "prores_ks", AV_PIX_FMT_YUV444P10LE, AV_PIX_FMT_YUVA444P10LE, true, false};
+  static const Container mp4{"MP4", "mp4", "libx264", AV_PIX_FMT_YUV420P, AV_PIX_FMT_NONE, true};
+  static const Container gif{"GIF", "gif", "gif", AV_PIX_FMT_PAL8, AV_PIX_FMT_NONE, false};
+  static const Container webm{"WebM", "webm", "libvpx-vp9", AV_PIX_FMT_YUV420P, AV_PIX_FMT_YUVA420P, true};
+  static const Container mov{"MOV", "mov", "prores_ks", AV_PIX_FMT_YUV444P10LE, AV_PIX_FMT_YUVA444P10LE, false};
   switch (format) {
     case VideoFormat::Mp4: return mp4;
     case VideoFormat::Gif: return gif;
@@ -67,16 +66,6 @@ constexpr int kVp9Threads = 2;
 constexpr int kProResQuantiser = 4;
 
 }  // namespace
-
-std::string_view extensionOf(VideoFormat format) {
-  switch (format) {
-    case VideoFormat::Mp4: return ".mp4";
-    case VideoFormat::Gif: return ".gif";
-    case VideoFormat::WebM: return ".webm";
-    case VideoFormat::Mov: return ".mov";
-  }
-  throw std::logic_error("unknown VideoFormat");
-}
 
 void validate(const VideoOptions& options) {
   const Container& container = containerOf(options.format);
@@ -102,10 +91,10 @@ void validate(const VideoOptions& options) {
     throw std::invalid_argument(
         videoOptionError("x264.threads", "must be in 1.." + std::to_string(kMaxX264Threads), std::to_string(x264.threads)));
   }
-  if (options.alpha && container.alphaFormat == AV_PIX_FMT_NONE) {
+  if (options.alpha && !keepsAlpha(options.format)) {
     throw std::invalid_argument(videoOptionError("alpha", std::string(container.label) + " has no alpha channel", "true"));
   }
-  if (options.audio && !container.holdsAudio) {
+  if (options.audio && !holdsAudio(options.format)) {
     throw std::invalid_argument(videoOptionError("audio", std::string(container.label) + " gets no sound track", "true"));
   }
 }

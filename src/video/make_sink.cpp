@@ -1,6 +1,5 @@
 #include "video/make_sink.h"
 
-#include <array>
 #include <cctype>
 #include <stdexcept>
 
@@ -11,19 +10,20 @@ namespace coinroll::video {
 
 namespace {
 
-std::string lowerExtension(const std::filesystem::path& path) {
+// The video kind the path's extension names, in any case; nothing for any other extension.
+std::optional<VideoFormat> formatOfExtension(const std::filesystem::path& path) {
   std::string extension = path.extension().string();
   for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return extension;
+  for (const VideoFormat format : kVideoFormats) {
+    if (extension == extensionOf(format)) return format;
+  }
+  return std::nullopt;
 }
 
 }  // namespace
 
 std::optional<VideoFormat> videoFormatOf(const std::filesystem::path& path) {
-  const std::string extension = lowerExtension(path);
-  for (const VideoFormat format : {VideoFormat::Mp4, VideoFormat::Gif, VideoFormat::WebM, VideoFormat::Mov}) {
-    if (extension == extensionOf(format)) return format;
-  }
+  if (const std::optional<VideoFormat> format = formatOfExtension(path)) return format;
   // A device, FIFO or descriptor has no extension of its own to choose by (/dev/null,
   // /dev/fd/63 from `-o >(...)`): it gets the default kind, as the default name does.
   if (!namesPngSequence(path) && io::namesStream(path)) return VideoFormat::Mp4;
@@ -31,11 +31,7 @@ std::optional<VideoFormat> videoFormatOf(const std::filesystem::path& path) {
 }
 
 bool namesPngSequence(const std::filesystem::path& path) {
-  const std::string extension = lowerExtension(path);
-  for (const VideoFormat format : {VideoFormat::Mp4, VideoFormat::Gif, VideoFormat::WebM, VideoFormat::Mov}) {
-    if (extension == extensionOf(format)) return false;
-  }
-  return looksLikeSequencePattern(path.filename().string());
+  return !formatOfExtension(path) && looksLikeSequencePattern(path.filename().string());
 }
 
 std::unique_ptr<FrameSink> makeSinkForPath(const std::filesystem::path& path, const VideoOptions& options,

@@ -38,14 +38,12 @@ bool looksLikeSequencePattern(const std::string& fileName) {
   return false;
 }
 
-PngSequenceSink::PngSequenceSink(std::filesystem::path pattern, const std::vector<std::filesystem::path>& inputs,
-                                 const Provenance& provenance)
-    : text_(provenance.pngText()) {
-  frames_.protect(inputs);
+SequencePattern parseSequencePattern(const std::filesystem::path& pattern) {
   const std::string whole = pattern.string();
   const std::string fileName = pattern.filename().string();
+  SequencePattern parsed;
   bool haveConversion = false;
-  std::string* literal = &prefix_;
+  std::string* literal = &parsed.prefix;
   for (std::size_t i = 0; i < fileName.size(); ++i) {
     if (fileName[i] != '%') {
       literal->push_back(fileName[i]);
@@ -64,19 +62,46 @@ PngSequenceSink::PngSequenceSink(std::filesystem::path pattern, const std::vecto
       std::size_t widthStart = j;
       while (j < fileName.size() && std::isdigit(static_cast<unsigned char>(fileName[j]))) ++j;
       if (j == widthStart || j - widthStart > 2) throw badPattern(whole, "the zero flag needs a width of 1..10");
-      minimumDigits_ = std::stoi(fileName.substr(widthStart, j - widthStart));
-      if (minimumDigits_ < 1 || minimumDigits_ > kMaxDigits) {
+      parsed.minimumDigits = std::stoi(fileName.substr(widthStart, j - widthStart));
+      if (parsed.minimumDigits < 1 || parsed.minimumDigits > kMaxDigits) {
         throw badPattern(whole, "the zero flag needs a width of 1..10");
       }
     }
     if (j >= fileName.size() || fileName[j] != 'd') throw badPattern(whole, "only %d and %0Nd are supported");
     haveConversion = true;
-    literal = &suffix_;
+    literal = &parsed.suffix;
     i = j;
   }
   if (!haveConversion) throw badPattern(whole, "no % conversion");
   if (!endsWithPng(fileName)) throw badPattern(whole, "the file name must end in .png");
+  return parsed;
+}
 
+std::string SequencePattern::fileNameOf(int index) const {
+  std::string number = std::to_string(index);
+  if (static_cast<int>(number.size()) < minimumDigits) number.insert(0, minimumDigits - number.size(), '0');
+  return prefix + number + suffix;
+}
+
+std::optional<int> SequencePattern::frameNumberOf(std::string_view fileName) const {
+  if (fileName.size() <= prefix.size() + suffix.size() || !fileName.starts_with(prefix) || !fileName.ends_with(suffix)) {
+    return std::nullopt;
+  }
+  const std::string_view digits = fileName.substr(prefix.size(), fileName.size() - prefix.size() - suffix.size());
+  if (digits.size() > static_cast<std::size_t>(kMaxDigits) || digits.find_first_not_of("0123456789") != std::string_view::npos) {
+    return std::nullopt;
+  }
+  const long long number = std::stoll(std::string(digits));
+  // Only the exact name the pattern gives that number: "f_0004.png" is no frame of f_%03d.png.
+  if (number > INT_MAX || fileNameOf(static_cast<int>(number)) != fileName) return std::nullopt;
+  return static_cast<int>(number);
+}
+
+PngSequenceSink::PngSequenceSink(std::filesystem::path pattern, const std::vector<std::filesystem::path>& inputs,
+                                 const Provenance& provenance)
+    : pattern_(parseSequencePattern(pattern)), text_(provenance.pngText()) {
+  frames_.protect(inputs);
+  const std::string whole = pattern.string();
   directory_ = pattern.parent_path();
   std::error_code ec;
   if (!std::filesystem::is_directory(directory_.empty() ? "." : directory_, ec)) {
@@ -95,11 +120,7 @@ PngSequenceSink::PngSequenceSink(std::filesystem::path pattern, const std::vecto
 
 PngSequenceSink::~PngSequenceSink() = default;  // an uncommitted group removes its temporaries
 
-std::filesystem::path PngSequenceSink::pathOfFrame(int index) const {
-  std::string number = std::to_string(index);
-  if (static_cast<int>(number.size()) < minimumDigits_) number.insert(0, minimumDigits_ - number.size(), '0');
-  return directory_ / (prefix_ + number + suffix_);
-}
+std::filesystem::path PngSequenceSink::pathOfFrame(int index) const { return directory_ / pattern_.fileNameOf(index); }
 
 void PngSequenceSink::push(const image::Image& frame) {
   if (finished_) throw std::logic_error(pathOfFrame(0).string() + ": push() after finish()");
@@ -113,18 +134,8 @@ std::vector<std::filesystem::path> PngSequenceSink::framesFrom(int count) const 
   const std::filesystem::path directory = directory_.empty() ? "." : directory_;
   for (std::filesystem::directory_iterator entry(directory, error), end; !error && entry != end; entry.increment(error)) {
     const std::string name = entry->path().filename().string();
-    if (name.size() <= prefix_.size() + suffix_.size() || name.compare(0, prefix_.size(), prefix_) != 0 ||
-        name.compare(name.size() - suffix_.size(), suffix_.size(), suffix_) != 0) {
-      continue;
-    }
-    const std::string digits = name.substr(prefix_.size(), name.size() - prefix_.size() - suffix_.size());
-    if (digits.size() > static_cast<std::size_t>(kMaxDigits) ||
-        digits.find_first_not_of("0123456789") != std::string::npos) {
-      continue;
-    }
-    const long long number = std::stoll(digits);
-    // Only the exact name the pattern gives that number: "f_0004.png" is no frame of f_%03d.png.
-    if (number < count || number > INT_MAX || pathOfFrame(static_cast<int>(number)).filename() != name) continue;
+    const std::optional<int> number = pattern_.frameNumberOf(name);
+    if (!number || *number < count) continue;
     // A directory or a device named like a frame was never one of ours: it stays where it is.
     const std::filesystem::file_type type = entry->symlink_status(error).type();
     if (error) break;

@@ -2,7 +2,9 @@
 // A numbered sequence of PNG files, one per frame.
 
 #include <filesystem>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "io/output_group.h"
@@ -11,6 +13,24 @@
 #include "video/video_options.h"
 
 namespace coinroll::video {
+
+// The file names of a PNG sequence: a file name with exactly one printf-style integer conversion,
+// %d or %0Nd (N = minimum digits, zero-padded, 1..10), ending in ".png" in any case; "%%" is a
+// literal percent sign. Frame i is named prefix, i with at least minimumDigits digits, suffix.
+struct SequencePattern {
+  std::string prefix;     // file name before the number, escapes resolved
+  std::string suffix;     // file name after the number
+  int minimumDigits = 0;  // N of %0Nd; 0 for %d
+
+  std::string fileNameOf(int index) const;
+  // The frame a file name is, when it is exactly the name fileNameOf gives that number
+  // ("f_0004.png" is no frame of f_%03d.png); nothing for any other name.
+  std::optional<int> frameNumberOf(std::string_view fileName) const;
+};
+
+// The pattern of `pattern`'s file name (its directory part is not looked at). Throws
+// std::invalid_argument naming `pattern` and the rule it breaks.
+SequencePattern parseSequencePattern(const std::filesystem::path& pattern);
 
 // `pattern` is a path whose file name holds exactly one printf-style integer conversion, %d or
 // %0Nd (N = minimum digits, zero-padded), and ends in ".png"; "%%" is a literal percent sign
@@ -48,9 +68,7 @@ class PngSequenceSink final : public FrameSink {
 
  private:
   std::filesystem::path directory_;
-  std::string prefix_;  // file name before the number
-  std::string suffix_;  // file name after the number
-  int minimumDigits_ = 0;
+  SequencePattern pattern_;
   image::PngText text_;
   io::OutputGroup frames_{"PNG"};  // frame i is the i-th file staged
   bool finished_ = false;

@@ -38,6 +38,24 @@ enum class VideoFormat {
   WebM,  // VP9 (libvpx-vp9), yuv420p, or yuva420p with alpha
   Mov,   // ProRes 4444 (prores_ks), yuv444p10le, or yuva444p10le with alpha; AAC when there is audio
 };
+// Every kind, in the order of the enum: the one list an output name is matched against.
+inline constexpr std::array<VideoFormat, 4> kVideoFormats = {VideoFormat::Mp4, VideoFormat::Gif, VideoFormat::WebM,
+                                                             VideoFormat::Mov};
+
+// ".mp4", ".gif", ".webm" or ".mov", the extension a file of `format` is chosen by.
+constexpr std::string_view extensionOf(VideoFormat format) {
+  switch (format) {
+    case VideoFormat::Mp4: return ".mp4";
+    case VideoFormat::Gif: return ".gif";
+    case VideoFormat::WebM: return ".webm";
+    case VideoFormat::Mov: return ".mov";
+  }
+  return {};
+}
+// Whether a file of `format` keeps the frames' alpha (VideoOptions::alpha).
+constexpr bool keepsAlpha(VideoFormat format) { return format == VideoFormat::WebM || format == VideoFormat::Mov; }
+// Whether a file of `format` can hold a sound track (VideoOptions::audio).
+constexpr bool holdsAudio(VideoFormat format) { return format == VideoFormat::Mp4 || format == VideoFormat::Mov; }
 
 // What says who made a file (docs/outputs.md "Provenance"): the program and its release, and a
 // digest of the scene it rendered. No date and no git revision, so the same release and scene give
@@ -69,7 +87,5 @@ struct VideoOptions {
   Provenance provenance;
 };
 
-// ".mp4", ".gif", ".webm" or ".mov", the extension a file of `format` is chosen by.
-std::string_view extensionOf(VideoFormat format);
 
 }  // namespace coinroll::video

@@ -675,7 +675,7 @@ case("from-after-to", C, "render --from 0.4 --to 0.1", RW + "--from 0.4 --to 0.1
      "--from 0.4 --to 0.1: the window ends before it starts; give --from <= --to", key="--from", gtest=(G_RENDER,),
      na_before=FORMATS)
 case("from-beyond-end", C, "render --from 2 past a 0.5 s run", RW + "--from 2", 2,
-     "--from 2: beyond the run's end at 0.5 s (the scene's duration); give a time in [0, 0.5]", key="--from",
+     "--from 2: beyond the run's end at 0.5 s; give a time in [0, 0.5]", key="--from",
      gtest=(G_RENDER,), na_before=FORMATS)
 case("from-negative", C, "render --from -1", RW + "--from -1", 2, "--from -1: must be a simulated time >= 0 s",
      key="--from", gtest=(G_RENDER,), na_before=FORMATS)

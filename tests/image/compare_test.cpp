@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -170,3 +172,48 @@ TEST(DifferenceImage, IsWrittenAtomicallyAsPng) {
 }
 
 }  // namespace
+
+// `coinroll compare`'s verdict, in the words of its options: the broken limits with the values
+// that broke them, or the limits a difference was held to.
+TEST(CompareVerdict, NamesTheLimitsBrokenOrHeldTo) {
+  const ImageComparison c = compareImages(pattern(), patternWithOnePixelChanged());  // 1 of 80 pixels
+  EXPECT_EQ(coinroll::image::judge(c, {}).text, "DIFFERENT (1 > --max-differing-pixels 0)");
+  EXPECT_FALSE(coinroll::image::judge(c, {}).pass);
+  const coinroll::image::CompareVerdict held = coinroll::image::judge(c, limits(1, 0.5));
+  EXPECT_TRUE(held.pass);
+  EXPECT_EQ(held.text, "SAME within --max-differing-pixels 1, --max-differing-fraction 0.5");
+  // A fraction alone: the pixel count is not a limit then, and is not named.
+  EXPECT_EQ(coinroll::image::judge(c, limits(std::nullopt, 0.01)).text, "DIFFERENT (0.0125 > --max-differing-fraction 0.01)");
+  const double psnr = onePixelPsnr();
+  EXPECT_EQ(coinroll::image::judge(c, limits(1, std::nullopt, 100)).text,
+            fmt::format("DIFFERENT ({:.2f} dB < --min-psnr 100)", psnr));
+  EXPECT_EQ(coinroll::image::judge(compareImages(pattern(), pattern()), {}).text, "SAME (identical pixels)");
+  // Within the channel tolerance the pixels count as equal, though not identical.
+  const ImageComparison tolerant = compareImages(pattern(), patternWithOnePixelChanged(), 255);
+  EXPECT_EQ(coinroll::image::judge(tolerant, limits(std::nullopt, std::nullopt, std::nullopt, 255)).text,
+            "SAME within --channel-tolerance 255, --max-differing-pixels 0");
+}
+
+TEST(CompareVerdict, TheLineGivesPsnrCountsAndVerdict) {
+  const ImageComparison c = compareImages(pattern(), patternWithOnePixelChanged());
+  const std::string line = coinroll::image::comparisonLine(c, coinroll::image::judge(c, {}));
+  EXPECT_EQ(line, fmt::format("PSNR {:.2f} dB, 1 of 80 pixels differ (1.25 %, channel tolerance 0), max channel difference {}: "
+                              "DIFFERENT (1 > --max-differing-pixels 0)",
+                              onePixelPsnr(), c.maxChannelDifference));
+}
+
+TEST(CompareThresholds, BadLimitsAreNamedAsTheOptionsThatSetThem) {
+  const auto messageOf = [](const coinroll::image::CompareThresholds& thresholds) {
+    try {
+      coinroll::image::checkThresholds(thresholds);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(messageOf(limits(-1)), "--max-differing-pixels: must be >= 0, got -1");
+  EXPECT_EQ(messageOf(limits(std::nullopt, 1.5)), "--max-differing-fraction: must be in [0, 1] (0.01 is 1 % of the pixels), got 1.5");
+  EXPECT_EQ(messageOf(limits(std::nullopt, std::nullopt, std::nan(""))), "--min-psnr: must be a number of dB, got nan");
+  EXPECT_EQ(messageOf(limits(std::nullopt, std::nullopt, std::nullopt, 256)), "--channel-tolerance: must be a whole number 0..255, got 256");
+  EXPECT_EQ(messageOf(limits(0, 0, 60, 255)), "accepted");
+}

@@ -502,3 +502,38 @@ TEST(ThickWobbleStiffness, TendsToTheThinCoinsAsTheThicknessVanishes) {
 
 }  // namespace
 }  // namespace coinroll::physics
+
+namespace coinroll::physics {
+namespace {
+
+// The verdict `coinroll steady` prints: K's sign decides, sqrt(|K|) gives the rate and the time.
+TEST(TiltStability, TheSignOfKDecidesAndItsRootGivesTheTimes) {
+  const TiltStability stable = tiltStability(4);
+  EXPECT_EQ(stable.kind, TiltStability::Kind::Stable);
+  EXPECT_DOUBLE_EQ(stable.rate, 2);
+  EXPECT_DOUBLE_EQ(stable.time, std::numbers::pi);  // the period 2 pi / 2
+  const TiltStability unstable = tiltStability(-0.25);
+  EXPECT_EQ(unstable.kind, TiltStability::Kind::Unstable);
+  EXPECT_DOUBLE_EQ(unstable.rate, 0.5);
+  EXPECT_DOUBLE_EQ(unstable.time, 2);  // the e-folding time 1 / 0.5
+  const TiltStability marginal = tiltStability(0);
+  EXPECT_EQ(marginal.kind, TiltStability::Kind::Marginal);
+  EXPECT_EQ(marginal.rate, 0);
+  EXPECT_EQ(marginal.time, 0);
+}
+
+// Straight rolling above the critical spin is stable, below it unstable (seed 5.1): the verdict
+// follows K across omega_c.
+TEST(TiltStability, StraightRollingTurnsStableAtTheCriticalSpin) {
+  const CoinModel disk = diskModel(0.4, 0.0375, 9.81);
+  const double omega_c = criticalSpin(disk);
+  const auto verdictAt = [&](double omega_Z) {
+    const CoinState s = straightRolling(disk, omega_Z);
+    return tiltStability(wobbleStiffness(disk, s.theta, s.omega_Y, s.omega_Z)).kind;
+  };
+  EXPECT_EQ(verdictAt(1.01 * omega_c), TiltStability::Kind::Stable);
+  EXPECT_EQ(verdictAt(0.99 * omega_c), TiltStability::Kind::Unstable);
+}
+
+}  // namespace
+}  // namespace coinroll::physics

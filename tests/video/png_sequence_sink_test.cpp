@@ -110,3 +110,31 @@ TEST(PngSequenceSink, MissingDirectoryIsReportedByPath) {
   const fs::path pattern = directory / "missing" / "frame_%05d.png";
   EXPECT_THROW(PngSequenceSink sink(pattern), std::runtime_error);
 }
+
+// The pattern grammar on its own, as the sink and `coinroll render`'s check against its inputs
+// read it: frame i's name, and which names are frames (only the exact name of a number).
+TEST(SequencePattern, NamesFramesAndKnowsItsOwnNamesExactly) {
+  using coinroll::video::parseSequencePattern;
+  const coinroll::video::SequencePattern padded = parseSequencePattern("out/f_%03d.PNG");
+  EXPECT_EQ(padded.prefix, "f_");
+  EXPECT_EQ(padded.suffix, ".PNG");
+  EXPECT_EQ(padded.minimumDigits, 3);
+  EXPECT_EQ(padded.fileNameOf(7), "f_007.PNG");
+  EXPECT_EQ(padded.fileNameOf(12345), "f_12345.PNG");
+  EXPECT_EQ(padded.frameNumberOf("f_007.PNG"), 7);
+  EXPECT_EQ(padded.frameNumberOf("f_12345.PNG"), 12345);
+  EXPECT_EQ(padded.frameNumberOf("f_0007.PNG"), std::nullopt);  // no number gives four digits with a leading 0
+  EXPECT_EQ(padded.frameNumberOf("f_07.PNG"), std::nullopt);
+  EXPECT_EQ(padded.frameNumberOf("f_007.png"), std::nullopt);   // another suffix
+  EXPECT_EQ(padded.frameNumberOf("f_.PNG"), std::nullopt);
+  EXPECT_EQ(padded.frameNumberOf("f_99999999999.PNG"), std::nullopt);  // past any frame number
+  const coinroll::video::SequencePattern plain = parseSequencePattern("100%%_%d.png");
+  EXPECT_EQ(plain.prefix, "100%_");
+  EXPECT_EQ(plain.minimumDigits, 0);
+  EXPECT_EQ(plain.fileNameOf(0), "100%_0.png");
+  EXPECT_EQ(plain.frameNumberOf("100%_42.png"), 42);
+  EXPECT_EQ(plain.frameNumberOf("100%_042.png"), std::nullopt);
+  EXPECT_THROW(parseSequencePattern("f_%s.png"), std::invalid_argument);
+  EXPECT_THROW(parseSequencePattern("f_%d_%d.png"), std::invalid_argument);
+  EXPECT_THROW(parseSequencePattern("f_%d.jpg"), std::invalid_argument);
+}

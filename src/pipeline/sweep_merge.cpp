@@ -1,0 +1,181 @@
+#include "pipeline/sweep_merge.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <charconv>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <stdexcept>
+#include <system_error>
+
+#include "pipeline/cancelled.h"
+#include "pipeline/sweep.h"
+
+namespace coinroll::pipeline {
+
+namespace {
+
+// Fields of one CSV row as csvField writes them (quoted fields may hold commas).
+std::size_t csvFieldCount(std::string_view row) {
+  std::size_t fields = 1;
+  bool quoted = false;
+  for (const char c : row) {
+    if (c == '"') quoted = !quoted;
+    else if (c == ',' && !quoted) ++fields;
+  }
+  return fields;
+}
+
+// The row's last two fields, ",<grid points>,<digest>": never quoted, so found from the end.
+std::string_view identityOf(std::string_view row) {
+  const auto last = row.rfind(',');
+  const auto beforeLast = last == std::string_view::npos || last == 0 ? std::string_view::npos : row.rfind(',', last - 1);
+  return beforeLast == std::string_view::npos ? std::string_view() : row.substr(beforeLast);
+}
+
+// A list of point numbers for a message: the first 20, then how many more.
+std::string pointList(const std::vector<long>& points) {
+  const std::size_t shown = std::min<std::size_t>(points.size(), 20);
+  return fmt::format("{}{}", fmt::join(points.begin(), points.begin() + static_cast<long>(shown), ", "),
+                     points.size() > shown ? fmt::format(" and {} more", points.size() - shown) : "");
+}
+
+}  // namespace
+
+void mergeSweepShards(const std::vector<std::filesystem::path>& shards, std::ostream& out, const std::atomic<bool>* cancel) {
+  if (shards.empty()) throw std::invalid_argument("sweep-merge: give the shard files to merge");
+  if (std::count(shards.begin(), shards.end(), "-") > 1) {
+    throw std::invalid_argument("sweep-merge: - (standard input) is given more than once; it can be read only once");
+  }
+  std::string header, firstHeaderSource;
+  std::string identity, identitySource;  // the first row's ",grid_points,sweep" and where it was read
+  long gridPoints = 0;
+  std::map<long, std::string> rows;  // point -> row
+  std::vector<long> repeated;
+  for (const std::filesystem::path& path : shards) {
+    const bool standardInput = path == "-";
+    const std::string name = standardInput ? "standard input" : path.string();
+    std::ifstream file;
+    if (!standardInput) {
+      std::error_code ignored;
+      if (std::filesystem::is_directory(path, ignored)) {
+        throw std::invalid_argument(fmt::format("{}: is a directory; give the shard files (e.g. {}/*.csv)", name, name));
+      }
+      // A pipe or a FIFO reads as well as a file: the shard is read once, front to back.
+      file.open(path, std::ios::binary);
+      if (!file) throw std::runtime_error(fmt::format("{}: cannot open the shard: {}", name, std::strerror(errno)));
+    }
+    std::istream& in = standardInput ? std::cin : file;
+    long lineNumber = 0;
+    const auto readLine = [&](std::string& line) {
+      if (!std::getline(in, line)) {
+        if (in.bad()) throw std::runtime_error(fmt::format("{}: reading the shard failed: {}", name, std::strerror(errno)));
+        return false;
+      }
+      ++lineNumber;
+      return true;
+    };
+    // getline leaves eof set after a line that had no line break: the shard was cut inside it.
+    const auto refuseCutLine = [&] {
+      if (in.eof()) {
+        throw std::runtime_error(fmt::format("{}:{}: cut short inside a row (no line break at its end): an unfinished "
+                                             "or damaged shard, e.g. an interrupted `sweep -o - > part.csv`; run that "
+                                             "shard again", name, lineNumber));
+      }
+    };
+    std::string line;
+    if (!readLine(line)) throw std::invalid_argument(fmt::format("{}: empty, not a sweep shard", name));
+    if (!line.starts_with("point,")) {
+      throw std::invalid_argument(fmt::format("{}: not a sweep shard (its first line does not start with \"point,\")", name));
+    }
+    refuseCutLine();
+    if (!line.ends_with(kSweepIdentityColumns)) {
+      throw std::invalid_argument(fmt::format("{}: its header has no grid_points and sweep columns, which tell a merge "
+                                              "which sweep a shard belongs to: written by an older coinroll, or "
+                                              "edited; run the sweep again", name));
+    }
+    if (header.empty()) {
+      header = line;
+      firstHeaderSource = name;
+    } else if (line != header) {
+      throw std::runtime_error(fmt::format("{}: its header differs from {}'s: shards of sweeps over different axes; "
+                                           "merge only the shards of one sweep", name, firstHeaderSource));
+    }
+    const std::size_t headerFields = csvFieldCount(header);
+    while (readLine(line)) {
+      throwIfCancelled(cancel);
+      refuseCutLine();
+      long point = -1;
+      const auto comma = line.find(',');
+      const auto [end, error] = std::from_chars(line.data(), line.data() + std::min(comma, line.size()), point);
+      if (error != std::errc() || comma == std::string::npos || end != line.data() + comma || point < 0) {
+        throw std::runtime_error(fmt::format("{}:{}: a row must start with its point number", name, lineNumber));
+      }
+      if (const std::size_t fields = csvFieldCount(line); fields != headerFields) {
+        throw std::runtime_error(fmt::format("{}:{}: {} fields where the header has {}: a damaged shard; run it again",
+                                             name, lineNumber, fields, headerFields));
+      }
+      const std::string_view rowIdentity = identityOf(line);
+      if (identity.empty()) {
+        const std::string_view count = rowIdentity.substr(1, rowIdentity.find(',', 1) - 1);
+        const auto [countEnd, countError] = std::from_chars(count.data(), count.data() + count.size(), gridPoints);
+        if (countError != std::errc() || countEnd != count.data() + count.size() || gridPoints < 1) {
+          throw std::runtime_error(fmt::format("{}:{}: grid_points must be a whole number >= 1, got \"{}\": a damaged "
+                                               "shard; run it again", name, lineNumber, count));
+        }
+        identity = rowIdentity;
+        identitySource = fmt::format("{}:{}", name, lineNumber);
+      } else if (rowIdentity != identity) {
+        throw std::runtime_error(fmt::format(
+            "{}:{}: from another sweep than {} (grid_points,sweep: {} here, {} there): the scene, its --set values or "
+            "the grid differ; merge only the shards of one sweep", name, lineNumber, identitySource,
+            rowIdentity.substr(1), std::string_view(identity).substr(1)));
+      }
+      if (point >= gridPoints) {
+        throw std::runtime_error(fmt::format("{}:{}: point {} is outside the grid of {} points: a damaged shard; run it "
+                                             "again", name, lineNumber, point, gridPoints));
+      }
+      if (!rows.emplace(point, line).second) repeated.push_back(point);
+    }
+  }
+  if (!repeated.empty()) throw std::runtime_error(fmt::format("sweep-merge: points repeated: {}", pointList(repeated)));
+  if (rows.empty()) {
+    throw std::runtime_error("sweep-merge: no shard holds a point, but shard 1 of every sweep holds point 0: a shard is "
+                             "missing or was cut short before its first row");
+  }
+  // Holes are found between the rows present and up to the grid's size, never by visiting every
+  // number: a grid may have 1e7 points. The first holes are named, a run of three or more as a range.
+  constexpr std::size_t kHolesNamed = 20;
+  std::vector<std::string> holes;
+  long missingPoints = 0, namedPoints = 0, expected = 0;
+  const auto missing = [&](long from, long to) {  // points from .. to - 1
+    if (to <= from) return;
+    missingPoints += to - from;
+    if (holes.size() < kHolesNamed) {
+      holes.push_back(to - from == 1   ? fmt::format("{}", from)
+                      : to - from == 2 ? fmt::format("{}, {}", from, from + 1)
+                                       : fmt::format("{} to {}", from, to - 1));
+      namedPoints += to - from;
+    }
+  };
+  for (const auto& [point, row] : rows) {
+    missing(expected, point);
+    expected = point + 1;
+  }
+  missing(expected, gridPoints);
+  if (missingPoints > 0) {
+    throw std::runtime_error(fmt::format("sweep-merge: points missing (of {} in the grid): {}{}", gridPoints,
+                                         fmt::join(holes, ", "),
+                                         missingPoints > namedPoints ? fmt::format(" and {} more", missingPoints - namedPoints)
+                                                                     : ""));
+  }
+  out << header << '\n';
+  for (const auto& [point, row] : rows) out << row << '\n';
+  if (!out) throw std::runtime_error("sweep-merge: writing the merged file failed");
+}
+
+}  // namespace coinroll::pipeline

@@ -116,15 +116,16 @@ SPIN_DOWN_SOLVER = {"rtol": 1e-6, "atol": 1e-8}
 # response: docs/derivations.md (3.2)-(3.5), not in the program (an independent oracle).
 
 
-def steady(coin, kind, theta_deg, omega_z, branch=None):
+def steady(coin, kind, omega_z, theta_deg=None, branch=None):
     """coinroll.steady of the coin (scene block) at a steady state named as `coinroll steady --kind` does."""
-    return coinroll.steady({"coin": coin_block(coin)}, kind=kind, theta=float(theta_deg), omega_Z=float(omega_z),
+    theta = None if theta_deg is None else float(theta_deg)
+    return coinroll.steady({"coin": coin_block(coin), "duration": 1.0}, kind=kind, theta=theta, omega_Z=float(omega_z),
                            branch=branch)
 
 
 def critical_spin(coin):
     """omega_c of straight rolling, (3.7), as the program computes it."""
-    return steady(coin, "straight", 0.0, 1.0)["critical_spin"]
+    return steady(coin, "straight", 1.0)["critical_spin"]
 
 
 def kick_response(state):
@@ -138,7 +139,7 @@ def kick_response(state):
 
 def straight_wobble(coin, omega_z):
     """(K, Q) of straight rolling upright at each spin of the array omega_z, from the program."""
-    states = [steady(coin, "straight", 0.0, w) for w in np.ravel(omega_z)]
+    states = [steady(coin, "straight", w) for w in np.ravel(omega_z)]
     shape = np.shape(omega_z)
     return (np.reshape([st["K"] for st in states], shape), np.reshape([kick_response(st) for st in states], shape))
 
@@ -149,7 +150,7 @@ def circle_wobble(coin, theta, omega_z, branch):
     theta, omega_z = np.broadcast_arrays(np.asarray(theta, float), np.asarray(omega_z, float))
     omega_y, k, q = (np.empty(theta.shape) for _ in range(3))
     for index in np.ndindex(theta.shape):
-        state = steady(coin, "circle", math.degrees(theta[index]), omega_z[index], "+" if branch > 0 else "-")
+        state = steady(coin, "circle", omega_z[index], math.degrees(theta[index]), "+" if branch > 0 else "-")
         omega_y[index], k[index], q[index] = state["initial"]["omega_Y"], state["K"], kick_response(state)
     return omega_y, k, q
 
@@ -404,13 +405,13 @@ def map_circles(runner, summary, workers=2):
 
     # Where K < 0 at all (so that the plotted ranges hold every unstable circle).
     th_all = np.radians(np.linspace(0.5, 89, 178))[:, None]
-    wz_all = np.linspace(-150, 150, 601)[None, :]
+    wz_all = np.linspace(-150, 150, 301)[None, :]
     for branch in (1, -1):
         k_all = circle_wobble(coin, th_all, wz_all, branch)[1]
         rows, cols = np.nonzero(k_all < 0)
         print(f"  {'f+' if branch > 0 else 'f-'}: K < 0 only for theta0 <= {np.degrees(th_all[rows.max(), 0]):.2f} deg "
               f"and omega_Z0 in [{wz_all[0, cols.min()]:.1f}, {wz_all[0, cols.max()]:.1f}] rad/s "
-              f"(scanned theta0 0.5..89 deg, |omega_Z0| <= 150 rad/s)")
+              f"(scanned theta0 0.5..89 deg in 0.5 deg, |omega_Z0| <= 150 rad/s in 1 rad/s)")
 
     jobs = []
     for branch in (1, -1):

@@ -11,7 +11,6 @@
 #include <array>
 #include <cmath>
 #include <numbers>
-#include <sstream>
 #include <vector>
 #include <cstdio>
 #include <filesystem>

@@ -404,14 +404,14 @@ def map_circles(runner, summary, workers=2):
           f"{predicted:.4f}; simulated, kick " + ", ".join(measured))
 
     # Where K < 0 at all (so that the plotted ranges hold every unstable circle).
-    th_all = np.radians(np.linspace(0.5, 89, 178))[:, None]
+    th_all = np.radians(np.linspace(0.5, 88.5, 177))[:, None]  # the program refuses 89 deg and above
     wz_all = np.linspace(-150, 150, 301)[None, :]
     for branch in (1, -1):
         k_all = circle_wobble(coin, th_all, wz_all, branch)[1]
         rows, cols = np.nonzero(k_all < 0)
         print(f"  {'f+' if branch > 0 else 'f-'}: K < 0 only for theta0 <= {np.degrees(th_all[rows.max(), 0]):.2f} deg "
               f"and omega_Z0 in [{wz_all[0, cols.min()]:.1f}, {wz_all[0, cols.max()]:.1f}] rad/s "
-              f"(scanned theta0 0.5..89 deg in 0.5 deg, |omega_Z0| <= 150 rad/s in 1 rad/s)")
+              f"(scanned theta0 0.5..88.5 deg in 0.5 deg, |omega_Z0| <= 150 rad/s in 1 rad/s)")
 
     jobs = []
     for branch in (1, -1):

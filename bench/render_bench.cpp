@@ -23,7 +23,7 @@
 #include "render/gl_context.h"
 #include "render/gl_handles.h"
 #include "render/meshes.h"
-#include "render/image_compare.h"
+#include "image_compare.h"
 #include "render/renderer.h"
 #include "integrate/solver_config.h"
 #include "pipeline/video_frames.h"
@@ -142,7 +142,7 @@ class Probe {
 
 // Anti-aliasing quality (llvmpipe offers at most 4 samples): each mode at 320x180 against a
 // reference drawn at 8x the size with one sample per pixel and box-averaged down (64 samples per
-// pixel), as PSNR over edge pixels (tests/render/image_compare.h).
+// pixel), as PSNR over edge pixels (tests/support/image_compare.h).
 void antialiasingQuality() {
   constexpr int kWidth = 320, kHeight = 180, kFactor = 8;
   FrameSnapshot snapshot = benchSnapshot(1.0);

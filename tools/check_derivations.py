@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# Independent on purpose: a test oracle (ctest sympy_*) re-deriving docs/derivations.md in SymPy; it never calls coinroll.
 """Symbolic checks of docs/derivations.md (run with Debian's python3-sympy).
 
 Checks, for general I_X, I_Z:

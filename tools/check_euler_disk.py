@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# Independent on purpose: a test oracle (ctest sympy_*) re-deriving docs/euler_disk.md in SymPy; it never calls coinroll.
 """Symbolic checks of docs/euler_disk.md (run with Debian's python3-sympy).
 
 Every numbered algebraic claim of the page is checked here, for general I_X, I_Z where the

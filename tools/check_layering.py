@@ -51,8 +51,8 @@ MAY_INCLUDE = {
         "physics": "a scene is turned into a CoinModel, CoinState and effect parameters",
         "integrate": "STYLE.md: scene builds physics/integrate types (solver settings) from JSON",
         "io": "leaf utility for anything that reads or writes files",
-        # Planned (issue 12): settings-only headers, so a scene can hold render/video options
-        # without seeing the renderer or the encoder.
+        # Settings-only headers (issue 12): a scene holds render/video options without seeing the
+        # renderer or the encoder.
         "render/render_settings.h": "a scene holds RenderSettings (camera, size), not the renderer",
         "video/video_options.h": "a scene holds VideoOptions (codec, crf), not the encoder",
     },

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# Independent on purpose: a test oracle (ctest sympy_*) re-deriving docs/quaternion_formulation.md in SymPy; it never calls coinroll.
 """Symbolic checks of docs/quaternion_formulation.md (run with Debian's python3-sympy).
 
 With the attitude q = q_y(phi) q_x(theta) q_z(psi) and general I_X, I_Z, psi:

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# Independent on purpose: a test oracle (ctest sympy_*) re-deriving docs/rim.md in SymPy; it never calls coinroll.
 """Symbolic checks of docs/rim.md (run with Debian's python3-sympy).
 
 For general M, a, h, rho, I_X, I_Z, g, on both sides sigma = sign(theta) = +-1:

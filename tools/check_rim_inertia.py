@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# Independent on purpose: a test oracle (ctest sympy_*) re-deriving docs/rim_inertia.md in SymPy; it never calls coinroll.
 """Symbolic checks of docs/rim_inertia.md (run with Debian's python3-sympy).
 
 The coin is a uniform solid of revolution whose (r, z) cross-section is the rectangle

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# Independent on purpose: a test oracle (ctest sympy_*) re-deriving docs/sliding.md in SymPy; it never calls coinroll.
 """Symbolic checks of docs/sliding.md (run with Debian's python3-sympy; about 40 s).
 
 For general M, a, h, rho, I_X, I_Z, g, mu, a general couple tau and a general slip direction, on both

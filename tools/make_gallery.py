@@ -3,7 +3,10 @@
 build/coinroll and tiles them into docs/gallery.png (the README's gallery), in that order.
 Run from the repository root after building:
 
-    /usr/bin/python3 tools/make_gallery.py [--time 3] [--columns 4]
+    /usr/bin/python3 tools/make_gallery.py [--time 3] [--columns 4] [--coinroll build/coinroll]
+                                           [--output docs/gallery.png] [SCENE ...]
+
+SCENE ...: tile these scene files instead of the built-in default and examples/*.json.
 """
 import argparse
 import json
@@ -22,16 +25,19 @@ def main() -> int:
     parser.add_argument("--time", type=float, default=3.0, help="simulated time of each still, s (clamped to the scene)")
     parser.add_argument("--columns", type=int, default=5)
     parser.add_argument("--output", default=str(ROOT / "docs" / "gallery.png"))
+    parser.add_argument("--coinroll", default=str(ROOT / "build" / "coinroll"), help="the program (default: build/coinroll)")
+    parser.add_argument("scenes", nargs="*", type=pathlib.Path, help="scene files (default: the built-in one and examples/)")
     args = parser.parse_args()
 
-    scenes = [None] + sorted((ROOT / "examples").glob("*.json"))  # None: the built-in default scene
+    # None: the built-in default scene
+    scenes = args.scenes or [None] + sorted((ROOT / "examples").glob("*.json"))
     tiles = []
     with tempfile.TemporaryDirectory() as tmp:
         for scene in scenes:
             name = scene.stem if scene else "default"
             duration = json.loads(scene.read_text())["duration"] if scene else args.time
             still = pathlib.Path(tmp) / (name + ".png")
-            subprocess.run([str(ROOT / "build" / "coinroll"), "still", *([str(scene)] if scene else []),
+            subprocess.run([args.coinroll, "still", *([str(scene)] if scene else []),
                             "--time", str(min(args.time, duration)), "-o", str(still),
                             "--set", "render.width=320", "--set", "render.height=180", "--set", "render.hud=false"],
                            check=True, stderr=subprocess.DEVNULL)

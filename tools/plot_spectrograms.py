@@ -19,9 +19,11 @@ It also prints, per clip, how far the spectrogram's fundamental lies from the th
 click of the decoded track falls where the theory's phase crosses a whole cycle, and how much energy
 lies above the clicks' 5 kHz band limit (aliasing or block-boundary clicks would show there).
 
-Usage: tools/plot_spectrograms.py [COINROLL]   (default: build/coinroll beside this script's folder)
+Usage: tools/plot_spectrograms.py [COINROLL] [--output PNG]
+       (default: build/coinroll beside this script's folder, docs/spectrogram.png)
 """
 
+import argparse
 import io
 import json
 import math
@@ -250,7 +252,11 @@ def save_small(figure, path, dpi=80, colors=128):
 
 def main():
     started = time.monotonic()
-    coinroll = Path(sys.argv[1]) if len(sys.argv) > 1 else ROOT / "build" / "coinroll"
+    parser = argparse.ArgumentParser(description="Spectrograms of render.audio.")
+    parser.add_argument("coinroll", nargs="?", type=Path, default=ROOT / "build" / "coinroll")
+    parser.add_argument("--output", type=Path, default=ROOT / "docs" / "spectrogram.png")
+    args = parser.parse_args()
+    coinroll = args.coinroll
     euler = ROOT / "examples" / "euler_disk.json"
     remap = json.loads(euler.read_text())["render"]
     with tempfile.TemporaryDirectory() as tmp:
@@ -304,9 +310,8 @@ def main():
     simulated.tick_params(labelsize=8)
     simulated.set_xlabel("simulated time t [s]", fontsize=8, labelpad=2)
     figure.tight_layout()
-    save_small(figure, ROOT / "docs" / "spectrogram.png")
-    print(f"rendering and decoding {rendered:.0f} s, total {time.monotonic() - started:.0f} s; "
-          f"wrote {ROOT / 'docs' / 'spectrogram.png'}")
+    save_small(figure, args.output)
+    print(f"rendering and decoding {rendered:.0f} s, total {time.monotonic() - started:.0f} s; wrote {args.output}")
 
 if __name__ == "__main__":
     main()

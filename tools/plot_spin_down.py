@@ -18,9 +18,16 @@ gamma still drifts at the stop (air drag takes over from rolling resistance), so
 refitted the same way (E/P linear in t) over the last t0 - t_stop before the stop only; both
 values are printed.
 
-Usage: tools/plot_spin_down.py [COINROLL]   (default: build/coinroll beside this script's folder)
+The quasi-steady laws and the crossover (3.5)-(3.13) are formulas of docs/euler_disk.md that the
+program does not compute: independent analytic oracles for its runs, in Python on purpose.
+
+Usage: tools/plot_spin_down.py [COINROLL] [--out-dir DIR] [--energy-scene SCENE]
+  COINROLL        the program (default: build/coinroll beside this script's folder)
+  --out-dir       where the two PNGs go (default: docs/)
+  --energy-scene  the scene whose energy budget is drawn (default: examples/euler_disk.json)
 """
 
+import argparse
 import json
 import math
 import re
@@ -38,11 +45,11 @@ from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter  # noqa: 
 
 ROOT = Path(__file__).resolve().parent.parent
 
-# The toy coin of docs/euler_disk.md (3.14); the scenes below use coinroll's default air constants.
+# The toy coin of docs/euler_disk.md (3.14); the scenes state the air's viscosity the closed forms use.
 A, M, G, MU = 0.0375, 0.4, 9.81, 1.8e-5
 COIN = {"shape": "disk", "radius": A, "mass": M}
-MOFFATT = {"type": "air_drag", "model": "moffatt"}
-BOUNDARY_LAYER = {"type": "air_drag", "model": "boundary_layer"}
+MOFFATT = {"type": "air_drag", "model": "moffatt", "viscosity": MU}
+BOUNDARY_LAYER = {"type": "air_drag", "model": "boundary_layer", "viscosity": MU}
 DELTA_CROSS = 1e-6  # rolling-resistance length of the two-law scene [m]
 
 # (key, title, alpha0 [deg], effects, quasi-steady exponents of alpha and Omega, as text)
@@ -260,11 +267,10 @@ def plot_spin_down(coinroll, docs):
           f"alpha = {alpha_x_sim:.3f} deg   ({tau_x_with_coinroll_t0:.4f} s with coinroll's t0)")
 
 
-def plot_energy_budget(coinroll, docs):
-    scene = ROOT / "examples" / "euler_disk.json"
+def plot_energy_budget(coinroll, docs, scene):
     with tempfile.TemporaryDirectory() as tmp:
         # Held to rolling, as the README's figure is: the example itself slides near the end.
-        data, stderr = simulate(coinroll, scene, Path(tmp) / "euler_disk.csv", 0.01, ["sliding=false"])
+        data, stderr = simulate(coinroll, scene, Path(tmp) / "energy.csv", 0.01, ["sliding=false"])
     t, E, D, P = data["t"], data["energy"], data["dissipated"], data["power"]
     E0 = E[0]
     residual = np.abs(E + D - E0) / E0
@@ -274,8 +280,10 @@ def plot_energy_budget(coinroll, docs):
     top.plot(t, D, color="tab:red", label="dissipated D = ∫P dt")
     top.plot(t, E + D, color="k", lw=1.5, ls="--", label="E + D")
     top.set_ylabel("energy [J]")
+    default = scene.resolve() == (ROOT / "examples" / "euler_disk.json").resolve()
     top.set_title("examples/euler_disk.json (the 13 mm toy from 30°, boundary-layer air + rolling resistance "
-                  "δ = 3.75 µm, to its landing): energy budget", fontsize=10)
+                  "δ = 3.75 µm, to its landing): energy budget" if default else f"{scene.name}: energy budget",
+                  fontsize=10)
     top.grid(True, alpha=0.3)
     nonzero = residual > 0
     bottom.semilogy(t[nonzero], residual[nonzero], ".", ms=1.5, color="tab:purple", rasterized=True,
@@ -303,17 +311,21 @@ def plot_energy_budget(coinroll, docs):
     figure.tight_layout()
     figure.savefig(docs / "energy_budget.png", dpi=100)
     plt.close(figure)
-    print(f"Energy budget of examples/euler_disk.json: E0 = {E0:.6g} J, E(end) = {E[-1]:.4g} J, "
+    print(f"Energy budget of {scene}: E0 = {E0:.6g} J, E(end) = {E[-1]:.4g} J, "
           f"D(end) = {D[-1]:.4g} J, max |E + D - E0| / E0 = {residual.max():.2e}")
 
 
 def main():
-    coinroll = Path(sys.argv[1]) if len(sys.argv) > 1 else ROOT / "build" / "coinroll"
-    if not coinroll.exists():
-        sys.exit(f"no coinroll binary at {coinroll} (build it, or pass its path)")
-    docs = ROOT / "docs"
-    plot_spin_down(coinroll, docs)
-    plot_energy_budget(coinroll, docs)
+    parser = argparse.ArgumentParser(description="Charts of Euler's disk settling flat.")
+    parser.add_argument("coinroll", nargs="?", type=Path, default=ROOT / "build" / "coinroll")
+    parser.add_argument("--out-dir", type=Path, default=ROOT / "docs")
+    parser.add_argument("--energy-scene", type=Path, default=ROOT / "examples" / "euler_disk.json")
+    args = parser.parse_args()
+    if not args.coinroll.exists():
+        sys.exit(f"no coinroll binary at {args.coinroll} (build it, or pass its path)")
+    args.out_dir.mkdir(parents=True, exist_ok=True)
+    plot_spin_down(args.coinroll, args.out_dir)
+    plot_energy_budget(args.coinroll, args.out_dir, args.energy_scene)
 
 
 if __name__ == "__main__":

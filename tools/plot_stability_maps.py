@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Stability and spin-down maps from `coinroll sweep` (Debian's matplotlib and numpy; run with /usr/bin/python3).
 
-Runs build/coinroll on scenes written to a temporary folder and writes
+Runs coinroll's sweeps on scenes written to a temporary folder and writes, into OUT_DIR (default docs/),
   docs/map_straight.png   straight rolling kicked by a small tilt: largest tilt reached against spin
                           and kick, for the disk, the thin hoop and a custom inertia, with the critical
                           spin omega_c of docs/derivations.md (3.7)
@@ -32,15 +32,28 @@ period is well below the run's length, so it moves by less than 0.01 grid steps 
 is the kick's finite size (at the 20 deg circle the ratio is 4.12 for a vanishing kick, 3.89 for 0.5 deg;
 checked below).
 
+Where the curves come from: the steady states, the critical spin omega_c and K are the program's
+(the Python module's coinroll.steady, the code of src/physics/steady.cpp), so they cannot drift from
+it. The kick's linear response (Q, g above) and the spin-down closed forms (3.5)-(3.7) are formulas of
+the docs that the program does not compute: independent analytic oracles, in Python on purpose.
+
 The steady circles cannot be gridded by one sweep: their omega_Y depends on (theta0, omega_Z0) and a
 steady "initial" (which solves it) takes no kick; so every point is its own one-point sweep (two at a
 time), which costs about 50 ms of program start-up per point.
 
-Usage: tools/plot_stability_maps.py [COINROLL] [--only map_straight,map_circles,map_spin_down]
-       (default: build/coinroll beside this script's folder, all three maps)
+Usage: tools/plot_stability_maps.py [COINROLL] [--module-dir DIR] [--out-dir DIR] [--data-dir DIR]
+                                     [--only map_straight,map_circles,map_spin_down]
+  COINROLL      the program (default build/coinroll beside this script's folder)
+  --module-dir  where the coinroll Python module is built (default build/python)
+  --out-dir     where the PNGs go (default docs/)
+  --data-dir    keeps every sweep's rows there as a CSV, one per panel (map_straight_disk.csv, ...),
+                and reads a CSV found there instead of running its sweep: redraw from kept data, or
+                from your own `coinroll sweep` output with the same grid and columns
 """
 
+import argparse
 import csv
+import importlib
 import json
 import math
 import os
@@ -64,7 +77,8 @@ from matplotlib.lines import Line2D  # noqa: E402
 from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
-DOCS = ROOT / "docs"
+DOCS = ROOT / "docs"  # where the PNGs go: --out-dir
+coinroll = None  # the Python module, imported in main() from --module-dir
 
 # The toy coin (docs/euler_disk.md (3.14)) and coinroll's default air and rolling constants.
 A, M, G = 0.0375, 0.4, 9.81
@@ -73,12 +87,11 @@ MA2, MGA = M * A * A, M * G * A
 SAMPLE_DT = 0.01  # s: the sweep's theta_min / theta_max come from samples this far apart (and the end)
 R_UNSTABLE = 5.0  # a kicked steady state is "unstable" if its tilt leaves theta0 by more than R kicks
 
-# (key, title, coin block of the scene, I_X, I_Z)
+# (key, title, coin block of the scene)
 COINS = [
-    ("disk", "disk (I_X = Ma²/4, I_Z = Ma²/2)", {"shape": "disk"}, MA2 / 4, MA2 / 2),
-    ("hoop", "thin hoop (ring, I_X = Ma²/2, I_Z = Ma²)", {"shape": "ring"}, MA2 / 2, MA2),
-    ("custom", "custom (I_X = 0.3 Ma², I_Z = 0.45 Ma²)", {"shape": "custom", "I_X": 0.3 * MA2, "I_Z": 0.45 * MA2},
-     0.3 * MA2, 0.45 * MA2),
+    ("disk", "disk (I_X = Ma²/4, I_Z = Ma²/2)", {"shape": "disk"}),
+    ("hoop", "thin hoop (ring, I_X = Ma²/2, I_Z = Ma²)", {"shape": "ring"}),
+    ("custom", "custom (I_X = 0.3 Ma², I_Z = 0.45 Ma²)", {"shape": "custom", "I_X": 0.3 * MA2, "I_Z": 0.45 * MA2}),
 ]
 
 STRAIGHT_DURATION = 4.5  # s
@@ -99,39 +112,47 @@ SPIN_DOWN_SOLVER = {"rtol": 1e-6, "atol": 1e-8}
 
 
 # ----------------------------------------------------------------------------------------------
-# Analytic side: docs/derivations.md §3 (the formulas of src/physics/steady.cpp)
+# Analytic side. Steady states, omega_c and K: the program's (coinroll.steady). Q and the linear
+# response: docs/derivations.md (3.2)-(3.5), not in the program (an independent oracle).
 
 
-def critical_spin(i_x, i_z):
-    """omega_c of straight rolling, (3.7)."""
-    return math.sqrt(MGA * i_x / (i_z * (i_z + MA2)))
+def steady(coin, kind, omega_z, theta_deg=None, branch=None):
+    """coinroll.steady of the coin (scene block) at a steady state named as `coinroll steady --kind` does."""
+    theta = None if theta_deg is None else float(theta_deg)
+    return coinroll.steady({"coin": coin_block(coin), "duration": 1.0}, kind=kind, theta=theta, omega_Z=float(omega_z),
+                           branch=branch)
 
 
-def steady_circle(i_x, i_z, theta, omega_z, branch):
-    """omega_Y of the steady circle (3.1), root f+ (branch +1) or f- (-1), cancellation-free as in steadyCircle."""
+def critical_spin(coin):
+    """omega_c of straight rolling, (3.7), as the program computes it."""
+    return steady(coin, "straight", 1.0)["critical_spin"]
+
+
+def kick_response(state):
+    """Q of a steady state from the program: Q = (I_X w_Y0^2 / cos^2 theta0 - Mga cos theta0) / (I_X + Ma^2),
+    the part of K that does not involve the slaved rate perturbations (docs/derivations.md (3.5)). A tilt kick
+    k with the rates kept gives d(theta) = k (1 - Q g(t))."""
+    i_x, m, a, g = state["inertia_X"], state["mass"], state["radius"], state["gravity"]
+    theta, omega_y = math.radians(state["initial"]["theta"]), state["initial"]["omega_Y"]
+    return (i_x * omega_y ** 2 / math.cos(theta) ** 2 - m * g * a * math.cos(theta)) / (i_x + m * a * a)
+
+
+def straight_wobble(coin, omega_z):
+    """(K, Q) of straight rolling upright at each spin of the array omega_z, from the program."""
+    states = [steady(coin, "straight", w) for w in np.ravel(omega_z)]
+    shape = np.shape(omega_z)
+    return (np.reshape([st["K"] for st in states], shape), np.reshape([kick_response(st) for st in states], shape))
+
+
+def circle_wobble(coin, theta, omega_z, branch):
+    """(omega_Y, K, Q) of the steady circles, root f+ (branch +1) or f- (-1) of (3.1), at every point of the
+    broadcast arrays theta (rad) and omega_z (rad/s), from the program."""
     theta, omega_z = np.broadcast_arrays(np.asarray(theta, float), np.asarray(omega_z, float))
-    a_ = i_x * np.tan(theta)
-    b_ = (i_z + MA2) * omega_z
-    c_ = -MGA * np.sin(theta)
-    sqrt_d = np.sqrt(b_ * b_ - 4 * a_ * c_)
-    q = -0.5 * (b_ + np.copysign(sqrt_d, b_))
-    with np.errstate(divide="ignore", invalid="ignore"):
-        from_q, from_c = q / a_, c_ / q
-    plus = np.where(b_ >= 0, from_c, from_q)
-    minus = np.where(b_ >= 0, from_q, from_c)
-    return plus if branch > 0 else minus
-
-
-def wobble_parts(i_x, i_z, theta0, omega_y0, omega_z0):
-    """(K, Q): K of (3.6); Q = -d(14)/d(theta) / (I_X + Ma^2), the part of K that does not involve the
-    slaved rate perturbations. A tilt kick k with the rates kept gives d(theta) = k (1 - Q g(t))."""
-    tan_t, cos_t = np.tan(theta0), np.cos(theta0)
-    alpha = (i_x * omega_y0 * tan_t + i_z * omega_z0) / i_x  # (3.3)
-    beta = MA2 * omega_y0 / (i_z + MA2)  # (3.4)
-    k = ((i_z + MA2) * (omega_z0 * alpha + omega_y0 * beta) + 2 * i_x * omega_y0 * tan_t * alpha
-         + i_x * omega_y0 ** 2 / cos_t ** 2 - MGA * cos_t) / (i_x + MA2)  # (3.6)
-    q = (i_x * omega_y0 ** 2 / cos_t ** 2 - MGA * cos_t) / (i_x + MA2)
-    return k, q
+    omega_y, k, q = (np.empty(theta.shape) for _ in range(3))
+    for index in np.ndindex(theta.shape):
+        state = steady(coin, "circle", omega_z[index], math.degrees(theta[index]), "+" if branch > 0 else "-")
+        omega_y[index], k[index], q[index] = state["initial"]["omega_Y"], state["K"], kick_response(state)
+    return omega_y, k, q
 
 
 def linear_ratio(k, q, duration):
@@ -165,8 +186,9 @@ def spin_down_prediction(law, mass, radius):
 
 
 class Runner:
-    def __init__(self, coinroll, folder):
-        self.coinroll, self.folder, self.count = str(coinroll), Path(folder), 0
+    def __init__(self, coinroll_binary, folder, data_dir=None):
+        self.coinroll, self.folder, self.count = str(coinroll_binary), Path(folder), 0
+        self.data_dir = None if data_dir is None else Path(data_dir)
 
     def scene(self, scene):
         self.count += 1
@@ -174,8 +196,28 @@ class Runner:
         path.write_text(json.dumps(scene))
         return path
 
-    def sweep(self, scene, grids, sets=(), threads=0):
-        """One `coinroll sweep`; grids [(key, start, stop, count)], sets [(key, value)]; returns its rows."""
+    def kept(self, name, compute):
+        """The rows of `name`: read from DATA_DIR/name.csv when it is there, else compute() (a list of dicts
+        with the same keys), written there when a data folder was given."""
+        if self.data_dir is not None and (self.data_dir / f"{name}.csv").exists():
+            with open(self.data_dir / f"{name}.csv", newline="") as f:
+                rows = list(csv.DictReader(f))
+            print(f"  {name}: {len(rows)} rows read from {self.data_dir / (name + '.csv')}")
+            return rows
+        rows = compute()
+        if self.data_dir is not None:
+            self.data_dir.mkdir(parents=True, exist_ok=True)
+            with open(self.data_dir / f"{name}.csv", "w", newline="") as f:
+                writer = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
+                writer.writeheader()
+                writer.writerows(rows)
+        return rows
+
+    def sweep(self, scene, grids, sets=(), threads=0, name=None):
+        """One `coinroll sweep`; grids [(key, start, stop, count)], sets [(key, value)]; returns its rows.
+        A `name` keeps the rows in the data folder (see kept)."""
+        if name is not None:
+            return self.kept(name, lambda: self.sweep(scene, grids, sets, threads))
         path = self.scene(scene) if isinstance(scene, dict) else scene
         out = path.with_name(f"{path.stem}_{threading.get_ident()}_{len(grids)}.csv")
         command = [self.coinroll, "sweep", str(path), "-o", str(out), "-q", "--threads", str(threads)]
@@ -190,18 +232,6 @@ class Runner:
             rows = list(csv.DictReader(f))
         out.unlink()
         return rows
-
-    def steady_k(self, coin, theta, omega_z, branch):
-        """K printed by `coinroll steady --kind circle` (a check of the Python formulas)."""
-        command = [self.coinroll, "steady", "--kind", "circle", "--theta", repr(theta), "--omega-Z", repr(omega_z),
-                   "--branch", "+" if branch > 0 else "-"]
-        for key, value in coin.items():
-            command += ["--set", f"coin.{key}={json.dumps(value)}"]
-        run = subprocess.run(command, capture_output=True, text=True, check=True)
-        for line in run.stdout.splitlines():
-            if line.startswith("stability"):
-                return float(line.split("K = ")[1].split()[0])
-        sys.exit("no K in coinroll steady's output:\n" + run.stdout)
 
 
 def coin_block(coin):
@@ -277,13 +307,14 @@ def map_straight(runner, summary):
     figure, axes = plt.subplots(1, 3, figsize=(12.5, 4.9), sharey=True)
     norm = LogNorm(vmin=0.5, vmax=90)
     panels = []
-    for ax, (key, title, coin, i_x, i_z) in zip(axes, COINS):
-        omega_c = critical_spin(i_x, i_z)
+    for ax, (key, title, coin) in zip(axes, COINS):
+        omega_c = critical_spin(coin)
         start, stop, count = STRAIGHT_SPIN[0] * omega_c, STRAIGHT_SPIN[1] * omega_c, STRAIGHT_SPIN[2]
         scene = {"name": f"straight_{key}", "coin": coin_block(coin), "initial": {"theta": 1.0, "omega_Z": omega_c},
                  "duration": STRAIGHT_DURATION}
         began = time.monotonic()
-        rows = runner.sweep(scene, [("initial.theta", *STRAIGHT_KICK), ("initial.omega_Z", start, stop, count)])
+        rows = runner.sweep(scene, [("initial.theta", *STRAIGHT_KICK), ("initial.omega_Z", start, stop, count)],
+                            name=f"map_straight_{key}")
         seconds = time.monotonic() - began
         shape = (STRAIGHT_KICK[2], count)
         spins = np.array([float(r["initial.omega_Z"]) for r in rows]).reshape(shape)[0]
@@ -300,7 +331,7 @@ def map_straight(runner, summary):
         simulated = [crossings(np.log(row), math.log(R_UNSTABLE)) for row in ratio]
         analytic = [[(omega_c - spins[0]) / step]] * len(kicks)
         fine = np.linspace(spins[0], spins[-1], 20 * (count - 1) + 1)
-        k_fine, q_fine = wobble_parts(i_x, i_z, 0.0, 0.0, fine)
+        k_fine, q_fine = straight_wobble(coin, fine)
         linear = linear_ratio(k_fine, q_fine, STRAIGHT_DURATION)
         lin_x = [fine[0] + c * (fine[1] - fine[0]) for c in crossings(np.log(linear), math.log(R_UNSTABLE))]
         threshold = [[(x - spins[0]) / step for x in lin_x]] * len(kicks)
@@ -351,47 +382,41 @@ def map_straight(runner, summary):
 
 
 def map_circles(runner, summary, workers=2):
-    key, title, coin, i_x, i_z = COINS[0]
+    key, title, coin = COINS[0]
     thetas = grid_values(*CIRCLE_THETA)
     plus_spins = grid_values(*CIRCLE_SPIN)
     spins = {1: plus_spins, -1: -plus_spins[::-1]}  # f-(omega_Z) mirrors f+(-omega_Z): the same range mirrored
     base = runner.scene({"name": "circle_kick", "coin": coin_block(coin),
                          "initial": {"theta": 10.0, "omega_Y": 0.0, "omega_Z": 0.0}, "duration": CIRCLE_DURATION})
 
-    # Check the Python formulas against the program's own steady-state solver (K of eq. 3.6).
-    for branch, th, wz in ((1, 20.0, 10.0), (1, 8.0, 5.0), (-1, 10.0, 4.0), (-1, 6.0, -5.0)):
-        wy = float(steady_circle(i_x, i_z, math.radians(th), wz, branch))
-        k_py = float(wobble_parts(i_x, i_z, math.radians(th), wy, wz)[0])
-        k_cr = runner.steady_k(coin, th, wz, branch)
-        assert abs(k_py - k_cr) <= 1e-6 * max(1.0, abs(k_cr)), (branch, th, wz, k_py, k_cr)
-
     # The linearised wobble (what the dashed curves use) against the simulation, small kicks on a stable circle.
     th0, wz0 = math.radians(20.0), 10.0
-    wy0 = float(steady_circle(i_x, i_z, th0, wz0, 1))
-    predicted = float(linear_ratio(*wobble_parts(i_x, i_z, th0, wy0, wz0), CIRCLE_DURATION))
+    wy0, k0, q0 = (float(v) for v in circle_wobble(coin, th0, wz0, 1))
+    predicted = float(linear_ratio(k0, q0, CIRCLE_DURATION))
     measured = []
     for kick_deg in (2.0, CIRCLE_KICK, 0.1, 0.02):
         row = runner.sweep(base, [("initial.theta", 20.0 + kick_deg, 20.0 + kick_deg, 1)],
-                           [("initial.omega_Y", wy0), ("initial.omega_Z", wz0)], threads=1)[0]
+                           [("initial.omega_Y", wy0), ("initial.omega_Z", wz0)], threads=1,
+                           name=f"map_circles_kick_{kick_deg:g}")[0]
         dev = max(float(row["theta_max"]) - th0, th0 - float(row["theta_min"]))
         measured.append(f"{kick_deg:g} deg: {dev / math.radians(kick_deg):.4f}")
     print(f"  f+ circle theta0 = 20 deg, omega_Z0 = 10 rad/s: largest |theta - theta0| / kick, linear theory "
           f"{predicted:.4f}; simulated, kick " + ", ".join(measured))
 
     # Where K < 0 at all (so that the plotted ranges hold every unstable circle).
-    th_all = np.radians(np.linspace(0.5, 89, 500))[:, None]
-    wz_all = np.linspace(-150, 150, 3001)[None, :]
+    th_all = np.radians(np.linspace(0.5, 88.5, 177))[:, None]  # the program refuses 89 deg and above
+    wz_all = np.linspace(-150, 150, 301)[None, :]
     for branch in (1, -1):
-        k_all = wobble_parts(i_x, i_z, th_all, steady_circle(i_x, i_z, th_all, wz_all, branch), wz_all)[0]
+        k_all = circle_wobble(coin, th_all, wz_all, branch)[1]
         rows, cols = np.nonzero(k_all < 0)
         print(f"  {'f+' if branch > 0 else 'f-'}: K < 0 only for theta0 <= {np.degrees(th_all[rows.max(), 0]):.2f} deg "
               f"and omega_Z0 in [{wz_all[0, cols.min()]:.1f}, {wz_all[0, cols.max()]:.1f}] rad/s "
-              f"(scanned theta0 0.5..89 deg, |omega_Z0| <= 150 rad/s)")
+              f"(scanned theta0 0.5..88.5 deg in 0.5 deg, |omega_Z0| <= 150 rad/s in 1 rad/s)")
 
     jobs = []
     for branch in (1, -1):
         for i, th in enumerate(thetas):
-            wy = steady_circle(i_x, i_z, math.radians(th), spins[branch], branch)
+            wy = circle_wobble(coin, math.radians(th), spins[branch], branch)[0]
             for j, wz in enumerate(spins[branch]):
                 jobs.append((branch, i, j, th, float(wy[j]), float(wz)))
 
@@ -400,11 +425,15 @@ def map_circles(runner, summary, workers=2):
         theta_kicked = th + CIRCLE_KICK
         row = runner.sweep(base, [("initial.theta", theta_kicked, theta_kicked, 1)],
                            [("initial.omega_Y", wy), ("initial.omega_Z", wz)], threads=1)[0]
-        return job, row
+        return dict(row, branch=branch, theta0=th, omega_Y0=wy, omega_Z0=wz)
+
+    def run_all():
+        with ThreadPoolExecutor(max_workers=workers) as pool:
+            return list(pool.map(one, jobs))
 
     began = time.monotonic()
-    with ThreadPoolExecutor(max_workers=workers) as pool:
-        results = list(pool.map(one, jobs))
+    points = runner.kept("map_circles_points", run_all)  # one row per job, in the jobs' order
+    results = [(job, row) for job, row in zip(jobs, points)]
     seconds = time.monotonic() - began
     print(f"  {len(jobs)} one-point sweeps in {seconds:.1f} s ({len(jobs) / seconds:.0f} points/s, "
           f"{workers} at a time)")
@@ -443,16 +472,14 @@ def map_circles(runner, summary, workers=2):
             gi, gj = np.nonzero(gone)
             ax.plot(wz[gj], thetas[gi], "x", color="black", ms=6)
         # Analytic K = 0 and the linear-theory threshold, on a finer grid.
-        wy_f = steady_circle(i_x, i_z, fine_th[:, None], fine_wz[None, :], branch)
-        k_f, q_f = wobble_parts(i_x, i_z, fine_th[:, None], wy_f, fine_wz[None, :])
+        _, k_f, q_f = circle_wobble(coin, fine_th[:, None], fine_wz[None, :], branch)
         lin_f = np.vstack([linear_ratio(k_f[r], q_f[r], CIRCLE_DURATION) for r in range(len(fine_th))])
         ax.contour(fine_wz, np.degrees(fine_th), k_f, levels=[0], colors="black", linewidths=2.2)
         ax.contour(fine_wz, np.degrees(fine_th), np.log(lin_f), levels=[math.log(R_UNSTABLE)], colors="black",
                    linewidths=1.3, linestyles="--")
         # Per theta0 row: simulated, analytic (K = 0) and linear-threshold crossings, in grid steps.
         simulated, analytic, threshold = [], [], []
-        wy_rows = steady_circle(i_x, i_z, np.radians(thetas)[:, None], fine_wz[None, :], branch)
-        k_rows, q_rows = wobble_parts(i_x, i_z, np.radians(thetas)[:, None], wy_rows, fine_wz[None, :])
+        _, k_rows, q_rows = circle_wobble(coin, np.radians(thetas)[:, None], fine_wz[None, :], branch)
         to_steps = (fine_wz[1] - fine_wz[0]) / step_wz
         for r in range(len(thetas)):
             simulated.append(crossings(np.log(ratio[branch][r]), math.log(R_UNSTABLE)))
@@ -502,9 +529,10 @@ def map_circles(runner, summary, workers=2):
 
 # (key, title, effect, closed-form exponents of M and a as text, contour levels [s])
 LAWS = [
-    ("moffatt", "Moffatt air drag", {"type": "air_drag", "model": "moffatt"}, ("1", "−1"),
+    ("moffatt", "Moffatt air drag", {"type": "air_drag", "model": "moffatt", "viscosity": MU}, ("1", "−1"),
      [50, 100, 200, 500, 1000, 2000]),
-    ("boundary_layer", "boundary-layer air drag", {"type": "air_drag", "model": "boundary_layer"}, ("1", "−7/4"),
+    ("boundary_layer", "boundary-layer air drag", {"type": "air_drag", "model": "boundary_layer", "viscosity": MU, "density": RHO},
+     ("1", "−7/4"),
      [5, 10, 20, 50, 100, 200, 500]),
     ("rolling", "rolling resistance δ = 3.75 µm", {"type": "rolling_resistance", "length": DELTA}, ("0", "3/2"),
      [7, 10, 15, 20, 30, 40]),
@@ -527,8 +555,10 @@ def map_spin_down(runner, fits):
     for ax, (key, title, effect, exponents, levels) in zip([axes[0, 0], axes[0, 1], axes[1, 0]], LAWS):
         scene = runner.scene(spin_down_scene(effect))
         began = time.monotonic()
-        rows = runner.sweep(scene, [("coin.mass", *SPIN_DOWN_MASS), ("coin.radius", *SPIN_DOWN_RADIUS)])
-        line = runner.sweep(scene, [("coin.mass", *LINE_MASS)], [("coin.radius", LINE_RADIUS)])
+        rows = runner.sweep(scene, [("coin.mass", *SPIN_DOWN_MASS), ("coin.radius", *SPIN_DOWN_RADIUS)],
+                            name=f"map_spin_down_{key}")
+        line = runner.sweep(scene, [("coin.mass", *LINE_MASS)], [("coin.radius", LINE_RADIUS)],
+                            name=f"map_spin_down_{key}_line")
         seconds = time.monotonic() - began
         for r in rows + line:
             if r["end"] != "coin-flat":
@@ -594,19 +624,32 @@ def map_spin_down(runner, fits):
 
 
 def main():
-    args = sys.argv[1:]
-    only = None
-    if "--only" in args:  # e.g. --only map_circles,map_spin_down (redraw some of the maps)
-        at = args.index("--only")
-        only = set(args[at + 1].split(","))
-        del args[at:at + 2]
-    coinroll = Path(args[0]) if args else ROOT / "build" / "coinroll"
-    if not os.access(coinroll, os.X_OK):
-        sys.exit(f"{coinroll}: not an executable (build it first)")
+    global DOCS, coinroll
+    parser = argparse.ArgumentParser(description="Stability and spin-down maps from coinroll sweeps.")
+    parser.add_argument("coinroll_binary", nargs="?", type=Path, default=ROOT / "build" / "coinroll",
+                        help="the coinroll program (default: build/coinroll)")
+    parser.add_argument("--module-dir", type=Path, default=ROOT / "build" / "python",
+                        help="folder holding the built coinroll Python module (default: build/python)")
+    parser.add_argument("--out-dir", type=Path, default=DOCS, help="where the PNGs go (default: docs/)")
+    parser.add_argument("--data-dir", type=Path,
+                        help="keep each panel's sweep rows there as CSV, and read any CSV already there instead of "
+                             "running its sweep")
+    parser.add_argument("--only", help="comma-separated maps to draw: map_straight,map_circles,map_spin_down")
+    args = parser.parse_args()
+    only = None if args.only is None else set(args.only.split(","))
+    if not os.access(args.coinroll_binary, os.X_OK):
+        sys.exit(f"{args.coinroll_binary}: not an executable (build it first)")
+    sys.path.insert(0, str(args.module_dir))
+    try:
+        coinroll = importlib.import_module("coinroll")
+    except ImportError as error:
+        sys.exit(f"the coinroll Python module is not in {args.module_dir} (build it first): {error}")
+    DOCS = args.out_dir
+    DOCS.mkdir(parents=True, exist_ok=True)
     summary, fits, timings = [], [], {}
     total = time.monotonic()
     with tempfile.TemporaryDirectory(prefix="coinroll_maps_") as folder:
-        runner = Runner(coinroll, folder)
+        runner = Runner(args.coinroll_binary, folder, args.data_dir)
         for name, job in (("map_straight", lambda: map_straight(runner, summary)),
                           ("map_circles", lambda: map_circles(runner, summary)),
                           ("map_spin_down", lambda: map_spin_down(runner, fits))):
@@ -645,7 +688,7 @@ def main():
     print("\nRun times and files:")
     for name, seconds in timings.items():
         size = (DOCS / f"{name}.png").stat().st_size
-        print(f"  {name:<14} {seconds:6.1f} s   docs/{name}.png {size / 1024:6.1f} KiB")
+        print(f"  {name:<14} {seconds:6.1f} s   {DOCS / (name + '.png')} {size / 1024:6.1f} KiB")
     print(f"  total          {time.monotonic() - total:6.1f} s")
 
 

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# Independent on purpose: a benchmark peer (scipy's DOP853 on its own NumPy right-hand side); it never calls coinroll.
 """scipy's DOP853 (solve_ivp) as one more peer of the work-precision benchmark.
 
 Reads the cases and reference end states that build/bench/work_precision wrote

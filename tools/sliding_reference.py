@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# Independent on purpose: a test oracle (tests/cli/sliding_reference_test.py) in other equations; it never calls coinroll.
 """Independent reference for a coin that rolls and slides: Newton-Euler in world vectors.
 
 Not the project's formulations (seed Euler angles, docs/derivations.md; material-frame quaternion,

@@ -1,7 +1,8 @@
 #pragma once
-// Progress of long work: on a terminal one line rewritten in place, at most a few times per
-// second so printing never costs frames; in a log (a batch job's output file, where a rewritten
-// line piles up as one endless line) a line of its own now and then.
+// Progress of long work (a render's frames, a sweep's points) on stderr: on a terminal one line
+// rewritten in place at most five times a second, so printing costs nothing beside the work; in a
+// log (a batch job's output file, where a rewritten line piles up as one endless line) a line of
+// its own at every tenth of the work and at least every 30 s.
 
 #include <chrono>
 #include <cstdio>

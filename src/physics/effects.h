@@ -1,7 +1,12 @@
 #pragma once
-// The dissipation laws a scene can switch on, one alternative each. Adding a law: its own
-// header and source with a parameter struct and loads(law, kinematics), one alternative here,
-// one scene key (scene_loader.cpp) and its tests.
+// The dissipation laws a scene can switch on, one alternative of Effect each, and their sum.
+// Adding a law: its own header and source (listed in CMakeLists.txt) with a parameter struct and
+// loads(law, kinematics) returning its couple and power >= 0; an alternative of Effect and its
+// name in typeName (effects.cpp); its scene key and fields in src/scene/scene_loader.cpp and the
+// README's "Scene format" table; its bad-input cases in tests/cli/bad_inputs.py (docs/bad_inputs.md
+// is generated from them); its tests in tests/physics/effects_test.cpp (power = -torque . omega
+// is checked for every law). A couple that depends on N must have no part along e_X: the normal
+// force's two passes (dynamics.cpp, quaternion_dynamics.cpp) are exact only then (tested).
 
 #include <span>
 #include <string_view>

@@ -8,14 +8,14 @@
 #include <filesystem>
 #include <fstream>
 #include <numbers>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "cli/run_command.h"
+#include "csv_table.h"
 #include "scratch_dir.h"
 #include "tolerance.h"
-#include "video/video_probe.h"
+#include "video_probe.h"
 
 namespace {
 
@@ -33,16 +33,10 @@ constexpr double kPitchBound = 0.01;  // the issue's bound; steady motions measu
 
 // Omega(t) = |omega_Y / cos(theta)| at each CSV row, rad/s.
 std::vector<std::pair<double, double>> omegaFromCsv(const fs::path& csv) {
-  std::ifstream in(csv);
-  std::string line;
-  std::getline(in, line);
+  const coinroll::testing::CsvTable table = coinroll::testing::readCsvTable(csv);
+  const std::vector<double> t = table.column("t"), theta = table.column("theta"), omega_Y = table.column("omega_Y");
   std::vector<std::pair<double, double>> rows;
-  while (std::getline(in, line)) {
-    std::vector<double> f;
-    std::stringstream fields(line);
-    for (std::string field; std::getline(fields, field, ',');) f.push_back(std::stod(field));
-    rows.emplace_back(f[0], std::abs(f[5] / std::cos(f[1])));  // t, omega_Y / cos(theta)
-  }
+  for (std::size_t i = 0; i < t.size(); ++i) rows.emplace_back(t[i], std::abs(omega_Y[i] / std::cos(theta[i])));
   return rows;
 }
 

@@ -4,13 +4,13 @@
 #include <gtest/gtest.h>
 
 #include "cli/run_command.h"
+#include "csv_table.h"
 #include "scratch_dir.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <numbers>
-#include <sstream>
 #include <vector>
 #include <cstdio>
 #include <filesystem>
@@ -96,16 +96,12 @@ TEST_F(CliTest, SimulateWritesTheContractHeaderAndRowsAtMultiplesOfTheSampleStep
   const fs::path csv = dir_ / "out.csv";
   const RunResult r = run("simulate " + writeScene(kValid).string() + " --csv " + csv.string() + " --sample-dt 0.05");
   ASSERT_EQ(r.exitCode, 0) << r.output;
-  std::ifstream in(csv);
-  std::string line;
-  std::getline(in, line);
-  EXPECT_EQ(line, "t,theta,phi,psi,omega_X,omega_Y,omega_Z,x,y,z,contact_x,contact_z,energy,normal_force,friction_force");
-  int rows = 0;
-  while (std::getline(in, line)) {
-    EXPECT_NEAR(std::stod(line.substr(0, line.find(','))), 0.05 * rows, 1e-12);
-    ++rows;
-  }
-  EXPECT_EQ(rows, 11);  // t = 0, 0.05, ..., 0.5
+  const coinroll::testing::CsvTable table = coinroll::testing::readCsvTable(csv);
+  EXPECT_EQ(table.headerLine,
+            "t,theta,phi,psi,omega_X,omega_Y,omega_Z,x,y,z,contact_x,contact_z,energy,normal_force,friction_force");
+  const std::vector<double> t = table.column("t");
+  for (std::size_t k = 0; k < t.size(); ++k) EXPECT_NEAR(t[k], 0.05 * static_cast<double>(k), 1e-12);
+  EXPECT_EQ(t.size(), 11u);  // t = 0, 0.05, ..., 0.5
   EXPECT_EQ(std::distance(fs::directory_iterator(dir_), fs::directory_iterator{}), 2);  // scene + csv, no temp
 }
 
@@ -130,19 +126,7 @@ TEST_F(CliTest, CoinFallingFlatStopsWithANamedEvent) {
 
 // One column of a trajectory CSV, by header name.
 std::vector<double> csvColumn(const fs::path& csv, const std::string& name) {
-  std::ifstream in(csv);
-  std::string line, cell;
-  std::getline(in, line);
-  std::istringstream header(line);
-  int index = 0;
-  while (std::getline(header, cell, ',') && cell != name) ++index;
-  std::vector<double> values;
-  while (std::getline(in, line)) {
-    std::istringstream row(line);
-    for (int i = 0; i <= index; ++i) std::getline(row, cell, ',');
-    values.push_back(std::stod(cell));
-  }
-  return values;
+  return coinroll::testing::readCsvTable(csv).column(name);
 }
 
 TEST_F(CliTest, QuaternionFormulationRunsPastTheEulerAnglesFlatStop) {

@@ -2,6 +2,8 @@
 // motion"), and the promise that a scene without effects is computed exactly as before effects
 // existed: every example's CSV, PNG and MP4 hash to what the program wrote before the effects
 // refactor (recorded with that build, overlay off: the overlay's labels changed deliberately since).
+// The pictures follow the golden rule of every image test (docs/snapshot_testing.md): exact bytes,
+// and under COINROLL_GOLDEN_TOLERANT=1 their hashes are not compared (see that test).
 
 #include <gtest/gtest.h>
 
@@ -10,11 +12,14 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
-#include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cli/run_command.h"
+#include "csv_table.h"
+#include "golden_rule.h"
+#include "image/image.h"
 #include "scratch_dir.h"
 
 namespace {
@@ -37,27 +42,14 @@ std::uint64_t fnv1a(const fs::path& file) {
   return hash;
 }
 
-std::vector<std::vector<double>> readRows(const fs::path& csv, std::string& header) {
-  std::ifstream in(csv);
-  std::getline(in, header);
-  std::vector<std::vector<double>> rows;
-  for (std::string line; std::getline(in, line);) {
-    std::vector<double> row;
-    std::stringstream fields(line);
-    for (std::string field; std::getline(fields, field, ',');) row.push_back(std::stod(field));
-    rows.push_back(row);
-  }
-  return rows;
-}
-
 // The CSV of a spin-down: its columns, power >= 0, and energy + dissipated = the initial energy;
 // most of the energy above `restingEnergy` (the coin lying still) spent by the end.
 // With sliding on, the slip columns follow.
 std::vector<std::vector<double>> expectClosedEnergyBudget(const fs::path& csv, double restingEnergy, double spentFraction,
                                                           bool sliding = false) {
-  std::string header;
-  std::vector<std::vector<double>> rows = readRows(csv, header);
-  EXPECT_EQ(header,
+  coinroll::testing::CsvTable table = coinroll::testing::readCsvTable(csv);
+  std::vector<std::vector<double>>& rows = table.rows;
+  EXPECT_EQ(table.headerLine,
             std::string("t,theta,phi,psi,omega_X,omega_Y,omega_Z,x,y,z,contact_x,contact_z,energy,normal_force,friction_force,"
                         "power,dissipated") +
                 (sliding ? ",slip_speed,sliding" : ""));
@@ -72,7 +64,7 @@ std::vector<std::vector<double>> expectClosedEnergyBudget(const fs::path& csv, d
   }
   EXPECT_GT(rows.back()[16], spentFraction * (E0 - restingEnergy));
   EXPECT_GT(rows.back()[12], restingEnergy);
-  return rows;
+  return std::move(rows);
 }
 
 TEST_F(EffectsCliTest, TheThickToySlipsAndSpinsDownToFaceDownWithItsEnergyBudgetAndT0) {
@@ -178,6 +170,11 @@ TEST_F(EffectsCliTest, ScenesWithoutEffectsGiveTheBytesTheyGaveBeforeEffectsExis
   // Provenance off: these bytes were recorded before files named their release and scene, and with
   // it on they would change with every release; the pictures and the stream are what is compared.
   const std::string noProvenance = " --set render.provenance=false";
+  // A byte hash has no tolerance: on a CPU other than the recording one (COINROLL_GOLDEN_TOLERANT=1)
+  // llvmpipe may round a few pixels differently and x264 then encodes other bytes, so there only the
+  // CSVs are compared and the still is checked to decode at its size; the pictures' tolerant check
+  // is tests/render's goldens. Exact mode (the default, and CI) compares every hash.
+  const bool hashPictures = !coinroll::testing::goldenTolerant();
   for (const Recorded& r : recorded) {
     const std::string scene = example(r.example);
     const fs::path csv = dir_ / "run.csv", png = dir_ / "still.png", mp4 = dir_ / "clip.mp4";
@@ -189,12 +186,21 @@ TEST_F(EffectsCliTest, ScenesWithoutEffectsGiveTheBytesTheyGaveBeforeEffectsExis
                           noProvenance)
                   .exitCode, 0);
     EXPECT_EQ(fnv1a(csv), r.csv) << r.example << " CSV";
-    EXPECT_EQ(fnv1a(png), r.png) << r.example << " PNG";
-    EXPECT_EQ(fnv1a(mp4), r.mp4) << r.example << " MP4";
+    if (hashPictures) {
+      EXPECT_EQ(fnv1a(png), r.png) << r.example << " PNG";
+      EXPECT_EQ(fnv1a(mp4), r.mp4) << r.example << " MP4";
+    } else {
+      const coinroll::image::Image still = coinroll::image::readPng(png);
+      EXPECT_TRUE(still.width == 320 && still.height == 180) << r.example << " still " << still.width << "x" << still.height;
+    }
   }
   const fs::path defaultCsv = dir_ / "default.csv";
   ASSERT_EQ(runCoinroll("simulate --csv " + defaultCsv.string()).exitCode, 0);
   EXPECT_EQ(fnv1a(defaultCsv), 0x953433f4ef16ee03ull) << "built-in default scene CSV";
+  if (!hashPictures) {
+    GTEST_SKIP() << "CSV bytes compared; PNG and MP4 hashes not compared under COINROLL_GOLDEN_TOLERANT=1 (exact "
+                    "bytes only: docs/snapshot_testing.md)";
+  }
 }
 
 }  // namespace

@@ -20,7 +20,7 @@
 #include <thread>
 
 #include "image/image.h"
-#include "video/video_probe.h"
+#include "video_probe.h"
 
 namespace {
 

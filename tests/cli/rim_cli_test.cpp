@@ -10,14 +10,14 @@
 #include <filesystem>
 #include <fstream>
 #include <numbers>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "cli/run_command.h"
+#include "csv_table.h"
 #include "scratch_dir.h"
 #include "tolerance.h"
-#include "video/video_probe.h"
+#include "video_probe.h"
 
 namespace {
 
@@ -29,19 +29,7 @@ using coinroll::testing::runCoinroll;
 
 class RimCliTest : public coinroll::testing::ScratchDirTest {};
 
-std::vector<std::vector<double>> readRows(const fs::path& csv) {
-  std::ifstream in(csv);
-  std::string line;
-  std::getline(in, line);
-  std::vector<std::vector<double>> rows;
-  while (std::getline(in, line)) {
-    std::vector<double> row;
-    std::stringstream fields(line);
-    for (std::string field; std::getline(fields, field, ',');) row.push_back(std::stod(field));
-    rows.push_back(row);
-  }
-  return rows;
-}
+std::vector<std::vector<double>> readRows(const fs::path& csv) { return coinroll::testing::readCsvTable(csv).rows; }
 
 constexpr double kRadius = 0.0375, kThickness = 0.013;
 

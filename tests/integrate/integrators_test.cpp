@@ -114,6 +114,17 @@ TEST(DenseOutput, Dop853InterpolantHasOrderSeven) {
   EXPECT_TRUE(isNear(std::log2(midpointError(Method::Dop853, 0.1) / midpointError(Method::Dop853, 0.05)), 8, 0.5));
 }
 
+TEST(DenseOutput, AQueryOutsideItsStepThrowsInEveryBuild) {
+  // Beyond round-off at the ends the interpolant would extrapolate silently; the check is not an
+  // assert, so it holds under NDEBUG too.
+  const V1 y0(1.0), y1(0.5), f0(-1.0), f1(-0.25);
+  const DenseInterval<1> d = hermiteInterval<1>(2.0, 0.5, y0, f0, y1, f1);
+  EXPECT_EQ(d.at(2.0)[0], 1.0);
+  EXPECT_NO_THROW(d.at(2.5 + 1e-13));  // round-off past the end is allowed
+  EXPECT_THROW(d.at(2.5 + 1e-9), std::logic_error);
+  EXPECT_THROW(d.at(2.0 - 1e-9), std::logic_error);
+}
+
 struct Oscillator {
   V2 operator()(double, const V2& y) const { return V2(y[1], -y[0]); }
 };
@@ -185,7 +196,7 @@ TEST(Trajectory, AnEndOutOfReachAtThePaceSoFarFailsEarly) {
   EXPECT_EQ(reachable.stats().acceptedSteps, 1'000'000);
 }
 
-TEST(Events, FallingZeroIsLocatedToTenNanoseconds) {
+TEST(Events, FallingZeroIsLocatedToATenthOfANanosecond) {
   for (Method method : {Method::Rk4, Method::Dopri5, Method::Dop853}) {
     // y = cos t first falls through 0 at pi/2.
     std::vector<Event<2>> events{{.name = "zero", .g = [](double, const V2& y) { return y[0]; }, .direction = -1}};

@@ -14,7 +14,7 @@
 #include <string>
 
 #include "render/gl_backend.h"
-#include "render/image_compare.h"
+#include "image_compare.h"
 #include "render/renderer.h"
 
 namespace {

@@ -16,7 +16,8 @@
 #include "image/compare.h"
 #include "render/assets.h"
 #include "render/embedded_assets.h"
-#include "render/image_compare.h"
+#include "golden_rule.h"
+#include "image_compare.h"
 #include "render/meshes.h"
 #include "render/renderer.h"
 #include "scratch_dir.h"
@@ -89,12 +90,8 @@ class GoldenTest : public ::testing::TestWithParam<std::string> {};
 // mismatch writes the diff image and the actual picture beside the build.
 TEST_P(GoldenTest, MatchesGolden) {
   const std::string name = GetParam();
-  const char* tolerantSetting = std::getenv("COINROLL_GOLDEN_TOLERANT");
-  const std::string tolerant = tolerantSetting == nullptr ? "" : tolerantSetting;
-  ASSERT_TRUE(tolerant.empty() || tolerant == "0" || tolerant == "1")
-      << "COINROLL_GOLDEN_TOLERANT must be 1 (rounding-level differences pass, for another CPU) or 0/unset (exact), got '"
-      << tolerant << "'";
-  const CompareThresholds thresholds = tolerant == "1" ? coinroll::image::otherCpuThresholds() : CompareThresholds{};
+  const bool tolerant = coinroll::testing::goldenTolerant();
+  const CompareThresholds thresholds = tolerant ? coinroll::image::otherCpuThresholds() : CompareThresholds{};
   Renderer renderer(smallSettings());
   const Image actual = renderer.draw(goldenSnapshot(name));
   const fs::path golden = goldenPath(name);
@@ -120,7 +117,7 @@ TEST_P(GoldenTest, MatchesGolden) {
                              diffPath.string() + ", actual " + actualPath.string();
   const bool passes = coinroll::image::withinThresholds(d, thresholds);
   EXPECT_TRUE(passes) << report
-                      << (tolerant == "1" ? ""
+                      << (tolerant ? ""
                                           : "; exact match required. On a CPU other than the goldens' (llvmpipe rounds "
                                             "edge pixels per CPU), COINROLL_GOLDEN_TOLERANT=1 accepts rounding-level "
                                             "differences (docs/snapshot_testing.md)");

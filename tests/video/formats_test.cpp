@@ -15,7 +15,7 @@
 #include "synthetic_frames.h"
 #include "video/encoder_sink.h"
 #include "video/gif_comment.h"
-#include "video/video_probe.h"
+#include "video_probe.h"
 
 namespace fs = std::filesystem;
 using coinroll::image::Image;

@@ -14,7 +14,7 @@
 
 #include "synthetic_frames.h"
 #include "tolerance.h"
-#include "video/video_probe.h"
+#include "video_probe.h"
 
 namespace fs = std::filesystem;
 using coinroll::image::Image;

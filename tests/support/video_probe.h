@@ -1,5 +1,6 @@
 #pragma once
-// Reading back what a sink wrote: stream facts for checks, and decoded frames for comparisons.
+// Test support: reading back what a sink wrote, stream facts for checks and decoded frames for
+// comparisons. The program never reads its outputs back, so this lives beside the tests, not in src/video.
 
 #include <cstdint>
 #include <filesystem>

@@ -1,4 +1,4 @@
-#include "render/image_compare.h"
+#include "image_compare.h"
 
 #include <algorithm>
 #include <cmath>

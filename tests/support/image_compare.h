@@ -1,5 +1,5 @@
 #pragma once
-// Image measurements for render tests and benchmarks only. The comparison rule itself (differing
+// Test support: image measurements for render tests and render_bench. The comparison rule itself (differing
 // pixels, PSNR, thresholds, the diff image) is the library's, src/image/compare.h, shared with
 // `coinroll compare`.
 

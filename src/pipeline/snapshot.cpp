@@ -44,7 +44,7 @@ std::vector<std::string> hudLines(const physics::CoinModel& model, const RunSamp
   constexpr double kTurn = 2 * std::numbers::pi;
   std::vector<std::string> lines = {
       fmt::format("t        {:9.3f} s", time),
-      fmt::format("tilt     {:9.2f} deg above floor", 90 - std::abs(state.theta) * 180 / std::numbers::pi),
+      fmt::format("θ        {:9.2f}° from vertical", shownToTwoDecimals(state.theta * 180 / std::numbers::pi)),
       physics::axisGoesRound(f) ? fmt::format("contact  {:9.2f} Hz round the floor", std::abs(f.precessionRate) / kTurn)
                                 : std::string("contact         -- rocking, not going round"),
       fmt::format("face     {:9.2f} Hz about its axis", shownToTwoDecimals(state.omega_Z / kTurn)),

@@ -217,8 +217,8 @@ VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& si
     std::vector<std::string> speed;
     if (scene.render.hud) {
       const double slowdown = 1 / playbackRate;
-      if (slowdown > 1 + 1e-9) speed.push_back(fmt::format("slow motion x{:.3g}", slowdown));
-      if (slowdown < 1 - 1e-9) speed.push_back(fmt::format("fast forward x{:.3g}", 1 / slowdown));
+      if (slowdown > 1 + 1e-9) speed.push_back(fmt::format("slow motion ×{:.3g}", slowdown));
+      if (slowdown < 1 - 1e-9) speed.push_back(fmt::format("fast forward ×{:.3g}", 1 / slowdown));
     }
     // Made for every frame: the trace and the sound are built in time order from the start.
     const render::FrameSnapshot& snapshot = snapshots.makeSnapshot(t, speed);

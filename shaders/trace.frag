@@ -1,13 +1,20 @@
 #version 330 core
-// Coloured by time (deep blue for old, orange-red for new) and fading with age, so the
-// direction of travel and the recent path both read; where the coin slid, yellow fading to pale
-// green instead, so the stretches of sliding stand out from the rolling ones at any age.
+// Coloured by time and fading with age, so the direction of travel and the recent path both read;
+// where the coin slid, in a second pair of colours, so the stretches of sliding stand out from the
+// rolling ones at any age. The colours are the theme's (render/theme.cpp).
 in float vertexAge;
 in float vertexSliding;
+
+uniform vec3 recentRolling;
+uniform vec3 oldRolling;
+uniform vec3 recentSliding;
+uniform vec3 oldSliding;
+uniform vec2 opacity;  // newest, oldest
+
 out vec4 fragColour;
 
 void main() {
-  vec3 recent = mix(vec3(0.93, 0.33, 0.08), vec3(0.98, 0.84, 0.10), vertexSliding);
-  vec3 old = mix(vec3(0.30, 0.52, 0.95), vec3(0.55, 0.90, 0.55), vertexSliding);
-  fragColour = vec4(mix(recent, old, vertexAge), mix(0.95, 0.25, vertexAge));
+  vec3 recent = mix(recentRolling, recentSliding, vertexSliding);
+  vec3 old = mix(oldRolling, oldSliding, vertexSliding);
+  fragColour = vec4(mix(recent, old, vertexAge), mix(opacity.x, opacity.y, vertexAge));
 }

@@ -8,6 +8,7 @@ packages=(
   libeigen3-dev nlohmann-json3-dev libcli11-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libosmesa6-dev libglm-dev libstb-dev zlib1g-dev
+  fonts-dejavu-core  # the overlay font, embedded in the binary at build time (DejaVuSansMono.ttf)
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri  # EGL back ends: glvnd's libEGL, Mesa's vendor and its llvmpipe
   libavcodec-dev libavformat-dev libavutil-dev libswscale-dev
   ffmpeg

@@ -32,7 +32,9 @@ std::vector<std::string> hudLines(const physics::CoinModel& model, const FrameSt
   constexpr double kTurn = 2 * std::numbers::pi;
   std::vector<std::string> lines = {
       fmt::format("t        {:9.3f} s", frame.time),
-      fmt::format("tilt     {:9.2f} deg above floor", 90 - std::abs(frame.theta) * 180 / std::numbers::pi),
+      // The scene's theta (from vertical), and the tilt above the floor a spin-down is read by.
+      fmt::format("θ        {:9.2f}° from vertical, {:.2f}° above the floor",
+                  shownToTwoDecimals(frame.theta * 180 / std::numbers::pi), 90 - std::abs(frame.theta) * 180 / std::numbers::pi),
       frame.axisGoesRound ? fmt::format("contact  {:9.2f} Hz round the floor", std::abs(frame.precessionRate) / kTurn)
                           : std::string("contact         -- rocking, not going round"),
       fmt::format("face     {:9.2f} Hz about its axis", shownToTwoDecimals(frame.omega_Z / kTurn)),

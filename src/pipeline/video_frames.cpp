@@ -248,8 +248,8 @@ VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& si
     std::vector<std::string> speed;
     if (scene.render.hud) {
       const double slowdown = 1 / playbackRate;
-      if (slowdown > 1 + 1e-9) speed.push_back(fmt::format("slow motion x{:.3g}", slowdown));
-      if (slowdown < 1 - 1e-9) speed.push_back(fmt::format("fast forward x{:.3g}", 1 / slowdown));
+      if (slowdown > 1 + 1e-9) speed.push_back(fmt::format("slow motion ×{:.3g}", slowdown));
+      if (slowdown < 1 - 1e-9) speed.push_back(fmt::format("fast forward ×{:.3g}", 1 / slowdown));
     }
     // Synthesised for every frame, so the sound is the full render's; the trace catches up at the next snapshot.
     if (sound) sound->reachFrame(k, state.precessionRate, playbackRate, soundSink(k), landed && k + 1 == simulatedFrames);

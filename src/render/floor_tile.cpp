@@ -8,10 +8,6 @@ namespace coinroll::render {
 
 namespace {
 
-// Colours as linear reflectance times the key light's irradiance on a flat floor.
-constexpr float kFloor[3] = {0.25f, 0.26f, 0.28f};
-constexpr float kMinorLine[3] = {0.35f, 0.36f, 0.38f};
-constexpr float kMajorLine[3] = {0.45f, 0.47f, 0.50f};
 constexpr float kMinorWidth = 0.0005f;  // m
 constexpr float kMajorWidth = 0.0012f;  // m
 
@@ -28,7 +24,7 @@ float lineCoverage(float x0, float step, float spacing, float width) {
 
 }  // namespace
 
-image::Image floorTile(int pixels) {
+image::Image floorTile(int pixels, const FloorColours& colours) {
   image::Image tile(pixels, pixels);
   const float step = kFloorTileMetres / static_cast<float>(pixels);
   for (int j = 0; j < pixels; ++j) {
@@ -42,8 +38,8 @@ image::Image floorTile(int pixels) {
       const float minor = covered(kFloorGridMetres, kMinorWidth), major = covered(kFloorTileMetres, kMajorWidth);
       std::uint8_t* p = tile.pixel(i, j);
       for (int c = 0; c < 3; ++c) {
-        const float withMinor = kFloor[c] + (kMinorLine[c] - kFloor[c]) * minor;
-        const float linear = withMinor + (kMajorLine[c] - withMinor) * major;
+        const float withMinor = colours.floor[c] + (colours.minorLine[c] - colours.floor[c]) * minor;
+        const float linear = withMinor + (colours.majorLine[c] - withMinor) * major;
         p[c] = static_cast<std::uint8_t>(std::lround(255.0f * std::clamp(toSrgb(linear), 0.0f, 1.0f)));
       }
       p[3] = 255;

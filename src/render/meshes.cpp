@@ -1,10 +1,8 @@
 #include "render/meshes.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <numbers>
-#include <stb_easy_font.h>
 
 namespace coinroll::render {
 
@@ -136,36 +134,6 @@ std::vector<RibbonVertex> ribbonStrip(const std::vector<glm::vec2>& points, floa
     strip.push_back({distinct[i] - side, age, sliding});
   }
   return strip;
-}
-
-std::vector<TextVertex> hudTriangles(const std::vector<std::string>& lines, float scale) {
-  std::vector<TextVertex> triangles;
-  if (lines.empty()) return triangles;
-  constexpr float kMargin = 6, kPadding = 4, kLineHeight = 10;
-  float textWidth = 0;
-  for (const std::string& line : lines) textWidth = std::max(textWidth, static_cast<float>(stb_easy_font_width(const_cast<char*>(line.c_str()))));
-  const glm::vec2 panelMin(kMargin), panelMax = glm::vec2(kMargin) + scale * glm::vec2(textWidth + 2 * kPadding,
-                                                                                       kLineHeight * lines.size() + 2 * kPadding - 3);
-  const glm::vec4 panel(0.08f, 0.09f, 0.11f, 0.62f), ink(0.97f, 0.97f, 0.95f, 1.0f);
-  append<TextVertex>(triangles, {{panelMin, panel}, {{panelMax.x, panelMin.y}, panel}, {panelMax, panel},
-                                     {panelMin, panel}, {panelMax, panel}, {{panelMin.x, panelMax.y}, panel}});
-  // stb_easy_font writes quads of four 16-byte vertices (x, y, z floats, RGBA bytes).
-  std::vector<char> buffer(64 * 1024);
-  for (std::size_t row = 0; row < lines.size(); ++row) {
-    const int quads = stb_easy_font_print(0, 0, const_cast<char*>(lines[row].c_str()), nullptr, buffer.data(),
-                                          static_cast<int>(buffer.size()));
-    const glm::vec2 origin = panelMin + scale * glm::vec2(kPadding, kPadding + kLineHeight * static_cast<float>(row));
-    for (int q = 0; q < quads; ++q) {
-      std::array<glm::vec2, 4> corner;
-      for (int k = 0; k < 4; ++k) {
-        const float* xy = reinterpret_cast<const float*>(buffer.data() + (4 * q + k) * 16);
-        corner[k] = origin + scale * glm::vec2(xy[0], xy[1]);
-      }
-      append<TextVertex>(triangles, {{corner[0], ink}, {corner[1], ink}, {corner[2], ink},
-                                         {corner[0], ink}, {corner[2], ink}, {corner[3], ink}});
-    }
-  }
-  return triangles;
 }
 
 }  // namespace coinroll::render

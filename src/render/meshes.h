@@ -1,10 +1,9 @@
 #pragma once
 // CPU-side geometry, built without a GL context (so tests can check it): the coin as a closed
-// cylinder (an annulus when it has a hole) whose outer rim may be rounded with the edge radius, the
-// trace ribbon and the overlay text.
+// cylinder (an annulus when it has a hole) whose outer rim may be rounded with the edge radius, and
+// the trace ribbon (the overlay's text: overlay_text.h).
 
 #include <glm/glm.hpp>
-#include <string>
 #include <vector>
 
 #include "render/render_settings.h"
@@ -33,14 +32,5 @@ struct RibbonVertex {
 // are skipped; fewer than two distinct points give an empty strip.
 // `slides`: empty, or which points the coin slid at.
 std::vector<RibbonVertex> ribbonStrip(const std::vector<glm::vec2>& points, float width, const std::vector<bool>& slides = {});
-
-struct TextVertex {
-  glm::vec2 position;  // pixels, origin top-left
-  glm::vec4 colour;    // straight alpha
-};
-
-// Triangles of a translucent panel holding `lines` of stb_easy_font text at `scale` pixels per
-// font unit, anchored at the top-left corner with a margin.
-std::vector<TextVertex> hudTriangles(const std::vector<std::string>& lines, float scale);
 
 }  // namespace coinroll::render

@@ -42,6 +42,19 @@ struct CoinShape {
                               // 0 a sharp-edged cylinder, thickness/2 a fully rounded (half-torus) rim
 };
 
+// render.theme. Classic: a dark floor under a pale sky, light text on dark panels. Paper: for print,
+// a near-white floor and background with dark grid lines, dark text on light panels, and a trace
+// in dark red to dark blue (dark orange to green where it slid) that survives a grey printer.
+enum class Theme { Classic, Paper };
+
+// render.scale_bar: a bar of a round length lying on the floor just in front of the coin, across
+// the view, with its length written under it ("2 cm"); it is drawn in perspective, so it measures
+// the floor where it lies (docs/outputs.md "Scale bar").
+struct ScaleBar {
+  bool shown = false;
+  float metres = 0.0f;  // m, > 0; 0 with `shown`: the largest 1, 2 or 5 x 10^k m not above the coin's radius
+};
+
 struct RenderSettings {
   int width = 1280, height = 720;  // pixels, in [kMinImageSide, kMaxImageSide]
   Antialiasing antialiasing = Antialiasing::Msaa;
@@ -52,6 +65,8 @@ struct RenderSettings {
   // it); where nothing is drawn alpha is 0, and the coin, its shadow, the trace and the overlay
   // keep their own alpha (docs/outputs.md "Transparent background").
   bool transparentBackground = false;
+  Theme theme = Theme::Classic;
+  ScaleBar scaleBar = {};
   // When a frame's camera equals the previous frame's, the sky and the floor are copied from the
   // first such frame instead of shaded again (the largest part of a frame on llvmpipe). The bytes
   // are the same either way; off only to measure or test the saving.

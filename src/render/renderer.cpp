@@ -16,7 +16,10 @@
 #include "render/floor_tile.h"
 #include "render/gl_context.h"
 #include "render/gl_handles.h"
+#include "render/overlay_text.h"
+#include "render/scale_bar.h"
 #include "render/shader_program.h"
+#include "render/theme.h"
 
 namespace coinroll::render {
 
@@ -26,8 +29,6 @@ constexpr int kCoinSegments = 128;
 // Key light, pointing from the scene towards the light: high and slightly behind the default
 // camera's left shoulder, so the shadow falls forward-right and the face catches a highlight.
 const glm::vec3 kLightDirection = glm::normalize(glm::vec3(-0.35f, 1.0f, 0.45f));
-// Sky colour behind the floor, sRGB; the floor fades into it with distance.
-const glm::vec3 kBackgroundSrgb(0.86f, 0.89f, 0.93f);
 const glm::vec4 kShadowColour(0.0f, 0.0f, 0.0f, 0.45f);
 const glm::vec4 kContactColour(0.85f, 0.1f, 0.08f, 1.0f);
 
@@ -93,6 +94,10 @@ void uploadMipmapped(const GlFunctions& gl, const Texture& texture, const image:
   gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, wrap);
 }
 
+// A floor decal's square: [-1/2, 1/2] along x and z, scaled and turned per frame.
+const std::vector<glm::vec3> kUnitFloorSquare = {{-0.5f, 0, -0.5f}, {0.5f, 0, 0.5f}, {0.5f, 0, -0.5f},
+                                                 {-0.5f, 0, -0.5f}, {-0.5f, 0, 0.5f}, {0.5f, 0, 0.5f}};
+
 void floatAttribute(const GlFunctions& gl, GLuint index, int components, std::size_t stride, std::size_t offset) {
   gl.EnableVertexAttribArray(index);
   gl.VertexAttribPointer(index, components, GL_FLOAT, GL_FALSE, static_cast<GLsizei>(stride),
@@ -116,11 +121,14 @@ struct Renderer::GlState {
   std::optional<ShaderProgram> fxaaProgram;  // only for Antialiasing::Fxaa
   Texture sceneColour;                       // the FXAA pass reads the scene from this texture
   VertexArray coinArray = makeVertexArray(gl), floorArray = makeVertexArray(gl), markerArray = makeVertexArray(gl),
-              traceArray = makeVertexArray(gl), hudArray = makeVertexArray(gl), fullScreenArray = makeVertexArray(gl);
+              traceArray = makeVertexArray(gl), hudArray = makeVertexArray(gl), fullScreenArray = makeVertexArray(gl),
+              scaleBarArray = makeVertexArray(gl);
   Buffer coinBuffer = makeBuffer(gl), floorBuffer = makeBuffer(gl), markerBuffer = makeBuffer(gl),
-         traceBuffer = makeBuffer(gl), hudBuffer = makeBuffer(gl);
+         traceBuffer = makeBuffer(gl), hudBuffer = makeBuffer(gl), scaleBarBuffer = makeBuffer(gl);
   Texture coinFace = makeTexture(gl);
   Texture floorGrid = makeTexture(gl);
+  Texture glyphs = makeTexture(gl);
+  std::optional<GlyphAtlas> atlas;  // made once, at the picture's text size
   GLsizei coinVertices = 0, markerVertices = 0;
   // The draw target's colour, depth and stencil just after the floor, for the camera it was
   // drawn with; a blit of the same format and sample count restores it exactly.
@@ -189,7 +197,17 @@ Renderer::Renderer(const RenderSettings& settings, GlBackend backend) : settings
   // 512 texels per 10 cm: the 0.5 mm minor lines are 2.6 texels wide, so every mipmap level is
   // a faithful average of the one above. One mipmap level per lookup (not two blended) halves
   // the floor's texturing cost, the largest part of a frame on llvmpipe, with no visible seams.
-  uploadMipmapped(gl, state.floorGrid, floorTile(512), GL_LINEAR_MIPMAP_NEAREST, GL_REPEAT);
+  uploadMipmapped(gl, state.floorGrid, floorTile(512, palette(settings_.theme).floor), GL_LINEAR_MIPMAP_NEAREST, GL_REPEAT);
+
+  // The overlay's glyphs at the size they are drawn: every texel row lands on one pixel row, so
+  // the text is as sharp as the rasteriser made it, and no mipmaps are needed.
+  const GlyphAtlas& atlas = state.atlas.emplace(overlayTextPixels(h));
+  gl.BindTexture(GL_TEXTURE_2D, state.glyphs.get());
+  gl.TexImage2D(GL_TEXTURE_2D, 0, GL_R8, atlas.width(), atlas.height(), 0, GL_RED, GL_UNSIGNED_BYTE, atlas.coverage().data());
+  gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
 
   const std::vector<CoinVertex> coin = coinTriangles(settings_.coin, kCoinSegments);
   state.coinVertices = static_cast<GLsizei>(coin.size());
@@ -223,10 +241,15 @@ Renderer::Renderer(const RenderSettings& settings, GlBackend backend) : settings
   floatAttribute(gl, 1, 1, sizeof(RibbonVertex), offsetof(RibbonVertex, age));
   floatAttribute(gl, 2, 1, sizeof(RibbonVertex), offsetof(RibbonVertex, sliding));
 
+  gl.BindVertexArray(state.scaleBarArray.get());
+  upload(gl, state.scaleBarBuffer.get(), kUnitFloorSquare, GL_STATIC_DRAW);
+  floatAttribute(gl, 0, 3, sizeof(glm::vec3), 0);
+
   gl.BindVertexArray(state.hudArray.get());
   gl.BindBuffer(GL_ARRAY_BUFFER, state.hudBuffer.get());
   floatAttribute(gl, 0, 2, sizeof(TextVertex), offsetof(TextVertex, position));
-  floatAttribute(gl, 1, 4, sizeof(TextVertex), offsetof(TextVertex, colour));
+  floatAttribute(gl, 1, 2, sizeof(TextVertex), offsetof(TextVertex, texel));
+  floatAttribute(gl, 2, 4, sizeof(TextVertex), offsetof(TextVertex, colour));
   gl.BindVertexArray(0);
 }
 
@@ -270,8 +293,9 @@ void Renderer::drawBackground(const CameraView& camera, const glm::mat4& viewPro
   const GlFunctions& gl = state.gl;
   const float cameraDistance = glm::length(camera.eye - camera.target);
   const bool transparent = settings_.transparentBackground;
+  const glm::vec3 background = palette(settings_.theme).backgroundSrgb;
   if (transparent) gl.ClearColor(0.0f, 0.0f, 0.0f, 0.0f);
-  else gl.ClearColor(kBackgroundSrgb.r, kBackgroundSrgb.g, kBackgroundSrgb.b, 1.0f);
+  else gl.ClearColor(background.r, background.g, background.b, 1.0f);
   gl.ClearStencil(0);
   gl.ClearDepth(1.0);
   gl.DepthMask(GL_TRUE);
@@ -286,7 +310,7 @@ void Renderer::drawBackground(const CameraView& camera, const glm::mat4& viewPro
   state.floorProgram.set("eye", camera.eye);
   state.floorProgram.set("fogStart", 2.5f * cameraDistance);
   state.floorProgram.set("fogEnd", 12.0f * cameraDistance);
-  state.floorProgram.set("backgroundSrgb", kBackgroundSrgb);
+  state.floorProgram.set("backgroundSrgb", background);
   state.floorProgram.set("tileMetres", kFloorTileMetres);
   state.floorProgram.set("gridTile", 0);
   gl.ActiveTexture(GL_TEXTURE0);
@@ -305,6 +329,7 @@ void Renderer::draw(const FrameSnapshot& snapshot, image::Image& out) {
   const CameraMatrices camera = cameraMatrices(snapshot.camera, w, h);
   const glm::mat4 viewProjection = camera.projection * camera.view;
   const float coinRadius = settings_.coin.radius;
+  const Palette& colours = palette(settings_.theme);
 
   gl.BindFramebuffer(GL_FRAMEBUFFER, state.drawTarget.get());
   gl.Viewport(0, 0, w, h);
@@ -366,6 +391,11 @@ void Renderer::draw(const FrameSnapshot& snapshot, image::Image& out) {
       !ribbon.empty()) {
     state.traceProgram.use();
     state.traceProgram.set("viewProjection", viewProjection);
+    state.traceProgram.set("recentRolling", colours.trace.recentRolling);
+    state.traceProgram.set("oldRolling", colours.trace.oldRolling);
+    state.traceProgram.set("recentSliding", colours.trace.recentSliding);
+    state.traceProgram.set("oldSliding", colours.trace.oldSliding);
+    state.traceProgram.set("opacity", colours.trace.opacity);
     gl.BindVertexArray(state.traceArray.get());
     upload(gl, state.traceBuffer.get(), ribbon, GL_STREAM_DRAW);
     gl.DrawArrays(GL_TRIANGLE_STRIP, 0, static_cast<GLsizei>(ribbon.size()));
@@ -380,6 +410,21 @@ void Renderer::draw(const FrameSnapshot& snapshot, image::Image& out) {
                                               glm::vec3(markerRadius)));
     gl.BindVertexArray(state.markerArray.get());
     gl.DrawArrays(GL_TRIANGLES, 0, state.markerVertices);
+  }
+  std::optional<ScaleBarPlacement> scaleBar;
+  if (settings_.scaleBar.shown) {
+    const ScaleBarPlacement& bar = scaleBar.emplace(placeScaleBar(settings_.scaleBar, coinRadius, snapshot.camera, snapshot.coin, h));
+    const glm::vec3 along = bar.end - bar.start;
+    glm::mat4 model(1.0f);
+    model[0] = glm::vec4(along, 0.0f);
+    model[2] = glm::vec4(bar.thickness * bar.across, 0.0f);
+    model[3] = glm::vec4(0.5f * (bar.start + bar.end), 1.0f);
+    state.flatProgram.use();
+    state.flatProgram.set("viewProjection", viewProjection);
+    state.flatProgram.set("colour", colours.scaleBar);
+    state.flatProgram.set("model", model);
+    gl.BindVertexArray(state.scaleBarArray.get());
+    gl.DrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(kUnitFloorSquare.size()));
   }
 
   // Coins: the current one opaque, then the ghosts from far to near so nearer ones blend last.
@@ -434,16 +479,30 @@ void Renderer::draw(const FrameSnapshot& snapshot, image::Image& out) {
     gl.BindVertexArray(state.fullScreenArray.get());
     gl.DrawArrays(GL_TRIANGLES, 0, 3);
   }
-  if (const std::vector<TextVertex> hud = hudTriangles(snapshot.hudLines, std::max(1.0f, std::floor(h / 300.0f)));
-      !hud.empty()) {
+  std::vector<TextVertex> text;
+  const GlyphAtlas& atlas = *state.atlas;
+  if (!snapshot.hudLines.empty()) {
+    const float margin = std::round(0.5f * atlas.lineHeight());
+    appendTextPanel(atlas, snapshot.hudLines, glm::vec2(margin), colours.overlay, text);
+  }
+  if (scaleBar) {  // the label centred under the bar's middle
+    const glm::vec2 middle = pixelFromWorld(snapshot.camera, w, h, 0.5f * (scaleBar->start + scaleBar->end));
+    const glm::vec2 size = textPanelSize(atlas, {scaleBar->label});
+    appendTextPanel(atlas, {scaleBar->label}, middle + glm::vec2(-0.5f * size.x, 0.4f * atlas.lineHeight()), colours.overlay, text);
+  }
+  if (!text.empty()) {
     gl.Disable(GL_DEPTH_TEST);
     gl.Disable(GL_CULL_FACE);
     gl.Enable(GL_BLEND);
     state.hudProgram.use();
     state.hudProgram.set("viewportSize", glm::vec2(w, h));
+    state.hudProgram.set("atlasSize", glm::vec2(atlas.width(), atlas.height()));
+    state.hudProgram.set("atlas", 0);
+    gl.ActiveTexture(GL_TEXTURE0);
+    gl.BindTexture(GL_TEXTURE_2D, state.glyphs.get());
     gl.BindVertexArray(state.hudArray.get());
-    upload(gl, state.hudBuffer.get(), hud, GL_STREAM_DRAW);
-    gl.DrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(hud.size()));
+    upload(gl, state.hudBuffer.get(), text, GL_STREAM_DRAW);
+    gl.DrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(text.size()));
   }
   gl.BindVertexArray(0);
 

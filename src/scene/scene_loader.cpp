@@ -34,6 +34,7 @@ constexpr std::array<std::string_view, 2> kTimbreNames = {"clicks", "tone"};
 constexpr std::array<std::string_view, 2> kAirFlowNames = {"moffatt", "boundary_layer"};
 constexpr std::array<std::string_view, 2> kOnInvalidNames = {"stop", "warn"};
 constexpr std::array<std::string_view, 2> kBackgroundNames = {"opaque", "transparent"};
+constexpr std::array<std::string_view, 2> kThemeNames = {"classic", "paper"};  // render::Theme's order
 
 // "a, b or c" (each item through `show`) for the rule of a message.
 template <class Items, class Show>
@@ -346,7 +347,7 @@ RenderSpec parseRender(const JsonReader& top) {
   RenderSpec render;
   const nlohmann::json* node = top.child("render");
   if (node == nullptr) return render;
-  const JsonReader r(*node, "render", "", {"width", "height", "fps", "antialiasing", "msaa", "time_scale", "time_remap", "camera", "trace", "hud", "video", "audio", "background", "provenance"});
+  const JsonReader r(*node, "render", "", {"width", "height", "fps", "antialiasing", "msaa", "time_scale", "time_remap", "camera", "trace", "hud", "video", "audio", "background", "provenance", "theme", "scale_bar"});
   render::RenderSettings& picture = render.picture;
   for (auto [key, field] : {std::pair{"width", &picture.width}, std::pair{"height", &picture.height}}) {
     *field = r.integer(key, *field);
@@ -404,6 +405,16 @@ RenderSpec parseRender(const JsonReader& top) {
   picture.transparentBackground = enumValue(r, "background", std::span(kBackgroundNames), 0,
                                             "expected \"opaque\" or \"transparent\", got \"{}\"") == 1;
   render.provenance = r.boolean("provenance", render.provenance);
+  picture.theme = enumValue(r, "theme", kThemeNames, picture.theme);
+  constexpr std::string_view kScaleBarRule = "must be true, false or a length in (0, 10] m, got ";
+  if (const nlohmann::json* bar = r.child("scale_bar"); bar != nullptr && bar->is_number()) {
+    picture.scaleBar = {.shown = true, .metres = static_cast<float>(r.number("scale_bar", 0))};
+    if (!(picture.scaleBar.metres > 0 && picture.scaleBar.metres <= 10)) r.fail("scale_bar", std::string(kScaleBarRule) + describeJson(*bar));
+  } else if (bar != nullptr && !bar->is_boolean()) {
+    r.fail("scale_bar", std::string(kScaleBarRule) + describeJson(*bar), SceneError::Kind::WrongType);
+  } else {
+    picture.scaleBar.shown = r.boolean("scale_bar", picture.scaleBar.shown);
+  }
   return render;
 }
 

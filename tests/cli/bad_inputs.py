@@ -694,6 +694,14 @@ for ext in ("mp4", "GIF"):
 case("background-bad", C, "render.background \"clear\"", "render scene.json -q -o o.mov --set 'render.background=\"clear\"'",
      2, 'render.background: expected "opaque" or "transparent", got "clear"', key="render.background",
      gtest=(G_RENDER,), na_before=FORMATS)
+case("theme-bad", C, "render.theme \"dark\"", "render scene.json -q -o o.mov --set 'render.theme=\"dark\"'", 2,
+     'render.theme: must be "classic" or "paper", got "dark"', key="render.theme", na_before=FORMATS)
+case("scale-bar-negative", C, "render.scale_bar -0.01", "render scene.json -q -o o.mov --set render.scale_bar=-0.01", 2,
+     "render.scale_bar: must be true, false or a length in (0, 10] m, got -0.01", key="render.scale_bar",
+     na_before=FORMATS)
+case("scale-bar-string", C, "render.scale_bar \"1 cm\"", "render scene.json -q -o o.mov --set 'render.scale_bar=\"1 cm\"'",
+     2, 'render.scale_bar: must be true, false or a length in (0, 10] m, got string "1 cm"', key="render.scale_bar",
+     na_before=FORMATS)
 case("provenance-bad", C, "render.provenance \"yes\"", "render scene.json -q -o o.mov --set 'render.provenance=\"yes\"'",
      2, 'render.provenance: must be true or false, got string "yes"', key="render.provenance", na_before=FORMATS)
 case("audio-webm", C, "render.audio with .webm", "render scene.json -q -o o.webm --set render.audio=true", 2,

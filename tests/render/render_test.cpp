@@ -58,7 +58,7 @@ FrameSnapshot goldenSnapshot(const std::string& name) {
   s.showContact = false;
   if (name == "upright") {
     s.coin = pose(0, 0, 0);
-    s.hudLines = {"t        0.000 s", "tilt      0.00 deg"};
+    s.hudLines = {"t        0.000 s", "θ         0.00° from vertical", "slow motion ×1.5"};
   } else if (name == "tilted30") {
     s.coin = pose(30 * kPi / 180, 0, 0);
   } else if (name == "spun90") {

@@ -405,7 +405,7 @@ RenderSpec parseRender(const JsonReader& top) {
   picture.transparentBackground = enumValue(r, "background", std::span(kBackgroundNames), 0,
                                             "expected \"opaque\" or \"transparent\", got \"{}\"") == 1;
   render.provenance = r.boolean("provenance", render.provenance);
-  picture.theme = enumValue(r, "theme", kThemeNames, picture.theme);
+  picture.theme = enumValue(r, "theme", std::span(kThemeNames), picture.theme);
   constexpr std::string_view kScaleBarRule = "must be true, false or a length in (0, 10] m, got ";
   if (const nlohmann::json* bar = r.child("scale_bar"); bar != nullptr && bar->is_number()) {
     picture.scaleBar = {.shown = true, .metres = static_cast<float>(r.number("scale_bar", 0))};

@@ -22,6 +22,7 @@
 #include "io/fnv1a.h"
 #include "physics/observables.h"
 #include "physics/steady.h"
+#include "physics/validity.h"
 #include "pipeline/simulation.h"
 #include "pipeline/still.h"
 #include "pipeline/video_frames.h"
@@ -52,15 +53,33 @@ struct ResolvedScene {
   video::Provenance provenance;  // empty with render.provenance: false
 };
 
+video::Provenance provenanceOf(const nlohmann::json& document) {
+  const std::string canonical = document.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+  return {.software = fmt::format("coinroll {}", COINROLL_VERSION),
+          .sceneDigest = fmt::format("fnv1a64:{:016x}", io::fnv1a64(canonical))};
+}
+
 ResolvedScene resolveScene(const SceneSource& source) {
   const auto [document, sourceName] = loadSceneDocument(source);
   ResolvedScene resolved{scene::parseScene(document, sourceName, {.solverMethods = integrate::methodNames()}), {}};
-  if (resolved.config.render.provenance) {
-    const std::string canonical = document.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
-    resolved.provenance = {.software = fmt::format("coinroll {}", COINROLL_VERSION),
-                           .sceneDigest = fmt::format("fnv1a64:{:016x}", io::fnv1a64(canonical))};
-  }
+  if (resolved.config.render.provenance) resolved.provenance = provenanceOf(document);
   return resolved;
+}
+
+// The CSV's sidecar (SimulateOptions::provenancePath).
+nlohmann::json csvProvenance(const nlohmann::json& document, const SimulateOptions& options,
+                             const pipeline::CsvRunResult& result, double duration) {
+  const video::Provenance provenance = provenanceOf(document);
+  return {{"program", "coinroll"},
+          {"version", COINROLL_VERSION},
+          {"scene_digest", provenance.sceneDigest},
+          {"command", "simulate"},
+          {"csv", options.csvPath},
+          {"sample_dt", options.sampleDt},
+          {"rows", result.rows},
+          {"end", result.stoppedBy ? std::string(physics::eventName(result.stoppedBy->event)) : "duration"},
+          {"end_time", result.stoppedBy ? result.stoppedBy->t : duration},
+          {"scene", document}};
 }
 
 void reportStop(const pipeline::CsvRunResult& result) {
@@ -118,7 +137,15 @@ void runSimulate(const SimulateOptions& options) {
   }
   refuseEmptyOutputName("--csv", options.csvPath, "out.csv (or - for standard output)");
   if (options.csvPath != "-") refuseOverwritingInput("--csv", options.csvPath, inputsOf(options.scene));
-  const scene::SceneConfig scene = loadScene(options.scene);
+  if (!options.provenancePath.empty()) {
+    refuseOverwritingInput("--provenance", options.provenancePath, inputsOf(options.scene));
+    if (options.provenancePath == "-" || options.provenancePath == options.csvPath) {
+      throw UsageError(fmt::format("--provenance {}: give a file of its own beside the CSV, e.g. {}.json",
+                                   options.provenancePath, options.csvPath == "-" ? "run" : options.csvPath));
+    }
+  }
+  const auto [document, sourceName] = loadSceneDocument(options.scene);
+  const scene::SceneConfig scene = scene::parseScene(document, sourceName, {.solverMethods = integrate::methodNames()});
   const long maxRows = options.maxRows > 0 ? options.maxRows : kDefaultMaxRows;
   if (const double rows = scene.duration / options.sampleDt + 1; rows > static_cast<double>(maxRows)) {
     throw UsageError(fmt::format("--sample-dt {}: duration {} s gives {:.4g} rows, more than the limit {}; raise "
@@ -131,8 +158,16 @@ void runSimulate(const SimulateOptions& options) {
   ProgressLine noProgress(ProgressLine::Style::Off, "", "");
   const pipeline::CsvRunResult result = withProgress(noProgress, options.csvPath, [&] {
     pipeline::CsvRunResult r;
-    writeTextOutput(options.csvPath, "CSV",
-                    [&](std::ostream& out) { r = pipeline::writeTrajectoryCsv(simulation, options.sampleDt, out); });
+    writeTextOutput(options.csvPath, "CSV", [&](std::ostream& out) {
+      r = pipeline::writeTrajectoryCsv(simulation, options.sampleDt, out);
+      // Published before the CSV takes its name, so a failed sidecar leaves neither; only a failed
+      // rename of the CSV itself could leave the sidecar alone.
+      if (!options.provenancePath.empty()) {
+        writeTextOutput(options.provenancePath, "provenance JSON", [&](std::ostream& json) {
+          json << csvProvenance(document, options, r, scene.duration).dump(2) << '\n';
+        });
+      }
+    });
     return r;
   });
   reportStop(result);

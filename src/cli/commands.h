@@ -18,6 +18,10 @@ struct SimulateOptions {
   std::string csvPath;    // "-" = stdout
   double sampleDt = 0.01; // s
   long maxRows = 0;       // 0: kDefaultMaxRows
+  // A JSON file naming what made the CSV (the contract fixes the CSV's header, so its provenance
+  // goes beside it): program, release, scene digest, the resolved scene, the sampling and how the
+  // run ended. Empty: none.
+  std::string provenancePath;
 };
 
 // Rows above this need --max-rows: 10^9 rows is about 300 GB of CSV. Counted from the duration,

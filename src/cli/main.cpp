@@ -72,6 +72,9 @@ CLI::App* addSimulateCommand(CLI::App& app, SimulateOptions& options) {
   command->add_option("--sample-dt", options.sampleDt, "Time between rows, s (rows at t = k S)")
       ->capture_default_str();
   command->add_option("--max-rows", options.maxRows, fmt::format("Refuse runs whose duration / sample step exceeds this many rows (default {})", kDefaultMaxRows))->check(kAtLeastOne);
+  command->add_option("--provenance", options.provenancePath,
+                      "Also write FILE.json naming what made the CSV: coinroll's version, the scene's digest and the "
+                      "resolved scene, the sample step and how the run ended (the CSV's header stays the contract's)");
   return command;
 }
 

@@ -905,6 +905,12 @@ case("out-no-dir-sweep", C, "sweep -o into a missing directory", SW.replace("o.c
      "--grid initial.theta=1:2:2", 1, "nodir/o.csv: cannot write: directory 'nodir' does not exist", key="nodir")
 case("out-is-input", C, "--csv the scene itself", "simulate scene.json --csv scene.json", 2,
      "--csv scene.json: that is the input scene.json; choose another output name", key="input", gtest=(G_SAME,))
+case("provenance-is-input", C, "simulate --provenance the scene itself",
+     "simulate scene.json --csv o.csv --provenance scene.json", 2,
+     "--provenance scene.json: that is the input scene.json; choose another output name", key="--provenance")
+case("provenance-is-csv", C, "simulate --provenance the CSV's own name",
+     "simulate scene.json --csv o.csv --provenance o.csv", 2,
+     "--provenance o.csv: give a file of its own beside the CSV, e.g. o.csv.json", key="--provenance")
 case("out-is-input-dot", C, "--csv ./scene.json", "simulate scene.json --csv ./scene.json", 2,
      "that is the input scene.json", key="input", gtest=(G_SAME,))
 case("out-is-input-link", C, "--csv a symlink to the scene", "simulate scene.json --csv link.json", 2,

@@ -12,6 +12,7 @@
 
 #include <array>
 #include <chrono>
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -205,6 +206,28 @@ TEST_F(RenderCliTest, ProvenanceNamesTheReleaseAndSceneUnlessTurnedOff) {
   const coinroll::video::VideoInfo info = coinroll::video::readVideoInfo(clip);
   EXPECT_EQ(info.tags.at("encoder").rfind("coinroll ", 0), 0u) << info.tags.at("encoder");
   EXPECT_EQ(info.tags.at("comment"), info.tags.at("encoder") + ", scene " + digestOf(bytes));
+}
+
+// The CSV's header is the contract's, so its provenance is a sidecar: the same digest a picture of
+// the same scene carries, and how the run it describes was sampled and ended.
+TEST_F(RenderCliTest, SimulatesProvenanceSidecarNamesTheSceneAsItsPicturesDo) {
+  const fs::path png = dir_ / "still.png", csv = dir_ / "run.csv", json = dir_ / "run.json";
+  ASSERT_EQ(run("still " + scene_.string() + " --time 0.5 -o " + png.string()).exitCode, 0);
+  ASSERT_EQ(run("simulate " + scene_.string() + " --csv " + csv.string() + " --sample-dt 0.1 --provenance " + json.string()).exitCode, 0);
+  const std::string picture = bytesOf(png), sidecar = bytesOf(json);
+  const std::string digest = picture.substr(picture.find("fnv1a64:"), 24);
+  EXPECT_NE(sidecar.find("\"scene_digest\": \"" + digest + "\""), std::string::npos) << sidecar;
+  EXPECT_NE(sidecar.find("\"program\": \"coinroll\""), std::string::npos) << sidecar;
+  EXPECT_NE(sidecar.find("\"sample_dt\": 0.1"), std::string::npos) << sidecar;
+  EXPECT_NE(sidecar.find("\"end\": \"duration\""), std::string::npos) << sidecar;
+  const std::string rows = bytesOf(csv);
+  const long lines = static_cast<long>(std::count(rows.begin(), rows.end(), '\n'));
+  EXPECT_NE(sidecar.find("\"rows\": " + std::to_string(lines - 1)), std::string::npos) << sidecar;
+
+  // A CSV that cannot be written leaves no sidecar either.
+  const fs::path missing = dir_ / "no_such_dir" / "run.csv", orphan = dir_ / "orphan.json";
+  EXPECT_EQ(run("simulate " + scene_.string() + " --csv " + missing.string() + " --provenance " + orphan.string()).exitCode, 1);
+  EXPECT_FALSE(fs::exists(orphan));
 }
 
 TEST_F(RenderCliTest, InterruptLeavesNoFileAndExitsOne) {

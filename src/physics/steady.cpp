@@ -34,6 +34,19 @@ void refuseUprightCorner(const Rim& rim, const std::string& what) {
   }
 }
 
+// The root omega_Y of A w^2 + B w + C = 0 (A != 0, D >= 0) that branch +1 (f+, the "+ sqrt(D)" root by
+// definition) or -1 names. The textbook (-B +- sqrt(D)) / 2A cancels catastrophically for small
+// tilts; each root is paired with its cancellation-free form (q = -(B + sign(B) sqrt(D)) / 2, roots
+// q / A and C / q), which holds for either sign of A.
+double steadyOmegaY(double A, double B, double C, int branch) {
+  const double q = -0.5 * (B + std::copysign(std::sqrt(B * B - 4 * A * C), B));
+  if (q == 0) return 0;  // B = C = 0: balanced on a corner, at rest
+  const double rootFromQ = q / A, rootFromC = C / q;
+  const double plusSqrtRoot = (B >= 0) ? rootFromC : rootFromQ;
+  const double minusSqrtRoot = (B >= 0) ? rootFromQ : rootFromC;
+  return branch == 1 ? plusSqrtRoot : minusSqrtRoot;
+}
+
 // The rim's geometry at one tilt, in the combinations docs/rim.md §5 is written in.
 struct RimTilt {
   double sinTheta = 0, cosTheta = 0, tanTheta = 0;
@@ -80,14 +93,7 @@ CoinState rimSteadyCircle(const CoinModel& m, double theta, double omega_Z, int 
                                 " rad/s: the rim's corner holds the coin up (docs/rim.md eq. 5.2, discriminant < 0); "
                                 "spin faster or tilt beyond the balance angle");
   }
-  const double sqrtD = std::sqrt(D);
-  const double q = -0.5 * (B + std::copysign(sqrtD, B));
-  if (q == 0) return {.theta = theta, .omega_Z = omega_Z};  // B = C = 0: balanced on the corner, at rest
-  // Each root in its cancellation-free form, as in the thin case below (the pairing holds for either sign of A).
-  const double rootFromQ = q / A, rootFromC = C / q;
-  const double plusSqrtRoot = (B >= 0) ? rootFromC : rootFromQ;
-  const double minusSqrtRoot = (B >= 0) ? rootFromQ : rootFromC;
-  return {.theta = theta, .omega_Y = branch == 1 ? plusSqrtRoot : minusSqrtRoot, .omega_Z = omega_Z};
+  return {.theta = theta, .omega_Y = steadyOmegaY(A, B, C, branch), .omega_Z = omega_Z};
 }
 
 CoinState rimSpinInPlace(const CoinModel& m, double theta) {
@@ -172,15 +178,8 @@ CoinState steadyCircle(const CoinModel& m, double theta, double omega_Z, int bra
     }
     return straightRolling(omega_Z);
   }
-  // The textbook (-B +- sqrt(D)) / 2A cancels catastrophically for small tilts; pair each root
-  // with its cancellation-free form (q = -(B + sign(B) sqrt(D)) / 2, roots q / A and C / q).
-  const double sqrtD = std::sqrt(B * B - 4 * A * C);  // D >= 0 because A C <= 0 for |theta| < 90 deg
-  const double q = -0.5 * (B + std::copysign(sqrtD, B));
-  const double rootFromQ = q / A, rootFromC = C / q;
-  // (-B + sqrt(D)) / 2A is the larger root when A > 0; f+ is the "+ sqrt" root by definition.
-  const double plusSqrtRoot = (B >= 0) ? rootFromC : rootFromQ;
-  const double minusSqrtRoot = (B >= 0) ? rootFromQ : rootFromC;
-  return {.theta = theta, .omega_Y = branch == 1 ? plusSqrtRoot : minusSqrtRoot, .omega_Z = omega_Z};
+  // D >= 0 because A C <= 0 for |theta| < 90 deg.
+  return {.theta = theta, .omega_Y = steadyOmegaY(A, B, C, branch), .omega_Z = omega_Z};
 }
 
 double steadyResidual(const CoinModel& m, const CoinState& s) {

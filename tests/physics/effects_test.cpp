@@ -16,6 +16,7 @@
 #include "physics/steady.h"
 #include "physics/spin_down.h"
 #include "pipeline/singular_time.h"
+#include "reference_solver.h"
 #include "tolerance.h"
 
 namespace coinroll::physics {
@@ -24,7 +25,7 @@ namespace {
 using coinroll::testing::isBelow;
 using coinroll::testing::isNear;
 
-constexpr double kDeg = std::numbers::pi / 180;
+using reference::kDeg;
 const CoinModel kToy = diskModel(0.4, 0.0375, 9.81);  // the commercial toy's radius and mass
 
 CoinModel toyWith(std::vector<Effect> effects) {

@@ -15,6 +15,7 @@
 #include "physics/steady.h"
 #include "physics/validity.h"
 #include "physics/coin_rhs.h"
+#include "reference_solver.h"
 #include "tolerance.h"
 
 namespace coinroll::physics {
@@ -25,10 +26,10 @@ using coinroll::testing::isNear;
 using integrate::Method;
 using integrate::SolverConfig;
 
-constexpr double kDeg = std::numbers::pi / 180;
+using reference::kDeg;
 constexpr double kRhsTolerance = 1e-12;        // relative; both sides are a few dozen flops from the state
 constexpr double kTrajectoryTolerance = 1e-9;  // angles rad, rates in sqrt(g/a), positions in a
-const SolverConfig kTight{.method = Method::Dop853, .rtol = 1e-12, .atol = 1e-14};
+using reference::kTight;
 // The unstable straight roll amplifies integration error (its tilt grows e-fold every 0.09 s
 // until it saturates); one more digit keeps 4 s of it within kTrajectoryTolerance, so what is
 // compared is the formulations, not the integrator's error.

@@ -13,6 +13,7 @@
 #include "physics/observables.h"
 #include "physics/quaternion_dynamics.h"
 #include "physics/solid_inertia.h"
+#include "reference_solver.h"
 #include "tolerance.h"
 
 namespace coinroll::physics {
@@ -20,11 +21,9 @@ namespace {
 
 using coinroll::testing::isBelow;
 using coinroll::testing::isNear;
-using integrate::Method;
-using integrate::SolverConfig;
 
-constexpr double kDeg = std::numbers::pi / 180;
-const SolverConfig kTight{.method = Method::Dop853, .rtol = 1e-12, .atol = 1e-14};
+using reference::kDeg;
+using reference::kTight;
 
 // The Euler's-disk toy as a solid: 75 mm across, 13 mm thick, its rim rounded with `rho`.
 CoinModel toy(double rho, double h = 0.013) {

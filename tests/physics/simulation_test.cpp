@@ -11,6 +11,7 @@
 #include "physics/observables.h"
 #include "physics/steady.h"
 #include "physics/coin_rhs.h"
+#include "reference_solver.h"
 #include "tolerance.h"
 
 namespace coinroll::physics {
@@ -21,9 +22,8 @@ using coinroll::testing::isNear;
 using integrate::Method;
 using integrate::SolverConfig;
 
-constexpr double kDeg = std::numbers::pi / 180;
-
-const SolverConfig kTight{.method = Method::Dop853, .rtol = 1e-12, .atol = 1e-14};
+using reference::kDeg;
+using reference::kTight;
 
 // A tilted coin rolling, precessing and wobbling (not a steady state).
 CoinState wobblingState() { return {.theta = 20 * kDeg, .omega_X = 0.5, .omega_Y = 3.0, .omega_Z = 14.0}; }

@@ -10,6 +10,7 @@
 
 #include "physics/coin_model.h"
 #include "physics/observables.h"
+#include "reference_solver.h"
 #include "tolerance.h"
 
 namespace coinroll::physics {
@@ -17,7 +18,7 @@ namespace {
 
 using coinroll::testing::isNear;
 
-constexpr double kDeg = std::numbers::pi / 180;
+using reference::kDeg;
 
 TEST(Sliding, NormalEffectiveMassIsPainlevesClosedForm) {
   // Thin disk, heading phi = 0: h = e_X x e_y is +z. D = 1 + (M / I_X)(Lambda^2 + mu Lambda H (s_hat . h)) with

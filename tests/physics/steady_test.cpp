@@ -13,6 +13,7 @@
 
 #include "physics/dynamics.h"
 #include "physics/observables.h"
+#include "reference_solver.h"
 #include "tolerance.h"
 
 namespace coinroll::physics {
@@ -21,7 +22,7 @@ namespace {
 using coinroll::testing::isBelow;
 using coinroll::testing::isNear;
 
-constexpr double kDeg = std::numbers::pi / 180;
+using reference::kDeg;
 
 std::vector<CoinModel> coins() {
   return {diskModel(0.4, 0.0375, 9.81), ringModel(0.4, 0.0375, 0.03, 9.81), ringModel(0.4, 0.0375, 0.0375, 9.81),

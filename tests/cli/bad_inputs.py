@@ -146,6 +146,7 @@ class Case:
     args: str                      # coinroll's arguments, shell-quoted; or a bash command (shell=True)
     rc: int
     msg: str | None                # stderr must contain this (today's wording)
+    or_msg: str | None = None      # or this: the other designed outcome of a race the case cannot fix
     key: str | None = None         # what an older wording must still name (the field or flag); default msg
     files: dict = field(default_factory=lambda: {"scene.json": VALID})
     produces: tuple = ()           # glob patterns of outputs a succeeding case must leave
@@ -1386,8 +1387,11 @@ case("compare-memory", C, "two 7680x7680 PNGs under an 800 MB address-space limi
      "ulimit -v 800000; exec {bin} compare max.png max2.png", 2,
      "not enough memory for comparing two 7680x7680 pictures: it needs about 675 MiB", key="memory", shell=True,
      files=HUGE, timeout=5, na_before=ISSUE21_3)
+# A decode cannot stop half-way; on a loaded machine one can outlast the 3 s grace, and then the
+# grace's own ending (exit 2, nothing left, no verdict) is the designed outcome, not a failure.
 case("compare-sigint", C, "SIGINT while decoding two 7680x7680 pictures: stops, exit 2 (never a verdict)",
      "compare a.png b.png", 2, "interrupted by SIGINT; nothing was compared", key="interrupted", signal=INT,
+     or_msg="interrupted by SIGINT and not stopped within 3 s (inside a call that cannot stop half-way)",
      wait_for="sleep", settle=0.3, files={"a.png": big_png(7680, 7680), "b.png": big_png(7680, 7680, 130)},
      na_before=NO_COMPARE)
 
@@ -1609,7 +1613,7 @@ def run_case(c: Case, binary: str, lenient: bool = False) -> Result:
         if why is None and rc != c.rc:
             why = f"{exit_text(rc)}, expected {exit_text(c.rc)}"
         wanted = (c.key or c.msg) if lenient else c.msg
-        if why is None and wanted is not None and wanted not in stderr:
+        if why is None and wanted is not None and wanted not in stderr and not (c.or_msg and c.or_msg in stderr):
             why = f"stderr lacks {wanted!r}: {first_line(stderr) or '(nothing)'}"
         # After our own SIGKILL a temporary is expected: the timeout is the finding, not the leftover.
         directory_problem = check_directory(c, before, after) if rc is not None else None

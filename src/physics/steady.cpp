@@ -40,7 +40,9 @@ void refuseUprightCorner(const Rim& rim, const std::string& what) {
 // q / A and C / q), which holds for either sign of A.
 double steadyOmegaY(double A, double B, double C, int branch) {
   const double q = -0.5 * (B + std::copysign(std::sqrt(B * B - 4 * A * C), B));
-  if (q == 0) return 0;  // B = C = 0: balanced on a corner, at rest
+  // B = C = 0: balanced on a corner, at rest. With C != 0, a q that underflowed to 0 gives C / q =
+  // inf, which the caller refuses as rates beyond any number.
+  if (q == 0 && C == 0) return 0;
   const double rootFromQ = q / A, rootFromC = C / q;
   const double plusSqrtRoot = (B >= 0) ? rootFromC : rootFromQ;
   const double minusSqrtRoot = (B >= 0) ? rootFromQ : rootFromC;

@@ -334,6 +334,12 @@ class Runner:
         failed_log = self.build / "Testing" / "Temporary" / "LastTestsFailed.log"
         if failed_log.exists():
             failed_log.unlink()
+        # Without the cost data of earlier runs ctest starts the tests in the order they are declared,
+        # the unit tests first; with it, the slowest (the README and figure tests, minutes each) go
+        # first, and a mutant the unit tests kill in seconds would wait for them.
+        cost_data = self.build / "Testing" / "Temporary" / "CTestCostData.txt"
+        if cost_data.exists():
+            cost_data.unlink()
         t = time.time()
         cmd = ["ctest", "--test-dir", str(self.build), "-j", str(self.args.jobs), "--timeout", str(self.args.timeout),
                "--output-on-failure"]

@@ -2,8 +2,9 @@
 """Spectrograms of render.audio, the coin's sound track (Debian's matplotlib and numpy; run with
 /usr/bin/python3; needs the ffmpeg command).
 
-Renders two tiny MP4s (64 x 36: only the sound matters) into a temporary folder, decodes their AAC
-tracks with ffmpeg to 48 kHz mono, and writes
+Renders two tiny MP4s (64 x 36: only the sound matters) into a temporary folder, each with its
+frame times (render --frame-times: the simulated time and playback rate of every frame, as the
+program chose them), decodes their AAC tracks with ffmpeg to 48 kHz mono, and writes
   docs/spectrogram.png  (a) the built-in default scene with render.audio = {"frequency_scale": 100}:
                             clicks at 100 x the contact point's rate, pitch "video" (the scene plays
                             at time_scale 0.5, so the heard fundamental is 0.5 * 100 * Omega / 2 pi)
@@ -13,7 +14,7 @@ tracks with ffmpeg to 48 kHz mono, and writes
 each a log-magnitude spectrogram against video time with the theory drawn over it: the fundamental
 f = k Omega / 2 pi (times the playback rate for pitch "video") and its first harmonics n f, with
 Omega = |phi-dot| = |omega_Y / cos theta| from `coinroll simulate` sampled every millisecond and
-mapped to video time the way the renderer picks its frame times.
+read at the frame times the render reported (the time-remap rule is the program's alone).
 
 It also prints, per clip, how far the spectrogram's fundamental lies from the theory, whether every
 click of the decoded track falls where the theory's phase crosses a whole cycle, and how much energy
@@ -48,7 +49,7 @@ SAMPLE_DT = 1e-3  # s, CSV rows for Omega(t); linear interpolation between them 
 TINY = ["--set", "render.width=64", "--set", "render.height=36"]
 
 # The built-in default scene's render block (coinroll render without a scene).
-DEFAULT_FPS, DEFAULT_TIME_SCALE = 30, 0.5
+DEFAULT_FPS = 30
 SCALE_A = 100  # frequency_scale of clip (a): its contact point goes round at ~0.3-0.7 Hz
 WINDOW_A, WINDOW_B = 0.12, 0.5  # s, the pictures' Hann windows (resolve 16 Hz and 7 Hz spacings)
 CMAP, LINE = "Greys", "red"  # loud is dark; the theory in red over it
@@ -72,21 +73,14 @@ def omega_track(coinroll, scene, folder, name):
     return column["t"], np.abs(column["omega_Y"] / np.cos(column["theta"]))
 
 
-def frame_times(t, omega, time_scale, fps, precession_rate=None):
-    """Simulated time shown by each video frame. Without a remap frame k shows k time_scale / fps;
-    with render.time_remap.precession_rate R, t_{k+1} = t_k + time_scale / fps * min(1, R / Omega(t_k))."""
-    end = t[-1]
-    step = time_scale / fps
-    if precession_rate is None:
-        count = math.floor(end / step * (1 + 1e-12) + 1e-9) + 1
-        return np.minimum(np.arange(count) * step, end)
-    times = [0.0]
-    while True:
-        rate = np.interp(times[-1], t, omega)
-        following = times[-1] + step * min(1.0, precession_rate / rate)
-        if following > end * (1 + 1e-12):
-            return np.array(times)
-        times.append(following)
+def render(coinroll, scene, folder, name, audio):
+    """Renders the clip's MP4 with its frame-times sidecar; returns the MP4's path and the sidecar's
+    columns (frame, video_time_s, clip_frame, sim_time_s, playback_rate)."""
+    mp4, sidecar = folder / f"{name}.mp4", folder / f"{name}_frames.csv"
+    run([coinroll, "render", *([scene] if scene else []), "-q", "-o", mp4, "--frame-times", sidecar, *TINY,
+         "--set", "render.audio=" + json.dumps(audio)])
+    table = np.genfromtxt(sidecar, delimiter=",", names=True)
+    return mp4, {name: table[name] for name in table.dtype.names}
 
 
 def sample_frequency(frame_hz, fps):
@@ -98,13 +92,16 @@ def sample_frequency(frame_hz, fps):
     return np.interp(np.arange(starts[-1]), starts, values)
 
 
-def decode(mp4, folder, samples):
+def decode(mp4, folder, frames, fps):
+    """The decoded track, cut to the `frames` frames the sidecar lists (k RATE / fps samples each
+    frame starts at): the decoder pads the last AAC frame (1024 samples) with silence, and a track
+    that differs by more than that from the sidecar's frames is an error."""
     raw = folder / (mp4.stem + ".raw")
     run(["ffmpeg", "-v", "error", "-y", "-i", mp4, "-f", "f32le", "-ac", "1", "-ar", RATE, raw])
     audio = np.fromfile(raw, dtype=np.float32)
-    # The decoder pads the last AAC frame (1024 samples) with silence; more than that is an error.
+    samples = frames * RATE // fps
     if not samples <= len(audio) < samples + 1024:
-        sys.exit(f"{mp4.name}: {len(audio)} decoded samples, expected {samples} (+ < 1024 padding)")
+        sys.exit(f"{mp4.name}: {len(audio)} decoded samples, but its {frames} frames at {fps} fps last {samples}")
     return audio[:samples].astype(np.float64)
 
 
@@ -258,30 +255,32 @@ def main():
     args = parser.parse_args()
     coinroll = args.coinroll
     euler = ROOT / "examples" / "euler_disk.json"
-    remap = json.loads(euler.read_text())["render"]
+    fps_b = json.loads(euler.read_text())["render"]["fps"]
     with tempfile.TemporaryDirectory() as tmp:
         folder = Path(tmp)
-        # (a) the built-in scene, pitch "video": heard f = time_scale * k * Omega / 2 pi.
-        run([coinroll, "render", "-q", "-o", folder / "A.mp4", *TINY,
-             "--set", "render.audio=" + json.dumps({"frequency_scale": SCALE_A})])
+        # (a) the built-in scene, pitch "video": heard f = playback rate * k * Omega / 2 pi.
+        mp4, frames_a = render(coinroll, None, folder, "A", {"frequency_scale": SCALE_A})
         t, omega = omega_track(coinroll, None, folder, "a")
-        times_a = frame_times(t, omega, DEFAULT_TIME_SCALE, DEFAULT_FPS)
-        # Frame k shows t_k; the playback rate (simulated s per video s) is time_scale throughout.
-        hz_a = DEFAULT_TIME_SCALE * SCALE_A * np.interp(times_a, t, omega) / (2 * np.pi)
+        times_a = frames_a["sim_time_s"]
+        hz_a = frames_a["playback_rate"] * SCALE_A * np.interp(times_a, t, omega) / (2 * np.pi)
         f_a = sample_frequency(hz_a, DEFAULT_FPS)
-        audio_a = decode(folder / "A.mp4", folder, len(f_a))
-        # (b) Euler's disk, pitch "real": heard f = Omega / 2 pi at the frame's simulated time.
-        run([coinroll, "render", euler, "-q", "-o", folder / "B.mp4", *TINY,
-             "--set", "render.audio=" + json.dumps({"pitch": "real"})])
+        audio_a = decode(mp4, folder, len(times_a), DEFAULT_FPS)
+        # (b) Euler's disk, pitch "real": heard f = Omega / 2 pi at the frame's simulated time, and
+        # silence while the landing is held (playback rate 0).
+        mp4, frames_b = render(coinroll, euler, folder, "B", {"pitch": "real"})
         t, omega = omega_track(coinroll, euler, folder, "b")
-        times_b = frame_times(t, omega, remap["time_scale"], remap["fps"], remap["time_remap"]["precession_rate"])
-        hz_b = np.interp(times_b, t, omega) / (2 * np.pi)
-        f_b = sample_frequency(hz_b, remap["fps"])
-        audio_b = decode(folder / "B.mp4", folder, len(f_b))
+        times_b = frames_b["sim_time_s"]
+        hz_b = np.where(frames_b["playback_rate"] > 0, np.interp(times_b, t, omega) / (2 * np.pi), 0)
+        f_b = sample_frequency(hz_b, fps_b)
+        audio_b = decode(mp4, folder, len(times_b), fps_b)
     rendered = time.monotonic() - started
 
-    tau_a = np.arange(len(hz_a)) / DEFAULT_FPS
-    tau_b = np.arange(len(hz_b)) / remap["fps"]
+    tau_a = frames_a["video_time_s"]
+    tau_b = frames_b["video_time_s"]
+    held = frames_b["playback_rate"] == 0
+    print(f"(b) frames: {len(times_b)} ({tau_b[-1] + 1 / fps_b:.2f} s of video at {fps_b} fps, "
+          f"{np.count_nonzero(held)} of them the held landing), simulated 0-{times_b[-1]:.3f} s, "
+          f"playback rate {frames_b['playback_rate'][~held].min():.4g}-{frames_b['playback_rate'][~held].max():.4g}")
     sa = spectrogram(audio_a, f_a, WINDOW_A, 900, 2000)
     sb = spectrogram(audio_b, f_b, WINDOW_B, 900, 1000)
     # (a)'s pitch swings fast (16 -> 36 Hz in 0.35 s): its fundamental is measured with a longer
@@ -306,7 +305,7 @@ def main():
          "theory: fundamental f = Ω(t) / 2π, t the frame's simulated time", harmonics=5)
     simulated = bottom.secondary_xaxis("top", functions=(lambda v: np.interp(v, tau_b, times_b),
                                                          lambda v: np.interp(v, times_b, tau_b)))
-    simulated.set_xticks([0, 20, 40, 60, 80, 90, 95, 98])
+    simulated.set_xticks([0, 20, 40, 60, 80, 100, 110, 115])
     simulated.tick_params(labelsize=8)
     simulated.set_xlabel("simulated time t [s]", fontsize=8, labelpad=2)
     figure.tight_layout()

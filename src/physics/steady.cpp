@@ -40,7 +40,7 @@ void refuseUprightCorner(const Rim& rim, const std::string& what) {
 // q / A and C / q), which holds for either sign of A.
 double steadyOmegaY(double A, double B, double C, int branch) {
   const double q = -0.5 * (B + std::copysign(std::sqrt(B * B - 4 * A * C), B));
-  if (q == 0) return 0;  // B = C = 0: balanced on a corner, at rest
+  if (q == 0 && C == 0) return 0;  // B = C = 0: balanced on a corner, at rest; C / 0 is refused as infinite
   const double rootFromQ = q / A, rootFromC = C / q;
   const double plusSqrtRoot = (B >= 0) ? rootFromC : rootFromQ;
   const double minusSqrtRoot = (B >= 0) ? rootFromQ : rootFromC;

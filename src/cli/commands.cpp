@@ -16,6 +16,7 @@
 
 #include "cli/command_support.h"
 #include "cli/exit_codes.h"
+#include "cli/frame_times.h"
 #include "cli/interrupts.h"
 #include "integrate/solver_config.h"
 #include "io/destination.h"
@@ -126,6 +127,23 @@ std::string fileNameFrom(const std::string& sceneName) {
   name.resize(std::min(name.size(), kMaxDerivedNameBytes));
   const std::uint64_t hash = io::fnv1a64(sceneName);
   return fmt::format("{}+{:08x}", name, static_cast<std::uint32_t>(hash ^ (hash >> 32)));
+}
+
+// render --frame-times: a file of its own, neither the video nor an input.
+void refuseFrameTimesName(const std::string& path, const std::filesystem::path& video,
+                          const std::vector<std::filesystem::path>& inputs) {
+  const std::string example = video.stem().string() + "_frames.csv";
+  refuseEmptyOutputName("--frame-times", path, example);
+  if (path == "-") {
+    throw UsageError(fmt::format("--frame-times -: give a file of its own beside the video, e.g. {}", example));
+  }
+  refuseOverwritingInput("--frame-times", path, inputs);
+  std::error_code error;
+  const std::filesystem::path sidecar = std::filesystem::weakly_canonical(path, error);
+  if (!error && sidecar == std::filesystem::weakly_canonical(video, error) && !error) {
+    throw UsageError(fmt::format("--frame-times {}: that is the video's own name; give a file of its own beside it, e.g. {}",
+                                 path, example));
+  }
 }
 
 }  // namespace
@@ -320,13 +338,19 @@ void runRender(const RenderOptions& options) {
     scene::refuseOutputThatCannotCarry(scene.render, *format);
   }
   refuseOverwritingInput("-o", output, inputsOf(options.scene));
+  if (options.frameTimesPath) refuseFrameTimesName(*options.frameTimesPath, output, inputsOf(options.scene));
   video::VideoOptions encoding = scene.render.mp4Options();
   encoding.provenance = provenance;
+  std::optional<FrameTimesSidecar> frameTimes;  // outlives the sink that publishes it
   std::unique_ptr<video::FrameSink> sink;
   try {
     sink = std::make_unique<video::AsyncSink>(video::makeSinkForPath(output, encoding, inputsOf(options.scene)));
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
+  }
+  if (options.frameTimesPath) {
+    frameTimes.emplace(*options.frameTimesPath, scene.render.fps);
+    sink = frameTimes->publishedWith(std::move(sink));
   }
   // A render's log keeps to its summary line (its progress only on a terminal, as before).
   ProgressLine progress(ProgressLine::terminalStyleFor(options.quiet), "render", "frame");
@@ -337,6 +361,8 @@ void runRender(const RenderOptions& options) {
         return pipeline::renderVideo(
             scene, *sink,
             {.onFrame = [&](const pipeline::FrameProgress& p) { progress.update(p.frame, p.total); },
+             .onFrameTiming = frameTimes ? [&](const pipeline::FrameTiming& timing) { frameTimes->add(timing); }
+                                         : std::function<void(const pipeline::FrameTiming&)>(),
              .cancel = &interruptRequested(),
              .maxFrames = options.maxFrames > 0 ? options.maxFrames : pipeline::kDefaultMaxFrames,
              .window = window});

@@ -55,6 +55,7 @@ struct RenderOptions {
   std::optional<double> from, to;     // s of simulated time: the frames to write
   bool quiet = false;                 // no progress line, no summary
   long maxFrames = 0;                 // 0: pipeline::kDefaultMaxFrames
+  std::optional<std::string> frameTimesPath;  // --frame-times: the sidecar CSV of frame times (cli/frame_times.h)
 };
 void runRender(const RenderOptions& options);
 

@@ -120,6 +120,12 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& options) {
   command->add_option("--to", options.to, "Write only the frames whose simulated time is at most T1 s (default: the end)")
       ->type_name("T1");
   command->add_flag("-q,--quiet", options.quiet, "No progress line and no summary on stderr");
+  command->add_option("--frame-times", options.frameTimesPath,
+                      "Also write FILE.csv, one row per frame written: frame (index in the video), video_time_s "
+                      "(frame / fps), clip_frame (index in the full render), sim_time_s (simulated time shown) and "
+                      "playback_rate (simulated s per video s; 0 while a landing is held); published with the video, "
+                      "never without it")
+      ->type_name("FILE");
   command->add_option("--max-frames", options.maxFrames, fmt::format("Refuse clips of more frames than this (default {}; a duration alone giving {} times as many is refused before any work)", coinroll::pipeline::kDefaultMaxFrames, coinroll::pipeline::kUpFrontFrameFactor))->check(kAtLeastOne);
   command->footer(
       "Frame k shows simulated time k * render.time_scale / render.fps, from the integrator's dense output.\n"

@@ -219,6 +219,12 @@ VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& si
   if (scene.render.audio) sound.emplace(*scene.render.audio, scene.render.fps);
   // The sound between frames k - 1 and k plays with frame k - 1: it is kept when that frame is.
   const auto soundSink = [&](long k) { return k > 0 && written(k - 1) ? &sink : nullptr; };
+  const auto push = [&](long k, double simulatedTime, double playbackRate) {
+    sink.push(frame);
+    if (options.onFrameTiming) options.onFrameTiming({result.frames, k, simulatedTime, playbackRate});
+    ++result.frames;
+    if (options.onFrame) options.onFrame({result.frames, toWrite});
+  };
   for (long k = 0; k < total; ++k) {
     if (options.cancel != nullptr && options.cancel->load()) throw Cancelled();
     if (k >= simulatedFrames) {  // the hold: the landing's picture again, in silence
@@ -227,11 +233,7 @@ VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& si
       if (k == simulatedFrames && scene.render.hud && written(k)) {
         renderer.draw(snapshots.makeSnapshot(frames.back(), {fmt::format("landed, held {:g} s", kLandingHoldSeconds)}), frame);
       }
-      if (written(k)) {
-        sink.push(frame);
-        ++result.frames;
-        if (options.onFrame) options.onFrame({result.frames, toWrite});
-      }
+      if (written(k)) push(k, survey.endTime, 0.0);
       continue;
     }
     const FrameState& state = frames[static_cast<std::size_t>(k)];
@@ -255,9 +257,7 @@ VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& si
     if (sound) sound->reachFrame(k, state.precessionRate, playbackRate, soundSink(k), landed && k + 1 == simulatedFrames);
     if (!written(k)) continue;
     renderer.draw(snapshots.makeSnapshot(state, speed), frame);
-    sink.push(frame);
-    ++result.frames;
-    if (options.onFrame) options.onFrame({result.frames, toWrite});
+    push(k, t, playbackRate);
   }
   if (sound) sound->finish(total, soundSink(total), landed);
   sink.finish();

@@ -56,6 +56,17 @@ struct FrameProgress {
   long total = 0;
 };
 
+// A frame as written (render --frame-times): where it lies in the output and in the whole clip,
+// and the time it shows.
+struct FrameTiming {
+  long frame = 0;             // index in the output, from 0: it plays at video time frame / fps
+  long clipFrame = 0;         // index in the full render (differs from `frame` inside a --from/--to window)
+  double simulatedTime = 0;   // s, the simulated time shown
+  // Simulated s per video s at this frame, as the overlay and the sound's pitch use it: the step to
+  // the next frame times fps (the last simulated frames keep the pace before; 0 in a landing's hold).
+  double playbackRate = 0;
+};
+
 // The frames a render writes: those whose simulated time lies in [from, to] (within
 // kWindowTolerance), exactly as the full render draws them. `to` past the run's end means the end.
 struct TimeWindow {
@@ -66,6 +77,7 @@ inline constexpr double kWindowTolerance = 1e-9;  // s: a frame time computed as
 
 struct VideoRunOptions {
   std::function<void(const FrameProgress&)> onFrame = {};  // called after each frame; may be empty
+  std::function<void(const FrameTiming&)> onFrameTiming = {};  // called for each frame pushed, in order; may be empty
   const std::atomic<bool>* cancel = nullptr;          // when set and true, the loop stops (Cancelled)
   long maxFrames = kDefaultMaxFrames;                 // more frames: std::invalid_argument, before any work
   bool reuseStaticBackground = true;  // render::RenderSettings; off only to measure what it saves

@@ -912,6 +912,13 @@ case("provenance-is-input", C, "simulate --provenance the scene itself",
 case("provenance-is-csv", C, "simulate --provenance the CSV's own name",
      "simulate scene.json --csv o.csv --provenance o.csv", 2,
      "--provenance o.csv: give a file of its own beside the CSV, e.g. o.csv.json", key="--provenance")
+case("frame-times-is-input", C, "render --frame-times the scene itself",
+     "render scene.json -q -o o.mov --frame-times scene.json", 2,
+     "--frame-times scene.json: that is the input scene.json; choose another output name", key="--frame-times")
+case("frame-times-is-video", C, "render --frame-times the video's own name",
+     "render scene.json -q -o o.mov --frame-times o.mov", 2,
+     "--frame-times o.mov: that is the video's own name; give a file of its own beside it, e.g. o_frames.csv",
+     key="--frame-times")
 case("out-is-input-dot", C, "--csv ./scene.json", "simulate scene.json --csv ./scene.json", 2,
      "that is the input scene.json", key="input", gtest=(G_SAME,))
 case("out-is-input-link", C, "--csv a symlink to the scene", "simulate scene.json --csv link.json", 2,

@@ -17,7 +17,6 @@
 #include "cli/command_support.h"
 #include "cli/exit_codes.h"
 #include "cli/interrupts.h"
-#include "integrate/solver_config.h"
 #include "io/destination.h"
 #include "io/fnv1a.h"
 #include "physics/observables.h"
@@ -42,7 +41,7 @@ constexpr double kDegreesPerRadian = 180 / std::numbers::pi;
 
 scene::SceneConfig loadScene(const SceneSource& source, const std::optional<nlohmann::json>& initial = std::nullopt) {
   const auto [document, sourceName] = loadSceneDocument(source, initial);
-  return scene::parseScene(document, sourceName, {.solverMethods = integrate::methodNames()});
+  return scene::parseScene(document, sourceName);
 }
 
 // A scene as a command that writes pictures resolves it (--set applied), with the provenance its
@@ -61,7 +60,7 @@ video::Provenance provenanceOf(const nlohmann::json& document) {
 
 ResolvedScene resolveScene(const SceneSource& source) {
   const auto [document, sourceName] = loadSceneDocument(source);
-  ResolvedScene resolved{scene::parseScene(document, sourceName, {.solverMethods = integrate::methodNames()}), {}};
+  ResolvedScene resolved{scene::parseScene(document, sourceName), {}};
   if (resolved.config.render.provenance) resolved.provenance = provenanceOf(document);
   return resolved;
 }
@@ -145,7 +144,7 @@ void runSimulate(const SimulateOptions& options) {
     }
   }
   const auto [document, sourceName] = loadSceneDocument(options.scene);
-  const scene::SceneConfig scene = scene::parseScene(document, sourceName, {.solverMethods = integrate::methodNames()});
+  const scene::SceneConfig scene = scene::parseScene(document, sourceName);
   const long maxRows = options.maxRows > 0 ? options.maxRows : kDefaultMaxRows;
   if (const double rows = scene.duration / options.sampleDt + 1; rows > static_cast<double>(maxRows)) {
     throw UsageError(fmt::format("--sample-dt {}: duration {} s gives {:.4g} rows, more than the limit {}; raise "

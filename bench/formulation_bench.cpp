@@ -13,7 +13,6 @@
 #include <string>
 #include <vector>
 
-#include "integrate/solver_config.h"
 #include "pipeline/coin_run.h"
 #include "pipeline/simulation.h"
 #include "scene/scene_loader.h"
@@ -47,13 +46,12 @@ double largestError(const pipeline::Simulation& simulation, const std::vector<ph
 }  // namespace
 
 int main() {
-  const scene::ParseOptions options{.solverMethods = integrate::methodNames()};
   std::vector<std::filesystem::path> scenes;
   for (const auto& entry : std::filesystem::directory_iterator(COINROLL_SOURCE_DIR "/examples")) scenes.push_back(entry.path());
   std::sort(scenes.begin(), scenes.end());
   fmt::print("{:<18} {:<13} {:>6} {:>10} {:>10} {:>9}\n", "scene", "formulation", "rtol", "rhs evals", "time ms", "error");
   for (const auto& file : scenes) {
-    pipeline::Simulation simulation = pipeline::buildSimulation(scene::loadScene(file, {}, options));
+    pipeline::Simulation simulation = pipeline::buildSimulation(scene::loadScene(file, {}));
     simulation.formulation = scene::Formulation::EulerAngles;
     simulation.solver.rtol = 1e-13;
     simulation.solver.atol = 1e-15;

@@ -18,7 +18,6 @@
 
 #include "pipeline/video_frames.h"
 #include "scene/scene_loader.h"
-#include "integrate/solver_config.h"
 #include "video/async_sink.h"
 #include "video/encoder_sink.h"
 
@@ -38,7 +37,7 @@ scene::SceneConfig benchScene(const std::string& cameraMode, int encoderThreads)
   doc["render"]["msaa"] = 4;
   doc["render"]["camera"] = {{"mode", cameraMode}, {"orbit_period", 10.0}};
   doc["render"]["video"] = {{"preset", "veryfast"}, {"crf", 18}, {"threads", encoderThreads}};
-  return scene::parseScene(doc, "pipeline_bench", {.solverMethods = integrate::methodNames()});
+  return scene::parseScene(doc, "pipeline_bench");
 }
 
 video::VideoOptions encoding(const scene::SceneConfig& s) { return s.render.mp4Options(); }  // no render.audio: no track

@@ -25,7 +25,6 @@
 #include "render/meshes.h"
 #include "image_compare.h"
 #include "render/renderer.h"
-#include "integrate/solver_config.h"
 #include "pipeline/video_frames.h"
 #include "scene/scene_loader.h"
 #include "video/frame_sink.h"
@@ -198,18 +197,17 @@ struct NamedScene {
 
 std::vector<NamedScene> usersScenes() {
   namespace scene = coinroll::scene;
-  const scene::ParseOptions options{.solverMethods = coinroll::integrate::methodNames()};
   std::vector<NamedScene> scenes;
-  scenes.push_back({"default", scene::parseScene(scene::builtInDefaultScene(), "default", options)});
+  scenes.push_back({"default", scene::parseScene(scene::builtInDefaultScene(), "default")});
   nlohmann::json orbit = scene::builtInDefaultScene();
   scene::applyOverride(orbit, "render.camera.mode=orbit");
-  scenes.push_back({"default, orbit", scene::parseScene(orbit, "default, orbit", options)});
+  scenes.push_back({"default, orbit", scene::parseScene(orbit, "default, orbit")});
   std::set<std::filesystem::path> examples;
   for (const auto& entry : std::filesystem::directory_iterator(COINROLL_SOURCE_DIR "/examples")) {
     if (entry.path().extension() == ".json") examples.insert(entry.path());
   }
   for (const std::filesystem::path& file : examples) {
-    scenes.push_back({file.stem().string(), scene::loadScene(file, {}, options)});
+    scenes.push_back({file.stem().string(), scene::loadScene(file, {})});
   }
   return scenes;
 }

@@ -59,9 +59,8 @@ Measurement measure(const pipeline::Simulation& simulation) {
 }  // namespace
 
 int main() {
-  const scene::ParseOptions options{.solverMethods = integrate::methodNames()};
   const scene::SceneConfig toy =
-      scene::loadScene(std::string(COINROLL_SOURCE_DIR) + "/examples/euler_disk.json", {}, options);
+      scene::loadScene(std::string(COINROLL_SOURCE_DIR) + "/examples/euler_disk.json", {});
 
   struct Case {
     std::string name;
@@ -88,7 +87,7 @@ int main() {
     nlohmann::json document = nlohmann::json::parse(std::ifstream(std::string(COINROLL_SOURCE_DIR) + "/examples/euler_disk.json"));
     for (const std::string& o : c.overrides) scene::applyOverride(document, o);
     document["duration"] = 2000;  // every case runs to coin-flat
-    const Measurement m = measure(pipeline::buildSimulation(scene::parseScene(document, c.name, options)));
+    const Measurement m = measure(pipeline::buildSimulation(scene::parseScene(document, c.name)));
     fmt::print("{:<36} {:>10.3f} {:>9.1f} {:>10} {:>9} {:>11.2e} {:>9.2f}\n", c.name, m.end, 1e3 * m.seconds, m.evaluations,
                m.steps, m.budget, m.seconds / baseline.seconds);
   }

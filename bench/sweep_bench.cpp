@@ -13,7 +13,6 @@
 #include <streambuf>
 #include <thread>
 
-#include "integrate/solver_config.h"
 #include "pipeline/sweep.h"
 
 namespace {
@@ -46,7 +45,6 @@ int main() {
                 {"initial", {{"theta", 10}, {"omega_Z", 12}}},
                 {"duration", 5}};
   spec.sourceName = "sweep_bench";
-  spec.parseOptions = {.solverMethods = integrate::methodNames()};
   spec.axes = {pipeline::parseGridAxis("initial.theta=5:40:100"), pipeline::parseGridAxis("initial.omega_Z=4:16:100")};
 
   const double one = sweepSeconds(spec, 1, 20), two = sweepSeconds(spec, 2, 20);

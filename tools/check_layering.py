@@ -68,7 +68,6 @@ MAY_INCLUDE = {
     },
     # The installable library's API (include/coinroll/coinroll.h): a peer of cli, never used by it.
     "api": {
-        "integrate": "the solver methods a scene may name",
         "physics": "steady states and their stability as `coinroll steady` computes them; a run's end event by name",
         "scene": "loads and validates scenes from files or JSON text",
         "pipeline": "simulate, still and video through the same pipelines as the commands",

@@ -13,7 +13,6 @@
 #include <utility>
 #include <variant>
 
-#include "integrate/solver_config.h"
 #include "physics/coin_model.h"
 #include "physics/observables.h"
 #include "physics/steady.h"
@@ -53,11 +52,9 @@ auto translatingErrors(Work&& work) {
   }
 }
 
-scene::ParseOptions parseOptions() { return {.solverMethods = integrate::methodNames()}; }
-
 Scene::Impl parsed(nlohmann::json document, const std::vector<std::string>& overrides, std::string_view sourceName) {
   for (const std::string& assignment : overrides) scene::applyOverride(document, assignment);
-  scene::SceneConfig config = scene::parseScene(document, sourceName, parseOptions());
+  scene::SceneConfig config = scene::parseScene(document, sourceName);
   return {std::move(document), std::string(sourceName), std::move(config)};
 }
 
@@ -217,7 +214,7 @@ SweepTable sweep(const Scene& scene, const std::vector<std::string>& axes, int t
     throw std::invalid_argument(fmt::format("threads: must be 1 to 1024 (0: every hardware thread), got {}", threads));
   }
   pipeline::SweepSpec spec{.scene = scene.impl().document, .sourceName = scene.impl().sourceName,
-                           .parseOptions = parseOptions(), .axes = {}, .shard = {},
+                           .axes = {}, .shard = {},
                            .threads = threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency())),
                            .maxPoints = pipeline::kDefaultMaxPoints};
   for (const std::string& axis : axes) spec.axes.push_back(pipeline::parseGridAxis(axis));

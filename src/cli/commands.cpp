@@ -18,7 +18,6 @@
 #include "cli/exit_codes.h"
 #include "cli/frame_times.h"
 #include "cli/interrupts.h"
-#include "integrate/solver_config.h"
 #include "io/destination.h"
 #include "io/fnv1a.h"
 #include "physics/observables.h"
@@ -43,7 +42,7 @@ constexpr double kDegreesPerRadian = 180 / std::numbers::pi;
 
 scene::SceneConfig loadScene(const SceneSource& source, const std::optional<nlohmann::json>& initial = std::nullopt) {
   const auto [document, sourceName] = loadSceneDocument(source, initial);
-  return scene::parseScene(document, sourceName, {.solverMethods = integrate::methodNames()});
+  return scene::parseScene(document, sourceName);
 }
 
 // A scene as a command that writes pictures resolves it (--set applied), with the provenance its
@@ -62,7 +61,7 @@ video::Provenance provenanceOf(const nlohmann::json& document) {
 
 ResolvedScene resolveScene(const SceneSource& source) {
   const auto [document, sourceName] = loadSceneDocument(source);
-  ResolvedScene resolved{scene::parseScene(document, sourceName, {.solverMethods = integrate::methodNames()}), {}};
+  ResolvedScene resolved{scene::parseScene(document, sourceName), {}};
   if (resolved.config.render.provenance) resolved.provenance = provenanceOf(document);
   return resolved;
 }
@@ -163,7 +162,7 @@ void runSimulate(const SimulateOptions& options) {
     }
   }
   const auto [document, sourceName] = loadSceneDocument(options.scene);
-  const scene::SceneConfig scene = scene::parseScene(document, sourceName, {.solverMethods = integrate::methodNames()});
+  const scene::SceneConfig scene = scene::parseScene(document, sourceName);
   const long maxRows = options.maxRows > 0 ? options.maxRows : kDefaultMaxRows;
   if (const double rows = scene.duration / options.sampleDt + 1; rows > static_cast<double>(maxRows)) {
     throw UsageError(fmt::format("--sample-dt {}: duration {} s gives {:.4g} rows, more than the limit {}; raise "

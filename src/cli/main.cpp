@@ -11,12 +11,15 @@
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <functional>
 #include <iostream>
+#include <memory>
 #include <new>
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <type_traits>
 
 #include "cli/commands.h"
 #include "cli/exit_codes.h"
@@ -62,6 +65,28 @@ bool standardOutputWritten() {
   std::cerr << "coinroll: error: writing to standard output failed: "
             << (errno != 0 ? std::strerror(errno) : "the stream reported an error") << '\n';
   return false;
+}
+
+// A subcommand as main() sees it: CLI11 fills its options while parsing, then run() acts on them
+// and gives the exit code (compare's 1 means "the pictures differ"; the others succeed or throw).
+struct Command {
+  CLI::App* parsed = nullptr;
+  std::function<int()> run;
+};
+
+// `add` declares the command's options on `app`; the options live as long as the Command.
+template <class Options, class Run>
+Command addCommand(CLI::App& app, CLI::App* (*add)(CLI::App&, Options&), Run run) {
+  auto options = std::make_shared<Options>();
+  CLI::App* parsed = add(app, *options);
+  return {parsed, [options, run] {
+            if constexpr (std::is_void_v<std::invoke_result_t<Run, const Options&>>) {
+              run(*options);
+              return kExitSuccess;
+            } else {
+              return run(*options);
+            }
+          }};
 }
 
 CLI::App* addSimulateCommand(CLI::App& app, SimulateOptions& options) {
@@ -303,20 +328,12 @@ int main(int argc, char** argv) {
   }, "Print the version, the git revision and the OpenGL back ends (COINROLL_GL), and exit");
   addExamplesFooter(app);
 
-  SimulateOptions simulate;
-  CLI::App* simulateCommand = addSimulateCommand(app, simulate);
-  SteadyOptions steady;
-  CLI::App* steadyCommand = addSteadyCommand(app, steady);
-  RenderOptions render;
-  CLI::App* renderCommand = addRenderCommand(app, render);
-  StillOptions still;
-  CLI::App* stillCommand = addStillCommand(app, still);
-  SweepOptions sweep;
-  CLI::App* sweepCommand = addSweepCommand(app, sweep);
-  SweepMergeOptions sweepMerge;
-  CLI::App* sweepMergeCommand = addSweepMergeCommand(app, sweepMerge);
-  CompareOptions compare;
-  CLI::App* compareCommand = addCompareCommand(app, compare);
+  // In the order --help lists them.
+  const std::array commands = {
+      addCommand(app, addSimulateCommand, runSimulate), addCommand(app, addSteadyCommand, runSteady),
+      addCommand(app, addRenderCommand, runRender),     addCommand(app, addStillCommand, runStill),
+      addCommand(app, addSweepCommand, runSweep),       addCommand(app, addSweepMergeCommand, runSweepMerge),
+      addCommand(app, addCompareCommand, runCompare)};
 
   if (const std::optional<std::string> message = unknownCommandMessage(app, argc, argv)) {
     std::cerr << *message;
@@ -335,16 +352,12 @@ int main(int argc, char** argv) {
 
   // Before any command can create an output (docs in cli/interrupts.h). compare's failure code is
   // 2: its 1 means "the pictures differ".
-  const InterruptGuard interrupts(*compareCommand ? kExitBadInput : kExitFailure);
+  const InterruptGuard interrupts(app.got_subcommand("compare") ? kExitBadInput : kExitFailure);
   int exitCode = kExitSuccess;  // compare's verdict: 1 when the pictures differ
   try {
-    if (*simulateCommand) runSimulate(simulate);
-    if (*steadyCommand) runSteady(steady);
-    if (*stillCommand) runStill(still);
-    if (*renderCommand) runRender(render);
-    if (*sweepCommand) runSweep(sweep);
-    if (*sweepMergeCommand) runSweepMerge(sweepMerge);
-    if (*compareCommand) exitCode = runCompare(compare);
+    for (const Command& command : commands) {
+      if (*command.parsed) exitCode = command.run();
+    }
     // Reports printed to stdout (steady, summaries) are output too: a full device or a closed
     // stdout must not pass as success.
     errno = 0;

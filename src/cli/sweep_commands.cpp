@@ -29,9 +29,8 @@ void runSweep(const SweepOptions& options) {
   if (options.output != "-") refuseOverwritingInput("-o", options.output, inputsOf(options.scene));
   pipeline::SweepSpec spec;
   std::tie(spec.scene, spec.sourceName) = loadSceneDocument(options.scene);
-  spec.parseOptions = {.solverMethods = integrate::methodNames()};
   // The scene must be valid as given: a grid then only varies fields of a scene that works.
-  scene::parseScene(spec.scene, spec.sourceName, spec.parseOptions);
+  scene::parseScene(spec.scene, spec.sourceName);
   try {
     for (const std::string& axis : options.grid) spec.axes.push_back(pipeline::parseGridAxis(axis));
     pipeline::refuseMisnamedAxes(spec);

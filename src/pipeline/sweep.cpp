@@ -109,7 +109,7 @@ PointRow pointRow(const SweepSpec& spec, long point, const std::atomic<bool>* ca
   try {
     nlohmann::json document = spec.scene;
     for (std::size_t i = 0; i < values.size(); ++i) scene::applyOverride(document, fmt::format("{}={}", spec.axes[i].key, values[i]));
-    Simulation simulation = buildSimulation(scene::parseScene(document, spec.sourceName, spec.parseOptions));
+    Simulation simulation = buildSimulation(scene::parseScene(document, spec.sourceName));
     simulation.cancel = cancel;
     const PointSummary s = summarize(simulation);
     row.text += fmt::format(",{},{},{},{},{},{}", s.end, s.tEnd, s.thetaMin, s.thetaMax, s.energyStart, s.energyEnd);
@@ -146,7 +146,7 @@ void refuseMisnamedAxes(const SweepSpec& spec) {
     nlohmann::json document = spec.scene;
     try {
       scene::applyOverride(document, fmt::format("{}={}", axis.key, axis.valueAt(0)));
-      scene::parseScene(document, spec.sourceName, spec.parseOptions);
+      scene::parseScene(document, spec.sourceName);
     } catch (const scene::SceneError& e) {
       if (e.kind() == scene::SceneError::Kind::UnknownKey) {
         throw std::invalid_argument(fmt::format("--grid {}: not a scene field: {}", axis.key, e.what()));

@@ -23,7 +23,6 @@ inline constexpr long kDefaultMaxPoints = 10'000'000;
 struct SweepSpec {
   nlohmann::json scene;      // the scene document, --set overrides applied
   std::string sourceName;    // names the scene in the messages of failed points
-  scene::ParseOptions parseOptions;
   std::vector<GridAxis> axes;
   Shard shard;
   int threads = 1;

@@ -1,10 +1,12 @@
 #pragma once
-// What a Renderer is built with: picture size, anti-aliasing, the coin's drawn shape. Plain data
-// and std only, so src/scene can hold these settings (and validate a scene file into them)
-// without seeing OpenGL: the one definition of each default and limit.
+// What a Renderer is built with: picture size, anti-aliasing, the coin's drawn shape. Plain data,
+// std and image/picture_size.h only, so src/scene can hold these settings (and validate a scene
+// file into them) without seeing OpenGL: the one definition of each default and limit.
 
 #include <algorithm>
 #include <array>
+
+#include "image/picture_size.h"
 
 namespace coinroll::render {
 
@@ -56,7 +58,7 @@ struct ScaleBar {
 };
 
 struct RenderSettings {
-  int width = 1280, height = 720;  // pixels, in [kMinImageSide, kMaxImageSide]
+  int width = image::kDefaultPictureWidth, height = image::kDefaultPictureHeight;  // pixels, in [kMinImageSide, kMaxImageSide]
   Antialiasing antialiasing = Antialiasing::Msaa;
   int msaa = 4;                    // samples per pixel, one of kMsaaSampleCounts (1: none)
   CoinShape coin;

@@ -4,12 +4,14 @@
 // back end of gl_backend.h) and every GL object; one Renderer per thread.
 
 #include <memory>
+#include <optional>
 
 #include "image/image.h"
 #include "render/frame_snapshot.h"
 #include "render/gl_backend.h"
 #include "render/meshes.h"
 #include "render/render_settings.h"
+#include "render/scale_bar.h"
 
 namespace coinroll::render {
 
@@ -35,9 +37,23 @@ class Renderer {
   GlBackend backend() const;
 
  private:
+  // One frame's passes, in the order draw() runs them (renderer_passes.cpp).
+  void bindDrawTarget();
+  // A camera that has not moved gets the floor it saw last frame back by a blit, not redrawn.
+  void drawOrRestoreBackground(const CameraView& camera, const glm::mat4& viewProjection);
   // Clears the draw target and shades the sky and the floor: everything a fixed camera sees the same.
   void drawBackground(const CameraView& camera, const glm::mat4& viewProjection);
   void allocateBackgroundCache();
+  // The shadows, trace, contact marker and scale bar; returns where the bar lies (its label is overlay).
+  std::optional<ScaleBarPlacement> drawFloorDecals(const FrameSnapshot& snapshot, const glm::mat4& viewProjection);
+  void drawShadows(const FrameSnapshot& snapshot, const glm::mat4& viewProjection);
+  void drawTrace(const FrameSnapshot& snapshot, const glm::mat4& viewProjection);
+  void drawContactMarker(const FrameSnapshot& snapshot, const glm::mat4& viewProjection);
+  ScaleBarPlacement drawScaleBar(const FrameSnapshot& snapshot, const glm::mat4& viewProjection);
+  void drawCoins(const FrameSnapshot& snapshot, const glm::mat4& viewProjection);
+  void applyFxaa();
+  void drawOverlay(const FrameSnapshot& snapshot, const std::optional<ScaleBarPlacement>& scaleBar);
+  void readBack(image::Image& out);
 
   struct GlState;  // the context and GL objects, out of this header so callers need no GL
   RenderSettings settings_;

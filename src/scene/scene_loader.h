@@ -15,12 +15,8 @@
 
 namespace coinroll::scene {
 
-struct ParseOptions {
-  std::span<const std::string_view> solverMethods;  // allowed solver.method names
-};
-
 // Validates `document` and fills defaults; `sourceName` prefixes every message.
-SceneConfig parseScene(const nlohmann::json& document, std::string_view sourceName, const ParseOptions& options);
+SceneConfig parseScene(const nlohmann::json& document, std::string_view sourceName);
 
 // The JSON document of a scene file, before validation. A syntax error is reported with its line
 // and column.
@@ -31,8 +27,7 @@ nlohmann::json parseSceneText(std::string_view text, std::string_view sourceName
 
 // Reads `file`, applies `overrides` ("key.path=value") in order, then parses. A JSON syntax
 // error is reported with its line and column.
-SceneConfig loadScene(const std::filesystem::path& file, std::span<const std::string> overrides,
-                      const ParseOptions& options);
+SceneConfig loadScene(const std::filesystem::path& file, std::span<const std::string> overrides);
 
 // "initial.theta=12": the value is read as JSON when it parses as JSON, else taken as a string;
 // missing objects along the path are created.

@@ -1,7 +1,7 @@
 #pragma once
 // What an EncoderSink is built with: the container and codec, frame size and rate, the x264 settings,
 // alpha, an audio track or not, and the provenance written into the file.
-// Plain data and std only, so src/scene can hold these options (and validate a scene file into
+// Plain data, std and image/picture_size.h only, so src/scene can hold these options (and validate a scene file into
 // them) without seeing libav: the one definition of each default and limit.
 
 #include <array>
@@ -9,6 +9,8 @@
 #include <string_view>
 #include <utility>
 #include <vector>
+
+#include "image/picture_size.h"
 
 namespace coinroll::video {
 
@@ -76,8 +78,8 @@ struct Provenance {
 
 struct VideoOptions {
   VideoFormat format = VideoFormat::Mp4;
-  int width = 1280;  // pixels, even (4:2:0 chroma is subsampled by 2 each way)
-  int height = 720;  // pixels, even
+  int width = image::kDefaultPictureWidth;    // pixels, even (4:2:0 chroma is subsampled by 2 each way)
+  int height = image::kDefaultPictureHeight;  // pixels, even
   int fps = 30;      // frames per second, > 0; timestamps are frame index / fps
   X264Options x264;
   // Adds a mono AAC track (FFmpeg's own encoder, 48 kHz, 128 kbit/s) fed by pushAudio().

@@ -10,7 +10,6 @@
 #include <string_view>
 #include <vector>
 
-#include "integrate/solver_config.h"
 #include "scene/scene_loader.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -23,11 +22,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     start = end + 1;
   }
 
-  const coinroll::scene::ParseOptions options{.solverMethods = coinroll::integrate::methodNames()};
   try {
     nlohmann::json document = coinroll::scene::parseSceneText(input.substr(0, documentEnd), "fuzz.json");
     for (std::string_view assignment : overrides) coinroll::scene::applyOverride(document, assignment);
-    coinroll::scene::parseScene(document, "fuzz.json", options);
+    coinroll::scene::parseScene(document, "fuzz.json");
   } catch (const coinroll::scene::SceneError&) {
   }
   return 0;

@@ -23,8 +23,7 @@ pipeline::Simulation wobblingToy(std::string_view formulation) {
       {"duration", 4.0},
       {"solver", {{"formulation", formulation}, {"rtol", 1e-12}, {"atol", 1e-14}}},
   };
-  const std::vector<std::string_view> methods = {"dop853"};
-  return pipeline::buildSimulation(scene::parseScene(doc, "test", {.solverMethods = methods}));
+  return pipeline::buildSimulation(scene::parseScene(doc, "test"));
 }
 
 TEST(CoinRun, QuaternionRunUnwrapsPhiAndPsiLikeTheEulerAnglesBetweenSparseQueries) {

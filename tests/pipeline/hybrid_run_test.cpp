@@ -28,10 +28,8 @@ using namespace coinroll;
 using coinroll::testing::isBelow;
 using coinroll::testing::isNear;
 
-const std::vector<std::string_view> kMethods = {"dop853"};
-
 pipeline::Simulation simulationOf(const nlohmann::json& doc) {
-  return pipeline::buildSimulation(scene::parseScene(doc, "test", {.solverMethods = kMethods}));
+  return pipeline::buildSimulation(scene::parseScene(doc, "test"));
 }
 
 const nlohmann::json kTightSolver = {{"rtol", 1e-12}, {"atol", 1e-14}};
@@ -219,7 +217,7 @@ TEST(Sliding, TheOverlayShowsTheSlipWhileSlidingAndOnlyThen) {
   // The upright skid's slip falls as v0 - mu g (1 + M a^2 / I_Z) t, 3 mu g t for a disk.
   const double v0 = 0.5, mu = 0.3, g = 9.81, t = 0.01;
   const scene::SceneConfig scene =
-      scene::parseScene(skid({{"radius", 0.0375}, {"mass", 0.4}}, v0, mu), "test", {.solverMethods = kMethods});
+      scene::parseScene(skid({{"radius", 0.0375}, {"mass", 0.4}}, v0, mu), "test");
   const pipeline::Simulation sim = pipeline::buildSimulation(scene);
   pipeline::FixedFrameTimes at({t, 0.2});
   const pipeline::RunRecord record = pipeline::recordRun(sim, at);

@@ -27,8 +27,7 @@ pipeline::Simulation uprightRoller(double duration) {
       {"duration", duration},
       {"solver", {{"rtol", 1e-12}, {"atol", 1e-14}}},
   };
-  const std::vector<std::string_view> methods = {"dop853"};
-  return pipeline::buildSimulation(scene::parseScene(doc, "test", {.solverMethods = methods}));
+  return pipeline::buildSimulation(scene::parseScene(doc, "test"));
 }
 
 TEST(SurveyMotion, BoxSpansTheWholeStraightRollUpToItsLastInstant) {

@@ -19,11 +19,9 @@ namespace {
 
 using namespace coinroll;
 
-const std::vector<std::string_view> kMethods = {"dop853", "dopri5", "rk4"};
-
 scene::SceneConfig sceneOf(nlohmann::json doc) {
   doc["render"]["fps"] = 24;
-  return scene::parseScene(doc, "test", {.solverMethods = kMethods});
+  return scene::parseScene(doc, "test");
 }
 
 // A precessing coin in the Euler angles; the same in quaternions with a time remap; a coin that

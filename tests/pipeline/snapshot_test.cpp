@@ -20,10 +20,8 @@ namespace {
 
 using namespace coinroll;
 
-const std::vector<std::string_view> kMethods = {"dop853"};
-
 std::string contactLine(const nlohmann::json& doc, double time) {
-  const scene::SceneConfig scene = scene::parseScene(doc, "test", {.solverMethods = kMethods});
+  const scene::SceneConfig scene = scene::parseScene(doc, "test");
   const pipeline::Simulation sim = pipeline::buildSimulation(scene);
   pipeline::FixedFrameTimes at({time});
   const pipeline::RunRecord record = pipeline::recordRun(sim, at);

@@ -43,8 +43,7 @@ scene::SceneConfig toyScene(double duration, double timeScale) {
       {"duration", duration},
       {"render", {{"width", 96}, {"height", 64}, {"fps", 10}, {"msaa", 1}, {"time_scale", timeScale}}},
   };
-  const std::vector<std::string_view> methods = {"dop853"};
-  return scene::parseScene(doc, "test", {.solverMethods = methods});
+  return scene::parseScene(doc, "test");
 }
 
 TEST(FrameCount, CoversTheClipIncludingBothEnds) {
@@ -313,8 +312,7 @@ scene::SceneConfig fallingScene(double duration) {
       {"duration", duration},
       {"render", {{"width", 96}, {"height", 64}, {"fps", 10}, {"msaa", 1}}},
   };
-  const std::vector<std::string_view> methods = {"dop853"};
-  return scene::parseScene(doc, "test", {.solverMethods = methods});
+  return scene::parseScene(doc, "test");
 }
 
 TEST(SurveyMotion, FindsAStopInTheLastTraceIntervalOfTheRun) {

@@ -1,7 +1,7 @@
 // The overlay's typography, the themes and the scale bar against independent expectations: the
 // symbols the labels use have ink, the text keeps its size relative to the picture's height, the
 // bytes repeat, paper's floor is light where classic's is not, and the scale bar spans the
-// projection of its metric length under a pinhole camera written here.
+// projection of its metric length under the tests' own pinhole camera (tests/support/pinhole.h).
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,6 @@
 #include <cmath>
 #include <glm/gtc/quaternion.hpp>
 #include <iostream>
-#include <numbers>
 #include <optional>
 #include <string>
 #include <vector>
@@ -17,10 +16,12 @@
 #include "render/overlay_text.h"
 #include "render/renderer.h"
 #include "render/scale_bar.h"
+#include "pinhole.h"
 
 namespace {
 
 using coinroll::image::Image;
+using coinroll::testing::pinholePixel;
 using namespace coinroll::render;
 
 constexpr float kRadius = 0.0375f;
@@ -160,18 +161,6 @@ TEST(Themes, PaperHasALightFloorAndDarkText) {
     }
     EXPECT_EQ(darker > lighter, inkDarker) << darker << " pixels darkened, " << lighter << " lightened";
   }
-}
-
-// The oracle: a pinhole camera from the camera's definition, in doubles, not the renderer's
-// matrices. Pixel coordinates as camera.h's (x right, y down, origin at the top-left corner).
-glm::dvec2 pinholePixel(const CameraView& camera, int width, int height, const glm::dvec3& world) {
-  const glm::dvec3 eye(camera.eye), target(camera.target);
-  const glm::dvec3 forward = glm::normalize(target - eye);
-  const glm::dvec3 right = glm::normalize(glm::cross(forward, glm::dvec3(0, 1, 0)));
-  const glm::dvec3 up = glm::cross(right, forward);
-  const glm::dvec3 d = world - eye;
-  const double focal = 0.5 * height / std::tan(0.5 * double(camera.fovYDegrees) * std::numbers::pi / 180);
-  return {0.5 * width + focal * glm::dot(d, right) / glm::dot(d, forward), 0.5 * height - focal * glm::dot(d, up) / glm::dot(d, forward)};
 }
 
 TEST(ScaleBar, SpansTheProjectionOfItsLengthOnTheFloor) {

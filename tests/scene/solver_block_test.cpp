@@ -16,7 +16,7 @@ namespace {
 SceneConfig withSolver(const nlohmann::json& solver) {
   nlohmann::json document = builtInDefaultScene();
   document["solver"] = solver;
-  return parseScene(document, "scene.json", {.solverMethods = integrate::methodNames()});
+  return parseScene(document, "scene.json");
 }
 
 std::string refusal(const nlohmann::json& solver) {

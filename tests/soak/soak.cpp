@@ -24,7 +24,6 @@
 #include <string>
 #include <vector>
 
-#include "integrate/solver_config.h"
 #include "pipeline/still.h"
 #include "pipeline/video_frames.h"
 #include "scene/scene_loader.h"
@@ -66,7 +65,7 @@ SceneConfig smallScene() {
                                  "render.audio.timbre=clicks"}) {
     coinroll::scene::applyOverride(document, assignment);
   }
-  return coinroll::scene::parseScene(document, "soak", {.solverMethods = coinroll::integrate::methodNames()});
+  return coinroll::scene::parseScene(document, "soak");
 }
 
 void renderClip(const SceneConfig& scene, const fs::path& output) {

@@ -146,7 +146,7 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& options) {
       ->type_name("T1");
   command->add_flag("-q,--quiet", options.quiet, "No progress line and no summary on stderr");
   command->add_option("--frame-times", options.frameTimesPath,
-                      "Also write FILE.csv, one row per frame written: frame (index in the video), video_time_s "
+                      "Also write the CSV FILE, one row per frame written: frame (index in the video), video_time_s "
                       "(frame / fps), clip_frame (index in the full render), sim_time_s (simulated time shown) and "
                       "playback_rate (simulated s per video s; 0 while a landing is held); published with the video, "
                       "never without it")

@@ -121,9 +121,10 @@ Renderer::Renderer(const RenderSettings& settings, GlBackend backend) : settings
   uploadMipmapped(gl, state.coinFace, loadAssetImage("coin_face.png"), GL_LINEAR_MIPMAP_LINEAR, GL_CLAMP_TO_EDGE);
 
   // 512 texels per 10 cm: the 0.5 mm minor lines are 2.6 texels wide, so every mipmap level is
-  // a faithful average of the one above. One mipmap level per lookup (not two blended) halves
-  // the floor's texturing cost, the largest part of a frame on llvmpipe, with no visible seams.
-  uploadMipmapped(gl, state.floorGrid, floorTile(512, palette(settings_.theme).floor), GL_LINEAR_MIPMAP_NEAREST, GL_REPEAT);
+  // a faithful average of the one above. Two levels blended per lookup: with one, the floor shows
+  // a seam where the level changes (sharp lines beside blurred ones), plain on the paper theme's
+  // dark lines on white. The floor is drawn once per camera position (a fixed camera reuses it).
+  uploadMipmapped(gl, state.floorGrid, floorTile(512, palette(settings_.theme).floor), GL_LINEAR_MIPMAP_LINEAR, GL_REPEAT);
 
   // The overlay's glyphs at the size they are drawn: every texel row lands on one pixel row, so
   // the text is as sharp as the rasteriser made it, and no mipmaps are needed.

@@ -76,6 +76,10 @@ TEST(RunRecord, EachFrameIsWhatARunSampledOnlyAtTheFrameTimesGives) {
     // The end, an event's or the duration's, as a run asked for it gives it.
     const double end = record.survey.endTime;
     ASSERT_LE(record.frames.back().time, end);
+    // Without a remap the frames are those of k time_scale / fps up to the end, an early one too.
+    if (!scene.render.timeRemap) {
+      EXPECT_EQ(static_cast<long>(record.frames.size()), pipeline::frameCount(end, scene.render.timeScale, scene.render.fps));
+    }
     const std::optional<pipeline::RunSample> last = alone.sampleAt(end);
     ASSERT_TRUE(last.has_value());
     expectSameFrame(record.end, pipeline::frameStateOf(end, *last), end);

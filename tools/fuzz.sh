@@ -8,14 +8,7 @@ cd "$(dirname "$0")/.."
 seconds=${FUZZ_SECONDS:-120}
 build=build-fuzz
 
-if ! command -v clang++ >/dev/null || ! dpkg-query -W -f='${Status}' libclang-rt-14-dev 2>/dev/null | grep -q "install ok installed"; then
-  echo "fuzz: installing clang and its libFuzzer runtime" >&2
-  sudo_cmd=()
-  [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
-  export DEBIAN_FRONTEND=noninteractive
-  "${sudo_cmd[@]}" apt-get update -qq
-  "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends clang libclang-rt-14-dev >/dev/null
-fi
+tools/ensure_clang.sh
 
 CXX=clang++ cmake -B "$build" -DCOINROLL_FUZZ=ON -DCOINROLL_BENCHMARKS=OFF -DCOINROLL_HEADER_CHECK=OFF \
   -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null

@@ -161,8 +161,11 @@ void runSimulate(const SimulateOptions& options) {
                                    options.provenancePath, options.csvPath == "-" ? "run" : options.csvPath));
     }
   }
-  const auto [document, sourceName] = loadSceneDocument(options.scene);
-  const scene::SceneConfig scene = scene::parseScene(document, sourceName);
+  // Named, not a structured binding: the CSV's lambda captures the document, which clang 14 (the
+  // sanitizer build's compiler) cannot do with a binding.
+  const std::pair<nlohmann::json, std::string> loaded = loadSceneDocument(options.scene);
+  const nlohmann::json& document = loaded.first;
+  const scene::SceneConfig scene = scene::parseScene(document, loaded.second);
   const long maxRows = options.maxRows > 0 ? options.maxRows : kDefaultMaxRows;
   if (const double rows = scene.duration / options.sampleDt + 1; rows > static_cast<double>(maxRows)) {
     throw UsageError(fmt::format("--sample-dt {}: duration {} s gives {:.4g} rows, more than the limit {}; raise "
@@ -329,7 +332,9 @@ void runRender(const RenderOptions& options) {
   if (window.from > window.to) {
     throw UsageError(fmt::format("--from {} --to {}: the window ends before it starts; give --from <= --to", window.from, window.to));
   }
-  const auto [scene, provenance] = resolveScene(source);
+  const ResolvedScene resolved = resolveScene(source);  // named: clang 14 cannot capture a structured binding
+  const scene::SceneConfig& scene = resolved.config;
+  const video::Provenance& provenance = resolved.provenance;
   reportSteadyStart(scene);
   const std::filesystem::path output = options.output ? std::filesystem::path(*options.output)
                                                       : std::filesystem::path(fileNameFrom(scene.name) + ".mp4");

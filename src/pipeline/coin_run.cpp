@@ -147,6 +147,17 @@ std::optional<RunSample> CoinRun::sampleOf(Run<F, N>& run, double t) {
   }
 }
 
+// Defined before the generic lambdas of stoppedBy and warnings use it: clang 14 (the sanitizer
+// build's compiler) leaves it uninstantiated otherwise.
+template <Formulation F, int N>
+RunEvent CoinRun::eventOf(const integrate::EventHit<N>& hit, const physics::CoinState& continuation) const {
+  return {.event = static_cast<physics::ModelEvent>(hit.id),
+          .t = hit.t,
+          .state = seedState<F, N>(hit.y, continuation),
+          .forward = forwardOf<F, N>(model_, hit.y),
+          .dissipated = dissipatedOf<F, N>(hit.y)};
+}
+
 std::optional<RunEvent> CoinRun::stoppedBy() const {
   return std::visit(
       [this](const auto& run) -> std::optional<RunEvent> {
@@ -185,15 +196,6 @@ std::vector<RunEvent> CoinRun::warnings() const {
 std::vector<ModeSwitch> CoinRun::switches() const {
   if (const auto* hybrid = std::get_if<HybridRun>(&trajectory_)) return hybrid->switches();
   return {};
-}
-
-template <Formulation F, int N>
-RunEvent CoinRun::eventOf(const integrate::EventHit<N>& hit, const physics::CoinState& continuation) const {
-  return {.event = static_cast<physics::ModelEvent>(hit.id),
-          .t = hit.t,
-          .state = seedState<F, N>(hit.y, continuation),
-          .forward = forwardOf<F, N>(model_, hit.y),
-          .dissipated = dissipatedOf<F, N>(hit.y)};
 }
 
 integrate::Stats CoinRun::stats() const {

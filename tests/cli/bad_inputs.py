@@ -7,6 +7,14 @@ case's own inputs is left in the directory (for cases that must succeed: exactly
 name). docs/bad_inputs.md is generated from this table (--markdown).
 
     /usr/bin/python3 tests/cli/bad_inputs.py --binary build/coinroll [--only ID] [--markdown docs/bad_inputs.md]
+    /usr/bin/python3 tests/cli/bad_inputs.py --binary build/coinroll --category signals   # one category
+    /usr/bin/python3 tests/cli/bad_inputs.py --list-categories
+    /usr/bin/python3 tests/cli/bad_inputs.py --export-scene-cases cases.json
+
+ctest runs one entry per category (cli_bad_inputs.<slug>), so it can balance them against the
+other tests. --export-scene-cases writes the cases that are a scene (and --set overrides) in and a
+refusal out, for the in-process test tests/scene/bad_scene_test.cpp, which checks the same
+messages without starting the program (in a second under AddressSanitizer).
     /usr/bin/python3 tests/cli/bad_inputs.py --binary OLD/coinroll --record-before tests/cli/bad_inputs_before.json
 
 Standard library only: ctest runs it with the system's python3.
@@ -1680,7 +1688,9 @@ def write_markdown(path: Path, results: list[Result], before: dict, seconds: flo
         "",
         "    /usr/bin/python3 tests/cli/bad_inputs.py --binary build/coinroll            # --only ID for one case",
         "",
-        "ctest runs it as `cli_bad_inputs`. This page is its `--markdown docs/bad_inputs.md` output.",
+        "ctest runs it as `cli_bad_inputs.CATEGORY`, one entry per category (`--category`); the cases that are a "
+        "scene in and a refusal out run in process too (`bad_scene_test`). This page is its `--markdown "
+        "docs/bad_inputs.md` output.",
         "",
         f"**{len(results)} cases** in {len(categories)} categories; against today's binary {len(results) - len(failing)} "
         f"pass and {len(failing)} fail (column *now*), in {seconds:.0f} s. Against the build of commit 32cc7d7, the "
@@ -1725,6 +1735,43 @@ def write_markdown(path: Path, results: list[Result], before: dict, seconds: flo
 # ----------------------------------------------------------------------------------------------
 
 
+def slug(category: str) -> str:
+    """A category as a ctest name part: "coin's rim" -> coins_rim, "--set" -> set."""
+    return re.sub(r"[^a-z0-9]+", "_", category.lower().replace("'", "")).strip("_")
+
+
+def scene_case_overrides(c: Case) -> list[str] | None:
+    """The --set assignments of a case that is only a scene refused on loading, or None: a plain
+    `simulate scene.json --csv o.csv [--set K=V]...` over one scene file, exit 2 with a message, no
+    signal, no directory check. Such a case's refusal comes from reading, parsing or building the
+    simulation, before the program writes or runs anything."""
+    if c.shell or c.signal or c.check is not None or c.rc != 2 or not c.msg or set(c.files) != {"scene.json"}:
+        return None
+    if not isinstance(c.files["scene.json"], (str, bytes)):
+        return None
+    words = shlex.split(c.args)
+    if words[:4] != ["simulate", "scene.json", "--csv", "o.csv"] or len(words) % 2:
+        return None
+    pairs = list(zip(words[4::2], words[5::2]))
+    if any(flag != "--set" for flag, _ in pairs):
+        return None
+    return [value for _, value in pairs]
+
+
+def export_scene_cases(path: Path):
+    cases = []
+    for c in CASES:
+        overrides = scene_case_overrides(c)
+        if overrides is None:
+            continue
+        content = c.files["scene.json"]
+        raw = content if isinstance(content, bytes) else content.encode()
+        # In hex: some scenes are not UTF-8 (that is what they test), and a JSON string holds text.
+        cases.append({"id": c.id, "scene_hex": raw.hex(), "overrides": overrides, "message": c.msg,
+                      "or_message": c.or_msg or ""})
+    path.write_text(json.dumps(cases, indent=1, ensure_ascii=True) + "\n")
+
+
 def main() -> int:
     signal.signal(signal.SIGPIPE, signal.SIG_DFL)  # `| head` ends the listing quietly; children get SIG_DFL anyway
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
@@ -1737,7 +1784,25 @@ def main() -> int:
     parser.add_argument("--record-before", metavar="FILE",
                         help="run against an older binary and record per case ok / wrong: why / n/a")
     parser.add_argument("--jobs", type=int, default=2, help="cases run at once (default 2; each has its own directory)")
+    parser.add_argument("--category", action="append", metavar="SLUG",
+                        help="run this category only (its --list-categories slug); may be repeated")
+    parser.add_argument("--list-categories", action="store_true", help="print each category's slug and case count")
+    parser.add_argument("--export-scene-cases", metavar="FILE",
+                        help="write the scene-only refusals as JSON for the in-process test, and exit")
     options = parser.parse_args()
+
+    categories = list(dict.fromkeys(c.cat for c in CASES))
+    if options.list_categories:
+        for category in categories:
+            print(f"{slug(category)} {sum(c.cat == category for c in CASES)}")
+        return 0
+    if options.export_scene_cases:
+        export_scene_cases(Path(options.export_scene_cases))
+        return 0
+    unknown = set(options.category or ()) - {slug(category) for category in categories}
+    if unknown:
+        print(f"bad_inputs.py: no category {', '.join(sorted(unknown))}; --list-categories lists them", file=sys.stderr)
+        return 2
 
     binary = str(Path(options.binary).resolve())
     if not os.access(binary, os.X_OK):
@@ -1745,7 +1810,7 @@ def main() -> int:
         return 2
     ids = [c.id for c in CASES]
     assert len(ids) == len(set(ids)), "case ids must be unique"
-    cases = [c for c in CASES if options.only in (None, c.id)]
+    cases = [c for c in CASES if options.only in (None, c.id) and (not options.category or slug(c.cat) in options.category)]
     if not cases:
         print(f"bad_inputs.py: no case {options.only!r}", file=sys.stderr)
         return 2

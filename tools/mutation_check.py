@@ -337,27 +337,33 @@ class Runner:
 
     def ctest(self, only=None, exclude=()):
         """Runs ctest (all tests but --exclude and `exclude`, or just the names in `only`);
-        returns (passed, failed test names, seconds, output)."""
+        returns (passed, failed test names, seconds, output). The whole suite runs by tiers: the
+        unit label first, the rest only once it passes (with --stop-on-failure), so a mutant the
+        unit tests kill in seconds never waits for the README and figure tests, which ctest's
+        COST properties would otherwise start first."""
+        if only:
+            return self.ctest_run(["-R", "^(" + "|".join(re.escape(name) for name in only) + ")$"])
+        patterns = ([self.args.exclude] if self.args.exclude else []) + ["^" + re.escape(name) + "$" for name in exclude]
+        selection = ["-E", "|".join(patterns)] if patterns else []
+        if self.args.stop_on_failure:
+            selection.append("--stop-on-failure")
+        t = time.time()
+        outputs, failed = [], []
+        for tier in (["-L", "^unit$"], ["-LE", "^unit$"]):
+            tier_passed, tier_failed, _, out = self.ctest_run(tier + selection)
+            outputs.append(out)
+            failed += tier_failed
+            if not tier_passed and self.args.stop_on_failure:
+                break
+        return not failed, failed, time.time() - t, "\n".join(outputs)
+
+    def ctest_run(self, selection):
         failed_log = self.build / "Testing" / "Temporary" / "LastTestsFailed.log"
         if failed_log.exists():
             failed_log.unlink()
-        # Without the cost data of earlier runs ctest starts the tests in the order they are declared,
-        # the unit tests first; with it, the slowest (the README and figure tests, minutes each) go
-        # first, and a mutant the unit tests kill in seconds would wait for them.
-        cost_data = self.build / "Testing" / "Temporary" / "CTestCostData.txt"
-        if cost_data.exists():
-            cost_data.unlink()
         t = time.time()
         cmd = ["ctest", "--test-dir", str(self.build), "-j", str(self.args.jobs), "--timeout", str(self.args.timeout),
-               "--output-on-failure"]
-        if only:
-            cmd += ["-R", "^(" + "|".join(re.escape(name) for name in only) + ")$"]
-        else:
-            patterns = ([self.args.exclude] if self.args.exclude else []) + ["^" + re.escape(name) + "$" for name in exclude]
-            if patterns:
-                cmd += ["-E", "|".join(patterns)]
-            if self.args.stop_on_failure:
-                cmd.append("--stop-on-failure")
+               "--output-on-failure", *selection]
         rc, out = run(cmd)
         failed = []
         if failed_log.exists():

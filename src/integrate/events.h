@@ -15,6 +15,10 @@ struct Event {
   std::function<double(double t, const Vec<N>& y)> g;  // the event is a root of g
   int direction = 0;     // 0 any crossing, +1 only g rising through 0, -1 only falling
   bool terminal = true;  // stop the run at the root
+  // g is also read at this many evenly spaced points inside each step, on the dense output: a
+  // crossing there and back within one step (a friction cone grazed for a millisecond) shows no
+  // sign change at the step's ends. Each point costs one g; 0 checks the ends only.
+  int interiorChecks = 0;
 };
 
 template <int N>

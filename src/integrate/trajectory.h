@@ -223,17 +223,32 @@ class Trajectory {
     }
   }
 
+  static bool crosses(const Event<N>& e, double gFrom, double gTo) {
+    const bool rising = gFrom < 0 && gTo >= 0, falling = gFrom > 0 && gTo <= 0;
+    return (e.direction >= 0 && rising) || (e.direction <= 0 && falling);
+  }
+
   void checkEvents(double tStart) {
     std::optional<EventHit<N>> earliestTerminal;
     for (std::size_t i = 0; i < events_.size(); ++i) {
       const Event<N>& e = events_[i];
-      const double gStart = gAtStart_[i];
+      double from = tStart, gFrom = gAtStart_[i];
       const double gEnd = e.g(t_, y_);
       gAtStart_[i] = gEnd;
-      const bool rising = gStart < 0 && gEnd >= 0, falling = gStart > 0 && gEnd <= 0;
-      if (!((e.direction >= 0 && rising) || (e.direction <= 0 && falling))) continue;
-      const double tRoot = locateRoot(
-          [&](double t) { return e.g(t, interval().at(t)); }, tStart, gStart, t_, gEnd);
+      // The first sub-interval whose ends cross: the interior points' in time order, then the last.
+      double to = t_, gTo = gEnd;
+      bool crossed = false;
+      for (int k = 1; k <= e.interiorChecks && !crossed; ++k) {
+        const double t = tStart + (t_ - tStart) * k / (e.interiorChecks + 1);
+        const double g = e.g(t, interval().at(t));
+        if (crosses(e, gFrom, g)) {
+          to = t, gTo = g, crossed = true;
+        } else {
+          from = t, gFrom = g;
+        }
+      }
+      if (!crossed && !crosses(e, gFrom, gEnd)) continue;
+      const double tRoot = locateRoot([&](double t) { return e.g(t, interval().at(t)); }, from, gFrom, to, gTo);
       EventHit<N> hit{e.name, e.id, tRoot, interval().at(tRoot)};
       if (!e.terminal) {
         nonTerminalHits_.push_back(hit);

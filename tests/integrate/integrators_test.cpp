@@ -238,6 +238,25 @@ TEST(Events, DirectionZeroCatchesARisingCrossing) {
   EXPECT_TRUE(isNear(trajectory.stoppedBy()->t, std::numbers::pi / 2, 1e-10));
 }
 
+TEST(Events, AGrazeInsideOneStepIsFoundOnlyWithInteriorChecks) {
+  // g = (t - 0.5)^2 - 1e-4 dips below 0 on (0.49, 0.51), inside one RK4 step of 1 s whose ends
+  // both have g = 0.2499: read at the ends the dip is missed; with three interior points (0.25,
+  // 0.5, 0.75) the one at 0.5 finds it, and the root is located at 0.49 on the dense output.
+  for (int checks : {0, 3}) {
+    Event<2> graze{.name = "graze", .g = [](double t, const V2&) { return (t - 0.5) * (t - 0.5) - 1e-4; }, .direction = -1};
+    graze.interiorChecks = checks;
+    Trajectory trajectory(Oscillator{}, 0.0, V2(0, 1), SolverConfig{.method = Method::Rk4, .dt = 1.0}, {graze});
+    const bool reachedTheEnd = trajectory.stateAt(1.0).has_value();
+    if (checks == 0) {
+      EXPECT_TRUE(reachedTheEnd);
+      continue;
+    }
+    EXPECT_FALSE(reachedTheEnd);
+    ASSERT_TRUE(trajectory.stoppedBy().has_value());
+    EXPECT_TRUE(isNear(trajectory.stoppedBy()->t, 0.49, 1e-12));
+  }
+}
+
 TEST(Events, TheEarliestOfTwoTerminalRootsInOneStepStopsTheRun) {
   // One RK4 step of 1 s holds both roots, t = 0.7 (listed first) and t = 0.3: the run ends at 0.3.
   std::vector<Event<2>> events{{.name = "late", .g = [](double t, const V2&) { return 0.7 - t; }, .direction = -1},

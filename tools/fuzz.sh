@@ -8,7 +8,7 @@ cd "$(dirname "$0")/.."
 seconds=${FUZZ_SECONDS:-120}
 build=build-fuzz
 
-tools/ensure_clang.sh
+tools/apt_install.sh clang libclang-rt-14-dev  # the sanitizer and fuzz stages build with clang 14
 
 CXX=clang++ cmake -B "$build" -DCOINROLL_FUZZ=ON -DCOINROLL_BENCHMARKS=OFF -DCOINROLL_HEADER_CHECK=OFF \
   -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs every Debian package coinroll needs to build, test, render and chart.
-# Idempotent: skips apt entirely when everything is already installed.
+# Idempotent: skips apt entirely when everything is already installed (tools/apt_install.sh).
 set -euo pipefail
 
 packages=(
@@ -19,17 +19,4 @@ packages=(
   slurm-wlm munge  # tests/slurm/slurm_test.py starts a one-node Slurm
 )
 
-missing=()
-for p in "${packages[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if [ ${#missing[@]} -eq 0 ]; then
-  exit 0
-fi
-
-echo "setup: installing ${missing[*]}" >&2
-sudo_cmd=()
-[ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
-export DEBIAN_FRONTEND=noninteractive
-"${sudo_cmd[@]}" apt-get update -qq
-"${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+exec "$(dirname "$0")/apt_install.sh" "${packages[@]}"

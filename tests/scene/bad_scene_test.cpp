@@ -17,6 +17,8 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 #include "pipeline/simulation.h"
 #include "scene/json_reader.h"
 #include "scene/scene_error.h"
@@ -52,7 +54,10 @@ class BadSceneTest : public testing::TestWithParam<BadScene> {};
 
 TEST_P(BadSceneTest, IsRefusedBeforeAnythingRunsWithTheTablesMessage) {
   const BadScene& c = GetParam();
-  const std::filesystem::path directory = std::filesystem::temp_directory_path() / ("coinroll_bad_scene_" + c.id);
+  // Named by the process too, as tests/support/scratch_dir.h names its directories: two builds'
+  // suites run at once on one machine (CI beside the mutation check) must not share one.
+  const std::filesystem::path directory =
+      std::filesystem::temp_directory_path() / ("coinroll_bad_scene_" + c.id + "_" + std::to_string(::getpid()));
   std::filesystem::create_directories(directory);
   const std::filesystem::path scenePath = directory / "scene.json";
   std::ofstream(scenePath, std::ios::binary) << c.bytes;

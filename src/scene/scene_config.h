@@ -1,7 +1,7 @@
 #pragma once
 // A scene as the program uses it: validated, defaults filled in, SI units and radians
 // (the file's degrees are converted once, in scene_loader.cpp). Field names follow the JSON keys
-// of INTERFACE.md; README "Scene format" lists each with unit and default. What the renderer and
+// of docs/contract.md; docs/scene.md lists each with unit and default (scene_schema.cpp). What the renderer and
 // the encoder are built with is held in their own types (render/render_settings.h,
 // video/video_options.h), whose defaults and limits are the scene's: defined there, once.
 
@@ -73,8 +73,6 @@ enum class CameraMode {
   Orbit,   // circles the motion once per orbit period
   Follow,  // keeps the coin in the middle at a fixed offset
 };
-// render.camera.mode's names in the scene file, in the order of CameraMode.
-inline constexpr std::array<std::string_view, 3> kCameraModeNames = {"fixed", "orbit", "follow"};
 
 struct CameraSpec {
   CameraMode mode = CameraMode::Fixed;

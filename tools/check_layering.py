@@ -22,7 +22,7 @@ import sys
 # Which coinroll folders each folder may #include, each edge with the reason it exists.
 # A key "folder" allows every header of that folder; a key "folder/x.h" allows that one
 # header only (a settings-only header that a lower layer may read without seeing the rest).
-# A folder may always include its own headers. Includes point down only (STYLE.md section 1):
+# A folder may always include its own headers. Includes point down only (docs/architecture.md):
 #   cli > pipeline > scene > {physics, integrate};  pipeline > {render, video} > image > io.
 # physics and integrate are independent of each other: pipeline wires the rhs into a stepper.
 MAY_INCLUDE = {
@@ -49,7 +49,7 @@ MAY_INCLUDE = {
     # JSON -> SceneConfig: builds physics and solver types, validates, degrees -> radians.
     "scene": {
         "physics": "a scene is turned into a CoinModel, CoinState and effect parameters",
-        "integrate": "STYLE.md: scene builds physics/integrate types (solver settings) from JSON",
+        "integrate": "scene builds physics/integrate types (solver settings) from JSON",
         "io": "leaf utility for anything that reads or writes files",
         # Settings-only headers (issue 12): a scene holds render/video options without seeing the
         # renderer or the encoder.

@@ -1,5 +1,5 @@
 // coinroll: command-line entry point. Parses arguments, runs one command, maps errors to the exit
-// codes of INTERFACE.md. All logic lives in the libraries; this file only wires them.
+// codes of docs/contract.md. All logic lives in the libraries; this file only wires them.
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>

@@ -1,5 +1,5 @@
 #pragma once
-// Parameter sweeps (INTERFACE.md "Sweeps"): the Cartesian grid over scene fields, one summary row
+// Parameter sweeps (docs/contract.md §7): the Cartesian grid over scene fields, one summary row
 // per point, computed by a pool of threads inside one process and written in point order, so the
 // bytes do not depend on the thread count or on how the grid is split into shards.
 

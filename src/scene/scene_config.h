@@ -27,7 +27,7 @@ struct CoinSpec {
   double radius = 0;       // m, required, > 0
   double mass = 0;         // kg, required, > 0
   double innerRadius = 0;  // m, ring only: hole radius b in [0, radius]; default radius (thin hoop)
-  // m, coin.thickness: when given the coin is a solid of that thickness in the dynamics (INTERFACE.md
+  // m, coin.thickness: when given the coin is a solid of that thickness in the dynamics (docs/contract.md
   // "The coin's rim"); absent, the seed's thin coin (drawn 0.06 radius thick, in RenderSpec::picture).
   std::optional<double> thickness;
   double edgeRadius = 0;  // m, coin.edge_radius rho in [0, min(h/2, radius - inner radius)]; default h/2 (capped)
@@ -141,7 +141,7 @@ struct RenderSpec {
   }
 };
 
-// What the validity events lift-off and slip do (INTERFACE.md "Dissipation").
+// What the validity events lift-off and slip do (docs/contract.md §4).
 enum class OnInvalid {
   Stop,  // end the run at the event
   Warn,  // report each crossing with its time and go on

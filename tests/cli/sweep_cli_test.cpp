@@ -1,4 +1,4 @@
-// coinroll sweep and sweep-merge through the command line (INTERFACE.md "Sweeps"): the same bytes
+// coinroll sweep and sweep-merge through the command line (docs/contract.md §7): the same bytes
 // for any thread count and for shards run as separate processes by GNU parallel (the Slurm array of
 // docs/sweeps.md: tests/slurm/slurm_test.py), listed and geometric axes, --shard auto/N, merge refusing
 // missing or repeated points by number, failed points kept as rows, and the summary columns

@@ -160,12 +160,12 @@ def table_problems(folders):
     """The table itself: every src/ folder listed, every edge to a known folder, no cycle."""
     problems = []
     for folder in sorted(folders - MAY_INCLUDE.keys()):
-        problems.append(f"src/{folder}: folder is not in MAY_INCLUDE of tools/check_layering.py "
+        problems.append(f"src/{folder}: folder is not in MAY_INCLUDE of tests/lint/check_layering.py "
                         "(state which folders it may include, and why)")
     for folder, edges in MAY_INCLUDE.items():
         for key in edges:
             if key.split("/")[0] not in MAY_INCLUDE:
-                problems.append(f"tools/check_layering.py: {folder} -> {key}: unknown folder")
+                problems.append(f"tests/lint/check_layering.py: {folder} -> {key}: unknown folder")
     # Depth-first search for a cycle among folder-level edges.
     state = {}
 
@@ -174,7 +174,7 @@ def table_problems(folders):
         for key in MAY_INCLUDE.get(folder, {}):
             target = key.split("/")[0]
             if state.get(target) == "open":
-                problems.append("tools/check_layering.py: dependency cycle "
+                problems.append("tests/lint/check_layering.py: dependency cycle "
                                 + " -> ".join(trail + [folder, target]))
             elif target not in state:
                 visit(target, trail + [folder])
@@ -216,7 +216,7 @@ def main(argv):
     if len(argv) > 2:
         print(__doc__, file=sys.stderr)
         return 2
-    src = pathlib.Path(argv[1] if len(argv) == 2 else pathlib.Path(__file__).parent.parent / "src")
+    src = pathlib.Path(argv[1] if len(argv) == 2 else pathlib.Path(__file__).parents[2] / "src")
     if not src.is_dir():
         print(f"check_layering.py: {src}: not a directory", file=sys.stderr)
         return 2
@@ -240,7 +240,7 @@ def main(argv):
         print(problem)
     if problems:
         print(f"check_layering.py: {len(problems)} layering violation(s); the allowed "
-              "dependencies are the table at the top of tools/check_layering.py", file=sys.stderr)
+              "dependencies are the table at the top of tests/lint/check_layering.py", file=sys.stderr)
         return 1
     print(f"check_layering.py: {files} files, {checked} includes, layering OK")
     return 0

@@ -9,13 +9,13 @@ mass's full 3D position and velocity are integrated (the height is checked again
 imposed). Pure Python (no numpy/scipy), deterministic: the same parameters give the same bytes.
 
 Usage
-    python3 tools/sliding_reference.py '{"mass": 0.00567, "radius": 0.01213, "mu": 0.3, "theta": 0.3,
+    python3 tests/oracles/sliding_reference.py '{"mass": 0.00567, "radius": 0.01213, "mu": 0.3, "theta": 0.3,
         "omega_Y": -5.263469899354806, "omega_Z": -30, "v_x": 0.3, "v_z": 0.05, "duration": 1.0,
         "sample_dt": 0.01}'  >  run.csv
     (a steady circle, omega_Y from docs/rim.md 5.1, whose centre is launched off its rolling velocity
     (0.3639, 0) m/s: it skids for 0.0119 s, then rolls)
-    python3 tools/sliding_reference.py @params.json [--extra]
-    python3 tools/sliding_reference.py --self-test
+    python3 tests/oracles/sliding_reference.py @params.json [--extra]
+    python3 tests/oracles/sliding_reference.py --self-test
 
 Parameters (JSON object; SI units, ANGLES IN RADIANS, unlike the scene file's degrees):
     mass M (kg), radius a (m)                        required

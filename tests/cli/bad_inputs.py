@@ -698,8 +698,8 @@ case("window-without-frames", C, "render --from 0.21 --to 0.22: no frame at 30 f
 for ext in ("mp4", "GIF"):
     case(f"transparent-{ext.lower()}", C, f"render.background transparent with .{ext}",
          f"render scene.json -q -o o.{ext} --set 'render.background=\"transparent\"'", 2,
-         f'render.background: "transparent" needs an output with alpha, and .{ext.lower()} has none; write a .mov, '
-         'a .webm or a PNG sequence', key="render.background", gtest=(G_RENDER,), na_before=FORMATS)
+         f'render.background: "transparent" needs an output with alpha, and .{ext.lower()} has none; write a .webm, '
+         'a .mov or a PNG sequence', key="render.background", gtest=(G_RENDER,), na_before=FORMATS)
 case("background-bad", C, "render.background \"clear\"", "render scene.json -q -o o.mov --set 'render.background=\"clear\"'",
      2, 'render.background: expected "opaque" or "transparent", got "clear"', key="render.background",
      gtest=(G_RENDER,), na_before=FORMATS)

@@ -78,6 +78,11 @@ void validate(const VideoOptions& options) {
   if (options.audio && !kind.audio) {
     throw std::invalid_argument(videoOptionError("audio", label + " gets no sound track", "true"));
   }
+  if (!kind.carriesFps(options.fps)) {
+    throw std::invalid_argument(videoOptionError(
+        "fps", label + " plays at most " + std::to_string(kind.maxFps) + " fps (" + std::string(kind.maxFpsReason) + ")",
+        std::to_string(options.fps)));
+  }
 }
 
 // One encoder and the muxer's stream it feeds: the pictures', and the sound's when there is one.
@@ -321,6 +326,15 @@ void EncoderSink::finish() {
   if (encoder.audio.codec) {
     if (!encoder.pending.empty()) encoder.encodeAudioBlock(static_cast<int>(encoder.pending.size()));
     encoder.encode(encoder.audio, nullptr);
+  }
+  if (!kind.lastFrameOption.empty()) {
+    // The last frame ends where the clip does, so its length is the rest of the clip: the frames'
+    // lengths then add up to the clip's, each frame ending where its own time does.
+    const AVRational tick = encoder.video.codec->time_base, muxed = encoder.video.stream->time_base;
+    const std::int64_t length = av_rescale_q(framesPushed_, tick, muxed) - av_rescale_q(framesPushed_ - 1, tick, muxed);
+    const std::string option(kind.lastFrameOption);
+    checkAv(av_opt_set_int(encoder.format->priv_data, option.c_str(), length, 0),
+            encoder.context + "setting the muxer's option " + option);
   }
   checkAv(av_write_trailer(encoder.format.get()), encoder.context + "writing the " + std::string(kind.label) + " trailer");
   checkAv(avio_closep(&encoder.format->pb), encoder.context + "closing the file");

@@ -65,19 +65,21 @@ std::uint64_t fourFrames(const VideoOptions&) { return 4; }
 const std::array<VideoKind, 4> kKinds = {{
     {.format = VideoFormat::Mp4, .extension = ".mp4", .label = "MP4", .article = "an", .codec = "H.264",
      .muxer = "mp4", .encoder = "libx264", .pixelFormat = "yuv420p", .alphaPixelFormat = "",
-     .audio = true, .indexFirst = true, .loops = false,
+     .audio = true, .indexFirst = true, .loops = false, .maxFps = 0, .maxFpsReason = "", .lastFrameOption = "",
      .encoderOptions = x264Options, .framesInFlight = x264FramesInFlight, .addComment = nullptr},
     {.format = VideoFormat::Gif, .extension = ".gif", .label = "GIF", .article = "a", .codec = "",
      .muxer = "gif", .encoder = "gif", .pixelFormat = "pal8", .alphaPixelFormat = "",
-     .audio = false, .indexFirst = false, .loops = true,
+     .audio = false, .indexFirst = false, .loops = true, .maxFps = 50,
+     .maxFpsReason = "its frame delays are whole hundredths of a second, and browsers play a delay under 2 as 10",
+     .lastFrameOption = "final_delay",
      .encoderOptions = noOptions, .framesInFlight = fourFrames, .addComment = addGifComment},
     {.format = VideoFormat::WebM, .extension = ".webm", .label = "WebM", .article = "a", .codec = "VP9",
      .muxer = "webm", .encoder = "libvpx-vp9", .pixelFormat = "yuv420p", .alphaPixelFormat = "yuva420p",
-     .audio = false, .indexFirst = false, .loops = false,
+     .audio = false, .indexFirst = false, .loops = false, .maxFps = 0, .maxFpsReason = "", .lastFrameOption = "",
      .encoderOptions = vp9Options, .framesInFlight = sixteenFrames, .addComment = nullptr},
     {.format = VideoFormat::Mov, .extension = ".mov", .label = "MOV", .article = "a", .codec = "ProRes 4444",
      .muxer = "mov", .encoder = "prores_ks", .pixelFormat = "yuv444p10le", .alphaPixelFormat = "yuva444p10le",
-     .audio = true, .indexFirst = true, .loops = false,
+     .audio = true, .indexFirst = true, .loops = false, .maxFps = 0, .maxFpsReason = "", .lastFrameOption = "",
      .encoderOptions = proResOptions, .framesInFlight = fourFrames, .addComment = nullptr},
 }};
 
@@ -129,6 +131,13 @@ void refuseOutputThatCannotCarry(const VideoOptions& wanted, VideoFormat format)
     throw std::invalid_argument("render.audio: a " + std::string(kind.extension) + " gets no sound track; write " +
                                 kindsThat([](const VideoKind& k, const VideoOptions&) { return k.audio; }, wanted) +
                                 ", or remove render.audio");
+  }
+  if (!kind.carriesFps(wanted.fps)) {
+    throw std::invalid_argument(
+        "render.fps: a " + std::string(kind.extension) + " plays at most " + std::to_string(kind.maxFps) + " fps (" +
+        std::string(kind.maxFpsReason) + "), got " + std::to_string(wanted.fps) + "; set render.fps to " +
+        std::to_string(kind.maxFps) + " or less, or write " +
+        kindsThat([](const VideoKind& k, const VideoOptions& w) { return k.carriesFps(w.fps); }, wanted));
   }
 }
 

@@ -33,6 +33,12 @@ struct VideoKind {
   bool audio;       // holds a sound track (AAC)
   bool indexFirst;  // the index before the media (+faststart): players start before the download ends
   bool loops;       // plays for ever
+  // The highest frame rate the kind shows as written, 0 for any, and why, for the refusal.
+  int maxFps;
+  std::string_view maxFpsReason;
+  // The muxer's option for how long the last frame lasts, where the muxer does not take it from the
+  // packet's duration (GIF's repeats the delay before it); empty where it does.
+  std::string_view lastFrameOption;
   // The encoder's options for `options`, set with libav's option search: the encoder's own
   // options first (x264's "preset"), then the codec context's ("threads").
   LibavOptions (*encoderOptions)(const VideoOptions& options);
@@ -43,6 +49,7 @@ struct VideoKind {
   void (*addComment)(const std::filesystem::path& file, std::string_view comment);
 
   bool keepsAlpha() const { return !alphaPixelFormat.empty(); }
+  bool carriesFps(int fps) const { return maxFps == 0 || fps <= maxFps; }
 };
 
 // Every kind, in the order of VideoFormat: the order names are matched and kinds listed in.
@@ -60,8 +67,8 @@ inline constexpr std::string_view kPngExtension = ".png";
 std::string joinedWithOr(std::span<const std::string> items);
 
 // Throws std::invalid_argument in the words of the scene's render block when `format` cannot carry
-// what `wanted` asks for (docs/outputs.md): alpha (render.background "transparent") or a sound
-// track (render.audio); each message names the kinds that can.
+// what `wanted` asks for (docs/outputs.md): alpha (render.background "transparent"), a sound track
+// (render.audio) or its frame rate (render.fps); each message names the kinds that can.
 void refuseOutputThatCannotCarry(const VideoOptions& wanted, VideoFormat format);
 
 }  // namespace coinroll::video

@@ -72,5 +72,19 @@ TEST(OutputFormats, ASoundTrackNeedsAKindThatHoldsAudio) {
   EXPECT_EQ(refusal(withSound, VideoFormat::Mov), "accepted");
 }
 
+TEST(OutputFormats, AGifPlaysAtMost50FpsAndTheRefusalSaysWhyAndWhatElseCarriesTheRate) {
+  VideoOptions fast;
+  fast.fps = 60;
+  EXPECT_EQ(refusal(fast, VideoFormat::Gif),
+            "render.fps: a .gif plays at most 50 fps (its frame delays are whole hundredths of a second, and browsers "
+            "play a delay under 2 as 10), got 60; set render.fps to 50 or less, or write a .mp4, a .webm or a .mov");
+  for (const VideoFormat format : {VideoFormat::Mp4, VideoFormat::WebM, VideoFormat::Mov}) {
+    fast.fps = 240;
+    EXPECT_EQ(refusal(fast, format), "accepted") << videoKind(format).label;
+  }
+  fast.fps = 50;
+  EXPECT_EQ(refusal(fast, VideoFormat::Gif), "accepted");
+}
+
 }  // namespace
 }  // namespace coinroll::video

@@ -278,7 +278,7 @@ void runStill(const StillOptions& options) {
   const std::filesystem::path output(options.output);
   refuseEmptyOutputName("-o", options.output, "still.png");
   // A device, FIFO or descriptor has no name to check: it gets the PNG.
-  if (output.extension() != ".png" && !io::namesStream(output)) {
+  if (!video::namesExtension(output, video::kPngExtension) && !io::namesStream(output)) {
     throw UsageError(fmt::format("-o: a still is written as PNG; give a name ending in .png, got \"{}\"", options.output));
   }
   if (options.strobeFrom && options.strobe == 0) {

@@ -734,6 +734,11 @@ case("still-time-nan", C, "still --time nan", "still scene.json --time nan -o o.
 case("still-no-time", C, "still without --time", "still scene.json -o o.png", 2, "--time is required")
 case("still-jpg", C, "still -o o.jpg", "still scene.json --time 0.1 -o o.jpg", 2,
      'a still is written as PNG; give a name ending in .png, got "o.jpg"', key=".png")
+# One rule for every output name (issue 39): an extension in any case, as render takes clip.GIF.
+case("still-upper-png", C, "still -o UP.PNG (.png in any case)", f"still scene.json --time 0.1 {SMALL} -o UP.PNG", 0, None,
+     produces=("UP.PNG",))
+case("render-seq-upper-png", C, "render -o F_%03d.PNG (.png in any case)",
+     f"render scene.json -q {SMALL} --set duration=0.1 -o F_%03d.PNG", 0, None, produces=("F_00[0-3].PNG",))
 case("strobe-negative", C, "still --strobe -3", "still scene.json --time 0.1 -o o.png --strobe -3", 2,
      "--strobe: must be 0 to 500 copies, got -3", key="--strobe")
 case("strobe-from-late", C, "--strobe-from after --time",
@@ -1333,6 +1338,8 @@ case("compare-diff-is-input", C, "--diff naming an input", "compare a.png b.png 
      "--diff a.png: that is the input a.png; choose another output name", key="--diff", files=PNGS, na_before=NO_COMPARE)
 case("compare-diff-not-png", C, "--diff without .png", "compare a.png b.png --diff d.txt", 2,
      "--diff: the diff image is a PNG; give a name ending in .png", key="--diff", files=PNGS, na_before=NO_COMPARE)
+case("compare-diff-upper-png", C, "--diff D.PNG (.png in any case)", "compare a.png b.png --diff D.PNG", 1, "", key=None,
+     files=PNGS, produces=("D.PNG",), na_before=NO_COMPARE)
 case("compare-tolerance-range", C, "--channel-tolerance 300", "compare a.png b.png --channel-tolerance 300", 2,
      "--channel-tolerance: must be a whole number 0..255, got 300", key="--channel-tolerance", files=PNGS, na_before=NO_COMPARE)
 case("compare-different", C, "every pixel differs by 2 levels", "compare a.png b.png", 1,

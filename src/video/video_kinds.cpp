@@ -62,7 +62,7 @@ LibavOptions noOptions(const VideoOptions&) { return {}; }
 std::uint64_t sixteenFrames(const VideoOptions&) { return 16; }
 std::uint64_t fourFrames(const VideoOptions&) { return 4; }
 
-const std::array<VideoKind, 4> kKinds = {{
+const auto kKinds = std::to_array<VideoKind>({
     {.format = VideoFormat::Mp4, .extension = ".mp4", .label = "MP4", .article = "an", .codec = "H.264",
      .muxer = "mp4", .encoder = "libx264", .pixelFormat = "yuv420p", .alphaPixelFormat = "",
      .audio = true, .indexFirst = true, .loops = false, .maxFps = 0, .maxFpsReason = "", .lastFrameOption = "",
@@ -81,7 +81,7 @@ const std::array<VideoKind, 4> kKinds = {{
      .muxer = "mov", .encoder = "prores_ks", .pixelFormat = "yuv444p10le", .alphaPixelFormat = "yuva444p10le",
      .audio = true, .indexFirst = true, .loops = false, .maxFps = 0, .maxFpsReason = "", .lastFrameOption = "",
      .encoderOptions = proResOptions, .framesInFlight = fourFrames, .addComment = nullptr},
-}};
+});
 
 // "a .webm, a .mov" for each kind `carries` accepts, then `also` when given.
 std::string kindsThat(bool (*carries)(const VideoKind&, const VideoOptions&), const VideoOptions& wanted,

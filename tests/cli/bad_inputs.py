@@ -720,7 +720,7 @@ case("gif-fps-60", C, "render.fps 60 with .gif (browsers would play its 1-hundre
      "render scene.json -q -o o.gif --set render.fps=60", 2,
      "render.fps: a .gif plays at most 50 fps (its frame delays are whole hundredths of a second, and browsers play a "
      "delay under 2 as 10), got 60; set render.fps to 50 or less, or write a .mp4, a .webm or a .mov", key="render.fps",
-     na_before=FORMATS)
+     gtest=(G_RENDER,), na_before=FORMATS)
 case("render-two-patterns", C, "PNG pattern with two %d", "render scene.json -o o_%d_%d.png", 2,
      "o_%d_%d.png: bad PNG sequence pattern: more than one % conversion", key="%")
 case("render-pattern-s", C, "PNG pattern with %s", "render scene.json -o o_%s.png", 2,

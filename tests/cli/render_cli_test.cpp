@@ -118,6 +118,7 @@ TEST_F(RenderCliTest, BadRequestsExitTwoAndLeaveNothing) {
       {"-o " + (dir_ / "bad.GIF").string() + " --set render.background=\\\"transparent\\\"", "render.background", 2},
       {"-o " + (dir_ / "bad.mov").string() + " --set render.background=\\\"clear\\\"", "render.background", 2},
       {"-o " + (dir_ / "bad.gif").string() + " --set render.audio=true", "render.audio", 2},
+      {"-o " + (dir_ / "bad.gif").string() + " --set render.fps=60", "render.fps", 2},
   };
   for (const Case& c : cases) {
     const RunResult r = run("render " + scene_.string() + " " + c.arguments);

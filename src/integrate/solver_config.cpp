@@ -31,7 +31,9 @@ constexpr std::array<std::string_view, kMethods.size()> kMethodNames = [] {
 }();
 
 static_assert(std::ranges::all_of(std::array{0, 1, 2, 3, 4},
-                                  [](int i) { return kMethods[static_cast<std::size_t>(i)].method == static_cast<Method>(i); }),
+                                  [](int i) {
+                                    return kMethods[static_cast<std::size_t>(i)].method == static_cast<Method>(i);
+                                  }),
               "kMethods is in the order of the Method enum");
 
 const MethodEntry& entryOf(Method method) { return kMethods.at(static_cast<std::size_t>(method)); }

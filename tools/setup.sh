@@ -16,6 +16,7 @@ packages=(
   python3 python3-matplotlib python3-numpy python3-scipy python3-sympy
   python3-dev pybind11-dev python3-pybind11 python3-pytest  # the Python module (python/) and its tests
   parallel
+  emscripten node-acorn  # the WebAssembly core (tools/build_wasm.sh, docs/web.md); acorn for em++'s JavaScript optimizer
   slurm-wlm munge  # tests/slurm/slurm_test.py starts a one-node Slurm
 )
 

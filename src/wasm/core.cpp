@@ -97,7 +97,7 @@ class CsvCollector : public std::streambuf {
 
 // The lines `coinroll simulate` prints on stderr about a run (cli/commands.cpp reportStop and the
 // summary after it), word for word; tests/web/wasm_core_test.js compares them with the command's.
-std::vector<std::string> reportLines(const pipeline::CsvRunResult& result) {
+std::vector<std::string> reportLines(const pipeline::TrajectoryReport& result) {
   std::vector<std::string> lines;
   for (const pipeline::ModeSwitch& w : result.switches) {
     lines.push_back(fmt::format("coinroll: {} at t = {:.9f} s", w.toSliding ? "slides" : "rolls", w.t));
@@ -133,7 +133,7 @@ val stringArray(const std::vector<std::string>& strings) {
   return array;
 }
 
-val runResult(const std::string& csv, const pipeline::CsvRunResult& result, double duration, const std::string& note) {
+val runResult(const std::string& csv, const pipeline::TrajectoryReport& result, double duration, const std::string& note) {
   val out = val::object();
   // As bytes, copied out of the module's memory (slice), for core_api.js to decode with TextDecoder:
   // embind's own std::string conversion walks the text a byte at a time in JavaScript, which took a
@@ -227,7 +227,7 @@ val simulateCsv(const std::string& scene, bool hasScene, val overrides, const st
     simulation.cancel = &cancel;
     CsvCollector collector(progress, pipeline::sampleCount(config.duration, sampleDt), cancel);
     std::ostream out(&collector);
-    pipeline::CsvRunResult result;
+    pipeline::TrajectoryReport result;
     try {
       result = pipeline::writeTrajectoryCsv(simulation, sampleDt, out);
     } catch (const std::invalid_argument& e) {  // as the command's withProgress maps it

@@ -61,6 +61,9 @@ const fromSlider = (scale, position) => {
   return value === 0 ? 0 : Number(value.toPrecision(3));
 };
 
+// Small numbers in exponent form, which a narrow box shows whole (1.8e-5, not 0.000018).
+const numberText = (value) => (value !== 0 && Math.abs(value) < 1e-3 ? value.toExponential() : String(value));
+
 function element(tag, attributes = {}, children = []) {
   const node = document.createElement(tag);
   for (const [name, value] of Object.entries(attributes)) {
@@ -127,7 +130,7 @@ class Control {
       const value = this.value();
       const usable = value !== undefined && !(this.optional && !present);
       this.slider.disabled = this.box.disabled = !usable;
-      if (document.activeElement !== this.box) this.box.value = value !== undefined ? value : '';
+      if (document.activeElement !== this.box) this.box.value = value !== undefined ? numberText(value) : '';
       if (!this.dragging) this.scale = sliderScale(this.key, Number(value));
       if (value !== undefined) this.slider.value = toSlider(this.scale, value);
     }

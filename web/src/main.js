@@ -45,6 +45,7 @@ const page = {
   scene: null,          // the scene the controls edit
   trajectory: null,     // the run on screen
   run: null,            // {text, sourceName, sampleDt} of that run, what "download scene" writes
+  runRequest: 0,        // the request that made it
   t: 0, playing: true, speed: 1, holdUntil: 0,
   changed: (path) => onControl(path),
   suggestedValue,
@@ -54,9 +55,14 @@ const runner = new Runner(coreSource, workerSource);
 const view = new View($('canvas'));
 const controls = new Controls($('controls'), page);
 let rig = null, fixedSize = null, lastFrameTime, request = 0;
-// A promise per request, settled once its run is drawn (or refused): the test hook waits on it.
-let settled = Promise.resolve();
-let settle = () => {};
+// Whether the latest request is still to be drawn (or refused), and who waits for it (the test hook).
+let pending = true;
+let waiters = [];
+function settle() {
+  pending = false;
+  for (const resolve of waiters) resolve();
+  waiters = [];
+}
 const timing = { firstFrameAt: undefined, last: undefined };
 
 function showSceneText(text) {
@@ -74,8 +80,7 @@ function onControl(path) {
 async function start(text, sourceName, origin) {
   const id = ++request;
   const requestedAt = performance.now();
-  settle();
-  settled = new Promise((resolve) => { settle = resolve; });
+  pending = true;
   controls.clearErrors();
   $('scene-error').textContent = '';
   const sampleDt = sampleDtOf(text);
@@ -92,6 +97,7 @@ async function start(text, sourceName, origin) {
     if (origin.box) page.scene = scene;
     page.trajectory = new Trajectory(result, scene, sampleDt, renderSpec(scene));
     page.run = { text, sourceName, sampleDt };
+    page.runRequest = id;
     newRun(result);
     timing.last = { requestedAt, resultAt: performance.now(), workerMs: result.ms };
   } catch (e) {
@@ -159,7 +165,7 @@ function draw() {
   $('time-text').textContent = `${state.t.toFixed(3)} / ${trajectory.endTime.toFixed(3)} s`;
   if (timing.firstFrameAt === undefined) timing.firstFrameAt = performance.now();
   if (timing.last && timing.last.firstFrameAt === undefined) timing.last.firstFrameAt = performance.now();
-  settle();
+  if (page.runRequest === request) settle();
   return state;
 }
 
@@ -221,8 +227,10 @@ $('download').addEventListener('click', () => {
   setTimeout(() => URL.revokeObjectURL(link.href), 0);
 });
 
+let defaultSceneText = '';
 runner.ready.then(({ version, defaultScene }) => {
   $('version').textContent = version;
+  defaultSceneText = defaultScene;
   page.scene = JSON.parse(defaultScene);
   showSceneText(defaultScene);
   controls.refresh();
@@ -233,7 +241,7 @@ requestAnimationFrame(frame);
 // For tests and benchmarks (tests/web/page_test.mjs, bench/page_bench.mjs): what the page shows,
 // read through the page itself.
 window.coinrollPage = {
-  settled: () => settled,
+  settled: () => (pending ? new Promise((resolve) => waiters.push(resolve)) : Promise.resolve()),
   stateAt: (t) => page.trajectory.stateAt(t),
   // Stops playback at simulated time t and draws it; returns the overlay's text.
   seek(t) {
@@ -254,5 +262,7 @@ window.coinrollPage = {
   showTestMarks: (on) => view.showTestMarks(on),
   timing: () => Object.assign({}, timing, { last: timing.last && Object.assign({}, timing.last) }),
   playing: () => page.playing,
+  defaultScene: () => defaultSceneText,
+  playbackRate: (t) => page.trajectory.playbackRate(page.trajectory.stateAt(t)),
   time: () => page.t,
 };

@@ -220,11 +220,11 @@ export class View {
       marker.push(0, 0, 0, Math.cos(a1), 0, Math.sin(a1), Math.cos(a0), 0, Math.sin(a0));
     }
     this.marker = mesh(geometry({ position: [new Float32Array(marker), 3] }), flat(kContactColour, decal), 3);
-    // Test marks: one pixel-sized dot each at the coin's centre and its contact point, over everything,
+    // Test marks: a 5-pixel square each at the coin's centre and its contact point, over everything,
     // so that a browser test can find where the page put them (tests/web/page_test.mjs).
     this.testMarks = [[1, 0, 1, 1], [0, 1, 1, 1]].map((colour) => {
       const p = new Points(geometry({ position: [new Float32Array(3), 3] }), flat(colour, { depthTest: false, depthWrite: false }));
-      p.material.uniforms.pointSize.value = 1;
+      p.material.uniforms.pointSize.value = 5;
       p.renderOrder = 10;
       p.frustumCulled = false;
       p.visible = false;

@@ -247,6 +247,7 @@ window.coinrollPage = {
   seek(t) {
     setPlaying(false);
     page.t = t;
+    page.holdUntil = 0;
     draw();
     return $('hud').textContent;
   },

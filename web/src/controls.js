@@ -82,7 +82,7 @@ class Control {
     this.effect = effect ? effect[1] : null;
     this.key = schemaKey(this.effect ? `${path}.type` : path);
     this.optional = !this.effect && this.key.type !== 'name' && this.key.default === undefined && !this.key.required;
-    this.row = element('div', { class: 'control', title: tooltip(this.key), 'data-path': path });
+    this.row = element('div', { class: this.effect || this.key.type === 'boolean' ? 'control whole' : 'control', title: tooltip(this.key), 'data-path': path });
     const label = element('label', { class: 'name', text: this.effect ? this.effect.replace(/_/g, ' ') : path.replace(/^.*\./, '') });
     this.row.append(label);
     if (this.effect || this.optional || this.key.type === 'boolean') {
@@ -121,7 +121,7 @@ class Control {
     const scene = this.page.scene;
     const present = this.effect ? hasEffect(scene, this.effect) : getPath(scene, this.path) !== undefined;
     let shown = onlyWithHolds(scene, this.key);
-    if (this.path === 'initial[steady].steady') shown = true;
+    if (this.path === 'initial[steady].steady' || this.effect) shown = true;
     else if (this.path.startsWith('initial.')) shown = shown && getPath(scene, 'initial[steady].steady') === undefined;
     this.row.hidden = !shown;
     if (this.check) this.check.checked = this.key.type === 'boolean' ? this.value() === true : present;

@@ -66,7 +66,7 @@ try {
   }
   row('slider move on the default 6 s scene to its first frame', '≤ 30 ms', `${median(moves).toFixed(1)} ms (p90 ${p90(moves).toFixed(1)})`,
       `median of ${moves.length}: the run in the worker ${median(workerMs).toFixed(1)} ms, its result back ${median(resultMs).toFixed(1)} ms, ` +
-      'then the next animation frame draws it');
+      'then drawn at once');
 
   const euler = [], eulerTotal = [];
   for (let i = 0; i < 3; ++i) {

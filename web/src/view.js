@@ -181,7 +181,6 @@ const shadowProjection = new Matrix4().set(1, -kLight.x / kLight.y, 0, 0, 0, 0, 
 
 export class View {
   constructor(canvas) {
-    this.canvas = canvas;
     this.renderer = new WebGLRenderer({ canvas, antialias: true, stencil: true, alpha: false });
     this.renderer.outputColorSpace = LinearSRGBColorSpace;
     this.renderer.setClearColor(new Color(...kClassic.backgroundSrgb), 1);

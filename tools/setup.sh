@@ -31,7 +31,8 @@ packages=(
 web=$here/../web
 if [ -f "$web/package-lock.json" ] && ! cmp -s "$web/package-lock.json" "$web/node_modules/.coinroll-lock"; then
   if command -v npm >/dev/null; then
-    (cd "$web" && npm ci --no-audit --no-fund --loglevel=error) && cp "$web/package-lock.json" "$web/node_modules/.coinroll-lock"
+    (cd "$web" && npm ci --no-audit --no-fund --loglevel=error)
+    cp "$web/package-lock.json" "$web/node_modules/.coinroll-lock"
   else
     echo "setup.sh: npm not found: the page (web/) cannot be built and its tests skip" >&2
   fi

@@ -148,7 +148,7 @@ try {
   await page.click('#play');
   const pace = await page.evaluate(async () => {
     const t0 = window.coinrollPage.time(), start = performance.now();
-    await new Promise((r) => setTimeout(r, 1000));
+    await new Promise((r) => setTimeout(r, 2000));
     return { simulated: window.coinrollPage.time() - t0, real: (performance.now() - start) / 1000 };
   });
   check('play advances the simulated time, at most at the scene\'s pace', pace.simulated > 0 && pace.simulated <= 0.5 * pace.real + 0.05,
@@ -253,9 +253,11 @@ try {
 
   // The Euler's disk: progress while it runs, a newer run taking over, and its playback's slow motion.
   await page.select('#example', 'euler_disk');
-  await new Promise((r) => setTimeout(r, 400));
-  const busy = await page.evaluate(() => ({ shown: !document.getElementById('busy').hidden, value: document.getElementById('progress').value }));
-  check('a long run shows its progress', busy.shown && busy.value > 0 && busy.value < 1, JSON.stringify(busy));
+  const busy = await page.waitForFunction(() => {
+    const shown = !document.getElementById('busy').hidden, value = document.getElementById('progress').value;
+    return shown && value > 0 && { value, running: window.coinrollPage.run().sourceName !== 'examples/euler_disk.json' };
+  }, { timeout: 60000 }).then((h) => h.jsonValue(), (e) => ({ error: e.message }));
+  check('a long run shows its progress', busy.running && busy.value < 1, JSON.stringify(busy));
   await page.select('#example', 'steady_circle');
   await settled();
   const taken = await hook('run');

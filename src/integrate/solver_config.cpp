@@ -1,6 +1,5 @@
 #include "integrate/solver_config.h"
 
-#include <algorithm>
 #include <array>
 
 namespace coinroll::integrate {
@@ -30,11 +29,14 @@ constexpr std::array<std::string_view, kMethods.size()> kMethodNames = [] {
   return names;
 }();
 
-static_assert(std::ranges::all_of(std::array{0, 1, 2, 3, 4},
-                                  [](int i) {
-                                    return kMethods[static_cast<std::size_t>(i)].method == static_cast<Method>(i);
-                                  }),
-              "kMethods is in the order of the Method enum");
+// A loop, not std::ranges::all_of: the libc++ of Emscripten 3.1.6, which builds the WebAssembly core
+// (docs/web.md), has no ranges algorithms.
+static_assert([] {
+  for (std::size_t i = 0; i < kMethods.size(); ++i) {
+    if (kMethods[i].method != static_cast<Method>(i)) return false;
+  }
+  return true;
+}(), "kMethods is in the order of the Method enum");
 
 const MethodEntry& entryOf(Method method) { return kMethods.at(static_cast<std::size_t>(method)); }
 

@@ -73,6 +73,13 @@ MAY_INCLUDE = {
         "pipeline": "simulate, still and video through the same pipelines as the commands",
         "video": "picks the sink for a video's file name",
     },
+    # The WebAssembly core's binding (docs/web.md): `coinroll simulate` as a JavaScript call, the
+    # scene-to-CSV path only (no render or video in a browser's module). A peer of cli and api.
+    "wasm": {
+        "physics": "a run's end event by name",
+        "scene": "reads the scene text and its --set overrides as the command does",
+        "pipeline": "builds the simulation and writes the trajectory CSV as the command does",
+    },
     # Parse argv, build the pipeline, run, map errors to exit codes: may use everything.
     "cli": {
         "io": "commands write their outputs through io::OutputFile",
@@ -106,6 +113,8 @@ WHY_NOT = {
     ("image", None): "image is a leaf utility (io only)",
     ("io", None): "io is the bottom leaf utility",
     ("pipeline", "cli"): "argv and exit codes belong to cli; cli calls pipeline",
+    ("wasm", "render"): "the WebAssembly core is the scene-to-CSV path; a page draws for itself",
+    ("wasm", "video"): "the WebAssembly core is the scene-to-CSV path; it encodes nothing",
 }
 
 # Third-party and std headers a folder must never include: (regex on the included name, why).
@@ -129,6 +138,7 @@ NEVER = {
     "integrate": GL + FFMPEG + JSON + CLI,
     "scene": GL + FFMPEG + CLI,
     "pipeline": CLI,
+    "wasm": GL + FFMPEG + CLI,
     "cli": [],
 }
 

@@ -1,0 +1,110 @@
+// The module's documented functions (docs/web.md "The JavaScript surface"), added to the module
+// that createCoinrollCore() resolves to; em++ appends this file to the module (--post-js). They
+// check their arguments here, where a mistake can be named in JavaScript's terms, and turn the
+// core's refusals into CoinrollError. All in a function of its own: Emscripten's code around it
+// has names of its own (run, out, err) that a declaration here would replace.
+
+(() => {
+  class CoinrollError extends Error {
+    constructor(kind, exitCode, message) {
+      super(message);
+      this.name = 'CoinrollError';
+      this.kind = kind;          // "scene", "request", "cancelled" or "failure"
+      this.exitCode = exitCode;  // what `coinroll simulate` exits with for the same input
+    }
+  }
+
+  const kSimulateOptions = ['sampleDt', 'sourceName', 'maxRows', 'onProgress'];
+
+  function describeValue(value) {
+    if (value === null) return 'null';
+    if (Array.isArray(value)) return 'an array';
+    return typeof value === 'object' ? `a ${value.constructor ? value.constructor.name : 'object'}` : `${typeof value} ${String(value)}`;
+  }
+
+  // [bytes or text, given]: null or undefined is the built-in default scene, as `coinroll simulate`
+  // without a scene file; an object is a scene document, as its JSON text.
+  function sceneArgument(scene) {
+    if (scene === undefined || scene === null) return ['', false];
+    if (typeof scene === 'string' || scene instanceof Uint8Array) return [scene, true];
+    if (scene instanceof ArrayBuffer) return [new Uint8Array(scene), true];
+    if (typeof scene === 'object' && !Array.isArray(scene)) return [JSON.stringify(scene), true];
+    throw new TypeError(`scene: expected the scene's JSON text (a string or bytes), a scene object, or null for the built-in ` +
+                        `default scene; got ${describeValue(scene)}`);
+  }
+
+  function overridesArgument(overrides) {
+    if (overrides === undefined || overrides === null) return [];
+    if (!Array.isArray(overrides) || !overrides.every((o) => typeof o === 'string')) {
+      throw new TypeError(`overrides: expected an array of "KEY.PATH=VALUE" strings, as --set takes them; got ${describeValue(overrides)}`);
+    }
+    return overrides;
+  }
+
+  function simulateOptions(options) {
+    if (options === undefined || options === null) options = {};
+    if (typeof options !== 'object') throw new TypeError(`options: expected an object; got ${describeValue(options)}`);
+    const unknown = Object.keys(options).filter((key) => !kSimulateOptions.includes(key));
+    if (unknown.length) throw new TypeError(`options: unknown ${unknown.join(', ')}; the options are ${kSimulateOptions.join(', ')}`);
+    const { sampleDt = 0.01, sourceName = 'scene JSON', maxRows = 1e9, onProgress } = options;
+    if (typeof sampleDt !== 'number') throw new TypeError(`options.sampleDt: expected a number of seconds; got ${describeValue(sampleDt)}`);
+    if (typeof sourceName !== 'string') throw new TypeError(`options.sourceName: expected a string; got ${describeValue(sourceName)}`);
+    if (typeof maxRows !== 'number' || !(maxRows >= 1)) {
+      throw new TypeError(`options.maxRows: expected a number >= 1; got ${describeValue(maxRows)}`);
+    }
+    if (onProgress !== undefined && typeof onProgress !== 'function') {
+      throw new TypeError(`options.onProgress: expected a function (rowsWritten, rowsExpected); got ${describeValue(onProgress)}`);
+    }
+    return { sampleDt, sourceName, maxRows, onProgress };
+  }
+
+  function simulateRun(scene, overrides, options) {
+    const [sceneText, hasScene] = sceneArgument(scene);
+    const list = overridesArgument(overrides);
+    const { sampleDt, sourceName, maxRows, onProgress } = simulateOptions(options);
+    // An exception thrown by the callback stops the run as `false` does, and is thrown once the run
+    // has unwound: passing through the WebAssembly it would skip the C++ destructors (the run's
+    // memory would stay taken).
+    let thrown = null;
+    const progress = onProgress && ((rows, expected) => {
+      try {
+        return onProgress(rows, expected);
+      } catch (e) {
+        thrown = { e };
+        return false;
+      }
+    });
+    const result = Module['coreSimulateCsv'](sceneText, hasScene, list, sourceName, sampleDt, maxRows, progress);
+    if (thrown) throw thrown.e;
+    if (result.error) throw new CoinrollError(result.error.kind, result.error.exitCode, result.error.message);
+    result.csv = new TextDecoder().decode(result.csvBytes);
+    delete result.csvBytes;
+    return result;
+  }
+
+  // The CSV's columns as the numbers it prints: %.17g reads back as the very doubles.
+  function columnsOf(csv) {
+    const lines = csv.split('\n');
+    lines.pop();  // the text ends with a line break
+    const names = lines[0].split(',');
+    const columns = names.map(() => new Float64Array(lines.length - 1));
+    for (let row = 1; row < lines.length; ++row) {
+      const fields = lines[row].split(',');
+      for (let c = 0; c < names.length; ++c) columns[c][row - 1] = Number(fields[c]);
+    }
+    return { names, columns: Object.fromEntries(names.map((name, c) => [name, columns[c]])) };
+  }
+
+  Module['CoinrollError'] = CoinrollError;
+  // The bindings (core.cpp) exist once the WebAssembly has started, after this file ran: looked up when called.
+  Module['version'] = () => Module['coreVersion'];
+  Module['defaultSceneJson'] = () => Module['coreDefaultSceneJson']();
+  Module['simulateCsv'] = (scene, overrides, options) => simulateRun(scene, overrides, options);
+  Module['simulate'] = (scene, overrides, options) => {
+    const result = simulateRun(scene, overrides, options);
+    const table = columnsOf(result.csv);
+    delete result.csv;
+    // Object.assign, not spread syntax: Emscripten 3.1.6's JavaScript optimizer cannot parse that.
+    return Object.assign(table, result);
+  };
+})();

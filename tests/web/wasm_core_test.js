@@ -1,0 +1,368 @@
+#!/usr/bin/env node
+// The WebAssembly core (build_wasm.sh's coinroll_core.js) against the program it was built from,
+// run as users run it (docs/web.md "Equality with the program"):
+//
+//   node tests/web/wasm_core_test.js --module M.js --binary build/coinroll examples [--markdown FILE]
+//       every example scene and the built-in default scene: the CSV of `coinroll simulate SCENE
+//       --csv -` (the header, the rows, the time column and the sliding flag byte for byte, every
+//       other column to the tolerance below), its end and its stderr report;
+//   node tests/web/wasm_core_test.js --module M.js --binary build/coinroll bad-scenes CASES.json
+//       every scene refusal of tests/cli/bad_inputs.py (its --export-scene-cases file): the
+//       module's CoinrollError carries the program's message, byte for byte;
+//   node tests/web/wasm_core_test.js --module M.js api
+//       the JavaScript surface itself: default scene, options, progress and cancelling.
+//
+// Prints one line per case and "N passed, M failed"; exits 1 on any failure.
+
+'use strict';
+
+const childProcess = require('child_process');
+const fs = require('fs');
+const os = require('os');
+const path = require('path');
+
+const kRepo = path.resolve(__dirname, '..', '..');
+
+// docs/web.md "Tolerance": a column's largest difference from the program, over the largest
+// magnitude the program's column reaches (many columns cross zero, where a pointwise relative
+// difference means nothing), plus an absolute 1e-12 in the column's SI unit for columns that are 0
+// up to round-off. 1e-6 is below every example's own integration error (what a 100 times tighter
+// rtol changes: up to 2e-6 of a column, in falling_flat).
+const kTolerance = 1e-6;
+const kAbsoluteFloor = 1e-12;
+// skid_and_spin's 117 stick-slip switches amplify any last-bit change as they would a change of
+// its input: the program's own CSV moves by 2.1e-5 of a column when initial.theta moves by one ulp
+// (25 -> 25.000000000000004), more than the 1.6e-5 the module differs by.
+const kToleranceOf = { 'examples/skid_and_spin.json': 1e-4 };
+// The stderr report's step counts measure the adaptive step control's work, which follows the
+// trajectory: in skid_and_spin they differ by 22 of 164164 right-hand-side evaluations.
+const kWorkCountTolerance = 0.01;
+// Columns no library function computes: byte for byte.
+const kExactColumns = ['t', 'sliding'];
+
+function parseArguments(argv) {
+  const options = { markdown: null };
+  const rest = [];
+  for (let i = 0; i < argv.length; ++i) {
+    if (argv[i] === '--module') options.module = path.resolve(argv[++i]);
+    else if (argv[i] === '--binary') options.binary = path.resolve(argv[++i]);
+    else if (argv[i] === '--markdown') options.markdown = path.resolve(argv[++i]);
+    else rest.push(argv[i]);
+  }
+  [options.mode, options.cases] = rest;
+  if (!options.module || !['examples', 'bad-scenes', 'api'].includes(options.mode) ||
+      (options.mode !== 'api' && !options.binary) || (options.mode === 'bad-scenes' && !options.cases)) {
+    console.error('usage: wasm_core_test.js --module M.js [--binary coinroll] examples [--markdown FILE] | bad-scenes CASES.json | api');
+    process.exit(2);
+  }
+  return options;
+}
+
+class Checks {
+  constructor() {
+    this.passed = 0;
+    this.failed = 0;
+  }
+  // One case: `problems` empty passes it.
+  record(name, problems, detail = '') {
+    if (problems.length === 0) {
+      ++this.passed;
+      console.log(`ok   ${name}${detail ? ': ' + detail : ''}`);
+    } else {
+      ++this.failed;
+      console.log(`FAIL ${name}: ${problems.join('; ')}`);
+    }
+  }
+  finish() {
+    console.log(`${this.passed} passed, ${this.failed} failed`);
+    process.exit(this.failed === 0 ? 0 : 1);
+  }
+}
+
+function runProgram(binary, args, cwd) {
+  const r = childProcess.spawnSync(binary, args, { cwd, maxBuffer: 1 << 30 });
+  if (r.error) throw r.error;
+  return { status: r.status, stdout: r.stdout.toString('utf8'), stderr: r.stderr.toString('utf8') };
+}
+
+function errorMessageOf(stderr) {
+  const prefix = 'coinroll: error: ';
+  return stderr.startsWith(prefix) && stderr.endsWith('\n') && stderr.indexOf('\n') === stderr.length - 1
+    ? stderr.slice(prefix.length, -1) : null;
+}
+
+// What the module throws for a call, or null when it returns.
+function thrownBy(call) {
+  try {
+    call();
+  } catch (e) {
+    return e;
+  }
+  return null;
+}
+
+// ---------------------------------------------------------------------------------------------
+// examples
+
+// The numbers in a report line, and the line with each replaced by '#'.
+function numbersOf(line) {
+  const numbers = [];
+  const masked = line.replace(/-?\d+(\.\d+)?(e[-+]?\d+)?/g, (text, fraction) => {
+    numbers.push({ text, value: Number(text), decimals: fraction ? fraction.length - 1 : 0 });
+    return '#';
+  });
+  return { masked, numbers };
+}
+
+// The module's report against the program's stderr: the same lines in the same words; printed
+// times and fits to the tolerance (plus one unit of the last printed digit, where two roundings
+// may part); counts exact, but the step counts of the last line to kWorkCountTolerance.
+function compareReports(program, wasm, tolerance) {
+  const problems = [];
+  if (program.length !== wasm.length) {
+    return [`stderr has ${program.length} lines, the module's report ${wasm.length}: ${JSON.stringify(wasm)}`];
+  }
+  program.forEach((line, i) => {
+    const p = numbersOf(line);
+    const w = numbersOf(wasm[i]);
+    if (p.masked !== w.masked || p.numbers.length !== w.numbers.length) {
+      problems.push(`report line ${i + 1}: "${wasm[i]}" where the program says "${line}"`);
+      return;
+    }
+    const workCounts = /^coinroll: # rows, # steps/.test(p.masked);
+    p.numbers.forEach((a, k) => {
+      const b = w.numbers[k];
+      let allowed;
+      if (workCounts && k > 0) allowed = kWorkCountTolerance * Math.abs(a.value);
+      else if (a.decimals === 0 && !/e/.test(a.text)) allowed = 0;
+      else allowed = tolerance * Math.max(1, Math.abs(a.value)) + 10 ** -a.decimals;
+      if (!(Math.abs(a.value - b.value) <= allowed)) {
+        problems.push(`report line ${i + 1}: ${b.text} where the program prints ${a.text} (allowed ${allowed.toExponential(1)})`);
+      }
+    });
+  });
+  return problems;
+}
+
+// The module's structured events, as the report prints them.
+function eventLines(result) {
+  return result.events.map((e) => {
+    if (e.kind === 'switch') return `coinroll: ${e.name} at t = ${e.time.toFixed(9)} s`;
+    if (e.kind === 'warning') return `coinroll: warning: the ideal contact fails here (on_invalid: warn, going on): ${e.description}`;
+    return `coinroll: stopped early: ${e.description}`;
+  });
+}
+
+function compareExample(core, binary, scene, checks, table) {
+  const label = scene || 'built-in default scene';
+  const program = runProgram(binary, ['simulate', ...(scene ? [scene] : []), '--csv', '-'], kRepo);
+  const bytes = scene ? new Uint8Array(fs.readFileSync(path.join(kRepo, scene))) : null;
+  const options = { sourceName: scene || '' };
+  if (program.status !== 0) {
+    // A scene the program refuses: the module must refuse it alike.
+    const e = thrownBy(() => core.simulateCsv(bytes, [], options));
+    const message = errorMessageOf(program.stderr);
+    checks.record(label, e && e.message === message && e.exitCode === program.status ? []
+      : [`the program refuses it (exit ${program.status}: ${program.stderr.trim()}); the module ${e ? `says "${e.message}"` : 'runs it'}`]);
+    return;
+  }
+  const wasm = core.simulateCsv(bytes, [], options);
+  const structured = core.simulate(bytes, [], options);
+  const tolerance = kToleranceOf[scene] ?? kTolerance;
+  const problems = [];
+
+  const programLines = program.stdout.split('\n');
+  const wasmLines = wasm.csv.split('\n');
+  if (programLines[0] !== wasmLines[0]) problems.push(`header "${wasmLines[0]}" where the program writes "${programLines[0]}"`);
+  if (programLines.length !== wasmLines.length || wasm.rows !== programLines.length - 2) {
+    problems.push(`${wasm.rows} rows (${wasmLines.length - 2} lines) where the program writes ${programLines.length - 2}`);
+  }
+  const names = programLines[0].split(',');
+  const rows = Math.min(programLines.length, wasmLines.length) - 2;
+  const columns = names.map((name) => ({ name, maxAbs: 0, scale: 0, exactMismatch: null }));
+  for (let r = 1; r <= rows; ++r) {
+    const p = programLines[r].split(',');
+    const w = wasmLines[r].split(',');
+    columns.forEach((c, i) => {
+      if (kExactColumns.includes(c.name)) {
+        if (p[i] !== w[i] && c.exactMismatch === null) c.exactMismatch = `row ${r}: ${w[i]} where the program writes ${p[i]}`;
+        return;
+      }
+      c.maxAbs = Math.max(c.maxAbs, Math.abs(Number(p[i]) - Number(w[i])));
+      c.scale = Math.max(c.scale, Math.abs(Number(p[i])));
+    });
+  }
+  for (const c of columns) {
+    if (c.exactMismatch) problems.push(`${c.name} differs at ${c.exactMismatch}`);
+    if (!(c.maxAbs <= tolerance * c.scale + kAbsoluteFloor)) {
+      problems.push(`${c.name} differs by ${c.maxAbs.toExponential(2)}, more than ${tolerance} of its largest magnitude ` +
+                    `${c.scale.toExponential(2)}`);
+    }
+  }
+
+  // The structured form: the very doubles the CSV prints, under the CSV's names.
+  if (structured.names.join(',') !== programLines[0]) problems.push(`simulate() names ${structured.names.join(',')}`);
+  structured.names.forEach((name, i) => {
+    const column = structured.columns[name];
+    if (!(column instanceof Float64Array) || column.length !== wasm.rows) {
+      problems.push(`simulate() column ${name} is no Float64Array of ${wasm.rows}`);
+      return;
+    }
+    const k = column.findIndex((v, r) => !Object.is(v, Number(wasmLines[r + 1].split(',')[i])));
+    if (k >= 0) problems.push(`simulate() column ${name} row ${k + 1} is ${column[k]}, the CSV says ${wasmLines[k + 1].split(',')[i]}`);
+  });
+
+  const report = program.stderr.trimEnd().split('\n');
+  problems.push(...compareReports(report, wasm.report, tolerance));
+  // The events as data say what the report says.
+  const printedEvents = report.filter((l) => /^coinroll: (slides|rolls) at|^coinroll: warning: the ideal|^coinroll: stopped early/.test(l));
+  problems.push(...compareReports(printedEvents, eventLines(structured), tolerance).map((p) => 'events: ' + p));
+  const stop = report.find((l) => l.startsWith('coinroll: stopped early: '));
+  const endEvent = stop ? stop.split(' ')[3] : 'duration';
+  if (structured.end.event !== endEvent) problems.push(`ends by ${structured.end.event} where the program ends by ${endEvent}`);
+
+  const worst = columns.filter((c) => !kExactColumns.includes(c.name) && tolerance * c.scale > kAbsoluteFloor)
+    .reduce((a, c) => Math.max(a, c.maxAbs / c.scale), 0);
+  checks.record(label, problems, `${wasm.rows} rows, ends by ${structured.end.event}; largest difference ${worst.toExponential(1)} ` +
+                `of a column's magnitude (tolerance ${tolerance.toExponential(0)})`);
+  table.push({ label, rows: wasm.rows, tolerance, columns });
+}
+
+// docs/web.md's table: each column's largest difference per scene, absolute and (in brackets)
+// over the column's largest magnitude.
+function markdownTable(table) {
+  const short = (x) => x.toExponential(x === 0 ? 0 : 1);
+  const scenes = table.map(({ label }) => label.replace('examples/', '').replace('.json', '').replace('built-in default scene', 'default'));
+  const lines = [`| column | ${scenes.join(' | ')} |`, `|---|${scenes.map(() => '---|').join('')}`,
+                 `| rows | ${table.map((t) => t.rows).join(' | ')} |`,
+                 `| tolerance | ${table.map((t) => t.tolerance.toExponential(0)).join(' | ')} |`];
+  const names = [...new Set(table.flatMap((t) => t.columns.map((c) => c.name)))];
+  for (const name of names) {
+    const cells = table.map(({ columns }) => {
+      const c = columns.find((column) => column.name === name);
+      if (!c) return '';
+      if (kExactColumns.includes(name)) return 'identical';
+      return c.maxAbs === 0 ? '0' : `${short(c.maxAbs)} (${short(c.maxAbs / c.scale)})`;
+    });
+    lines.push(`| ${name} | ${cells.join(' | ')} |`);
+  }
+  return lines.join('\n') + '\n';
+}
+
+function examples(core, options, checks) {
+  const scenes = [null, ...fs.readdirSync(path.join(kRepo, 'examples')).filter((n) => n.endsWith('.json')).sort()
+    .map((n) => `examples/${n}`)];
+  const table = [];
+  for (const scene of scenes) compareExample(core, options.binary, scene, checks, table);
+  if (options.markdown) fs.writeFileSync(options.markdown, markdownTable(table));
+}
+
+// ---------------------------------------------------------------------------------------------
+// bad scenes
+
+function badScenes(core, options, checks) {
+  const cases = JSON.parse(fs.readFileSync(options.cases, 'utf8'));
+  // Not in the table, which names every file scene.json: the file's name in the message, with a
+  // control character in it that the program shows escaped.
+  cases.push({ id: 'control-character-in-file-name', file: 'sc\x1bene.json', scene_hex: Buffer.from('{').toString('hex'),
+               overrides: [], message: 'sc\\x1bene.json: invalid JSON at line 1, column 2', or_message: '' });
+  // Named by the process, as tests/support/scratch_dir.h names its directories: two builds' suites
+  // may run at once.
+  const directory = fs.mkdtempSync(path.join(os.tmpdir(), `coinroll_wasm_bad_scenes_${process.pid}_`));
+  try {
+    for (const c of cases) {
+      const bytes = Buffer.from(c.scene_hex, 'hex');
+      const file = c.file || 'scene.json';
+      fs.writeFileSync(path.join(directory, file), bytes);
+      const program = runProgram(options.binary,
+                                 ['simulate', file, '--csv', 'o.csv', ...c.overrides.flatMap((o) => ['--set', o])], directory);
+      const message = errorMessageOf(program.stderr);
+      const problems = [];
+      if (program.status !== 2 || message === null) {
+        problems.push(`the program answers exit ${program.status}: ${JSON.stringify(program.stderr)}, not one error line and exit 2`);
+      } else if (!message.includes(c.message) && !(c.or_message && message.includes(c.or_message))) {
+        // The table's own test names the program's fault; here it would leave nothing to compare.
+        problems.push(`the program's message "${message}" is not the table's "${c.message}"`);
+      }
+      fs.rmSync(path.join(directory, file));
+      const e = thrownBy(() => core.simulateCsv(new Uint8Array(bytes), c.overrides, { sourceName: file }));
+      if (!e) problems.push('the module runs it');
+      else if (!(e instanceof core.CoinrollError)) problems.push(`the module throws ${e}`);
+      else if (e.message !== message) problems.push(`the module says ${JSON.stringify(e.message)}, the program ${JSON.stringify(message)}`);
+      else if (e.exitCode !== program.status || e.kind !== 'scene') problems.push(`kind ${e.kind}, exit code ${e.exitCode}`);
+      checks.record(c.id, problems);
+    }
+  } finally {
+    fs.rmSync(directory, { recursive: true, force: true });
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// api
+
+function api(core, checks) {
+  const expectThrow = (name, call, test) => {
+    const e = thrownBy(call);
+    checks.record(name, e && test(e) ? [] : [e ? `threw ${e.name}: ${e.message}` : 'did not throw']);
+  };
+
+  const document = JSON.parse(core.defaultSceneJson());
+  const fromText = core.simulateCsv(core.defaultSceneJson(), ['duration=1']);
+  const fromNull = core.simulateCsv(null, ['duration=1']);
+  const fromObject = core.simulateCsv(document, ['duration=1']);
+  checks.record('the default scene as JSON text, as an object and as null give one CSV',
+                fromText.csv === fromNull.csv && fromObject.csv === fromNull.csv && fromNull.rows === 101 ? [] : ['they differ']);
+  checks.record('defaultSceneJson() is the built-in scene', document.name === 'coinroll' && document.duration > 0 ? [] : [
+    `got ${core.defaultSceneJson()}`]);
+
+  const fine = core.simulateCsv(null, ['duration=1'], { sampleDt: 0.001 });
+  checks.record('sampleDt sets the rows', fine.rows === 1001 && fine.csv.split('\n')[2].startsWith('0.001,') ? [] : [
+    `${fine.rows} rows`]);
+
+  const calls = [];
+  const watched = core.simulateCsv(null, ['duration=2'], { onProgress: (done, expected) => { calls.push([done, expected]); } });
+  const increasing = calls.every((c, i) => i === 0 || c[0] > calls[i - 1][0]);
+  const last = calls[calls.length - 1];
+  checks.record('onProgress counts the rows up to the last', calls.length >= 10 && increasing && last[0] === watched.rows &&
+                last[1] === watched.rows ? [] : [`calls ${JSON.stringify(calls.slice(-3))} of ${calls.length}`]);
+
+  let stoppedAt = 0;
+  expectThrow('onProgress returning false cancels the run', () => core.simulateCsv(null, [], {
+    onProgress: (done) => { stoppedAt = done; return done < 100; },
+  }), (e) => e instanceof core.CoinrollError && e.kind === 'cancelled' && stoppedAt >= 100 && stoppedAt < 601);
+
+  const mine = new Error('from the callback');
+  expectThrow('an exception in onProgress stops the run and comes out of it', () => core.simulateCsv(null, [], {
+    onProgress: () => { throw mine; },
+  }), (e) => e === mine);
+  checks.record('the module runs on after a callback threw', core.simulateCsv(null, ['duration=1']).rows === 101 ? [] : ['it does not']);
+
+  expectThrow('a bad sampleDt is the program\'s refusal', () => core.simulateCsv(null, [], { sampleDt: 0 }),
+              (e) => e.kind === 'request' && e.exitCode === 2 && e.message === 'sampleDt: must be a finite number > 0 s, got 0');
+  expectThrow('a run past maxRows is refused before it starts', () => core.simulateCsv(null, [], { maxRows: 100 }),
+              (e) => e.kind === 'request' && /gives 601 rows, more than the limit 100/.test(e.message));
+  expectThrow('an unknown option is named', () => core.simulateCsv(null, [], { sampleDT: 0.1 }),
+              (e) => e instanceof TypeError && /unknown sampleDT/.test(e.message));
+  expectThrow('overrides must be strings', () => core.simulateCsv(null, ['duration=1', 3]),
+              (e) => e instanceof TypeError && /overrides/.test(e.message));
+  expectThrow('a bad --set is the program\'s message', () => core.simulateCsv(null, ['initial.thta=3']),
+              (e) => e.kind === 'scene' && e.message.startsWith('built-in default scene: initial.thta: unknown key'));
+  expectThrow('sourceName names the scene in messages', () => core.simulateCsv('{', [], { sourceName: 'my.json' }),
+              (e) => e.kind === 'scene' && e.message.startsWith('my.json: invalid JSON at line 1, column 2'));
+  checks.record('version() is the project\'s', /^\d+\.\d+\.\d+$/.test(core.version()) ? [] : [`got ${core.version()}`]);
+}
+
+async function main() {
+  const options = parseArguments(process.argv.slice(2));
+  const core = await require(options.module)();
+  const checks = new Checks();
+  if (options.mode === 'examples') examples(core, options, checks);
+  else if (options.mode === 'bad-scenes') badScenes(core, options, checks);
+  else api(core, checks);
+  checks.finish();
+}
+
+main().catch((e) => {
+  console.error(e);
+  process.exit(1);
+});

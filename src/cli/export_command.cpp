@@ -23,13 +23,13 @@ namespace {
 // The page's slot for the scene: the page starts from the default scene while it holds null.
 constexpr std::string_view kScenePlaceholder = R"(<script type="application/json" id="coinroll-scene">null</script>)";
 
-// Where the built page is: COINROLL_PAGE names it; else beside the program (build/page/, as
+// Where the built page is: COINROLL_PAGE names it; else beside the program (build/web/, as
 // tools/build_page.sh writes it) or where `cmake --install` puts it (share/coinroll/).
 std::filesystem::path pageTemplate() {
   if (const char* named = std::getenv("COINROLL_PAGE"); named != nullptr && *named != '\0') return named;
   std::error_code error;
   const std::filesystem::path program = std::filesystem::read_symlink("/proc/self/exe", error);
-  const std::filesystem::path candidates[] = {program.parent_path() / "page" / "coinroll.html",
+  const std::filesystem::path candidates[] = {program.parent_path() / "web" / "coinroll.html",
                                               program.parent_path().parent_path() / "share" / "coinroll" / "coinroll.html"};
   for (const std::filesystem::path& candidate : candidates) {
     if (std::filesystem::is_regular_file(candidate, error)) return candidate;

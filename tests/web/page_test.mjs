@@ -15,7 +15,7 @@
 //   render.time_remap as `coinroll render --frame-times` reports it.
 // Exits 77 (ctest's skip), saying why, where Chromium or web/node_modules is missing.
 import { spawnSync } from 'node:child_process';
-import { existsSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { existsSync, mkdtempSync, readFileSync, rmSync, statSync, writeFileSync } from 'node:fs';
 import { createRequire } from 'node:module';
 import { tmpdir } from 'node:os';
 import { dirname, join, resolve } from 'node:path';
@@ -77,6 +77,7 @@ const browser = await puppeteer.launch({
 });
 const problems = [];
 const pageUrl = pathToFileURL(options.page).href;
+const pagesOpened = new Set([pageUrl]);  // the built page, and the page coinroll export writes
 try {
   const page = await browser.newPage();
   await page.setViewport({ width: 1800, height: 1000 });
@@ -86,7 +87,7 @@ try {
   page.on('pageerror', (e) => problems.push(`page error: ${e.message}`));
   page.on('request', (r) => {
     const url = r.url();
-    if (url !== pageUrl && !url.startsWith('blob:') && !url.startsWith('data:')) problems.push(`request ${url}`);
+    if (!pagesOpened.has(url) && !url.startsWith('blob:') && !url.startsWith('data:')) problems.push(`request ${url}`);
   });
   page.on('workercreated', (worker) => worker.on('console', (m) => { if (m.type() === 'error') problems.push(`worker console error: ${m.text()}`); }));
   const client = await page.createCDPSession();
@@ -285,6 +286,23 @@ try {
     }
   }
   check('playback slows down as coinroll render\'s time remap does', worstRate.error <= 1, `worst ${worstRate.error.toFixed(2)} of the tolerance, ${worstRate.detail}`);
+
+  // coinroll export: the built page with a scene in it opens on that scene and runs it as the program does.
+  const exported = join(scratch, 'ring.html');
+  const ringText = readFileSync(join(repo, 'examples/ring.json'), 'utf8');
+  const written = spawnSync(options.binary, ['export', join(repo, 'examples/ring.json'), '-o', exported],
+                            { encoding: 'utf8', env: { ...process.env, COINROLL_PAGE: options.page } });
+  check('coinroll export writes the page', written.status === 0 && existsSync(exported), written.stderr.trim());
+  check('the exported page is at most 2 MB', statSync(exported).size <= 2e6, `${statSync(exported).size} bytes`);
+  pagesOpened.add(pathToFileURL(exported).href);
+  await page.goto(pathToFileURL(exported).href);
+  await page.waitForFunction(() => window.coinrollPage && window.coinrollPage.run(), { timeout: 60000 });
+  await settled();
+  const ring = await hook('run');
+  check('the exported page opens on its scene', ring.sourceName === 'exported scene' && JSON.parse(ring.text).name === JSON.parse(ringText).name,
+        ring.sourceName);
+  const ringCsv = simulate(ringText, ring.sampleDt);
+  await compareWithCsv('the exported ring', ringCsv, [0, Math.floor(ringCsv.rows / 2), ringCsv.rows - 1]);
   check('no console error, no network request', problems.length === 0, problems.slice(0, 5).join('; '));
 } finally {
   await browser.close();

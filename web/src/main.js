@@ -233,10 +233,13 @@ let defaultSceneText = '';
 runner.ready.then(({ version, defaultScene }) => {
   $('version').textContent = version;
   defaultSceneText = defaultScene;
-  page.scene = JSON.parse(defaultScene);
-  showSceneText(defaultScene);
+  // A page written by `coinroll export` opens on its scene, as the scene file's JSON.
+  const exported = JSON.parse(document.getElementById('coinroll-scene').textContent);
+  const sceneText = exported === null ? defaultScene : JSON.stringify(exported, null, 2);
+  page.scene = JSON.parse(sceneText);
+  showSceneText(sceneText);
   controls.refresh();
-  start(defaultScene, 'built-in default scene', { box: true });
+  start(sceneText, exported === null ? 'built-in default scene' : 'exported scene', { box: true });
 }, (e) => { $('scene-error').textContent = e.message; });
 requestAnimationFrame(frame);
 

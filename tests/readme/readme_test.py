@@ -52,6 +52,8 @@ EXEMPT = [
     (r"PYTHONPATH=build/python python3 examples/notebook\.py", "ctest python_notebook runs it"),
     (r"PYTHONPATH=build/python python3$", "starts the interactive session below, which runs as a doctest"),
     (r"COINROLL_GL=egl-device", "needs a GPU"),
+    (r"tools/build_page\.sh", "builds the WebAssembly core and the page: ctest's wasm_core_build and web_page_build make the same files"),
+    (r"build/coinroll export ", "needs the built page; web_page_browser exports a scene and opens the page in Chromium"),
     (r"build/coinroll compare golden\.png new\.png", "needs two pictures of the user's; compare_cli_test compares stills the program draws"),
 ]
 
@@ -65,7 +67,7 @@ class Command:
     text: str
 
 
-SUBCOMMANDS = {"render", "still", "simulate", "steady", "sweep", "sweep-merge", "compare", "schema"}
+SUBCOMMANDS = {"render", "still", "simulate", "steady", "sweep", "sweep-merge", "compare", "schema", "export"}
 
 
 def shown_commands(readme: str) -> list[Command]:

@@ -3,12 +3,11 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <charconv>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <memory>
 #include <numbers>
-#include <sstream>
 #include <thread>
 #include <utility>
 #include <variant>
@@ -21,7 +20,7 @@
 #include "pipeline/simulation.h"
 #include "pipeline/still.h"
 #include "pipeline/sweep.h"
-#include "pipeline/trajectory_csv.h"
+#include "pipeline/trajectory_samples.h"
 #include "pipeline/video_frames.h"
 #include "scene/scene_loader.h"
 #include "video/make_sink.h"
@@ -56,35 +55,6 @@ Scene::Impl parsed(nlohmann::json document, const std::vector<std::string>& over
   for (const std::string& assignment : overrides) scene::applyOverride(document, assignment);
   scene::SceneConfig config = scene::parseScene(document, sourceName);
   return {std::move(document), std::string(sourceName), std::move(config)};
-}
-
-// The fields of one line of the library's CSV: RFC 4180 quoting (the writers put a field with a
-// comma or a quote in quotes and never a line break), empty fields kept.
-std::vector<std::string> csvFields(std::string_view line) {
-  std::vector<std::string> fields(1);
-  bool quoted = false;
-  for (std::size_t i = 0; i < line.size(); ++i) {
-    const char c = line[i];
-    if (quoted && c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
-      fields.back() += '"';
-      ++i;
-    } else if (c == '"') {
-      quoted = !quoted;
-    } else if (c == ',' && !quoted) {
-      fields.emplace_back();
-    } else {
-      fields.back() += c;
-    }
-  }
-  return fields;
-}
-
-// The writers print doubles in a form that reads back exactly (%.17g or shortest round-trip); an
-// empty field (a sweep's failed point) is NaN.
-double csvNumber(std::string_view field) {
-  double value = std::numeric_limits<double>::quiet_NaN();
-  std::from_chars(field.data(), field.data() + field.size(), value);
-  return value;
 }
 
 }  // namespace
@@ -125,32 +95,22 @@ const std::vector<double>& Columns::operator[](std::string_view name) const {
   throw std::out_of_range(fmt::format("no column \"{}\" (this scene's columns: {})", name, fmt::join(names, ", ")));
 }
 
-// The CSV writer is the one definition of the columns and of their sampling, so the columns are
-// read back from its text: the %.17g it prints gives back the same doubles.
+// The same rows the CSV writer prints (pipeline/trajectory_samples.h), kept as numbers.
 Columns simulate(const Scene& scene, double sampleDt, const std::atomic<bool>* cancel) {
   if (!(sampleDt > 0) || !std::isfinite(sampleDt)) {
     throw std::invalid_argument(fmt::format("sampleDt: must be a finite number > 0 s, got {}", sampleDt));
   }
-  std::stringstream csv;
-  const pipeline::CsvRunResult result = translatingErrors([&] {
+  Columns columns;
+  const pipeline::TrajectoryReport result = translatingErrors([&] {
     pipeline::Simulation simulation = pipeline::buildSimulation(scene.impl().config);
     simulation.cancel = cancel;
-    return pipeline::writeTrajectoryCsv(simulation, sampleDt, csv);
+    const std::vector<std::string_view> names = pipeline::trajectoryColumns(simulation);
+    columns.names.assign(names.begin(), names.end());
+    columns.values.resize(names.size());
+    return pipeline::sampleTrajectory(simulation, sampleDt, [&columns](std::span<const double> row) {
+      for (std::size_t i = 0; i < row.size(); ++i) columns.values[i].push_back(row[i]);
+    });
   });
-  Columns columns;
-  std::string line;
-  std::getline(csv, line);
-  for (std::stringstream header(line); std::getline(header, line, ',');) columns.names.push_back(line);
-  columns.values.resize(columns.names.size());
-  for (std::vector<double>& column : columns.values) column.reserve(static_cast<std::size_t>(result.rows));
-  while (std::getline(csv, line)) {
-    std::size_t column = 0;
-    for (std::string_view rest = line; column < columns.names.size(); ++column) {
-      const std::string_view field = rest.substr(0, rest.find(','));
-      columns.values[column].push_back(csvNumber(field));
-      rest.remove_prefix(std::min(rest.size(), field.size() + 1));
-    }
-  }
   if (const auto& stop = result.stoppedBy) {
     columns.end = {.event = std::string(physics::eventName(stop->event)), .time = stop->t,
                    .description = pipeline::describeStop(*stop)};
@@ -178,7 +138,7 @@ void renderVideo(const Scene& scene, const std::filesystem::path& output, const 
   });
 }
 
-// The same physics calls as `coinroll steady` (cli/commands.cpp), returned instead of printed.
+// The report `coinroll steady` prints (physics::steadyReport), returned instead of printed.
 SteadyState steady(const Scene& scene) {
   const scene::SceneConfig& config = scene.impl().config;
   if (!std::holds_alternative<scene::SteadyInitial>(config.initial)) {
@@ -188,27 +148,23 @@ SteadyState steady(const Scene& scene) {
   const pipeline::Simulation simulation = translatingErrors([&] { return pipeline::buildSimulation(config); });
   const physics::CoinModel& m = simulation.model;
   const physics::CoinState& s = simulation.initial;
-  const physics::CircleRadii radii = physics::circleRadii(m, s);
-  const physics::Reaction reaction = physics::reaction(m, s);
-  const bool cornered = !m.rim.thin() && !m.rim.fullyRounded();
+  const physics::SteadyReport report = physics::steadyReport(m, s);
+  constexpr std::array<const char*, 3> kVerdicts = {"stable", "unstable", "marginal"};  // TiltStability::Kind's order
   SteadyState state{
       .mass = m.M, .radius = m.a, .gravity = m.g, .inertiaX = m.I_X, .inertiaZ = m.I_Z,
       .thickness = m.rim.thickness, .edgeRadius = m.rim.edgeRadius,
-      .naturalRate = physics::naturalRate(m),
-      .criticalSpin = cornered ? std::nullopt : std::optional(physics::criticalSpin(m)),
+      .naturalRate = report.naturalRate, .criticalSpin = report.criticalSpin,
       .theta = s.theta * kDegreesPerRadian, .phi = s.phi * kDegreesPerRadian, .psi = s.psi * kDegreesPerRadian,
       .omega_X = s.omega_X, .omega_Y = s.omega_Y, .omega_Z = s.omega_Z, .x = s.x, .z = s.z,
-      .precessionRate = physics::precessionRate(s), .spinRate = physics::spinRate(s),
-      .centreOfMassRadius = radii.centreOfMass, .contactRadius = radii.contact,
-      .normalForce = reaction.N, .frictionForce = reaction.F,
-      .stiffness = physics::wobbleStiffness(m, s.theta, s.omega_Y, s.omega_Z),
-      .stability = {}};
-  state.stability = state.stiffness > 0 ? "stable" : state.stiffness < 0 ? "unstable" : "marginal";
+      .precessionRate = report.precessionRate, .spinRate = report.spinRate,
+      .centreOfMassRadius = report.radii.centreOfMass, .contactRadius = report.radii.contact,
+      .normalForce = report.reaction.N, .frictionForce = report.reaction.F,
+      .stiffness = report.stiffness,
+      .stability = kVerdicts[static_cast<std::size_t>(report.stability.kind)]};
   return state;
 }
 
-// The sweep's CSV writer is the one definition of its rows, so the table is read back from its
-// text, as simulate's columns are.
+// The points the sweep CSV's rows are written from (pipeline/sweep.h), kept as numbers.
 SweepTable sweep(const Scene& scene, const std::vector<std::string>& axes, int threads, const std::atomic<bool>* cancel) {
   if (threads < 0 || threads > 1024) {
     throw std::invalid_argument(fmt::format("threads: must be 1 to 1024 (0: every hardware thread), got {}", threads));
@@ -219,32 +175,24 @@ SweepTable sweep(const Scene& scene, const std::vector<std::string>& axes, int t
                            .maxPoints = pipeline::kDefaultMaxPoints};
   for (const std::string& axis : axes) spec.axes.push_back(pipeline::parseGridAxis(axis));
   pipeline::refuseMisnamedAxes(spec);
-  pipeline::gridPointCount(spec);
-  std::stringstream csv;
-  translatingErrors([&] { return pipeline::runSweep(spec, csv, {}, cancel); });
-
-  // point, one field per axis, end, five numbers, grid_points, sweep.
-  const std::size_t endField = 1 + axes.size(), identityField = endField + 6;
-  SweepTable table;
-  std::string line;
-  std::getline(csv, line);
-  const std::vector<std::string> header = csvFields(line);
-  for (std::size_t i = 0; i < identityField; ++i) {
-    if (i != endField) table.columns.names.push_back(header[i]);
-  }
+  const pipeline::SweepIdentity identity = pipeline::sweepIdentity(spec);
+  SweepTable table{.columns = {}, .end = {}, .gridPoints = identity.gridPoints, .digest = identity.digest};
+  table.columns.names.push_back("point");
+  for (const pipeline::GridAxis& axis : spec.axes) table.columns.names.push_back(axis.key);
+  for (const char* name : {"t_end", "theta_min", "theta_max", "energy_start", "energy_end"}) table.columns.names.push_back(name);
   table.columns.values.resize(table.columns.names.size());
-  while (std::getline(csv, line)) {
-    const std::vector<std::string> fields = csvFields(line);
-    for (std::size_t i = 0, column = 0; i < identityField; ++i) {
-      if (i == endField) {
-        table.end.push_back(fields[i]);
-      } else {
-        table.columns.values[column++].push_back(csvNumber(fields[i]));
+  translatingErrors([&] {
+    return pipeline::runSweep(spec, [&table](const pipeline::SweepPoint& point) {
+      std::vector<std::vector<double>>& values = table.columns.values;
+      std::size_t column = 0;
+      values[column++].push_back(static_cast<double>(point.point));
+      for (const double v : point.values) values[column++].push_back(v);
+      for (const double v : {point.tEnd, point.thetaMin, point.thetaMax, point.energyStart, point.energyEnd}) {
+        values[column++].push_back(v);
       }
-    }
-    table.gridPoints = std::stol(fields[identityField]);
-    table.digest = fields[identityField + 1];
-  }
+      table.end.push_back(point.end);
+    }, {}, cancel);
+  });
   return table;
 }
 

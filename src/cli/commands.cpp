@@ -68,7 +68,7 @@ ResolvedScene resolveScene(const SceneSource& source) {
 
 // The CSV's sidecar (SimulateOptions::provenancePath).
 nlohmann::json csvProvenance(const nlohmann::json& document, const SimulateOptions& options,
-                             const pipeline::CsvRunResult& result, double duration) {
+                             const pipeline::TrajectoryReport& result, double duration) {
   const video::Provenance provenance = provenanceOf(document);
   return {{"program", "coinroll"},
           {"version", COINROLL_VERSION},
@@ -82,7 +82,7 @@ nlohmann::json csvProvenance(const nlohmann::json& document, const SimulateOptio
           {"scene", document}};
 }
 
-void reportStop(const pipeline::CsvRunResult& result) {
+void reportStop(const pipeline::TrajectoryReport& result) {
   for (const pipeline::ModeSwitch& w : result.switches) {
     std::cerr << fmt::format("coinroll: {} at t = {:.9f} s\n", w.toSliding ? "slides" : "rolls", w.t);
   }
@@ -176,8 +176,8 @@ void runSimulate(const SimulateOptions& options) {
   reportSteadyStart(scene);
 
   ProgressLine noProgress(ProgressLine::Style::Off, "", "");
-  const pipeline::CsvRunResult result = withProgress(noProgress, options.csvPath, [&] {
-    pipeline::CsvRunResult r;
+  const pipeline::TrajectoryReport result = withProgress(noProgress, options.csvPath, [&] {
+    pipeline::TrajectoryReport r;
     writeTextOutput(options.csvPath, "CSV", [&](std::ostream& out) {
       r = pipeline::writeTrajectoryCsv(simulation, options.sampleDt, out);
       // Published before the CSV takes its name, so a failed sidecar leaves neither; only a failed
@@ -220,9 +220,9 @@ void runSteady(const SteadyOptions& options) {
   }
   const physics::CoinModel& m = sim.model;
   const physics::CoinState& s = sim.initial;
-  const double rateUnit = physics::naturalRate(m);
-  const double K = physics::wobbleStiffness(m, s.theta, s.omega_Y, s.omega_Z);
-  const physics::CircleRadii radii = physics::circleRadii(m, s);
+  const physics::SteadyReport report = physics::steadyReport(m, s);
+  const double rateUnit = report.naturalRate;
+  const double K = report.stiffness;
 
   fmt::print("coin: M = {} kg, a = {} m, g = {} m/s^2, I_X = {:.6g} kg m^2, I_Z = {:.6g} kg m^2\n", m.M, m.a, m.g,
              m.I_X, m.I_Z);
@@ -237,11 +237,11 @@ void runSteady(const SteadyOptions& options) {
                    ? "as the scene gives them (custom)"
                    : "those of the uniform solid of thickness h with this rim (docs/rim_inertia.md)");
   }
-  if (cornered) {
+  if (!report.criticalSpin) {
     fmt::print("natural rate sqrt(g/a) = {:.6g} rad/s; straight rolling is not a steady motion of a coin whose rim has "
                "corners (it switches corners at upright), so there is no critical spin (docs/rim.md eq. 5.4)\n\n", rateUnit);
   } else {
-    const double omega_c = physics::criticalSpin(m);
+    const double omega_c = *report.criticalSpin;
     fmt::print("natural rate sqrt(g/a) = {:.6g} rad/s; critical spin for straight rolling omega_c = {:.6g} rad/s "
                "({:.6f} sqrt(g/a){})\n\n", rateUnit, omega_c, omega_c / rateUnit, thick ? "; docs/rim.md eq. 5.9" : "");
   }
@@ -251,14 +251,14 @@ void runSteady(const SteadyOptions& options) {
              s.theta * kDegreesPerRadian, s.phi * kDegreesPerRadian, s.psi * kDegreesPerRadian, s.omega_X, s.omega_Y,
              s.omega_Z, s.x, s.z);
   fmt::print("  in units of sqrt(g/a): omega_Y = {:.9g}, omega_Z = {:.9g}\n", s.omega_Y / rateUnit, s.omega_Z / rateUnit);
-  fmt::print("  phi-dot = {:.9g} rad/s, psi-dot = {:.9g} rad/s\n", physics::precessionRate(s), physics::spinRate(s));
-  fmt::print("  circle radius: centre of mass R_G = {:.9g} m, contact point R_C = {:.9g} m\n", radii.centreOfMass,
-             radii.contact);
-  const physics::Reaction r = physics::reaction(m, s);
+  fmt::print("  phi-dot = {:.9g} rad/s, psi-dot = {:.9g} rad/s\n", report.precessionRate, report.spinRate);
+  fmt::print("  circle radius: centre of mass R_G = {:.9g} m, contact point R_C = {:.9g} m\n", report.radii.centreOfMass,
+             report.radii.contact);
+  const physics::Reaction& r = report.reaction;
   fmt::print("  floor reaction: N = {:.6g} N, F = {:.6g} N (needs mu >= {:.4g})\n\n", r.N, r.F, r.N > 0 ? r.F / r.N : INFINITY);
   fmt::print("stability ({}): K = {:.9g} 1/s^2 ({:.9g} in units g/a)\n",
              thick ? "docs/rim.md eq. 5.8" : "docs/derivations.md eq. 3.6", K, K / (rateUnit * rateUnit));
-  switch (const physics::TiltStability stability = physics::tiltStability(K); stability.kind) {
+  switch (const physics::TiltStability& stability = report.stability; stability.kind) {
     case physics::TiltStability::Kind::Stable:
       fmt::print("verdict: STABLE: a small tilt perturbation wobbles at {:.9g} rad/s (period {:.9g} s)\n", stability.rate,
                  stability.time);

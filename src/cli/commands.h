@@ -91,4 +91,11 @@ struct CompareOptions {
 // exit 2, as cmp(1) does, so a CI can tell "differs" from "could not compare".
 int runCompare(const CompareOptions& options);
 
+// `coinroll schema`: every key a scene file may hold (scene/scene_schema.h), as JSON for scripts
+// and the web page's controls, or as docs/scene.md's Markdown table.
+struct SchemaOptions {
+  bool markdown = false;
+};
+void runSchema(const SchemaOptions& options);
+
 }  // namespace coinroll::cli

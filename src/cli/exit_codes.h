@@ -4,7 +4,7 @@
 
 namespace coinroll::cli {
 
-// INTERFACE.md: 0 success; 2 bad command line or bad scene (nothing written); 1 any other failure.
+// docs/contract.md: 0 success; 2 bad command line or bad scene (nothing written); 1 any other failure.
 inline constexpr int kExitSuccess = 0;
 inline constexpr int kExitFailure = 1;
 inline constexpr int kExitBadInput = 2;

@@ -1,5 +1,5 @@
 // coinroll: command-line entry point. Parses arguments, runs one command, maps errors to the exit
-// codes of INTERFACE.md. All logic lives in the libraries; this file only wires them.
+// codes of docs/contract.md. All logic lives in the libraries; this file only wires them.
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -37,7 +37,7 @@ namespace {
 using namespace coinroll::cli;
 
 void addSceneOptions(CLI::App& command, SceneSource& scene, bool fileRequired) {
-  CLI::Option* file = command.add_option("scene", scene.file, "Scene file (JSON, see README 'Scene format')");
+  CLI::Option* file = command.add_option("scene", scene.file, "Scene file (JSON; its keys: docs/scene.md, or coinroll schema)");
   if (fileRequired) file->required();
   command.add_option("--set", scene.overrides,
                      "Override one scene field, KEY.PATH=VALUE (e.g. --set initial.theta=12 --set solver.rtol=1e-9); "
@@ -261,6 +261,18 @@ CLI::App* addCompareCommand(CLI::App& app, CompareOptions& options) {
   return command;
 }
 
+CLI::App* addSchemaCommand(CLI::App& app, SchemaOptions& options) {
+  CLI::App* command = app.add_subcommand(
+      "schema", "Print every key a scene file may hold: path, type, unit, default, range, the keys it needs, a line of doc");
+  command->add_flag("--markdown", options.markdown, "The table of docs/scene.md instead of JSON");
+  command->footer(
+      "JSON by default, one object per key in \"keys\", for scripts and the web page's controls:\n"
+      "  coinroll schema | jq '.keys[] | select(.path == \"coin.radius\")'\n"
+      "`effects[air_drag].viscosity` is the key of an effects entry whose type is air_drag (--set effects.0.viscosity=...);\n"
+      "`initial[steady].theta` is theta in an initial block that names a steady motion.");
+  return command;
+}
+
 // CLI11 reports a misspelt command only as "a subcommand is required": the message naming it and
 // the choices, when argv[1] is no command.
 std::optional<std::string> unknownCommandMessage(const CLI::App& app, int argc, char** argv) {
@@ -333,7 +345,7 @@ int main(int argc, char** argv) {
       addCommand(app, addSimulateCommand, runSimulate), addCommand(app, addSteadyCommand, runSteady),
       addCommand(app, addRenderCommand, runRender),     addCommand(app, addStillCommand, runStill),
       addCommand(app, addSweepCommand, runSweep),       addCommand(app, addSweepMergeCommand, runSweepMerge),
-      addCommand(app, addCompareCommand, runCompare)};
+      addCommand(app, addCompareCommand, runCompare),   addCommand(app, addSchemaCommand, runSchema)};
 
   if (const std::optional<std::string> message = unknownCommandMessage(app, argc, argv)) {
     std::cerr << *message;

@@ -56,16 +56,20 @@ void runSweep(const SweepOptions& options) {
   const pipeline::SweepResult result = withProgress(progress, options.output, [&] {
     pipeline::SweepResult r;
     writeTextOutput(options.output, "sweep", [&](std::ostream& out) {
-      r = pipeline::runSweep(spec, out, [&](long done, long total) { progress.update(done, total); }, &interruptRequested());
+      r = pipeline::writeSweepCsv(spec, out, [&](long done, long total) { progress.update(done, total); }, &interruptRequested());
     });
     return r;
   });
   if (!options.quiet) {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::cerr << fmt::format("coinroll: wrote {} ({} points{}, {} failed; {:.1f} s, {:.0f} points/s on {} threads)\n",
+    // How the runs ended, not only how many failed: spin-downs that reached the scene's duration
+    // without landing would otherwise pass for landed ones in a plot of t_end.
+    std::string ends;
+    for (const auto& [end, count] : result.ends) ends += fmt::format(", {} {}", count, end);
+    std::cerr << fmt::format("coinroll: wrote {} ({} points{}, {} failed{}; {:.1f} s, {:.0f} points/s on {} threads)\n",
                              options.output == "-" ? "standard output" : scene::printable(options.output), result.points,
                              spec.shard.count > 1 ? fmt::format(", shard {}/{}", spec.shard.index, spec.shard.count) : "",
-                             result.failed, seconds, result.points / std::max(seconds, 1e-9), spec.threads);
+                             result.failed, ends, seconds, result.points / std::max(seconds, 1e-9), spec.threads);
   }
 }
 

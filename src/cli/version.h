@@ -1,5 +1,5 @@
 #pragma once
-// What `coinroll --version` prints (INTERFACE.md "Outputs and identity").
+// What `coinroll --version` prints (docs/contract.md §8).
 
 #include <string>
 

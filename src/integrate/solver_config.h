@@ -27,7 +27,7 @@ std::span<const std::string_view> methodNames();  // in the order of the enum
 bool isAdaptive(Method method);
 int errorEstimateOrder(Method method);  // adaptive methods: the order of the local error estimate (DOP853: 8)
 
-// The ranges a scene's solver block may take (scene files, README "Scene format"). Below 1e-14 the
+// The ranges a scene's solver block may take (scene files, docs/scene.md). Below 1e-14 the
 // steps a tolerance asks for are lost in round-off (double precision is 2e-16); above 1e-2 the
 // dense output and the events it locates are no longer worth reading. A pure relative tolerance
 // (atol = 0) cannot control a component that is or passes through 0: its error weight is 1 / 0.

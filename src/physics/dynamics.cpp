@@ -96,7 +96,7 @@ Reaction reactionFrom(const CoinModel& m, const Eigen::Matrix3d& axes, const Eig
 // `velocityXZ`: the centre of mass's floor velocity (x, z).
 StateVec pack(const StateVec& y, double sinTheta, double cosTheta, const Eigen::Vector3d& dOmega, double vx, double vz) {
   StateVec dy;
-  dy[kTheta]   = y[kOmega_X];                                          // (17), ERRATA
+  dy[kTheta]   = y[kOmega_X];                                          // (17), docs/seed.md §3
   dy[kPhi]     = y[kOmega_Y] / cosTheta;                               // (18)
   dy[kPsi]     = y[kOmega_Z] + (sinTheta / cosTheta) * y[kOmega_Y];    // (19)
   dy[kOmega_X] = dOmega.x();

@@ -2,8 +2,9 @@
 // The dissipation laws a scene can switch on, one alternative of Effect each, and their sum.
 // Adding a law: its own header and source (listed in CMakeLists.txt) with a parameter struct and
 // loads(law, kinematics) returning its couple and power >= 0; an alternative of Effect and its
-// name in typeName (effects.cpp); its scene key and fields in src/scene/scene_loader.cpp and the
-// README's "Scene format" table; its bad-input cases in tests/cli/bad_inputs.py (docs/bad_inputs.md
+// name in typeName (effects.cpp); its rows in the scene schema (src/scene/scene_schema.cpp, whose
+// kEffectTypeNames must follow Effect's order) and its read in scene_loader.cpp, then docs/scene.md
+// regenerated (coinroll schema --markdown); its bad-input cases in tests/cli/bad_inputs.py (docs/bad_inputs.md
 // is generated from them); its tests in tests/physics/effects_test.cpp (power = -torque . omega
 // is checked for every law). A couple that depends on N must have no part along e_X: the normal
 // force's two passes (dynamics.cpp, quaternion_dynamics.cpp) are exact only then (tested).

@@ -18,7 +18,7 @@ namespace coinroll::physics {
 struct Reaction {
   Eigen::Vector3d R = Eigen::Vector3d::Zero();  // N, floor components
   double N = 0;                                 // N, normal force R_y (the model needs N > 0)
-  double F = 0;                                 // N, friction force sqrt(R_x^2 + R_z^2) (ERRATA)
+  double F = 0;                                 // N, friction force sqrt(R_x^2 + R_z^2) (docs/seed.md §4)
 };
 
 struct Forward {

@@ -17,7 +17,7 @@ namespace coinroll::physics {
 Eigen::Matrix3d coinAxesInFloor(const CoinState& state);
 
 // Active rotation taking the body's axes to the floor frame, q = q_y(phi) q_x(theta) q_z(psi)
-// (ERRATA, "Conventions"). For psi = 0 it maps e_x, e_y, e_z onto the rows of R(theta, phi).
+// (docs/seed.md §2). For psi = 0 it maps e_x, e_y, e_z onto the rows of R(theta, phi).
 Eigen::Quaterniond attitude(const CoinState& state);
 
 // Total mechanical energy, J: kinetic (translation + rotation) plus potential M g y_G.

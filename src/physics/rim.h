@@ -1,5 +1,5 @@
 #pragma once
-// The coin's rim as the dynamics see it (INTERFACE.md "The coin's rim", docs/rim.md §1): a torus
+// The coin's rim as the dynamics see it (docs/contract.md §5, docs/rim.md §1): a torus
 // of tube radius rho whose centre circle, of radius a - rho, lies h/2 - rho from the mid-plane on
 // the side of the lower face. Thickness 0 is the seed's thin coin, touching the floor at radius a
 // in its mid-plane. The one place that knows where the contact point sits on the body.

@@ -226,4 +226,17 @@ TiltStability tiltStability(double K) {
   return {};
 }
 
+SteadyReport steadyReport(const CoinModel& model, const CoinState& s) {
+  const bool cornered = !model.rim.thin() && !model.rim.fullyRounded();
+  const double K = wobbleStiffness(model, s.theta, s.omega_Y, s.omega_Z);
+  return {.naturalRate = naturalRate(model),
+          .criticalSpin = cornered ? std::nullopt : std::optional(criticalSpin(model)),
+          .precessionRate = precessionRate(s),
+          .spinRate = spinRate(s),
+          .radii = circleRadii(model, s),
+          .reaction = reaction(model, s),
+          .stiffness = K,
+          .stability = tiltStability(K)};
+}
+
 }  // namespace coinroll::physics

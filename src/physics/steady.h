@@ -6,8 +6,11 @@
 // formulas give. A rim with corners (edge radius < thickness / 2) has no upright steady motion: the
 // contact would switch corners there, so what needs theta = 0 throws std::invalid_argument for it.
 
+#include <optional>
+
 #include "physics/coin_model.h"
 #include "physics/coin_state.h"
+#include "physics/forward.h"
 
 namespace coinroll::physics {
 
@@ -67,5 +70,17 @@ struct CircleRadii {
   double contact = 0;       // m, R_C = a |psi-dot / phi-dot|; rim: A |psi-dot / phi-dot| (docs/rim.md eq. 5.10)
 };
 CircleRadii circleRadii(const CoinModel& model, const CoinState& steadyState);
+
+// What `coinroll steady` prints and the library's steady() returns, computed in one place.
+struct SteadyReport {
+  double naturalRate = 0;              // rad/s, sqrt(g/a)
+  std::optional<double> criticalSpin;  // rad/s; absent for a rim with corners, which has no straight rolling
+  double precessionRate = 0, spinRate = 0;  // rad/s, phi-dot and psi-dot
+  CircleRadii radii;
+  Reaction reaction;
+  double stiffness = 0;  // K, 1/s^2 (wobbleStiffness)
+  TiltStability stability;
+};
+SteadyReport steadyReport(const CoinModel& model, const CoinState& steadyState);
 
 }  // namespace coinroll::physics

@@ -13,7 +13,7 @@
 
 namespace coinroll::physics {
 
-// Why a run ended early, or a crossing it went on past (INTERFACE.md).
+// Why a run ended early, or a crossing it went on past (docs/contract.md).
 enum class ModelEvent {
   CoinFlat,      // the formulation's own limit near flat (or a thin coin's spin-down end)
   FaceDown,      // a coin with thickness lies on its face

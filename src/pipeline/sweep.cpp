@@ -92,36 +92,41 @@ std::vector<double> pointValues(const std::vector<GridAxis>& axes, long point) {
   return values;
 }
 
-struct PointRow {
-  std::string text;     // the row without its identity columns and line break
-  bool failed = false;  // its end column holds "error: <reason>"
-};
-
 // Each point is the scene document with its grid values set as `--set KEY=VALUE` sets them, then
 // parsed by the loader like any scene: the point is validated by exactly the loader's rules
 // (ranges and cross-field checks alike, which read the file's units: degrees, JSON integers), a
-// failed point's row quotes the loader's message, and a value typed as the --set text types it
+// failed point's end quotes the loader's message, and a value typed as the --set text types it
 // (5 an integer, 5.5 a float) gives the same row as the same --set would.
-PointRow pointRow(const SweepSpec& spec, long point, const std::atomic<bool>* cancel) {
-  const std::vector<double> values = pointValues(spec.axes, point);
-  PointRow row{.text = fmt::format("{}", point), .failed = false};
-  for (const double v : values) row.text += fmt::format(",{}", v);
+SweepPoint computePoint(const SweepSpec& spec, long point, const std::atomic<bool>* cancel) {
+  SweepPoint result;
+  result.point = point;
+  result.values = pointValues(spec.axes, point);
   try {
     nlohmann::json document = spec.scene;
-    for (std::size_t i = 0; i < values.size(); ++i) scene::applyOverride(document, fmt::format("{}={}", spec.axes[i].key, values[i]));
+    for (std::size_t i = 0; i < result.values.size(); ++i) {
+      scene::applyOverride(document, fmt::format("{}={}", spec.axes[i].key, result.values[i]));
+    }
     Simulation simulation = buildSimulation(scene::parseScene(document, spec.sourceName));
     simulation.cancel = cancel;
     const PointSummary s = summarize(simulation);
-    row.text += fmt::format(",{},{},{},{},{},{}", s.end, s.tEnd, s.thetaMin, s.thetaMax, s.energyStart, s.energyEnd);
+    result.end = s.end;
+    result.tEnd = s.tEnd, result.thetaMin = s.thetaMin, result.thetaMax = s.thetaMax;
+    result.energyStart = s.energyStart, result.energyEnd = s.energyEnd;
   } catch (const Cancelled&) {
     throw;  // not the point's failure: the whole sweep stops
   } catch (const std::bad_alloc&) {
     throw;  // nor is memory running out, which would fail every point after it
   } catch (const std::exception& e) {
-    row.text += "," + csvField(std::string("error: ") + e.what()) + ",,,,,";
-    row.failed = true;
+    constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+    result.end = std::string("error: ") + e.what();
+    result.failed = true;
+    result.tEnd = result.thetaMin = result.thetaMax = result.energyStart = result.energyEnd = kNaN;
   }
-  return row;
+  return result;
+}
+
+void refuseEmptyGrid(const SweepSpec& spec) {
+  if (spec.axes.empty()) throw std::invalid_argument("--grid: give at least one axis, e.g. --grid initial.theta=5:40:8");
 }
 
 }  // namespace
@@ -171,27 +176,24 @@ long gridPointCount(const SweepSpec& spec) {
   return points;
 }
 
-SweepResult runSweep(const SweepSpec& spec, std::ostream& out, const std::function<void(long, long)>& onPoint,
-                     const std::atomic<bool>* cancel) {
-  if (spec.axes.empty()) throw std::invalid_argument("--grid: give at least one axis, e.g. --grid initial.theta=5:40:8");
-  const SweepIdentity identity = sweepIdentity(spec);
-  const std::string rowEnd = fmt::format(",{},{}\n", identity.gridPoints, identity.digest);
-  const long total = identity.gridPoints;
+SweepResult runSweep(const SweepSpec& spec, const std::function<void(const SweepPoint&)>& row,
+                     const std::function<void(long, long)>& onPoint, const std::atomic<bool>* cancel) {
+  refuseEmptyGrid(spec);
+  const long total = gridPointCount(spec);
   // This shard's points are first + k step.
   const long first = spec.shard.index - 1, step = spec.shard.count;
   const long mine = total > first ? (total - first + step - 1) / step : 0;
   const int threads = std::max(1, spec.threads);
 
-  out << sweepHeader(spec.axes) << '\n';
   SweepResult result;
   // Counted as points finish, not as blocks are written: a shard of fewer than kBlockSize points
   // would otherwise report nothing until its end.
   std::mutex progressMutex;
   long computed = 0;
-  std::vector<PointRow> rows;
+  std::vector<SweepPoint> points;
   for (long blockStart = 0; blockStart < mine; blockStart += kBlockSize) {
     const long blockSize = std::min(kBlockSize, mine - blockStart);
-    rows.assign(static_cast<std::size_t>(blockSize), PointRow());
+    points.assign(static_cast<std::size_t>(blockSize), SweepPoint());
     std::atomic<long> next{0};
     // The first exception of any thread (Cancelled, out of memory), rethrown here once all have
     // stopped: one escaping a thread would end the process through std::terminate.
@@ -201,7 +203,7 @@ SweepResult runSweep(const SweepSpec& spec, std::ostream& out, const std::functi
       for (long i; (i = next.fetch_add(1)) < blockSize;) {
         try {
           throwIfCancelled(cancel);
-          rows[static_cast<std::size_t>(i)] = pointRow(spec, first + (blockStart + i) * step, cancel);
+          points[static_cast<std::size_t>(i)] = computePoint(spec, first + (blockStart + i) * step, cancel);
           if (onPoint) {
             const std::lock_guard lock(progressMutex);
             onPoint(++computed, mine);
@@ -230,13 +232,32 @@ SweepResult runSweep(const SweepSpec& spec, std::ostream& out, const std::functi
       work();
     }
     if (failure) std::rethrow_exception(failure);
-    for (const PointRow& row : rows) {
-      out << row.text << rowEnd;
-      if (row.failed) ++result.failed;
+    for (const SweepPoint& point : points) {
+      row(point);
+      if (point.failed) ++result.failed;
+      else ++result.ends[point.end];
       ++result.points;
     }
-    if (!out) throw std::runtime_error("writing the sweep's rows failed");
   }
+  return result;
+}
+
+SweepResult writeSweepCsv(const SweepSpec& spec, std::ostream& out, const std::function<void(long, long)>& onPoint,
+                          const std::atomic<bool>* cancel) {
+  refuseEmptyGrid(spec);
+  const SweepIdentity identity = sweepIdentity(spec);
+  const std::string rowEnd = fmt::format(",{},{}\n", identity.gridPoints, identity.digest);
+  out << sweepHeader(spec.axes) << '\n';
+  std::string text;
+  const SweepResult result = runSweep(spec, [&](const SweepPoint& point) {
+    text = fmt::format("{}", point.point);
+    for (const double v : point.values) text += fmt::format(",{}", v);
+    if (point.failed) text += "," + csvField(point.end) + ",,,,,";
+    else text += fmt::format(",{},{},{},{},{},{}", point.end, point.tEnd, point.thetaMin, point.thetaMax, point.energyStart, point.energyEnd);
+    out << text << rowEnd;
+    // Checked per row: a full disk is found before the rest of a long sweep is computed for nothing.
+    if (!out) throw std::runtime_error("writing the sweep's rows failed");
+  }, onPoint, cancel);
   return result;
 }
 

@@ -1,5 +1,5 @@
 #pragma once
-// Parameter sweeps (INTERFACE.md "Sweeps"): the Cartesian grid over scene fields, one summary row
+// Parameter sweeps (docs/contract.md §7): the Cartesian grid over scene fields, one summary row
 // per point, computed by a pool of threads inside one process and written in point order, so the
 // bytes do not depend on the thread count or on how the grid is split into shards.
 
@@ -8,6 +8,7 @@
 #include <atomic>
 #include <functional>
 #include <ostream>
+#include <map>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -55,17 +56,32 @@ struct SweepIdentity {
 };
 SweepIdentity sweepIdentity(const SweepSpec& spec);
 
-struct SweepResult {
-  long points = 0;  // rows written
-  long failed = 0;  // rows whose end column holds an error
+// One point of the grid, as computed.
+struct SweepPoint {
+  long point = 0;
+  std::vector<double> values;  // each axis' value at the point, in the axes' order
+  std::string end;             // "duration", the event that ended the run, or "error: <the loader's or run's message>"
+  bool failed = false;         // `end` is an error; the numbers below are then NaN
+  double tEnd = 0, thetaMin = 0, thetaMax = 0, energyStart = 0, energyEnd = 0;
 };
 
-// Simulates every point of the shard and writes the header and the rows to `out`, in point order.
-// A point whose scene is invalid or whose integration fails gets "error: <reason>" in its end
-// column. `onPoint(done, total)` is called as each point finishes, by the thread that computed
-// it, one call at a time; a set `cancel` stops the sweep between points with Cancelled. Rows are
-// computed in blocks, so memory does not grow with the number of points.
-SweepResult runSweep(const SweepSpec& spec, std::ostream& out, const std::function<void(long, long)>& onPoint,
-                     const std::atomic<bool>* cancel);
+struct SweepResult {
+  long points = 0;  // rows handed on
+  long failed = 0;  // points whose end is an error
+  std::map<std::string, long> ends;  // how the other points ended: "duration", "coin-flat", ... and their counts
+};
+
+// Simulates every point of the shard and hands them to `row` in point order. A point whose scene
+// is invalid or whose integration fails carries "error: <reason>" in its end. `onPoint(done,
+// total)` is called as each point finishes, by the thread that computed it, one call at a time; a
+// set `cancel` stops the sweep between points with Cancelled. Points are computed in blocks, so
+// memory does not grow with the number of points.
+SweepResult runSweep(const SweepSpec& spec, const std::function<void(const SweepPoint&)>& row,
+                     const std::function<void(long, long)>& onPoint, const std::atomic<bool>* cancel);
+
+// runSweep's points as the sweep CSV (docs/sweeps.md): sweepHeader, then one row per point with
+// the sweep's identity.
+SweepResult writeSweepCsv(const SweepSpec& spec, std::ostream& out, const std::function<void(long, long)>& onPoint,
+                          const std::atomic<bool>* cancel);
 
 }  // namespace coinroll::pipeline

@@ -1,5 +1,5 @@
 #pragma once
-// The grid of a sweep (INTERFACE.md "Sweeps"): its --grid axes and the --shard that picks a slice
+// The grid of a sweep (docs/contract.md §7): its --grid axes and the --shard that picks a slice
 // of its points, parsed from the command line's text.
 
 #include <optional>

@@ -1,5 +1,5 @@
 #pragma once
-// Merging the shard files of one sweep (INTERFACE.md "Sweeps") into the file the unsharded sweep
+// Merging the shard files of one sweep (docs/contract.md §7) into the file the unsharded sweep
 // writes, byte for byte.
 
 #include <atomic>

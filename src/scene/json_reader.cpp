@@ -48,9 +48,9 @@ std::string printableKey(std::string_view key) {
   return nlohmann::json(std::string(key)).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
-JsonReader::JsonReader(const nlohmann::json& object, std::string path, std::string_view source,
-                       std::initializer_list<std::string_view> allowedKeys)
-    : object_(object), path_(std::move(path)), source_(source) {
+JsonReader::JsonReader(const nlohmann::json& object, std::string path, std::string_view source, std::string_view block)
+    : object_(object), path_(std::move(path)), source_(source), block_(block) {
+  const std::span<const std::string_view> allowedKeys = schema::keysIn(block);
   if (!object_.is_object()) {
     throw SceneError(fmt::format("{}: {}: must be an object, got {}", source_, path_.empty() ? "(top level)" : path_,
                                  describeJson(object_)),
@@ -67,6 +67,15 @@ JsonReader::JsonReader(const nlohmann::json& object, std::string path, std::stri
 }
 
 bool JsonReader::has(std::string_view key) const { return object_.contains(key); }
+
+const schema::Key& JsonReader::spec(std::string_view key) const {
+  return schema::key(block_.empty() ? std::string(key) : fmt::format("{}.{}", block_, key));
+}
+
+double JsonReader::bounded(std::string_view key, double value) const {
+  if (const std::string rule = schema::rangeViolation(spec(key), value); !rule.empty()) fail(key, rule);
+  return value;
+}
 
 std::string JsonReader::where(std::string_view key) const {
   return path_.empty() ? fmt::format("{}: {}", source_, printableKey(key))

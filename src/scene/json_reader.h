@@ -1,24 +1,26 @@
 #pragma once
-// Typed, path-aware access to one JSON object: every read names "<source>: <path>.<key>" in its
-// error, and unknown keys are refused, so a typo never passes silently.
+// Typed, path-aware access to one JSON object of a scene: every read names "<source>: <path>.<key>"
+// in its error, and keys outside the object's block of the scene schema are refused, so a typo
+// never passes silently.
 
 #include <nlohmann/json.hpp>
 
-#include <initializer_list>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "scene/scene_error.h"
+#include "scene/scene_schema.h"
 
 namespace coinroll::scene {
 
 class JsonReader {
  public:
-  // Throws SceneError if `object` is not a JSON object or has a key outside `allowedKeys`.
-  JsonReader(const nlohmann::json& object, std::string path, std::string_view source,
-             std::initializer_list<std::string_view> allowedKeys);
+  // Throws SceneError if `object` is not a JSON object or has a key outside the schema's `block`
+  // ("coin", "effects[air_drag]"; "" for the top level). `path` is the object's name in messages
+  // ("effects[0]").
+  JsonReader(const nlohmann::json& object, std::string path, std::string_view source, std::string_view block);
 
   bool has(std::string_view key) const;
 
@@ -30,6 +32,11 @@ class JsonReader {
   std::optional<std::string> optionalString(std::string_view key) const;
   const nlohmann::json* child(std::string_view key) const;  // nullptr when absent
 
+  // The schema's row for `key` of this object.
+  const schema::Key& spec(std::string_view key) const;
+  // `value`, read at `key`, when it lies in the schema's range for the key; else SceneError.
+  double bounded(std::string_view key, double value) const;
+
   // "<source>: <path>.<key>" for messages.
   std::string where(std::string_view key) const;
   [[noreturn]] void fail(std::string_view key, const std::string& rule, SceneError::Kind kind = SceneError::Kind::BadValue) const;
@@ -38,6 +45,7 @@ class JsonReader {
   const nlohmann::json& object_;
   std::string path_;
   std::string source_;
+  std::string block_;
 };
 
 // "string \"long\"", "number -1", "object", ... for "got ..." in messages.

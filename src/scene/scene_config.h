@@ -1,7 +1,7 @@
 #pragma once
 // A scene as the program uses it: validated, defaults filled in, SI units and radians
 // (the file's degrees are converted once, in scene_loader.cpp). Field names follow the JSON keys
-// of INTERFACE.md; README "Scene format" lists each with unit and default. What the renderer and
+// of docs/contract.md; docs/scene.md lists each with unit and default (scene_schema.cpp). What the renderer and
 // the encoder are built with is held in their own types (render/render_settings.h,
 // video/video_options.h), whose defaults and limits are the scene's: defined there, once.
 
@@ -27,7 +27,7 @@ struct CoinSpec {
   double radius = 0;       // m, required, > 0
   double mass = 0;         // kg, required, > 0
   double innerRadius = 0;  // m, ring only: hole radius b in [0, radius]; default radius (thin hoop)
-  // m, coin.thickness: when given the coin is a solid of that thickness in the dynamics (INTERFACE.md
+  // m, coin.thickness: when given the coin is a solid of that thickness in the dynamics (docs/contract.md
   // "The coin's rim"); absent, the seed's thin coin (drawn 0.06 radius thick, in RenderSpec::picture).
   std::optional<double> thickness;
   double edgeRadius = 0;  // m, coin.edge_radius rho in [0, min(h/2, radius - inner radius)]; default h/2 (capped)
@@ -73,8 +73,6 @@ enum class CameraMode {
   Orbit,   // circles the motion once per orbit period
   Follow,  // keeps the coin in the middle at a fixed offset
 };
-// render.camera.mode's names in the scene file, in the order of CameraMode.
-inline constexpr std::array<std::string_view, 3> kCameraModeNames = {"fixed", "orbit", "follow"};
 
 struct CameraSpec {
   CameraMode mode = CameraMode::Fixed;
@@ -143,7 +141,7 @@ struct RenderSpec {
   }
 };
 
-// What the validity events lift-off and slip do (INTERFACE.md "Dissipation").
+// What the validity events lift-off and slip do (docs/contract.md §4).
 enum class OnInvalid {
   Stop,  // end the run at the event
   Warn,  // report each crossing with its time and go on

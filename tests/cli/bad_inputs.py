@@ -318,7 +318,7 @@ case("huge-radius", C, "coin.radius 1e308 (finite, absurd)", SIM, 2, "coin.radiu
 case("huge-spin", C, "initial.omega_Z 1e300 rad/s", SIM, 2, "initial.omega_Z", key="omega_Z",
      files={"scene.json": scene(initial={"omega_Z": 1e300})})
 
-# --- the coin's rim: coin.thickness makes the coin a solid, coin.edge_radius rounds its rim (INTERFACE.md "The coin's rim")
+# --- the coin's rim: coin.thickness makes the coin a solid, coin.edge_radius rounds its rim (docs/contract.md §5)
 # Meaning (issue 21, section 5): what a scene says is what runs, or it is refused.
 MEANING = "accepted before, with another meaning (issue 21, section 5)"
 case("theta-beyond-flat-euler", C, "initial.theta 89.5 in the Euler-angle formulation, whose flat stop is 89 deg",
@@ -421,7 +421,7 @@ case("rim-steady-cmd-cornered-circle", C, "coinroll steady, circle on a cornered
      files={}, gtest=(G_CORNERED,), na_before=NO_RIM)
 
 # --- the render block
-# --- rolling and sliding: "sliding", "friction_static", initial.v_x / v_z (INTERFACE.md "Rolling and sliding")
+# --- rolling and sliding: "sliding", "friction_static", initial.v_x / v_z (docs/contract.md §6)
 C = "rolling and sliding"
 NO_SLIDING = "no sliding before"
 case("sliding-without-friction", C, "sliding true without friction", SIM, 2,

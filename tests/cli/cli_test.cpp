@@ -1,5 +1,5 @@
 // The built program from outside, as scripts use it: exit codes, messages naming the key,
-// and no output file after bad input (INTERFACE.md).
+// and no output file after bad input (docs/contract.md).
 
 #include <gtest/gtest.h>
 

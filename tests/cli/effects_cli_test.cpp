@@ -1,6 +1,5 @@
-// Dissipation through the program's contract (INTERFACE.md "Dissipation and the end of the
-// motion"), and the promise that a scene without effects is computed exactly as before effects
-// existed: every example's CSV, PNG and MP4 hash to what the program wrote before the effects
+// Dissipation through the program's contract (docs/contract.md §4), and the promise that a scene
+// without effects is computed exactly as before effects existed: every example's CSV, PNG and MP4 hash to what the program wrote before the effects
 // refactor (recorded with that build, overlay off: the overlay's labels changed deliberately since).
 // The pictures follow the golden rule of every image test (docs/snapshot_testing.md): exact bytes,
 // and under COINROLL_GOLDEN_TOLERANT=1 their hashes are not compared (see that test).

@@ -101,7 +101,7 @@ TEST_F(GlBackendCliTest, EglDeviceWithoutAGpuExitsOneSayingSoAndWritesNothing) {
   EXPECT_TRUE(leftovers().empty()) << "left " << leftovers().front();
 }
 
-// INTERFACE.md: `coinroll VERSION` (and the git revision from a checkout), then the back ends
+// docs/contract.md: `coinroll VERSION` (and the git revision from a checkout), then the back ends
 // compiled in and the one COINROLL_GL selects, without opening a GL context: egl-device without a
 // GPU, which fails any drawing here, still answers.
 TEST_F(GlBackendCliTest, VersionNamesTheReleaseTheRevisionAndTheBackEndsWithoutAContext) {

@@ -1,4 +1,4 @@
-// A coin with a rim through the command line (INTERFACE.md "The coin's rim"): the CSV follows the
+// A coin with a rim through the command line (docs/contract.md §5): the CSV follows the
 // solid's geometry, a cornered rim stops where it would switch corners, a spin-down lands on its face
 // and the clip then holds still in silence.
 
@@ -34,7 +34,7 @@ std::vector<std::vector<double>> readRows(const fs::path& csv) { return coinroll
 constexpr double kRadius = 0.0375, kThickness = 0.013;
 
 TEST_F(RimCliTest, TheCsvHeightIsTheSolidsAndTheContactIsOnTheFloorUnderTheRim) {
-  // y = (a - rho) cos(theta) + (h/2 - rho) |sin(theta)| + rho (INTERFACE.md), written here from the
+  // y = (a - rho) cos(theta) + (h/2 - rho) |sin(theta)| + rho (docs/contract.md), written here from the
   // contract; the contact point is |c_h| from the centre's floor point, c from the contract's vector.
   for (const double rho : {0.0065, 0.0016, 0.0}) {
     const fs::path scene = dir_ / "rim.json", csv = dir_ / "rim.csv";

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""`coinroll simulate` against tools/sliding_reference.py, an independent Newton-Euler integration in
+"""`coinroll simulate` against tests/oracles/sliding_reference.py, an independent Newton-Euler integration in
 world vectors (docs/sliding.md), in two cases (angles in rad, rates in units of sqrt(g/a), positions in
 units of a, energy relative; the switch time to 1e-9 s):
 - a tilted spinning coin that skids, then rolls (a free slide that ends), within 1e-8;
@@ -38,7 +38,7 @@ def scene_of(case):
 
 
 def compare(binary, name, case, switch_line, bound):
-    reference = subprocess.run([sys.executable, str(ROOT / "tools" / "sliding_reference.py"), json.dumps(case)],
+    reference = subprocess.run([sys.executable, str(ROOT / "tests" / "oracles" / "sliding_reference.py"), json.dumps(case)],
                                capture_output=True, text=True, check=True)
     with tempfile.TemporaryDirectory() as scratch:
         scene = Path(scratch) / "scene.json"

@@ -1,4 +1,4 @@
-// coinroll sweep and sweep-merge through the command line (INTERFACE.md "Sweeps"): the same bytes
+// coinroll sweep and sweep-merge through the command line (docs/contract.md §7): the same bytes
 // for any thread count and for shards run as separate processes by GNU parallel (the Slurm array of
 // docs/sweeps.md: tests/slurm/slurm_test.py), listed and geometric axes, --shard auto/N, merge refusing
 // missing or repeated points by number, failed points kept as rows, and the summary columns
@@ -10,6 +10,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -267,6 +268,25 @@ TEST_F(SweepCliTest, BadGridsAndShardsExitTwoWithoutAFile) {
         << r.output;
     EXPECT_FALSE(fs::exists(out)) << bad;
   }
+}
+
+// A sweep whose runs end in different ways says so in its summary, counted as the CSV's end
+// column counts them: "0 failed" alone let spin-downs that only reached their duration pass for
+// landed ones.
+TEST_F(SweepCliTest, TheSummaryCountsTheRunsByHowTheyEnded) {
+  const fs::path out = dir_ / "ends.csv";
+  // Without spin the toy falls (the seed's lift-off as theta-dot grows); at 12 rad/s it rolls on.
+  const RunResult r = runCoinroll("sweep " + scene().string() + " --grid initial.omega_Z=0:12:4 -o " + out.string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  std::map<std::string, int> ends;
+  std::stringstream rows(slurp(out));
+  std::string line;
+  std::getline(rows, line);
+  while (std::getline(rows, line)) ++ends[fields(line).at(2)];
+  ASSERT_GE(ends.size(), 2u) << "the grid should end in more than one way";
+  std::string expected = "0 failed";
+  for (const auto& [end, count] : ends) expected += ", " + std::to_string(count) + " " + end;
+  EXPECT_NE(r.output.find("(4 points, " + expected + ";"), std::string::npos) << r.output;
 }
 
 }  // namespace

@@ -93,7 +93,7 @@ TEST(Reaction, UprightCoinAtRestCarriesItsWeight) {
 
 TEST(Reaction, EqualsMassTimesAccelerationPlusWeight) {
   // R = M dv/dt + M g e_y with dv/dt differentiated numerically along the flow: an independent
-  // check of the closed form (seed section 4, ERRATA).
+  // check of the closed form (seed section 4, docs/seed.md §3).
   const CoinModel m = diskModel(0.4, 0.0375, 9.81);
   const CoinState s = generalState();
   const Eigen::Vector3d acceleration =

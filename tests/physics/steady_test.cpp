@@ -58,7 +58,7 @@ TEST(SteadyStates, SpinInPlaceKeepsTheCentreOfMassAtRest) {
       const CoinState s = spinInPlace(m, thetaDeg * kDeg);
       EXPECT_TRUE(isBelow(steadyDrift(m, s), 1e-12));
       EXPECT_TRUE(isBelow(centreOfMassVelocity(m, s).norm(), 1e-15));
-      // Steady state 2 of the seed: the floor pushes straight up with the weight, F = 0 (ERRATA).
+      // Steady state 2 of the seed: the floor pushes straight up with the weight, F = 0 (docs/seed.md §5).
       const Reaction r = reaction(m, s);
       EXPECT_TRUE(isNear(r.N, m.M * m.g, 1e-12 * m.M * m.g));
       EXPECT_TRUE(isBelow(r.F, 1e-12 * m.M * m.g));

@@ -250,12 +250,13 @@ TEST(Sliding, AWobbleThatGrazesTheConeBetweenTwoStepEndsSlides) {
 TEST(Sliding, TheCsvCarriesTheSlipAndTheSwitches) {
   const pipeline::Simulation sim = simulationOf(skid({{"radius", 0.0375}, {"mass", 0.4}}, 1.0, 0.3));
   std::ostringstream csv;
-  const pipeline::CsvRunResult result = pipeline::writeTrajectoryCsv(sim, 0.05, csv);
+  const pipeline::TrajectoryReport result = pipeline::writeTrajectoryCsv(sim, 0.05, csv);
   std::istringstream lines(csv.str());
   std::string header, first;
   std::getline(lines, header);
   std::getline(lines, first);
-  EXPECT_EQ(header, std::string(pipeline::kCsvHeader) + ",power,dissipated,slip_speed,sliding");
+  EXPECT_EQ(header, "t,theta,phi,psi,omega_X,omega_Y,omega_Z,x,y,z,contact_x,contact_z,energy,normal_force,friction_force,"
+                    "power,dissipated,slip_speed,sliding");
   EXPECT_EQ(first.substr(first.rfind(',') - 1), "1,1");  // slip speed 1 m/s, sliding
   ASSERT_EQ(result.switches.size(), 1u);
 }

@@ -47,7 +47,7 @@ RenderSettings smallSettings() {
   return s;
 }
 
-// The physics' attitude convention (ERRATA): q = q_y(phi) q_x(theta) q_z(psi).
+// The physics' attitude convention (docs/seed.md §4): q = q_y(phi) q_x(theta) q_z(psi).
 CoinPose pose(double theta, double phi, double psi, glm::vec2 floorPosition = {0, 0}) {
   const glm::quat q = glm::angleAxis(float(phi), glm::vec3(0, 1, 0)) * glm::angleAxis(float(theta), glm::vec3(1, 0, 0)) *
                       glm::angleAxis(float(psi), glm::vec3(0, 0, 1));

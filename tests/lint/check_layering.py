@@ -22,7 +22,7 @@ import sys
 # Which coinroll folders each folder may #include, each edge with the reason it exists.
 # A key "folder" allows every header of that folder; a key "folder/x.h" allows that one
 # header only (a settings-only header that a lower layer may read without seeing the rest).
-# A folder may always include its own headers. Includes point down only (STYLE.md section 1):
+# A folder may always include its own headers. Includes point down only (docs/architecture.md):
 #   cli > pipeline > scene > {physics, integrate};  pipeline > {render, video} > image > io.
 # physics and integrate are independent of each other: pipeline wires the rhs into a stepper.
 MAY_INCLUDE = {
@@ -49,7 +49,7 @@ MAY_INCLUDE = {
     # JSON -> SceneConfig: builds physics and solver types, validates, degrees -> radians.
     "scene": {
         "physics": "a scene is turned into a CoinModel, CoinState and effect parameters",
-        "integrate": "STYLE.md: scene builds physics/integrate types (solver settings) from JSON",
+        "integrate": "scene builds physics/integrate types (solver settings) from JSON",
         "io": "leaf utility for anything that reads or writes files",
         # Settings-only headers (issue 12): a scene holds render/video options without seeing the
         # renderer or the encoder.
@@ -170,12 +170,12 @@ def table_problems(folders):
     """The table itself: every src/ folder listed, every edge to a known folder, no cycle."""
     problems = []
     for folder in sorted(folders - MAY_INCLUDE.keys()):
-        problems.append(f"src/{folder}: folder is not in MAY_INCLUDE of tools/check_layering.py "
+        problems.append(f"src/{folder}: folder is not in MAY_INCLUDE of tests/lint/check_layering.py "
                         "(state which folders it may include, and why)")
     for folder, edges in MAY_INCLUDE.items():
         for key in edges:
             if key.split("/")[0] not in MAY_INCLUDE:
-                problems.append(f"tools/check_layering.py: {folder} -> {key}: unknown folder")
+                problems.append(f"tests/lint/check_layering.py: {folder} -> {key}: unknown folder")
     # Depth-first search for a cycle among folder-level edges.
     state = {}
 
@@ -184,7 +184,7 @@ def table_problems(folders):
         for key in MAY_INCLUDE.get(folder, {}):
             target = key.split("/")[0]
             if state.get(target) == "open":
-                problems.append("tools/check_layering.py: dependency cycle "
+                problems.append("tests/lint/check_layering.py: dependency cycle "
                                 + " -> ".join(trail + [folder, target]))
             elif target not in state:
                 visit(target, trail + [folder])
@@ -226,7 +226,7 @@ def main(argv):
     if len(argv) > 2:
         print(__doc__, file=sys.stderr)
         return 2
-    src = pathlib.Path(argv[1] if len(argv) == 2 else pathlib.Path(__file__).parent.parent / "src")
+    src = pathlib.Path(argv[1] if len(argv) == 2 else pathlib.Path(__file__).parents[2] / "src")
     if not src.is_dir():
         print(f"check_layering.py: {src}: not a directory", file=sys.stderr)
         return 2
@@ -250,7 +250,7 @@ def main(argv):
         print(problem)
     if problems:
         print(f"check_layering.py: {len(problems)} layering violation(s); the allowed "
-              "dependencies are the table at the top of tools/check_layering.py", file=sys.stderr)
+              "dependencies are the table at the top of tests/lint/check_layering.py", file=sys.stderr)
         return 1
     print(f"check_layering.py: {files} files, {checked} includes, layering OK")
     return 0

@@ -11,20 +11,18 @@ evaluates them. Then the limits rho = 0 (I.12) and the sphere a = rho = h/2, b =
 numbers of the page's toy-coin table. One line per claim, "ok ..." or "FAILED ..."; exits non-zero
 if any claim failed.
 """
-import sys
-
 import sympy as sp
+
+from sympy_checks import Claims
 
 M, a, h = sp.symbols("M a h", positive=True)
 b, rho, r = sp.symbols("b rho r", nonnegative=True)
 pi = sp.pi
-failures = []
+claims = Claims("docs/rim_inertia.md")
 
 
 def claim(label, ok):
-    print(("ok      " if ok else "FAILED  ") + label)
-    if not ok:
-        failures.append(label)
+    claims.holds(label, ok)
 
 
 def is_zero(expr):
@@ -136,5 +134,4 @@ for rho_value, (tab_X, tab_Z) in TABLE.items():
     claim(f"table rho = {rho_value * 1e3:.1f} mm matches to 4 digits",
           abs(val_X - tab_X) <= 5e-4 * tab_X and abs(val_Z - tab_Z) <= 5e-4 * tab_Z)
 
-print(f"\n{len(failures)} failed" if failures else "\nall claims hold")
-sys.exit(1 if failures else 0)
+claims.finish()

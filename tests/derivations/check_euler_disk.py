@@ -4,14 +4,15 @@
 
 Every numbered algebraic claim of the page is checked here, for general I_X, I_Z where the
 page says so and for the thin disk (I_X = Ma^2/4, I_Z = Ma^2/2) in its section 3. One line per
-claim, "ok  (2.3) ..." or "FAILED (2.3) ..."; exits non-zero if any claim failed. The last block
+claim, "ok     (2.3) ..." or "FAILED (2.3) ..."; exits non-zero if any claim failed. The last block
 recomputes the toy numbers quoted in the page's table and fails if they drift.
 """
 import math
-import sys
 
 import mpmath
 import sympy as sp
+
+from sympy_checks import Claims, numerator_on_circles
 
 M, a, g, IX, IZ = sp.symbols("M a g I_X I_Z", positive=True)
 mu, rho, delta, l, mus, rp, eps = sp.symbols("mu rho delta l mu_s r_p epsilon", positive=True)
@@ -23,16 +24,14 @@ tX, tY, tZ, t, p = sp.symbols("tau_X tau_Y tau_Z t p", real=True)
 Ma2, Mga = M * a**2, M * g * a
 
 S, C, SP, CP = sp.symbols("S C SP CP")  # sin/cos of theta and phi as plain symbols
-failures = []
+claims = Claims("docs/euler_disk.md")
 
 
 def reduce_trig(expr):
     """expr as a polynomial numerator in sin/cos of theta and phi, modulo sin^2 + cos^2 = 1."""
     plain = sp.sympify(expr).subs({sp.tan(th): sp.sin(th) / sp.cos(th)})
     plain = plain.subs({sp.sin(th): S, sp.cos(th): C, sp.sin(ph): SP, sp.cos(ph): CP})
-    numerator = sp.numer(sp.cancel(sp.together(plain)))
-    numerator = sp.rem(sp.expand(numerator), S**2 + C**2 - 1, S)
-    return sp.expand(sp.rem(sp.expand(numerator), SP**2 + CP**2 - 1, SP))
+    return numerator_on_circles(plain, [(S, C), (SP, CP)])
 
 
 def is_zero(expr):
@@ -56,19 +55,11 @@ def require(name, *exprs):
     for expr in exprs:
         items = list(expr) if isinstance(expr, sp.MatrixBase) else [expr]
         residuals += [e for e in items if not is_zero(e)]
-    if residuals:
-        failures.append(name)
-        print(f"FAILED {name}: residual {residuals[0]}")
-    else:
-        print(f"ok  {name}")
+    claims.vanishes(name, residuals[0] if residuals else 0)
 
 
 def require_true(name, condition, detail=""):
-    if condition:
-        print(f"ok  {name}")
-    else:
-        failures.append(name)
-        print(f"FAILED {name} {detail}")
+    claims.holds(name, condition, detail)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -332,7 +323,4 @@ for name, value in values.items():
     require_true(f"(3.14) toy {name} = {value:.4g} (page: {quoted[name]})",
                  abs(value / quoted[name] - 1) < 2e-3, f"computed {value}")
 
-if failures:
-    print(f"{len(failures)} claim(s) FAILED: {', '.join(failures)}")
-    sys.exit(1)
-print("all Euler-disk checks passed")
+claims.finish()

@@ -16,14 +16,16 @@ sides sigma = sign(theta) = +-1, in the seed's turning frame XYZ (docs/derivatio
            (4.4), N's sensitivity (4.2), the condensed compliance W_c is diagonal in (e_X, h) with (4.3),
            mu_k < mu_s gives (4.5)-(4.6), and the quadratic start (4.7)-(4.8) for mu_k = mu_s;
   (e)  §5  the skid of an upright coin: t*, speed after, friction work; rolling after it fits the cone.
-Exits non-zero on the first failed identity.
+Exits non-zero if any identity fails (each failure is printed).
 """
-import sys
 import time
 
 import sympy as sp
 
+from sympy_checks import Claims, numerator_on_circles
+
 started = time.monotonic()
+claims = Claims("docs/sliding.md")
 
 M, a, h, rho, g, IX, IZ = sp.symbols("M a h rho g I_X I_Z", positive=True)
 mu, Sm = sp.symbols("mu S_m", positive=True)           # friction coefficient, slip speed |s|
@@ -38,20 +40,11 @@ sg, cg = sp.symbols("sg cg")  # rolling friction direction f_hat = cg e_X + sg h
 
 def reduce_(expr):
     """Numerator of expr reduced modulo S^2 + C^2 = 1, sb^2 + cb^2 = 1, sg^2 + cg^2 = 1 (exact)."""
-    numerator = sp.numer(sp.together(sp.sympify(expr)))
-    numerator = sp.expand(numerator)
-    for s_, c_ in ((S, C), (sb, cb), (sg, cg)):
-        if numerator.has(s_):
-            numerator = sp.expand(sp.rem(numerator, s_**2 + c_**2 - 1, s_))
-    return numerator
+    return numerator_on_circles(expr, [(S, C), (sb, cb), (sg, cg)])
 
 
 def require(name, expr):
-    residual = reduce_(expr)
-    if residual != 0:
-        print(f"FAILED {name}: residual {residual}")
-        sys.exit(1)
-    print(f"ok     {name}")
+    claims.vanishes(name, reduce_(expr))
 
 
 def require_all(name, vector):
@@ -60,10 +53,7 @@ def require_all(name, vector):
 
 
 def require_true(name, condition):
-    if not condition:
-        print(f"FAILED {name}")
-        sys.exit(1)
-    print(f"ok     {name}")
+    claims.holds(name, condition)
 
 
 def dth(expr):
@@ -389,4 +379,5 @@ for name, geo in (("thin", {h: 0, rho: 0}), ("fully rounded", {h: 2 * rho})):
     require_all(f"(5.3) {name}: upright straight rolling needs omega' = 0", d_r.subs(geo).subs(roll0))
     require_all(f"(5.3) {name}: ... and R = M g y, F = 0", (R_r - M * g * yhat).subs(geo).subs(roll0))
 
-print(f"all sliding checks passed ({time.monotonic() - started:.1f} s)")
+print(f"       ({time.monotonic() - started:.1f} s)")
+claims.finish()

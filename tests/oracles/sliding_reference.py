@@ -9,13 +9,13 @@ mass's full 3D position and velocity are integrated (the height is checked again
 imposed). Pure Python (no numpy/scipy), deterministic: the same parameters give the same bytes.
 
 Usage
-    python3 tools/sliding_reference.py '{"mass": 0.00567, "radius": 0.01213, "mu": 0.3, "theta": 0.3,
+    python3 tests/oracles/sliding_reference.py '{"mass": 0.00567, "radius": 0.01213, "mu": 0.3, "theta": 0.3,
         "omega_Y": -5.263469899354806, "omega_Z": -30, "v_x": 0.3, "v_z": 0.05, "duration": 1.0,
         "sample_dt": 0.01}'  >  run.csv
     (a steady circle, omega_Y from docs/rim.md 5.1, whose centre is launched off its rolling velocity
     (0.3639, 0) m/s: it skids for 0.0119 s, then rolls)
-    python3 tools/sliding_reference.py @params.json [--extra]
-    python3 tools/sliding_reference.py --self-test
+    python3 tests/oracles/sliding_reference.py @params.json [--extra]
+    python3 tests/oracles/sliding_reference.py --self-test
 
 Parameters (JSON object; SI units, ANGLES IN RADIANS, unlike the scene file's degrees):
     mass M (kg), radius a (m)                        required
@@ -45,7 +45,7 @@ A sliding row's slip_speed is |s|; a rolling row's is 0. Exit codes: 0 done (als
 Stderr: each switch ("sliding_reference: slides at t = ...", "... rolls at t = ..."), the end, and checks
 of the held contact (height and vertical slip drift, |q| - 1, slip while rolling, energy balance).
 
-Conventions (ERRATA "Conventions", docs/derivations.md, docs/rim.md):
+Conventions (docs/seed.md §2, docs/derivations.md, docs/rim.md):
   - Floor frame xyz, y up; the floor is the plane y = 0. World vectors are in xyz.
   - Attitude: the unit quaternion q = q_y(phi) q_x(theta) q_z(psi), q_n(a) = cos(a/2) + n sin(a/2), an active
     rotation taking the floor axes to the coin's material axes b1, b2, b3 (b3 = e_Z, the symmetry axis).
@@ -145,7 +145,7 @@ def quat_rotate(q, v):
 
 
 def quat_from_euler(theta, phi, psi):
-    """q = q_y(phi) q_x(theta) q_z(psi) (ERRATA "Conventions")."""
+    """q = q_y(phi) q_x(theta) q_z(psi) (docs/seed.md §2)."""
     qy = (math.cos(phi / 2), 0.0, math.sin(phi / 2), 0.0)
     qx = (math.cos(theta / 2), math.sin(theta / 2), 0.0, 0.0)
     qz = (math.cos(psi / 2), 0.0, 0.0, math.sin(psi / 2))
@@ -451,7 +451,7 @@ class Coin:
         w = add(add(scale(wX, eX), scale(wY, eY)), scale(wZ, eZ))
         y = list(q) + list(w) + [float(p.get("x", 0.0)), 0.0, float(p.get("z", 0.0))] + [0.0, 0.0, 0.0, 0.0]
         _, eZq, eXq, eYq, _, c, _, _ = self.frame(y)
-        # The quaternion's axes are the ERRATA's rows (psi turns only b1, b2 about e_Z).
+        # The quaternion's axes are the rows of docs/seed.md §2 (psi turns only b1, b2 about e_Z).
         assert norm(sub(eZq, eZ)) < 1e-14 and norm(sub(eXq, eX)) < 1e-14 and norm(sub(eYq, eY)) < 1e-14
         y[8] = -c[1]                                           # height of G: the contact on the floor
         wc = cross(w, c)

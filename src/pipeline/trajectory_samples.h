@@ -1,0 +1,54 @@
+#pragma once
+// The trajectory as data: the contract's columns sampled at t = k S from the dense output, handed
+// row by row to whoever keeps them. The CSV writer (trajectory_csv.h), the C++ API, the Python
+// module and the WebAssembly module are views of these rows, so a column is defined here once.
+
+#include <array>
+#include <functional>
+#include <optional>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "integrate/events.h"
+#include "pipeline/hybrid_run.h"
+#include "pipeline/run_event.h"
+#include "pipeline/simulation.h"
+#include "pipeline/singular_time.h"
+
+namespace coinroll::pipeline {
+
+// The contract's fixed columns (docs/contract.md §3), in order.
+inline constexpr std::array<std::string_view, 15> kTrajectoryColumns = {
+    "t", "theta", "phi", "psi", "omega_X", "omega_Y", "omega_Z", "x", "y", "z",
+    "contact_x", "contact_z", "energy", "normal_force", "friction_force"};
+// After them when the scene has effects or slides: power dissipated now (W) and since t = 0 (J).
+inline constexpr std::array<std::string_view, 2> kDissipationColumns = {"power", "dissipated"};
+// With "sliding": true, after those: the contact point's slip speed and 1 while sliding, else 0.
+inline constexpr std::array<std::string_view, 2> kSlidingColumns = {"slip_speed", "sliding"};
+
+// The columns a run of `simulation` has, in order.
+std::vector<std::string_view> trajectoryColumns(const Simulation& simulation);
+
+// Number of rows for a duration and sample step: k = 0 .. floor(duration / S). The quotient is
+// nudged by a relative 1e-9 so a duration that is a whole number of steps keeps its last row
+// despite round-off: 2.3 / 0.01 is 229.99999999999997 in binary, which alone would give 230 rows
+// instead of 231.
+long sampleCount(double duration, double sampleDt);
+
+// How a sampled run went.
+struct TrajectoryReport {
+  long rows = 0;
+  std::optional<RunEvent> stoppedBy;
+  std::vector<RunEvent> warnings;  // on_invalid "warn": crossings gone past
+  std::vector<ModeSwitch> switches;  // "sliding": true: each switch between rolling and sliding
+  std::optional<SingularTimeEstimate> singularTime;  // a spin-down that reached coin-flat or face-down
+  integrate::Stats stats;
+};
+
+// Integrates `simulation` and hands `row` the values of trajectoryColumns(simulation) at each
+// sample time, until the duration or the event that ends the run.
+using TrajectoryRow = std::function<void(std::span<const double>)>;
+TrajectoryReport sampleTrajectory(const Simulation& simulation, double sampleDt, const TrajectoryRow& row);
+
+}  // namespace coinroll::pipeline

@@ -1,0 +1,15 @@
+#pragma once
+// `--set KEY.PATH=VALUE`: one change to a scene's JSON document before it is validated.
+
+#include <nlohmann/json.hpp>
+
+#include <string_view>
+
+namespace coinroll::scene {
+
+// "initial.theta=12": the value is read as JSON when it parses as JSON, else taken as a string;
+// missing objects along the path are created. The value null removes the key, so the scene takes
+// the key's default ("render.audio=null": no sound track), or removes a list's entry.
+void applyOverride(nlohmann::json& document, std::string_view assignment);
+
+}  // namespace coinroll::scene

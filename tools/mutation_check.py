@@ -126,7 +126,7 @@ MUTATIONS = [
       "skip-check", "non-finite initial state accepted"),
     # ---------------------------------------------------------------- src/video (10)
     M("src/video/encoder_sink.cpp",
-      "if (&encoder == codec.get()) packet->duration = 1;", "",
+      "if (&target == &video) packet->duration = 1;", "",
       "drop-term", "MP4: video packets without a duration (last frame lost from the length)"),
     M("src/video/encoder_sink.cpp",
       "if (x264.threads < 1 || x264.threads > kMaxX264Threads) {", "if (x264.threads < 1) {",
@@ -138,7 +138,7 @@ MUTATIONS = [
       "if (!encoder.pending.empty()) encoder.encodeAudioBlock(static_cast<int>(encoder.pending.size()));", "",
       "skip-check", "MP4 finish: the last, short audio block is never encoded"),
     M("src/video/encoder_sink.cpp",
-      "encoder.frame->pts = framesPushed_;", "encoder.frame->pts = framesPushed_ + 1;",
+      "picture.pts = framesPushed_;", "picture.pts = framesPushed_ + 1;",
       "off-by-one", "MP4: frame timestamps start at 1"),
     M("src/video/rgba_to_yuv.cpp",
       "setScalerColorDetails(*scaler, bt709, true, bt709, false,", "setScalerColorDetails(*scaler, bt709, false, bt709, false,",

@@ -28,6 +28,7 @@
 #include "pipeline/video_frames.h"
 #include "video/async_sink.h"
 #include "video/make_sink.h"
+#include "video/video_kinds.h"
 #include "cli/progress.h"
 #include "pipeline/trajectory_csv.h"
 #include "scene/render_output.h"
@@ -277,7 +278,7 @@ void runStill(const StillOptions& options) {
   const std::filesystem::path output(options.output);
   refuseEmptyOutputName("-o", options.output, "still.png");
   // A device, FIFO or descriptor has no name to check: it gets the PNG.
-  if (output.extension() != ".png" && !io::namesStream(output)) {
+  if (!video::namesExtension(output, video::kPngExtension) && !io::namesStream(output)) {
     throw UsageError(fmt::format("-o: a still is written as PNG; give a name ending in .png, got \"{}\"", options.output));
   }
   if (options.strobeFrom && options.strobe == 0) {
@@ -336,15 +337,20 @@ void runRender(const RenderOptions& options) {
   const scene::SceneConfig& scene = resolved.config;
   const video::Provenance& provenance = resolved.provenance;
   reportSteadyStart(scene);
-  const std::filesystem::path output = options.output ? std::filesystem::path(*options.output)
-                                                      : std::filesystem::path(fileNameFrom(scene.name) + ".mp4");
+  video::VideoOptions encoding = scene.render.mp4Options();
+  encoding.provenance = provenance;
+  const std::filesystem::path output =
+      options.output ? std::filesystem::path(*options.output)
+                     : std::filesystem::path(fileNameFrom(scene.name) + std::string(video::videoKind(encoding.format).extension));
   if (const std::optional<video::VideoFormat> format = video::videoFormatOf(output)) {
-    scene::refuseOutputThatCannotCarry(scene.render, *format);
+    try {
+      video::refuseOutputThatCannotCarry(encoding, *format);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(e.what());
+    }
   }
   refuseOverwritingInput("-o", output, inputsOf(options.scene));
   if (options.frameTimesPath) refuseFrameTimesName(*options.frameTimesPath, output, inputsOf(options.scene));
-  video::VideoOptions encoding = scene.render.mp4Options();
-  encoding.provenance = provenance;
   std::optional<FrameTimesSidecar> frameTimes;  // outlives the sink that publishes it
   std::unique_ptr<video::FrameSink> sink;
   try {

@@ -50,7 +50,7 @@ void runStill(const StillOptions& options);
 
 struct RenderOptions {
   SceneSource scene;
-  std::optional<std::string> output;  // .mp4, .gif, .webm, .mov or a %d pattern of .png; default <scene name>.mp4
+  std::optional<std::string> output;  // a video kind's extension or a %d pattern of .png; default <scene name>.mp4
   std::optional<std::string> size;    // "480p" .. "2160p": render.width and render.height
   std::optional<double> from, to;     // s of simulated time: the frames to write
   bool quiet = false;                 // no progress line, no summary

@@ -19,6 +19,7 @@
 #include "io/output_file.h"
 #include "pipeline/resources.h"
 #include "render/render_settings.h"
+#include "video/video_kinds.h"
 
 namespace coinroll::cli {
 
@@ -89,7 +90,7 @@ int runCompare(const CompareOptions& options) {
     image::checkThresholds(thresholds);
     if (options.diff) {
       refuseEmptyOutputName("--diff", *options.diff, "diff.png");
-      if (std::filesystem::path(*options.diff).extension() != ".png" && !io::namesStream(*options.diff)) {
+      if (!video::namesExtension(*options.diff, video::kPngExtension) && !io::namesStream(*options.diff)) {
         throw UsageError(fmt::format("--diff: the diff image is a PNG; give a name ending in .png, got \"{}\"", *options.diff));
       }
       refuseOverwritingInput("--diff", *options.diff, {options.a, options.b});

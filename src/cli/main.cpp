@@ -20,6 +20,7 @@
 #include <string>
 #include <string_view>
 #include <type_traits>
+#include <vector>
 
 #include "cli/commands.h"
 #include "cli/exit_codes.h"
@@ -31,6 +32,7 @@
 #include "scene/render_output.h"
 #include "scene/json_reader.h"
 #include "scene/scene_loader.h"
+#include "video/video_kinds.h"
 
 namespace {
 
@@ -122,15 +124,27 @@ CLI::App* addSteadyCommand(CLI::App& app, SteadyOptions& options) {
 }
 
 CLI::App* addRenderCommand(CLI::App& app, RenderOptions& options) {
+  // "an MP4 (H.264)" for the command, "NAME.mp4 (H.264)" for -o: the codec where the kind is not
+  // named after it, and whether it loops.
+  std::vector<std::string> kinds;
+  std::string names;
+  for (const coinroll::video::VideoKind& kind : coinroll::video::videoKinds()) {
+    kinds.push_back(fmt::format("{} {}{}", kind.article, kind.label, kind.codec.empty() ? "" : fmt::format(" ({})", kind.codec)));
+    std::vector<std::string_view> notes;
+    if (!kind.codec.empty()) notes.push_back(kind.codec);
+    if (kind.loops) notes.push_back("looping");
+    names += fmt::format("NAME{} ({}), ", kind.extension, fmt::join(notes, ", "));
+  }
+  kinds.emplace_back("a PNG sequence");
+  const std::string_view defaultExtension = coinroll::video::videoKind(coinroll::video::VideoOptions{}.format).extension;
   CLI::App* command = app.add_subcommand(
-      "render",
-      "Render a scene to an MP4 (H.264), a GIF, a WebM (VP9), a MOV (ProRes 4444) or a PNG sequence; without a scene, "
-      "the built-in default");
+      "render", fmt::format("Render a scene to {}; without a scene, the built-in default", coinroll::video::joinedWithOr(kinds)));
   addSceneOptions(*command, options.scene, false);
   command->add_option("-o,--output", options.output,
-                            "Output, its kind by the extension (any case): NAME.mp4 (H.264), NAME.gif (looping), NAME.webm "
-                            "(VP9), NAME.mov (ProRes 4444), or a PNG sequence pattern like frames_%05d.png (frames "
-                            "numbered from 0); default: the scene's name + .mp4 (coinroll.mp4 for the built-in scene)");
+                      fmt::format("Output, its kind by the extension (any case): {}or a PNG sequence pattern like "
+                                  "frames_%05d.png (frames numbered from 0); default: the scene's name + {} (coinroll{} "
+                                  "for the built-in scene)",
+                                  names, defaultExtension, defaultExtension));
   std::string sizes, sizeNames;
   for (const coinroll::scene::PictureSize& size : coinroll::scene::kPictureSizes) {
     const bool last = &size == &coinroll::scene::kPictureSizes.back();

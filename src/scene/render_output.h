@@ -1,14 +1,11 @@
 #pragma once
-// What a render's command line asks of a scene's picture and output: a named picture size, and
-// whether the output's video kind can carry what the scene's render block wants in it.
+// render --size's named picture sizes. Whether an output can carry what a render block asks for
+// is the output kinds' own to say (video/video_kinds.h).
 
 #include <array>
 #include <optional>
 #include <string>
 #include <string_view>
-
-#include "scene/scene_config.h"
-#include "video/video_options.h"
 
 namespace coinroll::scene {
 
@@ -23,10 +20,5 @@ inline constexpr std::array<PictureSize, 5> kPictureSizes = {{
 std::optional<PictureSize> pictureSizeNamed(std::string_view name);
 // "480p, 720p, 1080p, 1440p or 2160p" for messages.
 std::string pictureSizeNames();
-
-// Throws SceneError naming the render field and the kinds that carry it when `format` cannot hold
-// what `render` asks for: a transparent background (render.background) in a kind without alpha,
-// or a sound track (render.audio) in one without audio (video::keepsAlpha, video::holdsAudio).
-void refuseOutputThatCannotCarry(const RenderSpec& render, video::VideoFormat format);
 
 }  // namespace coinroll::scene

@@ -250,7 +250,9 @@ std::vector<Key> buildTable() {
        .lower = closed(render::kMinImageSide), .upper = closed(render::kMaxImageSide),
        .doc = "even (H.264's yuv420p needs even sizes)"},
       {.path = "render.fps", .type = T::Integer, .unit = "1/s", .defaultText = number(render.fps), .lower = closed(1),
-       .upper = closed(kMaxFps), .unitInRule = false, .doc = "frames per second of video"},
+       .upper = closed(kMaxFps), .unitInRule = false,
+       .doc = "frames per second of video; at most 50 for a `.gif`, whose frame delays are whole hundredths of a "
+              "second (docs/outputs.md \"GIF frame timing\")"},
       {.path = "render.antialiasing", .type = T::Name, .unit = "",
        .defaultText = nameOf(picture.antialiasing, kAntialiasingNames), .names = namesOf(kAntialiasingNames),
        .doc = "`msaa` (`render.msaa` samples per pixel, resolved) or `fxaa` (one sample and a fast edge-smoothing "

@@ -1,6 +1,6 @@
 #pragma once
-// A video file through libavformat/libavcodec/libswscale: H.264 in MP4, GIF, VP9 in WebM or
-// ProRes 4444 in MOV (VideoOptions::format).
+// A video file through libavformat/libavcodec/libswscale, of any kind video_kinds.h lists
+// (VideoOptions::format).
 
 #include <cstdint>
 #include <filesystem>
@@ -15,15 +15,15 @@ namespace coinroll::video {
 // Throws std::invalid_argument naming the field, the rule and the value if `options` is unusable.
 void validate(const VideoOptions& options);
 
-// Writes <destination> (any name; the container is options.format's regardless of the extension).
+// Writes <destination> (any name; the container is options.format's regardless of the extension)
+// as the kind's row says: its muxer, encoder, options and pixel format (the alpha one with
+// options.alpha), its index first or not, looping or not.
 // Every kind: constant frame rate (time base 1/fps, pts = frame index, the last frame one period
 // long); byte-identical for identical frames and options on the same FFmpeg and codec libraries
 // (bit-exact flags, no dates or library versions; tested for each kind); the provenance, when
-// given, as the container's "encoder" and "comment" tags (MP4, MOV, WebM; a GIF has none).
-// MP4: yuv420p H.264; MOV: ProRes 4444, yuv444p10le or yuva444p10le; WebM: VP9, yuv420p or
-// yuva420p; all with BT.709 primaries, transfer and matrix, limited ("TV") range, all tagged.
-// MP4 and MOV put moov before mdat (faststart, so players can start before the download ends).
-// GIF: a fixed palette with ordered dithering (gif_palette.h), looping for ever.
+// given, as the container's "encoder" and "comment" tags, or by the row's addComment where the
+// muxer drops them (GIF). YUV pixel formats are tagged BT.709 (primaries, transfer and matrix),
+// limited ("TV") range; a palette format gets a fixed palette with ordered dithering (gif_palette.h).
 // The file is written under a temporary name beside the destination and renamed in finish();
 // for a stream destination (a device, FIFO or descriptor, which the muxer cannot seek) it is
 // encoded in $TMPDIR and copied to the stream in finish() (io::OutputFile::Access::ByPath).

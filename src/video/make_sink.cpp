@@ -1,21 +1,21 @@
 #include "video/make_sink.h"
 
-#include <cctype>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "io/destination.h"
 #include "video/png_sequence_sink.h"
+#include "video/video_kinds.h"
 
 namespace coinroll::video {
 
 namespace {
 
-// The video kind the path's extension names, in any case; nothing for any other extension.
+// The video kind the path's extension names; nothing for any other extension.
 std::optional<VideoFormat> formatOfExtension(const std::filesystem::path& path) {
-  std::string extension = path.extension().string();
-  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  for (const VideoFormat format : kVideoFormats) {
-    if (extension == extensionOf(format)) return format;
+  for (const VideoKind& kind : videoKinds()) {
+    if (namesExtension(path, kind.extension)) return kind.format;
   }
   return std::nullopt;
 }
@@ -26,7 +26,7 @@ std::optional<VideoFormat> videoFormatOf(const std::filesystem::path& path) {
   if (const std::optional<VideoFormat> format = formatOfExtension(path)) return format;
   // A device, FIFO or descriptor has no extension of its own to choose by (/dev/null,
   // /dev/fd/63 from `-o >(...)`): it gets the default kind, as the default name does.
-  if (!namesPngSequence(path) && io::namesStream(path)) return VideoFormat::Mp4;
+  if (!namesPngSequence(path) && io::namesStream(path)) return VideoOptions{}.format;
   return std::nullopt;
 }
 
@@ -42,9 +42,11 @@ std::unique_ptr<FrameSink> makeSinkForPath(const std::filesystem::path& path, co
     chosen.format = *format;
     return std::make_unique<EncoderSink>(path, chosen);
   }
-  throw std::invalid_argument(path.string() +
-                              ": unknown output kind: expected a video ending in .mp4, .gif, .webm or .mov (out.mp4) "
-                              "or a PNG sequence pattern with one %d or %0Nd conversion (out_%05d.png)");
+  std::vector<std::string> extensions;
+  for (const VideoKind& kind : videoKinds()) extensions.emplace_back(kind.extension);
+  throw std::invalid_argument(path.string() + ": unknown output kind: expected a video ending in " + joinedWithOr(extensions) +
+                              " (out" + std::string(videoKind(VideoOptions{}.format).extension) +
+                              ") or a PNG sequence pattern with one %d or %0Nd conversion (out_%05d.png)");
 }
 
 }  // namespace coinroll::video

@@ -11,9 +11,9 @@
 
 namespace coinroll::video {
 
-// The video kind a path names by its extension, in any case (.mp4, .gif, .webm, .mov; a % in such
-// a name is a literal character: 100%.mp4), or MP4 for a device, FIFO or descriptor (/dev/null,
-// /dev/stdout, /dev/fd/N); nothing for a PNG sequence pattern or any other name.
+// The video kind a path names by its extension (namesExtension: any case; a % in such a name is a
+// literal character: 100%.mp4), or the default kind (MP4) for a device, FIFO or descriptor
+// (/dev/null, /dev/stdout, /dev/fd/N); nothing for a PNG sequence pattern or any other name.
 std::optional<VideoFormat> videoFormatOf(const std::filesystem::path& path);
 
 // A file name with a % conversion ("out/frame_%05d.png") that does not end in a video extension.

@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "video/video_kinds.h"
+
 namespace coinroll::video {
 
 namespace {
@@ -15,13 +17,6 @@ constexpr int kMaxDigits = 10;  // an int has at most 10 decimal digits
 std::invalid_argument badPattern(const std::string& pattern, const std::string& rule) {
   return std::invalid_argument(pattern + ": bad PNG sequence pattern: " + rule +
                                " (expected one %d or %0Nd conversion and a .png ending, e.g. frame_%05d.png)");
-}
-
-bool endsWithPng(const std::string& name) {
-  if (name.size() < 4) return false;
-  std::string ending = name.substr(name.size() - 4);
-  for (char& c : ending) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return ending == ".png";
 }
 
 }  // namespace
@@ -73,7 +68,7 @@ SequencePattern parseSequencePattern(const std::filesystem::path& pattern) {
     i = j;
   }
   if (!haveConversion) throw badPattern(whole, "no % conversion");
-  if (!endsWithPng(fileName)) throw badPattern(whole, "the file name must end in .png");
+  if (!namesExtension(fileName, kPngExtension)) throw badPattern(whole, "the file name must end in .png");
   return parsed;
 }
 

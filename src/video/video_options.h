@@ -32,32 +32,9 @@ struct X264Options {
   int threads = 1;
 };
 
-// The video kinds coinroll writes (docs/outputs.md "Video formats"): the container, its codec and
-// pixel format follow from the kind.
-enum class VideoFormat {
-  Mp4,   // H.264 (libx264), yuv420p, BT.709 limited range; AAC when there is audio
-  Gif,   // GIF (FFmpeg's encoder), a fixed 252-colour palette with ordered dithering, looping
-  WebM,  // VP9 (libvpx-vp9), yuv420p, or yuva420p with alpha
-  Mov,   // ProRes 4444 (prores_ks), yuv444p10le, or yuva444p10le with alpha; AAC when there is audio
-};
-// Every kind, in the order of the enum: the one list an output name is matched against.
-inline constexpr std::array<VideoFormat, 4> kVideoFormats = {VideoFormat::Mp4, VideoFormat::Gif, VideoFormat::WebM,
-                                                             VideoFormat::Mov};
-
-// ".mp4", ".gif", ".webm" or ".mov", the extension a file of `format` is chosen by.
-constexpr std::string_view extensionOf(VideoFormat format) {
-  switch (format) {
-    case VideoFormat::Mp4: return ".mp4";
-    case VideoFormat::Gif: return ".gif";
-    case VideoFormat::WebM: return ".webm";
-    case VideoFormat::Mov: return ".mov";
-  }
-  return {};
-}
-// Whether a file of `format` keeps the frames' alpha (VideoOptions::alpha).
-constexpr bool keepsAlpha(VideoFormat format) { return format == VideoFormat::WebM || format == VideoFormat::Mov; }
-// Whether a file of `format` can hold a sound track (VideoOptions::audio).
-constexpr bool holdsAudio(VideoFormat format) { return format == VideoFormat::Mp4 || format == VideoFormat::Mov; }
+// The video kinds coinroll writes: each kind's row in video_kinds.cpp says what it is made of
+// and what it can carry (docs/outputs.md "Video formats").
+enum class VideoFormat { Mp4, Gif, WebM, Mov };
 
 // What says who made a file (docs/outputs.md "Provenance"): the program and its release, and a
 // digest of the scene it rendered. No date and no git revision, so the same release and scene give
@@ -77,14 +54,15 @@ struct Provenance {
 };
 
 struct VideoOptions {
-  VideoFormat format = VideoFormat::Mp4;
+  VideoFormat format = VideoFormat::Mp4;  // also the kind of a name without an extension to go by (/dev/stdout)
   int width = image::kDefaultPictureWidth;    // pixels, even (4:2:0 chroma is subsampled by 2 each way)
   int height = image::kDefaultPictureHeight;  // pixels, even
-  int fps = 30;      // frames per second, > 0; timestamps are frame index / fps
+  int fps = 30;      // frames per second, > 0 and within the kind's maxFps; timestamps are frame index / fps
   X264Options x264;
-  // Adds a mono AAC track (FFmpeg's own encoder, 48 kHz, 128 kbit/s) fed by pushAudio().
+  // Adds a mono AAC track (FFmpeg's own encoder, 48 kHz, 128 kbit/s) fed by pushAudio(), in the
+  // kinds that hold audio (validate() refuses it for the others).
   bool audio = false;
-  // Keeps the frames' alpha (WebM and MOV only; validate() refuses it for the others).
+  // Keeps the frames' alpha (the kinds with an alpha pixel format; validate() refuses it for the others).
   bool alpha = false;
   Provenance provenance;
 };

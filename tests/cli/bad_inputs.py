@@ -698,8 +698,8 @@ case("window-without-frames", C, "render --from 0.21 --to 0.22: no frame at 30 f
 for ext in ("mp4", "GIF"):
     case(f"transparent-{ext.lower()}", C, f"render.background transparent with .{ext}",
          f"render scene.json -q -o o.{ext} --set 'render.background=\"transparent\"'", 2,
-         f'render.background: "transparent" needs an output with alpha, and .{ext.lower()} has none; write a .mov, '
-         'a .webm or a PNG sequence', key="render.background", gtest=(G_RENDER,), na_before=FORMATS)
+         f'render.background: "transparent" needs an output with alpha, and .{ext.lower()} has none; write a .webm, '
+         'a .mov or a PNG sequence', key="render.background", gtest=(G_RENDER,), na_before=FORMATS)
 case("background-bad", C, "render.background \"clear\"", "render scene.json -q -o o.mov --set 'render.background=\"clear\"'",
      2, 'render.background: expected "opaque" or "transparent", got "clear"', key="render.background",
      gtest=(G_RENDER,), na_before=FORMATS)
@@ -714,8 +714,13 @@ case("scale-bar-string", C, "render.scale_bar \"1 cm\"", "render scene.json -q -
 case("provenance-bad", C, "render.provenance \"yes\"", "render scene.json -q -o o.mov --set 'render.provenance=\"yes\"'",
      2, 'render.provenance: must be true or false, got string "yes"', key="render.provenance", na_before=FORMATS)
 case("audio-webm", C, "render.audio with .webm", "render scene.json -q -o o.webm --set render.audio=true", 2,
-     "render.audio: a .webm gets no sound track; write a .mp4 or a .mov, or remove render.audio", key="render.audio",
+     "render.audio: a .webm gets no sound track; write a .mp4 or a .mov, or leave the sound out with --set render.audio=null", key="render.audio",
      na_before=FORMATS)
+case("gif-fps-60", C, "render.fps 60 with .gif (browsers would play its 1-hundredth delays as 10)",
+     "render scene.json -q -o o.gif --set render.fps=60", 2,
+     "render.fps: a .gif plays at most 50 fps (its frame delays are whole hundredths of a second, and browsers play a "
+     "delay under 2 as 10), got 60; set render.fps to 50 or less, or write a .mp4, a .webm or a .mov", key="render.fps",
+     gtest=(G_RENDER,), na_before=FORMATS)
 case("render-two-patterns", C, "PNG pattern with two %d", "render scene.json -o o_%d_%d.png", 2,
      "o_%d_%d.png: bad PNG sequence pattern: more than one % conversion", key="%")
 case("render-pattern-s", C, "PNG pattern with %s", "render scene.json -o o_%s.png", 2,
@@ -729,6 +734,11 @@ case("still-time-nan", C, "still --time nan", "still scene.json --time nan -o o.
 case("still-no-time", C, "still without --time", "still scene.json -o o.png", 2, "--time is required")
 case("still-jpg", C, "still -o o.jpg", "still scene.json --time 0.1 -o o.jpg", 2,
      'a still is written as PNG; give a name ending in .png, got "o.jpg"', key=".png")
+# One rule for every output name (issue 39): an extension in any case, as render takes clip.GIF.
+case("still-upper-png", C, "still -o UP.PNG (.png in any case)", f"still scene.json --time 0.1 {SMALL} -o UP.PNG", 0, None,
+     produces=("UP.PNG",))
+case("render-seq-upper-png", C, "render -o F_%03d.PNG (.png in any case)",
+     f"render scene.json -q {SMALL} --set duration=0.1 -o F_%03d.PNG", 0, None, produces=("F_00[0-3].PNG",))
 case("strobe-negative", C, "still --strobe -3", "still scene.json --time 0.1 -o o.png --strobe -3", 2,
      "--strobe: must be 0 to 500 copies, got -3", key="--strobe")
 case("strobe-from-late", C, "--strobe-from after --time",
@@ -1328,6 +1338,8 @@ case("compare-diff-is-input", C, "--diff naming an input", "compare a.png b.png 
      "--diff a.png: that is the input a.png; choose another output name", key="--diff", files=PNGS, na_before=NO_COMPARE)
 case("compare-diff-not-png", C, "--diff without .png", "compare a.png b.png --diff d.txt", 2,
      "--diff: the diff image is a PNG; give a name ending in .png", key="--diff", files=PNGS, na_before=NO_COMPARE)
+case("compare-diff-upper-png", C, "--diff D.PNG (.png in any case)", "compare a.png b.png --diff D.PNG", 1, "", key=None,
+     files=PNGS, produces=("D.PNG",), na_before=NO_COMPARE)
 case("compare-tolerance-range", C, "--channel-tolerance 300", "compare a.png b.png --channel-tolerance 300", 2,
      "--channel-tolerance: must be a whole number 0..255, got 300", key="--channel-tolerance", files=PNGS, na_before=NO_COMPARE)
 case("compare-different", C, "every pixel differs by 2 levels", "compare a.png b.png", 1,

@@ -118,6 +118,7 @@ TEST_F(RenderCliTest, BadRequestsExitTwoAndLeaveNothing) {
       {"-o " + (dir_ / "bad.GIF").string() + " --set render.background=\\\"transparent\\\"", "render.background", 2},
       {"-o " + (dir_ / "bad.mov").string() + " --set render.background=\\\"clear\\\"", "render.background", 2},
       {"-o " + (dir_ / "bad.gif").string() + " --set render.audio=true", "render.audio", 2},
+      {"-o " + (dir_ / "bad.gif").string() + " --set render.fps=60", "render.fps", 2},
   };
   for (const Case& c : cases) {
     const RunResult r = run("render " + scene_.string() + " " + c.arguments);
@@ -129,6 +130,20 @@ TEST_F(RenderCliTest, BadRequestsExitTwoAndLeaveNothing) {
   EXPECT_EQ(still.exitCode, 2);
   EXPECT_NE(still.output.find("--time"), std::string::npos) << still.output;
   EXPECT_TRUE(leftovers().empty());
+}
+
+// A scene with sound cannot make a GIF; the refusal names the way out, and that way works: --set
+// render.audio=null removes the key, so the scene takes its default (no sound track).
+TEST_F(RenderCliTest, TheAudioRefusalsWayOutMakesTheGif) {
+  const fs::path gif = dir_ / "quiet.gif";
+  const std::string render = "render " + scene_.string() + " -q --to 0.2 -o " + gif.string() + " --set render.audio=true";
+  const RunResult refused = run(render);
+  ASSERT_EQ(refused.exitCode, 2) << refused.output;
+  const std::string fix = "--set render.audio=null";
+  ASSERT_NE(refused.output.find(fix), std::string::npos) << refused.output;
+  const RunResult made = run(render + " " + fix);
+  EXPECT_EQ(made.exitCode, 0) << made.output;
+  EXPECT_TRUE(fs::is_regular_file(gif));
 }
 
 TEST_F(RenderCliTest, EachExtensionGivesItsKindInAnyCase) {

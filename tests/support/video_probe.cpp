@@ -2,6 +2,7 @@
 
 #include <array>
 #include <fstream>
+#include <iterator>
 #include <stdexcept>
 
 #include "video/ffmpeg_handles.h"
@@ -61,6 +62,41 @@ bool moovPrecedesMdat(const std::filesystem::path& path) {
 }
 
 }  // namespace
+
+std::vector<int> gifFrameDelays(const std::filesystem::path& path) {
+  std::ifstream file(path, std::ios::binary);
+  const std::string gif{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
+  const auto fail = [&](const std::string& what) { return std::runtime_error(path.string() + ": " + what); };
+  const auto byte = [&](std::size_t at) {
+    if (at >= gif.size()) throw fail("cut short at byte " + std::to_string(at));
+    return static_cast<std::uint8_t>(gif[at]);
+  };
+  if (gif.compare(0, 6, "GIF89a") != 0) throw fail("not a GIF89a stream");
+  // A packed byte's colour table: 3 * 2^(n + 1) bytes when its top bit is set (GIF89a section 18).
+  const auto colourTable = [](std::uint8_t packed) -> std::size_t { return (packed & 0x80) != 0 ? 3u << ((packed & 7) + 1) : 0; };
+  // Data sub-blocks, each a length byte then its bytes, up to a zero length.
+  const auto afterSubBlocks = [&](std::size_t at) {
+    while (byte(at) != 0) at += 1 + byte(at);
+    return at + 1;
+  };
+  std::vector<int> delays;
+  std::size_t at = 13 + colourTable(byte(10));  // header and Logical Screen Descriptor
+  for (;;) {
+    switch (byte(at)) {
+      case 0x21:  // an extension: the Graphic Control one holds the next frame's delay, little endian
+        if (byte(at + 1) == 0xF9) delays.push_back(byte(at + 4) | (byte(at + 5) << 8));
+        at = afterSubBlocks(at + 2);
+        break;
+      case 0x2C:  // an image: its descriptor, its local colour table, the LZW code size, the data
+        at = afterSubBlocks(at + 10 + colourTable(byte(at + 9)) + 1);
+        break;
+      case 0x3B:  // the trailer
+        return delays;
+      default:
+        throw fail("no GIF block at byte " + std::to_string(at));
+    }
+  }
+}
 
 VideoInfo readVideoInfo(const std::filesystem::path& path) {
   InputFormatPtr format = openInput(path);

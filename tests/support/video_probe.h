@@ -40,6 +40,12 @@ VideoInfo readVideoInfo(const std::filesystem::path& path);
 // FFmpeg assumes), alpha included (VP9 through libvpx's decoder, which reads the alpha beside it). Throws std::runtime_error naming the path if the file has fewer frames.
 image::Image decodeFrame(const std::filesystem::path& path, std::int64_t index);
 
+// Each frame's delay in the GIF at `path`, in hundredths of a second, as its Graphic Control
+// Extension holds it: read from the bytes, not through FFmpeg's demuxer, which (as browsers do)
+// plays a delay under 2 as 10. Throws std::runtime_error naming the path if it is no GIF89a stream
+// or is cut short.
+std::vector<int> gifFrameDelays(const std::filesystem::path& path);
+
 // The first audio stream: its codec, rate and duration, and every sample decoded to mono floats
 // (the encoder's priming samples, which the container marks to skip, already dropped).
 struct DecodedAudio {

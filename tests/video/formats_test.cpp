@@ -219,6 +219,42 @@ TEST(GifComment, ALongCommentIsSplitIntoSubBlocksOfAtMost255BytesAndReadBackWhol
   EXPECT_THROW(coinroll::video::withGifComment("GIF87a", comment), std::invalid_argument);
 }
 
+// A GIF times each frame in whole hundredths of a second, and browsers play a delay under 2 as 10
+// (a 60 fps GIF alternated 2, 1, 2: 2.8x too slow). So every delay, decoded back from the bytes, is
+// at least 2, and each frame ends at its own time, k / fps, to the nearest hundredth: the delays add
+// up to the clip's length, the last included. A rate that needs shorter delays is refused, for every
+// rate render.fps allows (1..240), with nothing written.
+TEST(VideoFormats, GifFramesLastWholeHundredthsOfAtLeastTwoAndEndAtTheirOwnTimes) {
+  ScratchDirectory directory;
+  constexpr int kSide = 16;
+  for (int fps = 1; fps <= 240; ++fps) {
+    VideoOptions options = optionsFor(VideoFormat::Gif);
+    options.width = options.height = kSide;
+    options.fps = fps;
+    const fs::path path = directory.path() / ("fps_" + std::to_string(fps) + ".gif");
+    if (fps > 50) {
+      EXPECT_THROW((EncoderSink{path, options}), std::invalid_argument) << fps << " fps";
+      continue;
+    }
+    const int frames = fps + 3;  // a little over a second: every phase of the rounding
+    {
+      EncoderSink sink(path, options);
+      for (int i = 0; i < frames; ++i) sink.push(movingSquareFrame(kSide, kSide, i));
+      sink.finish();
+    }
+    const std::vector<int> delays = coinroll::video::gifFrameDelays(path);
+    ASSERT_EQ(delays.size(), static_cast<std::size_t>(frames)) << fps << " fps";
+    int end = 0;  // hundredths of a second
+    for (int k = 0; k < frames; ++k) {
+      EXPECT_GE(delays[k], 2) << fps << " fps, frame " << k;
+      end += delays[k];
+      // |end - 100 (k + 1) / fps| <= 1/2, in whole numbers
+      EXPECT_LE(std::abs(2 * fps * end - 200 * (k + 1)), fps) << fps << " fps: frame " << k << " ends at " << end << " cs";
+    }
+  }
+  EXPECT_EQ(std::distance(fs::directory_iterator(directory.path()), fs::directory_iterator()), 50);
+}
+
 TEST(VideoFormats, GifLoopsForEver) {
   ScratchDirectory directory;
   const fs::path path = directory.path() / "loop.gif";

@@ -47,9 +47,11 @@ double largestError(const pipeline::Simulation& simulation, const std::vector<ph
 
 int main() {
   std::vector<std::filesystem::path> scenes;
-  for (const auto& entry : std::filesystem::directory_iterator(COINROLL_SOURCE_DIR "/examples")) scenes.push_back(entry.path());
+  for (const auto& entry : std::filesystem::directory_iterator(COINROLL_SOURCE_DIR "/examples"))
+    scenes.push_back(entry.path());
   std::sort(scenes.begin(), scenes.end());
-  fmt::print("{:<18} {:<13} {:>6} {:>10} {:>10} {:>9}\n", "scene", "formulation", "rtol", "rhs evals", "time ms", "error");
+  fmt::print("{:<18} {:<13} {:>6} {:>10} {:>10} {:>9}\n", "scene", "formulation", "rtol", "rhs evals", "time ms",
+             "error");
   for (const auto& file : scenes) {
     pipeline::Simulation simulation = pipeline::buildSimulation(scene::loadScene(file, {}));
     simulation.formulation = scene::Formulation::EulerAngles;
@@ -70,7 +72,8 @@ int main() {
         for (int repeat = 0; repeat < 3; ++repeat) {
           const auto start = std::chrono::steady_clock::now();
           run = samples(simulation);
-          best = std::min(best, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+          best = std::min(best,
+                          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
         }
         pipeline::CoinRun counter(simulation);
         counter.stateAt(simulation.duration);

@@ -55,8 +55,9 @@ RunResult runOdeint(Stepper stepper, const Case& c, bool trackEnergy) {
     result.maxEnergyError = std::max(result.maxEnergyError, energyError(c, Eigen::Map<const StateVec>(state.data())));
   };
   try {
-    result.steps = trackEnergy ? odeint::integrate_adaptive(stepper, BoostSystem{&rhs}, x, 0.0, c.tEnd, kFirstStep, observeEnergy)
-                               : odeint::integrate_adaptive(stepper, BoostSystem{&rhs}, x, 0.0, c.tEnd, kFirstStep);
+    result.steps =
+        trackEnergy ? odeint::integrate_adaptive(stepper, BoostSystem{&rhs}, x, 0.0, c.tEnd, kFirstStep, observeEnergy)
+                    : odeint::integrate_adaptive(stepper, BoostSystem{&rhs}, x, 0.0, c.tEnd, kFirstStep);
   } catch (const std::exception&) {
     result.failed = true;
   }
@@ -89,7 +90,8 @@ int cvodeRhs(sunrealtype t, N_Vector y, N_Vector ydot, void* userData) {
 }  // namespace
 
 RunResult boostDopri5(const Case& c, double tolerance, bool trackEnergy) {
-  return runOdeint(odeint::make_controlled(tolerance, tolerance, odeint::runge_kutta_dopri5<BoostState>()), c, trackEnergy);
+  return runOdeint(odeint::make_controlled(tolerance, tolerance, odeint::runge_kutta_dopri5<BoostState>()), c,
+                   trackEnergy);
 }
 
 RunResult boostFehlberg78(const Case& c, double tolerance, bool trackEnergy) {
@@ -116,19 +118,20 @@ RunResult cvodeAdams(const Case& c, double tolerance, bool trackEnergy) {
       SUNNonlinSol_FixedPoint(y.get(), 0, rawContext));
   const std::unique_ptr<void, CvodeFree> cvode(CVodeCreate(CV_ADAMS, rawContext));
   void* memory = cvode.get();
-  const bool configured = CVodeInit(memory, cvodeRhs, 0.0, y.get()) == CV_SUCCESS &&
-                          CVodeSStolerances(memory, tolerance, tolerance) == CV_SUCCESS &&
-                          CVodeSetUserData(memory, &rhs) == CV_SUCCESS &&
-                          CVodeSetNonlinearSolver(memory, fixedPoint.get()) == CV_SUCCESS &&
-                          CVodeSetMaxNumSteps(memory, 100'000'000) == CV_SUCCESS &&
-                          CVodeSetStopTime(memory, c.tEnd) == CV_SUCCESS && CVodeSetErrFile(memory, nullptr) == CV_SUCCESS;
+  const bool configured =
+      CVodeInit(memory, cvodeRhs, 0.0, y.get()) == CV_SUCCESS &&
+      CVodeSStolerances(memory, tolerance, tolerance) == CV_SUCCESS && CVodeSetUserData(memory, &rhs) == CV_SUCCESS &&
+      CVodeSetNonlinearSolver(memory, fixedPoint.get()) == CV_SUCCESS &&
+      CVodeSetMaxNumSteps(memory, 100'000'000) == CV_SUCCESS && CVodeSetStopTime(memory, c.tEnd) == CV_SUCCESS &&
+      CVodeSetErrFile(memory, nullptr) == CV_SUCCESS;
   if (!configured) throw std::runtime_error("CVODE setup failed");
   sunrealtype t = 0;
   int flag = CV_SUCCESS;
   if (trackEnergy) {
     while (t < c.tEnd && flag >= 0) {
       flag = CVode(memory, c.tEnd, y.get(), &t, CV_ONE_STEP);
-      result.maxEnergyError = std::max(result.maxEnergyError, energyError(c, Eigen::Map<const StateVec>(N_VGetArrayPointer(y.get()))));
+      result.maxEnergyError =
+          std::max(result.maxEnergyError, energyError(c, Eigen::Map<const StateVec>(N_VGetArrayPointer(y.get()))));
     }
   } else {
     flag = CVode(memory, c.tEnd, y.get(), &t, CV_NORMAL);

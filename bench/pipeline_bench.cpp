@@ -40,7 +40,9 @@ scene::SceneConfig benchScene(const std::string& cameraMode, int encoderThreads)
   return scene::parseScene(doc, "pipeline_bench");
 }
 
-video::VideoOptions encoding(const scene::SceneConfig& s) { return s.render.mp4Options(); }  // no render.audio: no track
+video::VideoOptions encoding(const scene::SceneConfig& s) {
+  return s.render.mp4Options();
+}  // no render.audio: no track
 
 class DiscardSink final : public video::FrameSink {
  public:
@@ -101,7 +103,8 @@ double peakMemoryMiB(const std::string& binary, double seconds, const std::files
   if (child == 0) {
     const std::string duration = fmt::format("duration={}", seconds);
     execl(binary.c_str(), binary.c_str(), "render", "-q", "-o", out.c_str(), "--set", duration.c_str(), "--set",
-          "render.time_scale=1", "--set", "render.width=640", "--set", "render.height=360", static_cast<char*>(nullptr));
+          "render.time_scale=1", "--set", "render.width=640", "--set", "render.height=360",
+          static_cast<char*>(nullptr));
     _exit(127);
   }
   int status = 0;
@@ -119,24 +122,27 @@ int main(int argc, char** argv) {
   fmt::print("pipeline_bench: 10 s at 30 fps, 1280x720, 4x MSAA, x264 veryfast crf 18; llvmpipe threads: {}\n\n",
              lpThreads ? lpThreads : "default");
   const double reference = ffmpegTestPatternSeconds();
-  fmt::print("{:<28} {:>9} {:>9} {:>9} {:>14} {:>12} {:>14}\n", "camera, x264 threads", "render s", "encode s", "both s",
-             "both / slower", "real time x", "both / ffmpeg");
+  fmt::print("{:<28} {:>9} {:>9} {:>9} {:>14} {:>12} {:>14}\n", "camera, x264 threads", "render s", "encode s",
+             "both s", "both / slower", "real time x", "both / ffmpeg");
   for (const std::string camera : {"fixed", "orbit"}) {
     for (int threads : {1, 2}) {
       const Timings t = measure(benchScene(camera, threads), out);
       const double slower = std::max(t.renderOnly, t.encodeOnly);
-      fmt::print("{:<28} {:>9.2f} {:>9.2f} {:>9.2f} {:>14.2f} {:>12.2f} {:>14.2f}\n", fmt::format("{}, {}", camera, threads),
-                 t.renderOnly, t.encodeOnly, t.pipeline, t.pipeline / slower, 10.0 / t.pipeline, t.pipeline / reference);
+      fmt::print("{:<28} {:>9.2f} {:>9.2f} {:>9.2f} {:>14.2f} {:>12.2f} {:>14.2f}\n",
+                 fmt::format("{}, {}", camera, threads), t.renderOnly, t.encodeOnly, t.pipeline, t.pipeline / slower,
+                 10.0 / t.pipeline, t.pipeline / reference);
     }
   }
-  fmt::print("\nffmpeg -f lavfi -i testsrc2=size=1280x720:rate=30 -frames:v 300 -c:v libx264 -preset veryfast -f null -: {:.2f} s\n",
-             reference);
+  fmt::print(
+      "\nffmpeg -f lavfi -i testsrc2=size=1280x720:rate=30 -frames:v 300 -c:v libx264 -preset veryfast -f null -: "
+      "{:.2f} s\n",
+      reference);
   std::filesystem::remove(out);
   if (memory) {
     const std::string binary = std::string(COINROLL_BINARY_DIR) + "/coinroll";
     const double short10 = peakMemoryMiB(binary, 10, out), long60 = peakMemoryMiB(binary, 60, out);
-    fmt::print("peak resident memory, 640x360: 10 s clip {:.1f} MiB, 60 s clip {:.1f} MiB (ratio {:.3f})\n", short10, long60,
-               long60 / short10);
+    fmt::print("peak resident memory, 640x360: 10 s clip {:.1f} MiB, 60 s clip {:.1f} MiB (ratio {:.3f})\n", short10,
+               long60, long60 / short10);
     std::filesystem::remove(out);
   }
   return 0;

@@ -63,7 +63,8 @@ class Probe {
   Probe(const GlFunctions& gl, int width, int height, int samples)
       : gl_(gl), width_(width), height_(height), pixels_(std::size_t(width) * height * 4) {
     const char* vertexSource =
-        "#version 330 core\nlayout(location=0) in vec3 p; uniform mat4 m; void main(){ gl_Position = m * vec4(p, 1.0); }\n";
+        "#version 330 core\nlayout(location=0) in vec3 p; uniform mat4 m; void main(){ gl_Position = m * vec4(p, 1.0); "
+        "}\n";
     const char* fragmentSource = "#version 330 core\nuniform vec4 c; out vec4 o; void main(){ o = c; }\n";
     const Shader vs(gl, gl.CreateShader(GL_VERTEX_SHADER)), fs(gl, gl.CreateShader(GL_FRAGMENT_SHADER));
     gl.ShaderSource(vs.get(), 1, &vertexSource, nullptr);
@@ -80,11 +81,13 @@ class Probe {
     coinFirst_ = 6;
     coinCount_ = static_cast<GLsizei>(vertices.size()) - 6;
     traceFirst_ = static_cast<GLsizei>(vertices.size());
-    for (const RibbonVertex& v : ribbonStrip(circleTrace(10000), 0.0015f)) vertices.emplace_back(v.position.x, 0.0f, v.position.y);
+    for (const RibbonVertex& v : ribbonStrip(circleTrace(10000), 0.0015f))
+      vertices.emplace_back(v.position.x, 0.0f, v.position.y);
     traceCount_ = static_cast<GLsizei>(vertices.size()) - traceFirst_;
     gl.BindVertexArray(array_.get());
     gl.BindBuffer(GL_ARRAY_BUFFER, buffer_.get());
-    gl.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(glm::vec3)), vertices.data(), GL_STATIC_DRAW);
+    gl.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(glm::vec3)), vertices.data(),
+                  GL_STATIC_DRAW);
     gl.EnableVertexAttribArray(0);
     gl.VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(glm::vec3), nullptr);
 
@@ -111,7 +114,8 @@ class Probe {
     gl_.Enable(GL_DEPTH_TEST);
     gl_.UseProgram(program_.get());
     gl_.BindVertexArray(array_.get());
-    const GLint mLocation = gl_.GetUniformLocation(program_.get(), "m"), cLocation = gl_.GetUniformLocation(program_.get(), "c");
+    const GLint mLocation = gl_.GetUniformLocation(program_.get(), "m"),
+                cLocation = gl_.GetUniformLocation(program_.get(), "c");
     gl_.UniformMatrix4fv(mLocation, 1, GL_FALSE, glm::value_ptr(viewProjection));
     gl_.Uniform4f(cLocation, 0.5f, 0.5f, 0.5f, 1.0f);
     gl_.DrawArrays(GL_TRIANGLES, 0, 6);
@@ -136,7 +140,8 @@ class Probe {
   VertexArray array_ = makeVertexArray(gl_);
   Buffer buffer_ = makeBuffer(gl_);
   Framebuffer msaa_ = makeFramebuffer(gl_), resolve_ = makeFramebuffer(gl_);
-  Renderbuffer msaaColour_ = makeRenderbuffer(gl_), msaaDepth_ = makeRenderbuffer(gl_), resolveColour_ = makeRenderbuffer(gl_);
+  Renderbuffer msaaColour_ = makeRenderbuffer(gl_), msaaDepth_ = makeRenderbuffer(gl_),
+               resolveColour_ = makeRenderbuffer(gl_);
   GLsizei coinFirst_ = 0, coinCount_ = 0, traceFirst_ = 0, traceCount_ = 0;
 };
 
@@ -153,8 +158,8 @@ void antialiasingQuality() {
   big.height = kHeight * kFactor;
   big.msaa = 1;
   const std::vector<double> reference = coinroll::testing::boxDownsample(Renderer(big).draw(snapshot), kFactor);
-  fmt::print("\nanti-aliasing quality at {}x{} against a 64-sample reference:\n{:>10} {:>14}\n", kWidth, kHeight, "mode",
-             "PSNR edges dB");
+  fmt::print("\nanti-aliasing quality at {}x{} against a 64-sample reference:\n{:>10} {:>14}\n", kWidth, kHeight,
+             "mode", "PSNR edges dB");
   struct Mode {
     const char* name;
     Antialiasing antialiasing;
@@ -265,7 +270,9 @@ void frameSplit(int frames) {
   const auto unchanged = [](FrameSnapshot&) {};
   const auto noTrace = [](FrameSnapshot& s) { s.trace.clear(); };
   const auto noHud = [](FrameSnapshot& s) { s.hudLines.clear(); };
-  const auto noCoin = [](FrameSnapshot& s) { s.coin.centre = s.camera.eye + (s.camera.eye - s.camera.target); };  // behind the camera
+  const auto noCoin = [](FrameSnapshot& s) {
+    s.coin.centre = s.camera.eye + (s.camera.eye - s.camera.target);
+  };  // behind the camera
   const auto nothing = [&](FrameSnapshot& s) { noTrace(s), noHud(s), noCoin(s); };
   const double shaded = millisecondsPerFrame(shadedSettings, unchanged);
   const double reused = millisecondsPerFrame(reusedSettings, unchanged);
@@ -286,15 +293,17 @@ void frameSplit(int frames) {
 }
 
 void usersFrames(int frames, double probeFps) {
-  fmt::print("\nframes users render (1280x720, 4x MSAA unless the scene says otherwise), {} frames, best of 3:\n", frames);
+  fmt::print("\nframes users render (1280x720, 4x MSAA unless the scene says otherwise), {} frames, best of 3:\n",
+             frames);
   fmt::print("{:>22} {:>8} {:>14} {:>14} {:>9} {:>14}\n", "scene", "camera", "shaded fps", "reused fps", "speed-up",
              "reused / probe");
   for (const NamedScene& named : usersScenes()) {
     const double shaded = sceneFramesPerSecond(named.scene, frames, false);
     const double reused = sceneFramesPerSecond(named.scene, frames, true);
-    const std::string_view camera = coinroll::scene::schema::kCameraModeNames.at(static_cast<std::size_t>(named.scene.render.camera.mode));
-    fmt::print("{:>22} {:>8} {:>14.1f} {:>14.1f} {:>9.2f} {:>14.2f}\n", named.name, camera, shaded, reused, reused / shaded,
-               reused / probeFps);
+    const std::string_view camera =
+        coinroll::scene::schema::kCameraModeNames.at(static_cast<std::size_t>(named.scene.render.camera.mode));
+    fmt::print("{:>22} {:>8} {:>14.1f} {:>14.1f} {:>9.2f} {:>14.2f}\n", named.name, camera, shaded, reused,
+               reused / shaded, reused / probeFps);
   }
 }
 
@@ -303,7 +312,8 @@ void usersFrames(int frames, double probeFps) {
 int main(int argc, char** argv) {
   const int frames = argc > 1 ? std::atoi(argv[1]) : 40;
   const char* threads = std::getenv("LP_NUM_THREADS");
-  fmt::print("render_bench: {} frames per run, best of 3; llvmpipe threads: {}\n\n", frames, threads ? threads : "default");
+  fmt::print("render_bench: {} frames per run, best of 3; llvmpipe threads: {}\n\n", frames,
+             threads ? threads : "default");
   fmt::print("{:>10} {:>6} {:>12} {:>12} {:>14}\n", "size", "AA", "probe fps", "ours fps", "ours / probe");
   double probeFps720 = 0;
   for (auto [width, height] : {std::pair{1280, 720}, std::pair{1920, 1080}}) {

@@ -81,14 +81,15 @@ int main() {
 
   fmt::print("{:<36} {:>10} {:>9} {:>10} {:>9} {:>11} {:>9}\n", "case", "sim s", "wall ms", "rhs evals", "steps",
              "budget", "vs ideal");
-  fmt::print("{:<36} {:>10.3f} {:>9.1f} {:>10} {:>9} {:>11} {:>9}\n", "ideal rolling, wobbling, same time", baseline.end,
-             1e3 * baseline.seconds, baseline.evaluations, baseline.steps, "-", "1.00");
+  fmt::print("{:<36} {:>10.3f} {:>9.1f} {:>10} {:>9} {:>11} {:>9}\n", "ideal rolling, wobbling, same time",
+             baseline.end, 1e3 * baseline.seconds, baseline.evaluations, baseline.steps, "-", "1.00");
   for (const Case& c : cases) {
-    nlohmann::json document = nlohmann::json::parse(std::ifstream(std::string(COINROLL_SOURCE_DIR) + "/examples/euler_disk.json"));
+    nlohmann::json document =
+        nlohmann::json::parse(std::ifstream(std::string(COINROLL_SOURCE_DIR) + "/examples/euler_disk.json"));
     for (const std::string& o : c.overrides) scene::applyOverride(document, o);
     document["duration"] = 2000;  // every case runs to coin-flat
     const Measurement m = measure(pipeline::buildSimulation(scene::parseScene(document, c.name)));
-    fmt::print("{:<36} {:>10.3f} {:>9.1f} {:>10} {:>9} {:>11.2e} {:>9.2f}\n", c.name, m.end, 1e3 * m.seconds, m.evaluations,
-               m.steps, m.budget, m.seconds / baseline.seconds);
+    fmt::print("{:<36} {:>10.3f} {:>9.1f} {:>10} {:>9} {:>11.2e} {:>9.2f}\n", c.name, m.end, 1e3 * m.seconds,
+               m.evaluations, m.steps, m.budget, m.seconds / baseline.seconds);
   }
 }

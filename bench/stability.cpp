@@ -55,7 +55,8 @@ double wobbleRate(double spin) {
 // throws (non-finite state) or leaves the bound by a factor 10^6 (no need to follow a blow-up).
 double maxEnergyError(Method method, double dt, const CoinState& start, double duration) {
   const double E0 = physics::energy(kDisk, start);
-  integrate::Trajectory trajectory(CoinRhs{kDisk}, 0.0, physics::toVector(start), SolverConfig{.method = method, .dt = dt});
+  integrate::Trajectory trajectory(CoinRhs{kDisk}, 0.0, physics::toVector(start),
+                                   SolverConfig{.method = method, .dt = dt});
   double worst = 0;
   try {
     for (long k = 1; k * dt <= duration; ++k) {
@@ -83,7 +84,8 @@ double largestStableStep(Method method, double spin) {
 void writeStepLimits(const std::filesystem::path& path) {
   std::ofstream out(path);
   out << "spin_natural,wobble_rate,method,largest_stable_dt,rk4_linear_limit\n";
-  fmt::print("{:>6} {:>10} {:>12} {:>12} {:>12} {:>8}\n", "spin", "sqrt(K)", "euler dt", "rk4 dt", "2.83/sqrtK", "ratio");
+  fmt::print("{:>6} {:>10} {:>12} {:>12} {:>12} {:>8}\n", "spin", "sqrt(K)", "euler dt", "rk4 dt", "2.83/sqrtK",
+             "ratio");
   for (double spin : {1.0, 1.5, 2.0, 3.0, 5.0, 7.0, 10.0, 15.0, 20.0, 30.0}) {
     const double rate = wobbleRate(spin);
     // RK4's stability region meets the imaginary axis at |h lambda| = 2 sqrt 2; the wobble is
@@ -92,7 +94,8 @@ void writeStepLimits(const std::filesystem::path& path) {
     const double euler = largestStableStep(Method::Euler, spin), rk4 = largestStableStep(Method::Rk4, spin);
     out << fmt::format("{},{:.17g},euler,{:.6g},{:.6g}\n{},{:.17g},rk4,{:.6g},{:.6g}\n", spin, rate, euler, rk4Linear,
                        spin, rate, rk4, rk4Linear);
-    fmt::print("{:6.1f} {:10.4g} {:12.4g} {:12.4g} {:12.4g} {:8.4f}\n", spin, rate, euler, rk4, rk4Linear, rk4 / rk4Linear);
+    fmt::print("{:6.1f} {:10.4g} {:12.4g} {:12.4g} {:12.4g} {:8.4f}\n", spin, rate, euler, rk4, rk4Linear,
+               rk4 / rk4Linear);
   }
 }
 

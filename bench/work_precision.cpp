@@ -204,7 +204,8 @@ void writePoints(const std::filesystem::path& path, const std::vector<Point>& po
 
 // The cases and their reference end states, for peers driven from a script
 // (tools/scipy_peer.py): model, t_end, y(0) and y_ref(t_end).
-void writeCases(const std::filesystem::path& path, const std::vector<Case>& cases, const std::vector<StateVec>& references) {
+void writeCases(const std::filesystem::path& path, const std::vector<Case>& cases,
+                const std::vector<StateVec>& references) {
   std::ofstream out(path);
   out << "case,t_end,M,a,g,I_X,I_Z";
   for (const char* prefix : {"y0_", "yref_"}) {
@@ -246,7 +247,8 @@ void writeRatios(const std::filesystem::path& path, const std::vector<Point>& po
         }
         const double ratio = *ours / *theirs;
         const bool isTarget = c.name == "wobble1000" && goal > 0 && target <= 1e-8;
-        row += fmt::format(" {:>22}", fmt::format("{:.3f}{}", ratio, isTarget ? (ratio <= goal ? " ok" : " MISS") : ""));
+        row +=
+            fmt::format(" {:>22}", fmt::format("{:.3f}{}", ratio, isTarget ? (ratio <= goal ? " ok" : " MISS") : ""));
         out << fmt::format("{},{:.0e},{},{:.6g},{:.6g},{:.4f}\n", c.name, target, peer, *ours, *theirs, ratio);
       }
       fmt::print("{}\n", row);
@@ -274,10 +276,11 @@ int main(int argc, char** argv) {
   for (const Case& c : cases) {
     // Reference: our DOP853 far tighter than any point, checked against an independent code of
     // another family (odeint's Fehlberg 7(8); its Bulirsch-Stoer stalls near 1e-11 on circle50).
-    const RunResult reference = runOurs(c, {.method = coinroll::integrate::Method::Dop853, .rtol = 1e-14, .atol = 1e-14}, false);
+    const RunResult reference =
+        runOurs(c, {.method = coinroll::integrate::Method::Dop853, .rtol = 1e-14, .atol = 1e-14}, false);
     const RunResult check = boostFehlberg78(c, 1e-14, false);
-    fmt::print("{:>10}: t_end = {:.4g} s, reference vs odeint Fehlberg 7(8) at 1e-14: {:.2e} relative\n", c.name, c.tEnd,
-               (reference.yEnd - check.yEnd).norm() / reference.yEnd.norm());
+    fmt::print("{:>10}: t_end = {:.4g} s, reference vs odeint Fehlberg 7(8) at 1e-14: {:.2e} relative\n", c.name,
+               c.tEnd, (reference.yEnd - check.yEnd).norm() / reference.yEnd.norm());
     references.push_back(reference.yEnd);
     const std::vector<Point> casePoints = sweepCase(c, reference.yEnd, timing);
     points.insert(points.end(), casePoints.begin(), casePoints.end());

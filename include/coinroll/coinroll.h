@@ -2,7 +2,7 @@
 // coinroll's C++ API: load a scene, simulate it to the trajectory CSV's columns, render a still
 // into memory or a video into a file, find a steady motion's stability, sweep a grid of scenes.
 // The same scenes, numbers and pixels as the command line (`coinroll simulate`, `still`,
-// `render`, `steady`, `sweep`); the scene format is the README's "Scene format".
+// `render`, `steady`, `sweep`); the scene format is docs/scene.md.
 //
 //   find_package(coinroll REQUIRED)            or   pkg-config --cflags --libs coinroll
 //   target_link_libraries(app PRIVATE coinroll::coinroll)

@@ -75,13 +75,15 @@ Scene loadScene(const std::filesystem::path& file, const std::vector<std::string
 
 Scene Scene::fromJson(std::string_view json, const std::vector<std::string>& overrides) {
   return translatingErrors([&] {
-    return Scene(std::make_shared<const Impl>(parsed(scene::parseSceneText(json, "scene JSON"), overrides, "scene JSON")));
+    return Scene(
+        std::make_shared<const Impl>(parsed(scene::parseSceneText(json, "scene JSON"), overrides, "scene JSON")));
   });
 }
 
 Scene Scene::builtInDefault(const std::vector<std::string>& overrides) {
   return translatingErrors([&] {
-    return Scene(std::make_shared<const Impl>(parsed(scene::builtInDefaultScene(), overrides, "built-in default scene")));
+    return Scene(
+        std::make_shared<const Impl>(parsed(scene::builtInDefaultScene(), overrides, "built-in default scene")));
   });
 }
 
@@ -165,21 +167,26 @@ SteadyState steady(const Scene& scene) {
 }
 
 // The points the sweep CSV's rows are written from (pipeline/sweep.h), kept as numbers.
-SweepTable sweep(const Scene& scene, const std::vector<std::string>& axes, int threads, const std::atomic<bool>* cancel) {
+SweepTable sweep(const Scene& scene, const std::vector<std::string>& axes, int threads,
+                 const std::atomic<bool>* cancel) {
   if (threads < 0 || threads > 1024) {
     throw std::invalid_argument(fmt::format("threads: must be 1 to 1024 (0: every hardware thread), got {}", threads));
   }
-  pipeline::SweepSpec spec{.scene = scene.impl().document, .sourceName = scene.impl().sourceName,
-                           .axes = {}, .shard = {},
-                           .threads = threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency())),
-                           .maxPoints = pipeline::kDefaultMaxPoints};
+  pipeline::SweepSpec spec{
+      .scene = scene.impl().document,
+      .sourceName = scene.impl().sourceName,
+      .axes = {},
+      .shard = {},
+      .threads = threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency())),
+      .maxPoints = pipeline::kDefaultMaxPoints};
   for (const std::string& axis : axes) spec.axes.push_back(pipeline::parseGridAxis(axis));
   pipeline::refuseMisnamedAxes(spec);
   const pipeline::SweepIdentity identity = pipeline::sweepIdentity(spec);
   SweepTable table{.columns = {}, .end = {}, .gridPoints = identity.gridPoints, .digest = identity.digest};
   table.columns.names.push_back("point");
   for (const pipeline::GridAxis& axis : spec.axes) table.columns.names.push_back(axis.key);
-  for (const char* name : {"t_end", "theta_min", "theta_max", "energy_start", "energy_end"}) table.columns.names.push_back(name);
+  for (const char* name : {"t_end", "theta_min", "theta_max", "energy_start", "energy_end"})
+    table.columns.names.push_back(name);
   table.columns.values.resize(table.columns.names.size());
   translatingErrors([&] {
     return pipeline::runSweep(spec, [&table](const pipeline::SweepPoint& point) {

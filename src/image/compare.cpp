@@ -16,8 +16,9 @@ namespace {
 
 void requireComparable(const Image& a, const Image& b, int channelTolerance) {
   if (a.width != b.width || a.height != b.height) {
-    throw std::invalid_argument("the pictures differ in size: " + std::to_string(a.width) + "x" + std::to_string(a.height) +
-                                " and " + std::to_string(b.width) + "x" + std::to_string(b.height));
+    throw std::invalid_argument("the pictures differ in size: " + std::to_string(a.width) + "x" +
+                                std::to_string(a.height) + " and " + std::to_string(b.width) + "x" +
+                                std::to_string(b.height));
   }
   const std::size_t bytes = static_cast<std::size_t>(a.width) * static_cast<std::size_t>(a.height) * 4;
   if (a.width < 0 || a.height < 0 || a.rgba.size() != bytes || b.rgba.size() != bytes) {
@@ -64,26 +65,33 @@ ImageComparison compareImages(const Image& a, const Image& b, int channelToleran
 
 void checkThresholds(const CompareThresholds& thresholds) {
   if (thresholds.channelTolerance < 0 || thresholds.channelTolerance > 255) {
-    throw std::invalid_argument(fmt::format("--channel-tolerance: must be a whole number 0..255, got {}", thresholds.channelTolerance));
+    throw std::invalid_argument(
+        fmt::format("--channel-tolerance: must be a whole number 0..255, got {}", thresholds.channelTolerance));
   }
   if (thresholds.maxDifferingPixels && *thresholds.maxDifferingPixels < 0) {
-    throw std::invalid_argument(fmt::format("--max-differing-pixels: must be >= 0, got {}", *thresholds.maxDifferingPixels));
+    throw std::invalid_argument(
+        fmt::format("--max-differing-pixels: must be >= 0, got {}", *thresholds.maxDifferingPixels));
   }
-  if (thresholds.maxDifferingFraction && !(*thresholds.maxDifferingFraction >= 0 && *thresholds.maxDifferingFraction <= 1)) {
-    throw std::invalid_argument(fmt::format("--max-differing-fraction: must be in [0, 1] (0.01 is 1 % of the pixels), got {}",
-                                            *thresholds.maxDifferingFraction));
+  if (thresholds.maxDifferingFraction &&
+      !(*thresholds.maxDifferingFraction >= 0 && *thresholds.maxDifferingFraction <= 1)) {
+    throw std::invalid_argument(
+        fmt::format("--max-differing-fraction: must be in [0, 1] (0.01 is 1 % of the pixels), got {}",
+                    *thresholds.maxDifferingFraction));
   }
-  if (thresholds.minPsnr && std::isnan(*thresholds.minPsnr)) throw std::invalid_argument("--min-psnr: must be a number of dB, got nan");
+  if (thresholds.minPsnr && std::isnan(*thresholds.minPsnr))
+    throw std::invalid_argument("--min-psnr: must be a number of dB, got nan");
 }
 
 CompareVerdict judge(const ImageComparison& comparison, const CompareThresholds& thresholds) {
   checkThresholds(thresholds);
   if (comparison.channelTolerance != thresholds.channelTolerance) {
-    throw std::invalid_argument(fmt::format("--channel-tolerance: the pixels were counted with {}, the thresholds ask for {}",
-                                            comparison.channelTolerance, thresholds.channelTolerance));
+    throw std::invalid_argument(
+        fmt::format("--channel-tolerance: the pixels were counted with {}, the thresholds ask for {}",
+                    comparison.channelTolerance, thresholds.channelTolerance));
   }
   // No pixel limit at all means exact: a tolerance is always something the caller asked for.
-  const long maxPixels = thresholds.maxDifferingPixels.value_or(thresholds.maxDifferingFraction ? comparison.pixels : 0);
+  const long maxPixels =
+      thresholds.maxDifferingPixels.value_or(thresholds.maxDifferingFraction ? comparison.pixels : 0);
   std::string broken, heldTo;
   const auto add = [](std::string& list, const std::string& item) { list += (list.empty() ? "" : ", ") + item; };
   if (thresholds.channelTolerance > 0) add(heldTo, fmt::format("--channel-tolerance {}", thresholds.channelTolerance));
@@ -101,7 +109,8 @@ CompareVerdict judge(const ImageComparison& comparison, const CompareThresholds&
   }
   if (const std::optional<double> minPsnr = thresholds.minPsnr) {
     add(heldTo, fmt::format("--min-psnr {}", *minPsnr));
-    if (!(comparison.psnr >= *minPsnr)) add(broken, fmt::format("{:.2f} dB < --min-psnr {}", comparison.psnr, *minPsnr));
+    if (!(comparison.psnr >= *minPsnr))
+      add(broken, fmt::format("{:.2f} dB < --min-psnr {}", comparison.psnr, *minPsnr));
   }
   if (!broken.empty()) return {.pass = false, .text = fmt::format("DIFFERENT ({})", broken)};
   if (comparison.maxChannelDifference == 0) return {.pass = true, .text = "SAME (identical pixels)"};
@@ -113,9 +122,10 @@ bool withinThresholds(const ImageComparison& comparison, const CompareThresholds
 }
 
 std::string comparisonLine(const ImageComparison& comparison, const CompareVerdict& verdict) {
-  return fmt::format("PSNR {:.2f} dB, {} of {} pixels differ ({:.4g} %, channel tolerance {}), max channel difference {}: {}",
-                     comparison.psnr, comparison.differingPixels, comparison.pixels, 100 * comparison.differingFraction(),
-                     comparison.channelTolerance, comparison.maxChannelDifference, verdict.text);
+  return fmt::format(
+      "PSNR {:.2f} dB, {} of {} pixels differ ({:.4g} %, channel tolerance {}), max channel difference {}: {}",
+      comparison.psnr, comparison.differingPixels, comparison.pixels, 100 * comparison.differingFraction(),
+      comparison.channelTolerance, comparison.maxChannelDifference, verdict.text);
 }
 
 Image differenceImage(const Image& a, const Image& b, int channelTolerance) {

@@ -28,7 +28,9 @@ struct ImageComparison {
   int maxChannelDifference = 0;    // 0..255, over R, G, B, A and every pixel
   double psnr = 0;                 // dB over R, G, B; +infinity when those are identical
   int channelTolerance = 0;        // the tolerance the pixels were counted with
-  double differingFraction() const { return pixels == 0 ? 0.0 : static_cast<double>(differingPixels) / static_cast<double>(pixels); }
+  double differingFraction() const {
+    return pixels == 0 ? 0.0 : static_cast<double>(differingPixels) / static_cast<double>(pixels);
+  }
 };
 
 // What a comparison may show and still pass. Every limit given must hold. With neither pixel

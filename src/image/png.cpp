@@ -36,13 +36,16 @@ void insertTextChunks(std::vector<unsigned char>& png, const PngText& text) {
   constexpr std::size_t kAfterHeader = 8 + 4 + 4 + 13 + 4;
   std::vector<unsigned char> chunks;
   for (const auto& [key, value] : text) {
-    if (key.empty() || key.size() > 79 || key.find('\0') != std::string::npos || value.find('\0') != std::string::npos) {
-      throw std::invalid_argument("PNG text key '" + key + "': must be 1 to 79 characters with no NUL, as must its text");
+    if (key.empty() || key.size() > 79 || key.find('\0') != std::string::npos ||
+        value.find('\0') != std::string::npos) {
+      throw std::invalid_argument("PNG text key '" + key +
+                                  "': must be 1 to 79 characters with no NUL, as must its text");
     }
     const std::size_t start = chunks.size();
     appendBigEndian32(chunks, static_cast<std::uint32_t>(key.size() + 1 + value.size()));
     for (const char c : std::string("tEXt") + key + '\0' + value) chunks.push_back(static_cast<unsigned char>(c));
-    const uLong crc = crc32(crc32(0L, Z_NULL, 0), chunks.data() + start + 4, static_cast<uInt>(chunks.size() - start - 4));
+    const uLong crc =
+        crc32(crc32(0L, Z_NULL, 0), chunks.data() + start + 4, static_cast<uInt>(chunks.size() - start - 4));
     appendBigEndian32(chunks, static_cast<std::uint32_t>(crc));
   }
   png.insert(png.begin() + kAfterHeader, chunks.begin(), chunks.end());
@@ -90,7 +93,8 @@ void writePngBytes(const Image& image, const std::filesystem::path& path, const 
   const int writeError = errno;
   const bool closed = std::fclose(out) == 0;
   if (!written || !closed) {
-    throw std::runtime_error(name.string() + ": writing the PNG failed: " + io::describeWriteError(written ? errno : writeError));
+    throw std::runtime_error(name.string() +
+                             ": writing the PNG failed: " + io::describeWriteError(written ? errno : writeError));
   }
 }
 

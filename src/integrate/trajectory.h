@@ -38,7 +38,8 @@ class Trajectory {
   // before t; stoppedBy() then names it.
   std::optional<Vec<N>> stateAt(double t) {
     if (t < lastQuery_) {
-      throw std::logic_error(fmt::format("Trajectory::stateAt: queries must not go back in time ({} after {})", t, lastQuery_));
+      throw std::logic_error(
+          fmt::format("Trajectory::stateAt: queries must not go back in time ({} after {})", t, lastQuery_));
     }
     lastQuery_ = t;
     while (t > t_ && !stoppedBy_) advance();
@@ -61,7 +62,8 @@ class Trajectory {
   void validate() const {
     const bool adaptive = isAdaptive(config_.method);
     if (adaptive && !(config_.rtol > 0 && config_.atol >= 0)) {
-      throw std::invalid_argument(fmt::format("solver: rtol must be > 0 and atol >= 0, got {} and {}", config_.rtol, config_.atol));
+      throw std::invalid_argument(
+          fmt::format("solver: rtol must be > 0 and atol >= 0, got {} and {}", config_.rtol, config_.atol));
     }
     if (!adaptive && !(config_.dt > 0 && std::isfinite(config_.dt))) {
       throw std::invalid_argument(fmt::format("solver.dt: must be a finite step > 0 s, got {}", config_.dt));
@@ -141,7 +143,8 @@ class Trajectory {
     while (true) {
       const double h = std::min(h_, config_.maxStep);
       if (!(h > 1e-14 * std::max(1.0, std::abs(t_)))) {
-        throw std::runtime_error(fmt::format("integration stalled: step size {} s at t = {} s, state ({})", h, t_, describe(y_)));
+        throw std::runtime_error(
+            fmt::format("integration stalled: step size {} s at t = {} s, state ({})", h, t_, describe(y_)));
       }
       double err;
       if (dop853) {
@@ -193,15 +196,17 @@ class Trajectory {
 
   void accept(double t1, const Vec<N>& y1, const Vec<N>& f1) {
     if (!y1.allFinite()) {
-      throw std::runtime_error(fmt::format("integration produced a non-finite state at t = {} s (from {})", t1, describe(y_)));
+      throw std::runtime_error(
+          fmt::format("integration produced a non-finite state at t = {} s (from {})", t1, describe(y_)));
     }
     const double previousT = t_;
     t_ = t1;
     y_ = y1;
     f0_ = f1;
     if (++stats_.acceptedSteps > config_.maxSteps) {
-      throw std::runtime_error(fmt::format("integration needs more than {} steps: stopped at t = {} s, h = {} s, state ({})",
-                                           config_.maxSteps, t_, t1 - previousT, describe(y_)));
+      throw std::runtime_error(
+          fmt::format("integration needs more than {} steps: stopped at t = {} s, h = {} s, state ({})",
+                      config_.maxSteps, t_, t1 - previousT, describe(y_)));
     }
     refuseHopelessPace();
   }
@@ -217,7 +222,8 @@ class Trajectory {
     const double projected = static_cast<double>(steps) * whole / done;
     if (projected > static_cast<double>(config_.maxSteps)) {
       throw std::runtime_error(fmt::format(
-          "integration would need about {:.2g} steps to reach t = {} s at its pace so far ({} steps for the first {:.6g} "
+          "integration would need about {:.2g} steps to reach t = {} s at its pace so far ({} steps for the first "
+          "{:.6g} "
           "s), more than the {} a run may take; shorten the duration, or loosen solver.rtol and solver.atol",
           projected, config_.endTime, steps, done, config_.maxSteps));
     }

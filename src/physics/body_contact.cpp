@@ -35,8 +35,9 @@ Eigen::Vector3d contactDrift(const CoinModel& m, const ContactGeometry& geo, con
          Eigen::Vector3d(0, 0, geo.offset.dLift * thetaDot);
 }
 
-void setAttitudeKinematics(const CoinModel& m, const Eigen::Quaterniond& unitQ, const Eigen::Vector3d& omegaBody, double x,
-                           double z, const ContactGeometry& geo, const Eigen::Vector3d& velocity, Forward& f) {
+void setAttitudeKinematics(const CoinModel& m, const Eigen::Quaterniond& unitQ, const Eigen::Vector3d& omegaBody,
+                           double x, double z, const ContactGeometry& geo, const Eigen::Vector3d& velocity,
+                           Forward& f) {
   const Eigen::Matrix3d& R = geo.floorFromBody;
   f.theta = thetaOf(unitQ);
   // Rows e_X, e_Y, e_Z in floor components.

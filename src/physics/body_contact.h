@@ -35,7 +35,7 @@ Eigen::Vector3d contactDrift(const CoinModel& m, const ContactGeometry& geo, con
 // Fills what the attitude, the rates and the centre's velocity fix: theta, the axes, omega, the
 // contact vector and point, the centre, psi-dot, phi-dot and the energy (the dynamics' fields are
 // the caller's).
-void setAttitudeKinematics(const CoinModel& m, const Eigen::Quaterniond& unitQ, const Eigen::Vector3d& omegaBody, double x,
-                           double z, const ContactGeometry& geo, const Eigen::Vector3d& velocity, Forward& f);
+void setAttitudeKinematics(const CoinModel& m, const Eigen::Quaterniond& unitQ, const Eigen::Vector3d& omegaBody,
+                           double x, double z, const ContactGeometry& geo, const Eigen::Vector3d& velocity, Forward& f);
 
 }  // namespace coinroll::physics

@@ -94,7 +94,8 @@ Reaction reactionFrom(const CoinModel& m, const Eigen::Matrix3d& axes, const Eig
 }
 
 // `velocityXZ`: the centre of mass's floor velocity (x, z).
-StateVec pack(const StateVec& y, double sinTheta, double cosTheta, const Eigen::Vector3d& dOmega, double vx, double vz) {
+StateVec pack(const StateVec& y, double sinTheta, double cosTheta, const Eigen::Vector3d& dOmega, double vx,
+              double vz) {
   StateVec dy;
   dy[kTheta]   = y[kOmega_X];                                          // (17), docs/seed.md §3
   dy[kPhi]     = y[kOmega_Y] / cosTheta;                               // (18)
@@ -107,7 +108,8 @@ StateVec pack(const StateVec& y, double sinTheta, double cosTheta, const Eigen::
   return dy;
 }
 
-StateVec packThin(const CoinModel& model, const StateVec& y, double sinTheta, double cosTheta, const Eigen::Vector3d& dOmega) {
+StateVec packThin(const CoinModel& model, const StateVec& y, double sinTheta, double cosTheta,
+                  const Eigen::Vector3d& dOmega) {
   const double sinPhi = std::sin(y[kPhi]), cosPhi = std::cos(y[kPhi]);
   const double omega_X = y[kOmega_X], omega_Z = y[kOmega_Z];
   const double a = model.a;
@@ -182,7 +184,8 @@ Forward forward(const CoinModel& model, const CoinState& s) {
   const Eigen::Vector3d omega(s.omega_X, s.omega_Y, s.omega_Z);
   std::optional<RimTerms> rim;
   Forward f = accelerations(model, s, sinTheta, cosTheta, rim);
-  const Eigen::Vector3d e_X = f.axes.row(0).transpose(), e_Y = f.axes.row(1).transpose(), e_Z = f.axes.row(2).transpose();
+  const Eigen::Vector3d e_X = f.axes.row(0).transpose(), e_Y = f.axes.row(1).transpose(),
+                        e_Z = f.axes.row(2).transpose();
   if (rim) {
     f.contactVector = f.axes.transpose() * rim->c;  // (1.3)
     f.centre = Eigen::Vector3d(s.x, -f.contactVector.y(), s.z);
@@ -208,7 +211,8 @@ Rates rates(const CoinModel& model, const StateVec& y) {
   if (model.effects.empty()) {
     const Eigen::Vector3d omega = y.segment<3>(kOmega_X);
     if (model.rim.thin()) {
-      const Eigen::Vector3d dOmega = thinAngularAcceleration(model, sinTheta, cosTheta, y[kOmega_X], y[kOmega_Y], y[kOmega_Z]);
+      const Eigen::Vector3d dOmega =
+          thinAngularAcceleration(model, sinTheta, cosTheta, y[kOmega_X], y[kOmega_Y], y[kOmega_Z]);
       return {.dy = packThin(model, y, sinTheta, cosTheta, dOmega), .power = 0};
     }
     const RimTerms rim = rimTerms(model, sinTheta, cosTheta, omega);

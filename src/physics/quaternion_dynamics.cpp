@@ -32,11 +32,12 @@ Eigen::Vector3d centreOfMassVelocityBody(const ContactGeometry& geo, const Eigen
   return -omega.cross(geo.c);  // no slip, seed eq. (3)
 }
 
-Reaction reactionFrom(const CoinModel& m, const QuaternionState& s, const ContactGeometry& geo, const Eigen::Vector3d& cDot,
-                      const Eigen::Vector3d& dw) {
+Reaction reactionFrom(const CoinModel& m, const QuaternionState& s, const ContactGeometry& geo,
+                      const Eigen::Vector3d& cDot, const Eigen::Vector3d& dw) {
   const Eigen::Vector3d& w = s.omegaBody;
   // (5.2): dv/dt of v = -omega x c, with c-dot the contact's drift round the rim and the frame's turn.
-  const Eigen::Vector3d accelerationBody = -(dw.cross(geo.c) + w.cross(cDot)) + w.cross(centreOfMassVelocityBody(geo, w));
+  const Eigen::Vector3d accelerationBody =
+      -(dw.cross(geo.c) + w.cross(cDot)) + w.cross(centreOfMassVelocityBody(geo, w));
   Reaction r;
   r.R = m.M * geo.floorFromBody * accelerationBody + Eigen::Vector3d(0, m.M * m.g, 0);
   r.N = r.R.y();
@@ -44,7 +45,8 @@ Reaction reactionFrom(const CoinModel& m, const QuaternionState& s, const Contac
   return r;
 }
 
-ContactKinematics contactKinematics(const CoinModel& m, const QuaternionState& s, const ContactGeometry& geo, double N) {
+ContactKinematics contactKinematics(const CoinModel& m, const QuaternionState& s, const ContactGeometry& geo,
+                                    double N) {
   return {.e_X = geo.floorFromBody * geo.e_X,
           .e_Y = geo.floorFromBody * geo.e_Y,
           .e_Z = geo.floorFromBody.col(2),
@@ -73,7 +75,8 @@ Forward forwardAt(const CoinModel& m, const QuaternionState& s, const ContactGeo
   f.dOmega = angularAcceleration(m, geo, s.omegaBody, cDot);
   f.reaction = reactionFrom(m, s, geo, cDot, f.dOmega);
   if (!m.effects.empty()) addEffects(m, s, geo, cDot, f);
-  setAttitudeKinematics(m, s.q, s.omegaBody, s.x, s.z, geo, geo.floorFromBody * centreOfMassVelocityBody(geo, s.omegaBody), f);
+  setAttitudeKinematics(m, s.q, s.omegaBody, s.x, s.z, geo,
+                        geo.floorFromBody * centreOfMassVelocityBody(geo, s.omegaBody), f);
   return f;
 }
 
@@ -127,7 +130,9 @@ double thetaOf(const Eigen::Quaterniond& unitQ) {
   return std::atan2(-normal.y(), std::hypot(normal.x(), normal.z()));  // (1.4)
 }
 
-Forward forward(const CoinModel& model, const QuaternionState& s) { return forwardAt(model, s, contactGeometry(model, s.q)); }
+Forward forward(const CoinModel& model, const QuaternionState& s) {
+  return forwardAt(model, s, contactGeometry(model, s.q));
+}
 
 QuaternionRates quaternionRates(const CoinModel& model, const QuaternionStateVec& y) {
   const Eigen::Quaterniond stored(y[kQw], y[kQx], y[kQy], y[kQz]);

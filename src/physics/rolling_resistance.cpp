@@ -13,7 +13,8 @@ Loads loads(const RollingResistance& law, const ContactKinematics& k) {
   const Eigen::Vector3d h = rollingAxis(k);
   const double rollingRate = k.omega.dot(h);  // psi-dot cos(theta), eq. (2.9)
   const double cosTheta = k.e_Y.y();
-  if (law.rateExponent != 1) couple *= std::pow(std::abs(rollingRate / cosTheta) / kRollingReferenceRate, law.rateExponent - 1);
+  if (law.rateExponent != 1)
+    couple *= std::pow(std::abs(rollingRate / cosTheta) / kRollingReferenceRate, law.rateExponent - 1);
   // The couple about h that does the work delta N |psi-dot| while the face turns about h only
   // at psi-dot cos(theta) (eq. 2.10).
   const double magnitude = couple / cosTheta * smoothSign(rollingRate, kRollingRegularisationRate);

@@ -28,7 +28,8 @@ struct Sliding {
   Eigen::Vector3d m, k;      // body: c x e_y and c x (e_y - mu s_hat)     (1.6)
 };
 
-Sliding slidingTerms(const CoinModel& model, const SlidingState& state, double mu, const Eigen::Vector3d& slipDirection) {
+Sliding slidingTerms(const CoinModel& model, const SlidingState& state, double mu,
+                     const Eigen::Vector3d& slipDirection) {
   const QuaternionState& s = state.attitude;
   Sliding t;
   t.geo = contactGeometry(model, s.q);
@@ -86,7 +87,8 @@ Forward forwardFrom(const CoinModel& model, const SlidingState& state, double mu
   return f;
 }
 
-SlidingRates ratesFrom(const CoinModel& model, const SlidingStateVec& y, const SlidingState& state, const Sliding& terms, double mu) {
+SlidingRates ratesFrom(const CoinModel& model, const SlidingStateVec& y, const SlidingState& state,
+                       const Sliding& terms, double mu) {
   const Eigen::Quaterniond stored(y[kQw], y[kQx], y[kQy], y[kQz]);
   const Forward f = forwardFrom(model, state, mu, terms);
   SlidingRates rates;
@@ -132,15 +134,16 @@ Eigen::Vector2d slipOf(const CoinModel& model, const QuaternionState& attitude, 
   return velocity + Eigen::Vector2d(spinAtContact.x(), spinAtContact.z());
 }
 
-SlidingRates slidingRates(const CoinModel& model, const SlidingStateVec& y, double mu, const Eigen::Vector3d& slipDirection) {
+SlidingRates slidingRates(const CoinModel& model, const SlidingStateVec& y, double mu,
+                          const Eigen::Vector3d& slipDirection) {
   const SlidingState state = toSlidingState(y);
   return ratesFrom(model, y, state, slidingTerms(model, state, mu, slipDirection), mu);
 }
 
-Forward slidingForward(const CoinModel& model, const SlidingState& state, double mu, const Eigen::Vector3d& slipDirection) {
+Forward slidingForward(const CoinModel& model, const SlidingState& state, double mu,
+                       const Eigen::Vector3d& slipDirection) {
   return forwardFrom(model, state, mu, slidingTerms(model, state, mu, slipDirection));
 }
-
 
 namespace {
 
@@ -184,13 +187,14 @@ double restoringAt(const CoinModel& model, const SlidingStateVec& y, double mu, 
 
 // Newton for turning(angle) = target from `angle`: the angle and the restoring there, or nothing when
 // it finds no attracting rest.
-std::optional<std::pair<double, double>> solveTurning(const CoinModel& model, const SlidingStateVec& y, double mu, double angle,
-                                                      double target) {
+std::optional<std::pair<double, double>> solveTurning(const CoinModel& model, const SlidingStateVec& y, double mu,
+                                                      double angle, double target) {
   for (int pass = 0; pass <= kMaxCreepPasses && std::isfinite(angle); ++pass) {
     const double restoring = restoringAt(model, y, mu, angle);
     const double change = (turning(model, y, mu, angle) - target) / restoring;
     angle += change;
-    if (std::abs(change) < kAngleConverged && restoring > kLeastRestoring * mu * model.g) return std::pair{angle, restoring};
+    if (std::abs(change) < kAngleConverged && restoring > kLeastRestoring * mu * model.g)
+      return std::pair{angle, restoring};
   }
   return std::nullopt;
 }
@@ -205,7 +209,8 @@ std::optional<Creep> findCreep(const CoinModel& model, const SlidingStateVec& y,
   const Forward rolling = forward(model, toQuaternionState(y.head<kQuaternionStateSize>()));
   const Eigen::Vector3d& rollingFriction = rolling.reaction.R;
   const Eigen::Vector2d slip = y.tail<2>();
-  const bool neutral = Eigen::Vector2d(rollingFriction.x(), rollingFriction.z()).norm() < kLeastRestoring * mu * std::abs(rolling.reaction.N);
+  const bool neutral = Eigen::Vector2d(rollingFriction.x(), rollingFriction.z()).norm() <
+                       kLeastRestoring * mu * std::abs(rolling.reaction.N);
   double start = std::atan2(-rollingFriction.z(), -rollingFriction.x());
   if (neutral && neutralStart) {
     start = std::atan2(neutralStart->z(), neutralStart->x());
@@ -231,12 +236,14 @@ std::optional<Creep> findCreep(const CoinModel& model, const SlidingStateVec& y,
   return Creep{.slipHat = floorDirection(angle), .restoring = restoring, .restRate = restRate};
 }
 
-SlidingRates slidingRatesAlong(const CoinModel& model, const SlidingStateVec& y, double mu, const Eigen::Vector3d& slipHat) {
+SlidingRates slidingRatesAlong(const CoinModel& model, const SlidingStateVec& y, double mu,
+                               const Eigen::Vector3d& slipHat) {
   const SlidingState state = toSlidingState(y);
   return ratesFrom(model, y, state, termsAlong(model, state, mu, slipHat), mu);
 }
 
-Forward slidingForwardAlong(const CoinModel& model, const SlidingState& state, double mu, const Eigen::Vector3d& slipHat) {
+Forward slidingForwardAlong(const CoinModel& model, const SlidingState& state, double mu,
+                            const Eigen::Vector3d& slipHat) {
   return forwardFrom(model, state, mu, termsAlong(model, state, mu, slipHat));
 }
 

@@ -38,7 +38,8 @@ SlidingState toSlidingState(const SlidingStateVec& y);
 // floor components) stands for s_hat while the slip speed is below round-off: at the switch from
 // rolling, where s = 0 and the contract takes it opposite to the rolling friction force.
 // Forward::slip, ::sliding and ::normalEffectiveMass are set.
-Forward slidingForward(const CoinModel& model, const SlidingState& state, double mu, const Eigen::Vector3d& slipDirection);
+Forward slidingForward(const CoinModel& model, const SlidingState& state, double mu,
+                       const Eigen::Vector3d& slipDirection);
 
 // The normal effective mass D at which a sliding run stops with `painleve` (docs/sliding.md §3.1).
 // N = (N0 - ...) / D, so a slide driven towards D = 0 with a positive numerator meets an unbounded
@@ -51,7 +52,8 @@ struct SlidingRates {
   SlidingStateVec dy;
   double power = 0;
 };
-SlidingRates slidingRates(const CoinModel& model, const SlidingStateVec& y, double mu, const Eigen::Vector3d& slipDirection);
+SlidingRates slidingRates(const CoinModel& model, const SlidingStateVec& y, double mu,
+                          const Eigen::Vector3d& slipDirection);
 
 // The creeping slide (docs/sliding.md §4.6). Where the rolling reaction sits just outside the
 // friction cone the slip stays tiny and its direction is slaved to the slow motion: it turns back
@@ -73,8 +75,10 @@ std::optional<Creep> findCreep(const CoinModel& model, const SlidingStateVec& y,
                                const std::optional<Eigen::Vector3d>& neutralStart = std::nullopt);
 
 // The sliding coin with friction along -slipHat whatever the slip's own direction (the creeping slide).
-SlidingRates slidingRatesAlong(const CoinModel& model, const SlidingStateVec& y, double mu, const Eigen::Vector3d& slipHat);
-Forward slidingForwardAlong(const CoinModel& model, const SlidingState& state, double mu, const Eigen::Vector3d& slipHat);
+SlidingRates slidingRatesAlong(const CoinModel& model, const SlidingStateVec& y, double mu,
+                               const Eigen::Vector3d& slipHat);
+Forward slidingForwardAlong(const CoinModel& model, const SlidingState& state, double mu,
+                            const Eigen::Vector3d& slipHat);
 
 // -d(s_perp . s-dot)/d(angle) at the slip's own direction, m/s^2: the pull towards a rest (positive)
 // or away from one; the direction turns at this over |s|.

@@ -158,7 +158,8 @@ double criticalSpin(const CoinModel& m) {
 CoinState spinInPlace(const CoinModel& m, double theta) {
   requireTiltBelowFlat(theta);
   if (theta == 0) {
-    throw std::invalid_argument("steady state spin-in-place: theta must be non-zero (an upright coin cannot spin in place on its rim)");
+    throw std::invalid_argument(
+        "steady state spin-in-place: theta must be non-zero (an upright coin cannot spin in place on its rim)");
   }
   if (!m.rim.thin()) return rimSpinInPlace(m, theta);
   return {.theta = theta, .omega_Y = std::sqrt(m.M * m.g * m.a * std::cos(theta) / m.I_X)};
@@ -176,7 +177,8 @@ CoinState steadyCircle(const CoinModel& m, double theta, double omega_Z, int bra
   const double C = -m.M * m.g * m.a * std::sin(theta);
   if (A == 0) {
     if (branch == -1) {
-      throw std::invalid_argument("steady state circle: the f- branch has no finite omega_Y at theta = 0 (use theta != 0 or branch +)");
+      throw std::invalid_argument(
+          "steady state circle: the f- branch has no finite omega_Y at theta = 0 (use theta != 0 or branch +)");
     }
     return straightRolling(omega_Z);
   }
@@ -221,7 +223,8 @@ CircleRadii circleRadii(const CoinModel& m, const CoinState& s) {
 }
 
 TiltStability tiltStability(double K) {
-  if (K > 0) return {.kind = TiltStability::Kind::Stable, .rate = std::sqrt(K), .time = 2 * std::numbers::pi / std::sqrt(K)};
+  if (K > 0)
+    return {.kind = TiltStability::Kind::Stable, .rate = std::sqrt(K), .time = 2 * std::numbers::pi / std::sqrt(K)};
   if (K < 0) return {.kind = TiltStability::Kind::Unstable, .rate = std::sqrt(-K), .time = 1 / std::sqrt(-K)};
   return {};
 }

@@ -10,7 +10,9 @@ namespace coinroll::pipeline {
 
 namespace {
 
-glm::vec3 toGlm(const Eigen::Vector3d& v) { return {static_cast<float>(v.x()), static_cast<float>(v.y()), static_cast<float>(v.z())}; }
+glm::vec3 toGlm(const Eigen::Vector3d& v) {
+  return {static_cast<float>(v.x()), static_cast<float>(v.y()), static_cast<float>(v.z())};
+}
 
 double radians(double degrees) { return degrees * std::numbers::pi / 180; }
 
@@ -35,7 +37,8 @@ double fittingDistance(const Eigen::Vector3d& lower, const Eigen::Vector3d& uppe
                             (corner & 4) ? upper.z() : lower.z());
     const Eigen::Vector3d q = p - target;
     const double towards = q.dot(towardsEye);
-    distance = std::max({distance, std::abs(q.dot(right)) / tanHalfX + towards, std::abs(q.dot(up)) / tanHalfY + towards});
+    distance =
+        std::max({distance, std::abs(q.dot(right)) / tanHalfX + towards, std::abs(q.dot(up)) / tanHalfY + towards});
   }
   return 1.06 * distance;
 }
@@ -60,9 +63,11 @@ CameraRig::CameraRig(const scene::CameraSpec& spec, const MotionSurvey& survey, 
   distance_ = 0;
   for (int i = 0; i < azimuths; ++i) {
     const double azimuth = radians(kDefaultAzimuthDegrees) + 2 * std::numbers::pi * i / azimuths;
-    distance_ = std::max(distance_, fittingDistance(lower, upper, target_, viewDirection(azimuth, elevation), tanHalfX, tanHalfY));
+    distance_ = std::max(distance_,
+                         fittingDistance(lower, upper, target_, viewDirection(azimuth, elevation), tanHalfX, tanHalfY));
   }
-  distance_ = std::max(distance_, 2.5 * model.a / tanHalfY);  // a coin spinning in place still gets some floor around it
+  distance_ =
+      std::max(distance_, 2.5 * model.a / tanHalfY);  // a coin spinning in place still gets some floor around it
   followDistance_ = 4.0 * model.a / std::min(tanHalfX, tanHalfY);
 }
 
@@ -72,10 +77,11 @@ render::CameraView CameraRig::at(double time, const Eigen::Vector3d& centre) con
   const double elevation = radians(spec_.elevationDegrees);
   const double azimuth = radians(kDefaultAzimuthDegrees);
   if (spec_.mode == scene::CameraMode::Follow) {
-    const Eigen::Vector3d offset = spec_.eye && spec_.target
-                                       ? Eigen::Vector3d(spec_.eye->at(0) - spec_.target->at(0), spec_.eye->at(1) - spec_.target->at(1),
-                                                         spec_.eye->at(2) - spec_.target->at(2))
-                                       : Eigen::Vector3d(followDistance_ * viewDirection(azimuth, elevation));
+    const Eigen::Vector3d offset =
+        spec_.eye && spec_.target
+            ? Eigen::Vector3d(spec_.eye->at(0) - spec_.target->at(0), spec_.eye->at(1) - spec_.target->at(1),
+                              spec_.eye->at(2) - spec_.target->at(2))
+            : Eigen::Vector3d(followDistance_ * viewDirection(azimuth, elevation));
     view.target = toGlm(centre);
     view.eye = toGlm(centre + offset);
     return view;
@@ -91,7 +97,8 @@ render::CameraView CameraRig::at(double time, const Eigen::Vector3d& centre) con
       height = d.y();
       start = std::atan2(d.x(), d.z());
     }
-    view.eye = toGlm(target_ + Eigen::Vector3d(radius * std::sin(start + turn), height, radius * std::cos(start + turn)));
+    view.eye =
+        toGlm(target_ + Eigen::Vector3d(radius * std::sin(start + turn), height, radius * std::cos(start + turn)));
     return view;
   }
   view.eye = spec_.eye ? glm::vec3(spec_.eye->at(0), spec_.eye->at(1), spec_.eye->at(2))

@@ -88,7 +88,8 @@ std::optional<RunSample> CoinRun::sampleAt(double t) {
 
 std::optional<RunSample> CoinRun::hybridSampleAt(HybridRun& run, double t) {
   if (t < lastTime_) {
-    throw std::logic_error(fmt::format("CoinRun::stateAt: queries must not go back in time ({} after {})", t, lastTime_));
+    throw std::logic_error(
+        fmt::format("CoinRun::stateAt: queries must not go back in time ({} after {})", t, lastTime_));
   }
   // As for the quaternion formulation (sampleOf): phi and psi unwrapped every quarter turn.
   while (lastTime_ < t || !lastForwardValid_) {
@@ -120,13 +121,15 @@ std::optional<RunSample> CoinRun::sampleOf(Run<F, N>& run, double t) {
     return RunSample{seedState<F, N>(*y), forwardOf<F, N>(model_, *y), dissipatedOf<F, N>(*y)};
   } else {
     if (t < lastTime_) {
-      throw std::logic_error(fmt::format("CoinRun::stateAt: queries must not go back in time ({} after {})", t, lastTime_));
+      throw std::logic_error(
+          fmt::format("CoinRun::stateAt: queries must not go back in time ({} after {})", t, lastTime_));
     }
     bool moved = false;
     std::optional<integrate::Vec<N>> y;
     while (lastTime_ < t) {
       throwIfCancelled(cancel_);
-      const double turnRate = std::max(std::abs(physics::precessionRate(lastState_)), std::abs(physics::spinRate(lastState_)));
+      const double turnRate =
+          std::max(std::abs(physics::precessionRate(lastState_)), std::abs(physics::spinRate(lastState_)));
       const double next = turnRate > 0 ? std::min(t, lastTime_ + kUnwrapTurn / turnRate) : t;
       y = run.stateAt(next);
       if (!y) return std::nullopt;

@@ -52,7 +52,8 @@ struct SlidingRhs {
   Eigen::Vector3d frictionDirection(const physics::SlidingStateVec& y) const {
     if (const std::optional<physics::Creep> creep = physics::findCreep(model, y, mu, direction)) return creep->slipHat;
     const Eigen::Vector2d slip = y.tail<2>();
-    return slip.norm() > physics::kSlipRoundOff ? Eigen::Vector3d(slip.x() / slip.norm(), 0, slip.y() / slip.norm()) : direction;
+    return slip.norm() > physics::kSlipRoundOff ? Eigen::Vector3d(slip.x() / slip.norm(), 0, slip.y() / slip.norm())
+                                                : direction;
   }
   physics::Forward forward(const physics::SlidingStateVec& y) const {
     const physics::SlidingState state = physics::toSlidingState(y);
@@ -61,8 +62,9 @@ struct SlidingRhs {
   }
   integrate::Vec<kSlidingSize> operator()(double /*t*/, const integrate::Vec<kSlidingSize>& y) const {
     const physics::SlidingStateVec& coin = y.head<physics::kSlidingStateSize>();
-    const physics::SlidingRates r = mode == SlipMode::Free ? physics::slidingRates(model, coin, mu, direction)
-                                                          : physics::slidingRatesAlong(model, coin, mu, frictionDirection(coin));
+    const physics::SlidingRates r = mode == SlipMode::Free
+                                        ? physics::slidingRates(model, coin, mu, direction)
+                                        : physics::slidingRatesAlong(model, coin, mu, frictionDirection(coin));
     integrate::Vec<kSlidingSize> dy;
     dy << r.dy, r.power;
     return dy;
@@ -88,7 +90,8 @@ double freeSlipSpeed(const physics::CoinModel& model, const physics::Forward& f,
 }
 
 template <int N>
-integrate::Event<N> switchEvent(int id, const char* name, std::function<double(double, const integrate::Vec<N>&)> g, int direction = -1) {
+integrate::Event<N> switchEvent(int id, const char* name, std::function<double(double, const integrate::Vec<N>&)> g,
+                                int direction = -1) {
   return {.name = name, .id = id, .g = std::move(g), .direction = direction, .terminal = true};
 }
 
@@ -103,9 +106,11 @@ HybridRun::HybridRun(const Simulation& simulation) : simulation_(simulation) {
   const physics::QuaternionState start = physics::fromEulerState(simulation.initial);
   const physics::Forward rolling = physics::forward(simulation_.model, start);
   const Eigen::Vector3d rollingVelocity = rolling.velocity;
-  const Eigen::Vector2d velocity = simulation.initialVelocity.value_or(Eigen::Vector2d(rollingVelocity.x(), rollingVelocity.z()));
+  const Eigen::Vector2d velocity =
+      simulation.initialVelocity.value_or(Eigen::Vector2d(rollingVelocity.x(), rollingVelocity.z()));
   const physics::SlidingState sliding{.attitude = start, .slip = physics::slipOf(simulation_.model, start, velocity)};
-  const physics::Forward slipping = physics::slidingForward(simulation_.model, sliding, simulation.kineticFriction, Eigen::Vector3d::UnitX());
+  const physics::Forward slipping =
+      physics::slidingForward(simulation_.model, sliding, simulation.kineticFriction, Eigen::Vector3d::UnitX());
   if (slipping.slip.norm() > stoppedSlip(0)) {
     startSliding(0, sliding, 0, SlipMode::Free);
   } else if (physics::slipMargin(simulation_.model, rolling, *simulation.friction) < 0) {
@@ -137,9 +142,10 @@ void HybridRun::startRolling(double t, const physics::QuaternionState& state, do
   events.push_back(std::move(slides));
   Y y0;
   y0 << physics::toVector(state), dissipated;
-  segment_ = std::make_unique<Segment>(Segment{
-      .trajectory = RollingTrajectory(physics::CoinRhs<Formulation::Quaternion>{simulation_.model}, t, y0, simulation_.solver, events),
-      .sliding = {}});
+  segment_ = std::make_unique<Segment>(
+      Segment{.trajectory = RollingTrajectory(physics::CoinRhs<Formulation::Quaternion>{simulation_.model}, t, y0,
+                                              simulation_.solver, events),
+              .sliding = {}});
 }
 
 void HybridRun::startSliding(double t, const physics::SlidingState& state, double dissipated, SlipMode mode) {
@@ -152,13 +158,16 @@ void HybridRun::startSliding(double t, const physics::SlidingState& state, doubl
   std::vector<integrate::Event<kSlidingSize>> events = geometryEvents<kSlidingSize>(
       model, Formulation::Quaternion, [](const Y& y) { return physics::thetaOf(slidingStateOf(y).attitude.q); });
   events.push_back(modelEvent<kSlidingSize>(
-      ModelEvent::LiftOff, [model, forwardOf](double, const Y& y) { return physics::liftOffMargin(model, forwardOf(y)); }, -1,
+      ModelEvent::LiftOff,
+      [model, forwardOf](double, const Y& y) { return physics::liftOffMargin(model, forwardOf(y)); }, -1,
       kLiftOffEndsTheRun));
   events.push_back(modelEvent<kSlidingSize>(
-      ModelEvent::Painleve, [forwardOf](double, const Y& y) { return forwardOf(y).normalEffectiveMass - physics::kPainleveMargin; }, -1,
+      ModelEvent::Painleve,
+      [forwardOf](double, const Y& y) { return forwardOf(y).normalEffectiveMass - physics::kPainleveMargin; }, -1,
       true));
   if (mode == SlipMode::Free) {
-    events.push_back(switchEvent<kSlidingSize>(kSlipStops, "rolls", [](double at, const Y& y) { return slidingStateOf(y).slip.norm() - stoppedSlip(at); }));
+    events.push_back(switchEvent<kSlidingSize>(
+        kSlipStops, "rolls", [](double at, const Y& y) { return slidingStateOf(y).slip.norm() - stoppedSlip(at); }));
     // A slip that falls back to half the creep's threshold hands its direction to its rest, once it
     // has come to the rest: the threshold fades to zero as the slip's angle from the rest grows to
     // kCreepLag, so a slide that ends across the rest's pull (a skid) is integrated to its end.
@@ -186,7 +195,8 @@ void HybridRun::startSliding(double t, const physics::SlidingState& state, doubl
         [rhs](double, const Y& y) {
           const physics::SlidingStateVec coin = y.head<physics::kSlidingStateSize>();
           return physics::toSlidingState(coin).slip.norm() -
-                 freeSlipSpeed(rhs.model, rhs.forward(coin), physics::findCreep(rhs.model, coin, rhs.mu).value_or(physics::Creep{}).restoring);
+                 freeSlipSpeed(rhs.model, rhs.forward(coin),
+                               physics::findCreep(rhs.model, coin, rhs.mu).value_or(physics::Creep{}).restoring);
         },
         +1));
   }
@@ -198,16 +208,16 @@ void HybridRun::startSliding(double t, const physics::SlidingState& state, doubl
 
 // The seed's variables, the forward pass of the segment's mode and the dissipated energy of an
 // integrated state of either kind.
-HybridSample sampleOf(const physics::CoinModel& model, const SlidingRhs& /*sliding*/, const integrate::Vec<kRollingSize>& y,
-                      const physics::CoinState& continuation) {
+HybridSample sampleOf(const physics::CoinModel& model, const SlidingRhs& /*sliding*/,
+                      const integrate::Vec<kRollingSize>& y, const physics::CoinState& continuation) {
   const physics::QuaternionState state = rollingStateOf(y);
   return {physics::toEulerState(state, continuation), physics::forward(model, state), y[kRollingSize - 1]};
 }
 
-HybridSample sampleOf(const physics::CoinModel& /*model*/, const SlidingRhs& sliding, const integrate::Vec<kSlidingSize>& y,
-                      const physics::CoinState& continuation) {
-  return {physics::toEulerState(slidingStateOf(y).attitude, continuation), sliding.forward(y.head<physics::kSlidingStateSize>()),
-          y[kSlidingSize - 1]};
+HybridSample sampleOf(const physics::CoinModel& /*model*/, const SlidingRhs& sliding,
+                      const integrate::Vec<kSlidingSize>& y, const physics::CoinState& continuation) {
+  return {physics::toEulerState(slidingStateOf(y).attitude, continuation),
+          sliding.forward(y.head<physics::kSlidingStateSize>()), y[kSlidingSize - 1]};
 }
 
 bool HybridRun::switchIfDue() {
@@ -288,8 +298,8 @@ std::optional<RunEvent> HybridRun::stoppedBy(const physics::CoinState& continuat
         const HybridSample at = sampleOf(simulation_.model, segment_->sliding, hit->y, continuation);
         // A switch the run could not make (stick-slip past its bound) ends it as stick-slip.
         const bool modelEvent = hit->id < kSlideOnset;
-        return RunEvent{modelEvent ? static_cast<ModelEvent>(hit->id) : ModelEvent::StickSlip, hit->t, at.state, at.forward,
-                        at.dissipated};
+        return RunEvent{modelEvent ? static_cast<ModelEvent>(hit->id) : ModelEvent::StickSlip, hit->t, at.state,
+                        at.forward, at.dissipated};
       },
       segment_->trajectory);
 }

@@ -17,7 +17,8 @@ namespace coinroll::pipeline {
 double traceInterval(double duration);
 
 struct MotionSurvey {
-  Eigen::Vector3d lower = Eigen::Vector3d::Zero(), upper = Eigen::Vector3d::Zero();  // m, box around every centre of mass and contact point
+  Eigen::Vector3d lower = Eigen::Vector3d::Zero(),
+                  upper = Eigen::Vector3d::Zero();  // m, box around every centre of mass and contact point
   double endTime = 0;            // s, the duration, or when a validity event stopped the run
   std::optional<RunEvent> stoppedBy = {};
 };

@@ -96,8 +96,9 @@ void requireAddressSpace(std::uint64_t bytes, std::string_view what, std::string
 }
 
 std::uint64_t rendererAddressSpace(const render::RenderSettings& settings) {
-  const std::uint64_t samples =
-      settings.antialiasing == render::Antialiasing::Msaa ? static_cast<std::uint64_t>(settings.msaa) : 2;  // FXAA: a second picture
+  const std::uint64_t samples = settings.antialiasing == render::Antialiasing::Msaa
+                                    ? static_cast<std::uint64_t>(settings.msaa)
+                                    : 2;  // FXAA: a second picture
   // A reused background keeps a second multisampled colour and depth buffer.
   const std::uint64_t perPixel = kBytesPerPixel + kBytesPerSample * samples * (settings.reuseStaticBackground ? 2 : 1);
   const std::uint64_t pixels = static_cast<std::uint64_t>(settings.width) * static_cast<std::uint64_t>(settings.height);
@@ -106,13 +107,14 @@ std::uint64_t rendererAddressSpace(const render::RenderSettings& settings) {
 
 void requireRendererAddressSpace(const render::RenderSettings& settings, std::uint64_t encoderBytes) {
   const int samples = settings.antialiasing == render::Antialiasing::Msaa ? settings.msaa : 1;
-  requireAddressSpace(rendererAddressSpace(settings) + encoderBytes,
-                      fmt::format("{} {}x{} pictures with {} samples per pixel", encoderBytes > 0 ? "drawing and encoding" : "drawing",
-                                  settings.width, settings.height, samples),
-                      encoderBytes > 0 ? "draw smaller pictures (render.width, render.height, render.msaa), with fewer "
-                                         "llvmpipe threads (LP_NUM_THREADS=1) or with a faster render.video.preset"
-                                       : "draw smaller pictures (render.width, render.height, render.msaa) or with fewer "
-                                         "llvmpipe threads (LP_NUM_THREADS=1)");
+  requireAddressSpace(
+      rendererAddressSpace(settings) + encoderBytes,
+      fmt::format("{} {}x{} pictures with {} samples per pixel", encoderBytes > 0 ? "drawing and encoding" : "drawing",
+                  settings.width, settings.height, samples),
+      encoderBytes > 0 ? "draw smaller pictures (render.width, render.height, render.msaa), with fewer "
+                         "llvmpipe threads (LP_NUM_THREADS=1) or with a faster render.video.preset"
+                       : "draw smaller pictures (render.width, render.height, render.msaa) or with fewer "
+                         "llvmpipe threads (LP_NUM_THREADS=1)");
 }
 
 void fitAllocatorToAddressSpaceLimit() {

@@ -46,7 +46,8 @@ class Pass {
   RunRecord record() {
     nextFrame_ = plan_.timeOf(0, nullptr);
     while (!gridDone_ || nextFrame_) {
-      const double gridTime = gridDone_ ? std::numeric_limits<double>::infinity() : std::min(static_cast<double>(gridIndex_) * dt_, duration_);
+      const double gridTime = gridDone_ ? std::numeric_limits<double>::infinity()
+                                        : std::min(static_cast<double>(gridIndex_) * dt_, duration_);
       if (nextFrame_ && *nextFrame_ < gridTime) takeFrame(*nextFrame_);
       else takeGridPoint(gridTime);
     }

@@ -26,7 +26,13 @@ physics::CoinModel modelFrom(const scene::CoinSpec& coin, double g) {
     case scene::Shape::Disk: model = physics::diskModel(coin.mass, coin.radius, g); break;
     case scene::Shape::Ring: model = physics::ringModel(coin.mass, coin.radius, coin.innerRadius, g); break;
     case scene::Shape::Custom:
-      model = {.M = coin.mass, .a = coin.radius, .g = g, .I_X = coin.I_X.value(), .I_Z = coin.I_Z.value(), .rim = {}, .effects = {}};
+      model = {.M = coin.mass,
+               .a = coin.radius,
+               .g = g,
+               .I_X = coin.I_X.value(),
+               .I_Z = coin.I_Z.value(),
+               .rim = {},
+               .effects = {}};
       break;
   }
   if (!coin.thickness) return model;
@@ -55,7 +61,8 @@ physics::Formulation formulationFor(const scene::SceneConfig& scene) {
   if (!scene.solver.formulation) return landing ? physics::Formulation::Quaternion : physics::Formulation::EulerAngles;
   if (landing && *scene.solver.formulation == physics::Formulation::EulerAngles) {
     throw scene::SceneError(
-        "solver.formulation: \"euler-angles\" cannot carry a coin with thickness and effects to its landing (face-down at "
+        "solver.formulation: \"euler-angles\" cannot carry a coin with thickness and effects to its landing (face-down "
+        "at "
         "0.05 deg above the floor; the Euler angles are singular at flat and stop at 0.5 deg): use \"quaternion\", the "
         "default for such a scene");
   }
@@ -67,7 +74,9 @@ physics::CoinState steadyState(const physics::CoinModel& model, const scene::Ste
   try {
     switch (steady.kind) {
       case scene::SteadyKind::Straight: s = physics::straightRolling(model, steady.omega_Z); break;
-      case scene::SteadyKind::Circle: s = physics::steadyCircle(model, steady.theta, steady.omega_Z, steady.branch); break;
+      case scene::SteadyKind::Circle:
+        s = physics::steadyCircle(model, steady.theta, steady.omega_Z, steady.branch);
+        break;
       case scene::SteadyKind::SpinInPlace: s = physics::spinInPlace(model, steady.theta); break;
     }
   } catch (const std::invalid_argument& e) {
@@ -94,7 +103,8 @@ physics::CoinState initialFrom(const physics::CoinModel& model, const scene::Ini
 
 // The forward pass of the formulation that will integrate the run, at its start.
 physics::Forward startForward(const Simulation& sim) {
-  if (sim.formulation == physics::Formulation::Quaternion) return physics::forward(sim.model, physics::fromEulerState(sim.initial));
+  if (sim.formulation == physics::Formulation::Quaternion)
+    return physics::forward(sim.model, physics::fromEulerState(sim.initial));
   return physics::forward(sim.model, sim.initial);
 }
 
@@ -102,8 +112,10 @@ physics::Forward startForward(const Simulation& sim) {
 void requireValidStart(const Simulation& sim) {
   if (physics::hasCorners(sim.model) && sim.initial.theta == 0) {
     throw scene::SceneError(
-        "initial.theta: a coin whose rim has corners (coin.edge_radius < thickness / 2) cannot start upright: it stands on "
-        "two corners at once and which one it rolls on is not defined (the corner-switch impact is not modelled); tilt it "
+        "initial.theta: a coin whose rim has corners (coin.edge_radius < thickness / 2) cannot start upright: it "
+        "stands on "
+        "two corners at once and which one it rolls on is not defined (the corner-switch impact is not modelled); tilt "
+        "it "
         "or round the rim fully (edge_radius = thickness / 2)");
   }
   // The flat stop fires on crossing |theta| = tilt; a start beyond it would never cross and run on
@@ -143,10 +155,11 @@ void requireValidStart(const Simulation& sim) {
       const physics::Forward sliding =
           physics::slidingForward(sim.model, {.attitude = start, .slip = slip}, sim.kineticFriction, direction);
       if (!(sliding.normalEffectiveMass > physics::kPainleveMargin)) {
-        throw scene::SceneError(fmt::format(
-            "initial: the coin starts sliding with no unique normal force (Painleve: normal effective mass {:.3g} <= {:g} "
-            "with friction {}; docs/sliding.md §3); lower friction, the tilt, or slide the other way",
-            sliding.normalEffectiveMass, physics::kPainleveMargin, sim.kineticFriction));
+        throw scene::SceneError(
+            fmt::format("initial: the coin starts sliding with no unique normal force (Painleve: normal effective mass "
+                        "{:.3g} <= {:g} "
+                        "with friction {}; docs/sliding.md §3); lower friction, the tilt, or slide the other way",
+                        sliding.normalEffectiveMass, physics::kPainleveMargin, sim.kineticFriction));
       }
     }
     return;
@@ -196,7 +209,8 @@ std::string describeStop(const RunEvent& hit) {
   switch (hit.event) {
     case ModelEvent::CoinFlat:
       meaning = fmt::format(
-          "the coin is nearly flat; an ideal run stops at {} deg in the Euler-angle formulation and {} deg in the quaternion "
+          "the coin is nearly flat; an ideal run stops at {} deg in the Euler-angle formulation and {} deg in the "
+          "quaternion "
           "one (solver.formulation), a thin coin's run with effects at {} deg",
           degrees(physics::kFlatTilt), degrees(physics::kQuaternionFlatTilt), degrees(physics::kSpinDownFlatTilt));
       break;
@@ -204,8 +218,9 @@ std::string describeStop(const RunEvent& hit) {
       meaning = fmt::format("the coin lies on its face (tilt above the floor below {} deg)", physics::kFaceDownDegrees);
       break;
     case ModelEvent::CornerSwitch:
-      meaning = "the coin passed upright, where the contact jumps from one corner of the rim to the other (an impact the "
-                "model leaves out; coin.edge_radius = thickness / 2 rolls through upright)";
+      meaning =
+          "the coin passed upright, where the contact jumps from one corner of the rim to the other (an impact the "
+          "model leaves out; coin.edge_radius = thickness / 2 rolls through upright)";
       break;
     case ModelEvent::LiftOff: meaning = "the normal force reached zero; the coin would leave the floor"; break;
     case ModelEvent::Slip: meaning = "friction reached mu N; the contact would start slipping"; break;

@@ -23,7 +23,8 @@ struct Simulation {
   physics::CoinState initial;
   integrate::SolverConfig solver;
   physics::Formulation formulation = physics::Formulation::EulerAngles;  // which equations CoinRun integrates
-  std::optional<double> friction;  // the rolling cone's coefficient (friction_static, else friction); none: no slip monitor
+  std::optional<double>
+      friction;  // the rolling cone's coefficient (friction_static, else friction); none: no slip monitor
   // "sliding": the coin slides with Coulomb friction `kineticFriction` instead of stopping at slip
   // (pipeline/hybrid_run.h); the quaternion formulation carries it.
   bool sliding = false;

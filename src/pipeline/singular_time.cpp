@@ -28,7 +28,8 @@ std::optional<SingularTimeEstimate> SingularTimeFit::estimate() const {
   }
   const double slope = stu / stt;
   if (!(slope < 0)) return std::nullopt;  // u must shrink towards the singularity
-  return SingularTimeEstimate{.t0 = meanT - meanU / slope, .gamma = -1 / slope, .fitFrom = samples_[first].t, .samples = count};
+  return SingularTimeEstimate{
+      .t0 = meanT - meanU / slope, .gamma = -1 / slope, .fitFrom = samples_[first].t, .samples = count};
 }
 
 }  // namespace coinroll::pipeline

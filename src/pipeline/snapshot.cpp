@@ -34,7 +34,8 @@ std::vector<std::string> hudLines(const physics::CoinModel& model, const FrameSt
       fmt::format("t        {:9.3f} s", frame.time),
       // The scene's theta (from vertical), and the tilt above the floor a spin-down is read by.
       fmt::format("θ        {:9.2f}° from vertical, {:.2f}° above the floor",
-                  shownToTwoDecimals(frame.theta * 180 / std::numbers::pi), 90 - std::abs(frame.theta) * 180 / std::numbers::pi),
+                  shownToTwoDecimals(frame.theta * 180 / std::numbers::pi),
+                  90 - std::abs(frame.theta) * 180 / std::numbers::pi),
       frame.axisGoesRound ? fmt::format("contact  {:9.2f} Hz round the floor", std::abs(frame.precessionRate) / kTurn)
                           : std::string("contact         -- rocking, not going round"),
       fmt::format("face     {:9.2f} Hz about its axis", shownToTwoDecimals(frame.omega_Z / kTurn)),
@@ -50,8 +51,8 @@ std::vector<std::string> hudLines(const physics::CoinModel& model, const FrameSt
 // Ribbon width for the trace: about 2.5 pixels at the camera target, at least a twentieth of the
 // coin radius.
 float traceWidthFor(const render::CameraView& view, int height, double coinRadius) {
-  const float metresPerPixel =
-      2.0f * glm::length(view.eye - view.target) * std::tan(glm::radians(0.5f * view.fovYDegrees)) / static_cast<float>(height);
+  const float metresPerPixel = 2.0f * glm::length(view.eye - view.target) *
+                               std::tan(glm::radians(0.5f * view.fovYDegrees)) / static_cast<float>(height);
   return std::max(2.5f * metresPerPixel, 0.05f * static_cast<float>(coinRadius));
 }
 
@@ -88,7 +89,8 @@ void SnapshotMaker::extendTraceTo(double time) {
 
 void SnapshotMaker::addGhost(const FrameState& frame) { snapshot_.ghosts.push_back(coinPose(frame)); }
 
-const render::FrameSnapshot& SnapshotMaker::makeSnapshot(const FrameState& frame, const std::vector<std::string>& extraHudLines) {
+const render::FrameSnapshot& SnapshotMaker::makeSnapshot(const FrameState& frame,
+                                                         const std::vector<std::string>& extraHudLines) {
   extendTraceTo(frame.time);
   if (showTrace_) {
     snapshot_.trace.push_back(frame.contact);

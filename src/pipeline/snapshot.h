@@ -26,7 +26,8 @@ class SnapshotMaker {
 
   // The picture of `frame`, at or after the previous one's time; `extraHudLines` follow the
   // overlay's own lines (e.g. the slow-motion factor). Valid until the next call.
-  const render::FrameSnapshot& makeSnapshot(const FrameState& frame, const std::vector<std::string>& extraHudLines = {});
+  const render::FrameSnapshot& makeSnapshot(const FrameState& frame,
+                                            const std::vector<std::string>& extraHudLines = {});
 
  private:
   // Appends the recorded trace points strictly before `time`.

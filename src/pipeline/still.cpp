@@ -47,8 +47,8 @@ StillPicture drawStill(const scene::SceneConfig& scene, const StillRequest& requ
     throw std::invalid_argument(fmt::format("--strobe: must be 0 to 500 copies, got {}", request.ghosts));
   }
   if (!(request.ghostsFrom >= 0 && request.ghostsFrom < request.time) && request.ghostsFrom != 0) {
-    throw std::invalid_argument(
-        fmt::format("--strobe-from: must be at least 0 and before --time ({} s), got {}", request.time, request.ghostsFrom));
+    throw std::invalid_argument(fmt::format("--strobe-from: must be at least 0 and before --time ({} s), got {}",
+                                            request.time, request.ghostsFrom));
   }
   Simulation simulation = buildSimulation(scene);
   simulation.cancel = request.cancel;
@@ -62,7 +62,8 @@ StillPicture drawStill(const scene::SceneConfig& scene, const StillRequest& requ
   RunRecord record = recordRun(simulation, asked);
   StillResult result;
   result.shownTime = std::min(request.time, record.survey.endTime);
-  if (record.survey.stoppedBy && record.survey.endTime < request.time) result.stopDescription = describeStop(*record.survey.stoppedBy);
+  if (record.survey.stoppedBy && record.survey.endTime < request.time)
+    result.stopDescription = describeStop(*record.survey.stoppedBy);
   // A run that stopped early shows its end; the ghosts then span [ghostsFrom, end) if it is long
   // enough. Their times are known only once the end is, so this case alone integrates twice.
   if (request.ghosts > 0 && result.shownTime < request.time) {

@@ -126,7 +126,8 @@ SweepPoint computePoint(const SweepSpec& spec, long point, const std::atomic<boo
 }
 
 void refuseEmptyGrid(const SweepSpec& spec) {
-  if (spec.axes.empty()) throw std::invalid_argument("--grid: give at least one axis, e.g. --grid initial.theta=5:40:8");
+  if (spec.axes.empty())
+    throw std::invalid_argument("--grid: give at least one axis, e.g. --grid initial.theta=5:40:8");
 }
 
 }  // namespace
@@ -158,7 +159,8 @@ void refuseMisnamedAxes(const SweepSpec& spec) {
       }
       // Every point would fail the same way: a grid varies numbers only.
       if (e.kind() == scene::SceneError::Kind::WrongType) {
-        throw std::invalid_argument(fmt::format("--grid {}: not a number field, so a grid cannot vary it: {}", axis.key, e.what()));
+        throw std::invalid_argument(
+            fmt::format("--grid {}: not a number field, so a grid cannot vary it: {}", axis.key, e.what()));
       }
     }
   }
@@ -253,7 +255,9 @@ SweepResult writeSweepCsv(const SweepSpec& spec, std::ostream& out, const std::f
     text = fmt::format("{}", point.point);
     for (const double v : point.values) text += fmt::format(",{}", v);
     if (point.failed) text += "," + csvField(point.end) + ",,,,,";
-    else text += fmt::format(",{},{},{},{},{},{}", point.end, point.tEnd, point.thetaMin, point.thetaMax, point.energyStart, point.energyEnd);
+    else
+      text += fmt::format(",{},{},{},{},{},{}", point.end, point.tEnd, point.thetaMin, point.thetaMax,
+                          point.energyStart, point.energyEnd);
     out << text << rowEnd;
     // Checked per row: a full disk is found before the rest of a long sweep is computed for nothing.
     if (!out) throw std::runtime_error("writing the sweep's rows failed");

@@ -66,10 +66,12 @@ GridAxis parseGridAxis(std::string_view text) {
   const std::string_view values = equals == std::string_view::npos ? std::string_view() : text.substr(equals + 1);
   const std::vector<std::string_view> fields = split(values, ':');
   const bool isRange = fields.size() == 3 || fields.size() == 4;
-  if (key.empty() || values.empty() || (fields.size() > 1 && !isRange) || (isRange && values.find(',') != values.npos)) {
-    throw std::invalid_argument(fmt::format("--grid {}: expected KEY.PATH=START:STOP:COUNT, KEY.PATH=START:STOP:COUNT:log "
-                                            "or KEY.PATH=V1,V2,..., e.g. --grid initial.theta=5:40:8",
-                                            text));
+  if (key.empty() || values.empty() || (fields.size() > 1 && !isRange) ||
+      (isRange && values.find(',') != values.npos)) {
+    throw std::invalid_argument(
+        fmt::format("--grid {}: expected KEY.PATH=START:STOP:COUNT, KEY.PATH=START:STOP:COUNT:log "
+                    "or KEY.PATH=V1,V2,..., e.g. --grid initial.theta=5:40:8",
+                    text));
   }
   GridAxis axis;
   axis.key = key;
@@ -92,7 +94,8 @@ GridAxis parseGridAxis(std::string_view text) {
   axis.start = parseNumber(fields[0], "START", text);
   axis.stop = parseNumber(fields[1], "STOP", text);
   if (!parseWholeNumber(fields[2], axis.count) || axis.count < 1) {
-    throw std::invalid_argument(fmt::format("--grid {}: COUNT must be a whole number >= 1, got \"{}\"", text, fields[2]));
+    throw std::invalid_argument(
+        fmt::format("--grid {}: COUNT must be a whole number >= 1, got \"{}\"", text, fields[2]));
   }
   if (fields.size() == 4) {
     if (fields[3] != "log") {

@@ -33,7 +33,8 @@ std::size_t csvFieldCount(std::string_view row) {
 // The row's last two fields, ",<grid points>,<digest>": never quoted, so found from the end.
 std::string_view identityOf(std::string_view row) {
   const auto last = row.rfind(',');
-  const auto beforeLast = last == std::string_view::npos || last == 0 ? std::string_view::npos : row.rfind(',', last - 1);
+  const auto beforeLast =
+      last == std::string_view::npos || last == 0 ? std::string_view::npos : row.rfind(',', last - 1);
   return beforeLast == std::string_view::npos ? std::string_view() : row.substr(beforeLast);
 }
 
@@ -46,7 +47,8 @@ std::string pointList(const std::vector<long>& points) {
 
 }  // namespace
 
-void mergeSweepShards(const std::vector<std::filesystem::path>& shards, std::ostream& out, const std::atomic<bool>* cancel) {
+void mergeSweepShards(const std::vector<std::filesystem::path>& shards, std::ostream& out,
+                      const std::atomic<bool>* cancel) {
   if (shards.empty()) throw std::invalid_argument("sweep-merge: give the shard files to merge");
   if (std::count(shards.begin(), shards.end(), "-") > 1) {
     throw std::invalid_argument("sweep-merge: - (standard input) is given more than once; it can be read only once");
@@ -63,7 +65,8 @@ void mergeSweepShards(const std::vector<std::filesystem::path>& shards, std::ost
     if (!standardInput) {
       std::error_code ignored;
       if (std::filesystem::is_directory(path, ignored)) {
-        throw std::invalid_argument(fmt::format("{}: is a directory; give the shard files (e.g. {}/*.csv)", name, name));
+        throw std::invalid_argument(
+            fmt::format("{}: is a directory; give the shard files (e.g. {}/*.csv)", name, name));
       }
       // A pipe or a FIFO reads as well as a file: the shard is read once, front to back.
       file.open(path, std::ios::binary);
@@ -73,7 +76,8 @@ void mergeSweepShards(const std::vector<std::filesystem::path>& shards, std::ost
     long lineNumber = 0;
     const auto readLine = [&](std::string& line) {
       if (!std::getline(in, line)) {
-        if (in.bad()) throw std::runtime_error(fmt::format("{}: reading the shard failed: {}", name, std::strerror(errno)));
+        if (in.bad())
+          throw std::runtime_error(fmt::format("{}: reading the shard failed: {}", name, std::strerror(errno)));
         return false;
       }
       ++lineNumber;
@@ -90,7 +94,8 @@ void mergeSweepShards(const std::vector<std::filesystem::path>& shards, std::ost
     std::string line;
     if (!readLine(line)) throw std::invalid_argument(fmt::format("{}: empty, not a sweep shard", name));
     if (!line.starts_with("point,")) {
-      throw std::invalid_argument(fmt::format("{}: not a sweep shard (its first line does not start with \"point,\")", name));
+      throw std::invalid_argument(
+          fmt::format("{}: not a sweep shard (its first line does not start with \"point,\")", name));
     }
     refuseCutLine();
     if (!line.ends_with(kSweepIdentityColumns)) {
@@ -136,16 +141,19 @@ void mergeSweepShards(const std::vector<std::filesystem::path>& shards, std::ost
             rowIdentity.substr(1), std::string_view(identity).substr(1)));
       }
       if (point >= gridPoints) {
-        throw std::runtime_error(fmt::format("{}:{}: point {} is outside the grid of {} points: a damaged shard; run it "
-                                             "again", name, lineNumber, point, gridPoints));
+        throw std::runtime_error(
+            fmt::format("{}:{}: point {} is outside the grid of {} points: a damaged shard; run it "
+                        "again",
+                        name, lineNumber, point, gridPoints));
       }
       if (!rows.emplace(point, line).second) repeated.push_back(point);
     }
   }
   if (!repeated.empty()) throw std::runtime_error(fmt::format("sweep-merge: points repeated: {}", pointList(repeated)));
   if (rows.empty()) {
-    throw std::runtime_error("sweep-merge: no shard holds a point, but shard 1 of every sweep holds point 0: a shard is "
-                             "missing or was cut short before its first row");
+    throw std::runtime_error(
+        "sweep-merge: no shard holds a point, but shard 1 of every sweep holds point 0: a shard is "
+        "missing or was cut short before its first row");
   }
   // Holes are found between the rows present and up to the grid's size, never by visiting every
   // number: a grid may have 1e7 points. The first holes are named, a run of three or more as a range.
@@ -168,10 +176,9 @@ void mergeSweepShards(const std::vector<std::filesystem::path>& shards, std::ost
   }
   missing(expected, gridPoints);
   if (missingPoints > 0) {
-    throw std::runtime_error(fmt::format("sweep-merge: points missing (of {} in the grid): {}{}", gridPoints,
-                                         fmt::join(holes, ", "),
-                                         missingPoints > namedPoints ? fmt::format(" and {} more", missingPoints - namedPoints)
-                                                                     : ""));
+    throw std::runtime_error(
+        fmt::format("sweep-merge: points missing (of {} in the grid): {}{}", gridPoints, fmt::join(holes, ", "),
+                    missingPoints > namedPoints ? fmt::format(" and {} more", missingPoints - namedPoints) : ""));
   }
   out << header << '\n';
   for (const auto& [point, row] : rows) out << row << '\n';

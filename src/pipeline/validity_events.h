@@ -75,9 +75,11 @@ std::vector<integrate::Event<N>> geometryEvents(const physics::CoinModel& model,
   const physics::FlatStop flat = physics::flatStopFor(model, formulation);
   std::vector<integrate::Event<N>> events;
   events.push_back(modelEvent<N>(
-      flat.event, [theta, tilt = flat.tilt](double, const Y& y) { return physics::flatMargin(theta(y), tilt); }, -1, true));
+      flat.event, [theta, tilt = flat.tilt](double, const Y& y) { return physics::flatMargin(theta(y), tilt); }, -1,
+      true));
   if (physics::hasCorners(model)) {
-    events.push_back(modelEvent<N>(physics::ModelEvent::CornerSwitch, [theta](double, const Y& y) { return theta(y); }, 0, true));
+    events.push_back(modelEvent<N>(
+        physics::ModelEvent::CornerSwitch, [theta](double, const Y& y) { return theta(y); }, 0, true));
   }
   return events;
 }
@@ -92,12 +94,15 @@ std::vector<integrate::Event<N>> validityEvents(const physics::CoinModel& model,
   using physics::ModelEvent;
   std::vector<integrate::Event<N>> events = geometryEvents<N>(model, F, [](const Y& y) { return thetaOf<F, N>(y); });
   events.push_back(modelEvent<N>(
-      ModelEvent::LiftOff, [model](double, const Y& y) { return physics::liftOffMargin(model, forwardOf<F, N>(model, y)); },
-      -1, validityIsTerminal));
+      ModelEvent::LiftOff,
+      [model](double, const Y& y) { return physics::liftOffMargin(model, forwardOf<F, N>(model, y)); }, -1,
+      validityIsTerminal));
   if (friction) {
     integrate::Event<N> slip = modelEvent<N>(
         ModelEvent::Slip,
-        [model, mu = *friction](double, const Y& y) { return physics::slipMargin(model, forwardOf<F, N>(model, y), mu); },
+        [model, mu = *friction](double, const Y& y) {
+          return physics::slipMargin(model, forwardOf<F, N>(model, y), mu);
+        },
         -1, validityIsTerminal);
     slip.interiorChecks = kConeGrazeChecks;
     events.push_back(std::move(slip));

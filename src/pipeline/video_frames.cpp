@@ -33,8 +33,8 @@ namespace {
   throw std::invalid_argument(fmt::format(
       "render: duration {} s at time_scale {}, fps {}{} gives {} frames, more than the limit {}; shorten the duration, "
       "raise time_scale or lower fps, or raise the limit with --max-frames",
-      scene.duration, scene.render.timeScale, scene.render.fps, scene.render.timeRemap ? " and the time remap" : "", count,
-      maxFrames));
+      scene.duration, scene.render.timeScale, scene.render.fps, scene.render.timeRemap ? " and the time remap" : "",
+      count, maxFrames));
 }
 
 }  // namespace
@@ -44,7 +44,8 @@ double playbackRate(const scene::RenderSpec& render, double rate) {
   const scene::TimeRemap& remap = *render.timeRemap;
   const double held = render.timeScale * remap.limit;
   const double quarterTurnPerFrame = std::numbers::pi / 2 * render.fps;
-  const double visible = std::max(held, std::min(held * std::pow(rate / remap.limit, remap.growth), quarterTurnPerFrame));
+  const double visible =
+      std::max(held, std::min(held * std::pow(rate / remap.limit, remap.growth), quarterTurnPerFrame));
   return std::min(render.timeScale, visible / rate);
 }
 
@@ -76,7 +77,8 @@ class ClipPlan final : public FramePlan {
     // The sum of steps drifts by round-off; a relative 1e-12 keeps the frame at the very end.
     if (time > end * (1 + 1e-12)) return false;
     if (k == maxFrames_) {
-      refuseFrames(scene_, maxFrames_, fmt::format("more than {} (the time remap slows it at t = {:.6g} s)", maxFrames_, time));
+      refuseFrames(scene_, maxFrames_,
+                   fmt::format("more than {} (the time remap slows it at t = {:.6g} s)", maxFrames_, time));
     }
     return true;
   }
@@ -95,7 +97,8 @@ RunRecord recordFrames(const scene::SceneConfig& scene, const Simulation& simula
   ClipPlan plan(scene, maxFrames);
   RunRecord record = recordRun(simulation, plan);
   if (!scene.render.timeRemap) {
-    if (const long total = frameCount(record.survey.endTime, scene.render.timeScale, scene.render.fps); total > maxFrames) {
+    if (const long total = frameCount(record.survey.endTime, scene.render.timeScale, scene.render.fps);
+        total > maxFrames) {
       refuseFrames(scene, maxFrames, std::to_string(total));
     }
   }
@@ -172,7 +175,8 @@ VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& si
   settings.reuseStaticBackground = options.reuseStaticBackground;
   // llvmpipe does not check its allocations: short of memory, it crashes or hangs rather than
   // failing; an encoder fails mid-clip without saying why. So what both need is checked first.
-  const std::uint64_t frameBytes = 4 * static_cast<std::uint64_t>(settings.width) * static_cast<std::uint64_t>(settings.height);
+  const std::uint64_t frameBytes =
+      4 * static_cast<std::uint64_t>(settings.width) * static_cast<std::uint64_t>(settings.height);
   requireRendererAddressSpace(settings, sink.workingMemory(frameBytes));
   render::Renderer renderer(settings);
   RunRecord record = recordFrames(scene, simulation, options.maxFrames);
@@ -192,7 +196,9 @@ VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& si
   const long total = simulatedFrames + holdFrames;
 
   // Frame k's simulated time: the hold repeats the landing, at the run's end.
-  const auto timeOf = [&](long k) { return k < simulatedFrames ? frames[static_cast<std::size_t>(k)].time : survey.endTime; };
+  const auto timeOf = [&](long k) {
+    return k < simulatedFrames ? frames[static_cast<std::size_t>(k)].time : survey.endTime;
+  };
   const TimeWindow& window = options.window;
   const auto written = [&](long k) {
     const double t = timeOf(k);
@@ -202,15 +208,15 @@ VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& si
   for (long k = 0; k < total; ++k) toWrite += written(k) ? 1 : 0;
   if (toWrite == 0) {
     if (window.from > survey.endTime + kWindowTolerance) {
-      throw std::invalid_argument(fmt::format("--from {}: beyond the run's end at {:.9g} s{}; give a time in [0, {:.9g}]",
-                                              window.from, survey.endTime,
-                                              survey.stoppedBy ? " (" + describeStop(*survey.stoppedBy) + ")" : "",
-                                              survey.endTime));
+      throw std::invalid_argument(fmt::format(
+          "--from {}: beyond the run's end at {:.9g} s{}; give a time in [0, {:.9g}]", window.from, survey.endTime,
+          survey.stoppedBy ? " (" + describeStop(*survey.stoppedBy) + ")" : "", survey.endTime));
     }
-    throw std::invalid_argument(fmt::format("--from {} --to {}: no frame's simulated time lies in this window (frames are "
-                                            "{:.6g} s of simulated time apart{}); widen it",
-                                            window.from, window.to, scene.render.timeScale / scene.render.fps,
-                                            scene.render.timeRemap ? ", less where render.time_remap slows them" : ""));
+    throw std::invalid_argument(
+        fmt::format("--from {} --to {}: no frame's simulated time lies in this window (frames are "
+                    "{:.6g} s of simulated time apart{}); widen it",
+                    window.from, window.to, scene.render.timeScale / scene.render.fps,
+                    scene.render.timeRemap ? ", less where render.time_remap slows them" : ""));
   }
 
   SnapshotMaker snapshots(scene, simulation.model, record);
@@ -231,7 +237,8 @@ VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& si
       if (sound) sound->rest(k, soundSink(k));
       // Simulated time stands still here, so the overlay says so instead of the landing's playback rate.
       if (k == simulatedFrames && scene.render.hud && written(k)) {
-        renderer.draw(snapshots.makeSnapshot(frames.back(), {fmt::format("landed, held {:g} s", kLandingHoldSeconds)}), frame);
+        renderer.draw(snapshots.makeSnapshot(frames.back(), {fmt::format("landed, held {:g} s", kLandingHoldSeconds)}),
+                      frame);
       }
       if (written(k)) push(k, survey.endTime, 0.0);
       continue;
@@ -254,7 +261,8 @@ VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& si
       if (slowdown < 1 - 1e-9) speed.push_back(fmt::format("fast forward ×{:.3g}", 1 / slowdown));
     }
     // Synthesised for every frame, so the sound is the full render's; the trace catches up at the next snapshot.
-    if (sound) sound->reachFrame(k, state.precessionRate, playbackRate, soundSink(k), landed && k + 1 == simulatedFrames);
+    if (sound)
+      sound->reachFrame(k, state.precessionRate, playbackRate, soundSink(k), landed && k + 1 == simulatedFrames);
     if (!written(k)) continue;
     renderer.draw(snapshots.makeSnapshot(state, speed), frame);
     push(k, t, playbackRate);

@@ -49,7 +49,8 @@ double playbackRate(const scene::RenderSpec& render, double rate);
 // The one pass over `simulation` (buildSimulation(scene)): the survey, the trace and the state at
 // every frame time t_(k+1) = t_k + playbackRate(rate(t_k)) / fps up to the run's end. Throws
 // std::invalid_argument when the clip has more than `maxFrames` frames.
-RunRecord recordFrames(const scene::SceneConfig& scene, const Simulation& simulation, long maxFrames = kDefaultMaxFrames);
+RunRecord recordFrames(const scene::SceneConfig& scene, const Simulation& simulation,
+                       long maxFrames = kDefaultMaxFrames);
 
 struct FrameProgress {
   long frame = 0;  // frames done
@@ -95,6 +96,7 @@ struct VideoRunResult {
 // Renders every frame of `scene` into `sink` and finishes it. Throws scene::SceneError for
 // scenes only physics can judge, std::invalid_argument for render settings the renderer refuses,
 // Cancelled when asked to stop; the sink is then left unfinished (it removes its output).
-VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& sink, const VideoRunOptions& options = {});
+VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& sink,
+                           const VideoRunOptions& options = {});
 
 }  // namespace coinroll::pipeline

@@ -54,7 +54,8 @@ bool hasExtension(const char* extensions, std::string_view name) {
 
 void requireClientExtension(std::string_view backendLabel, std::string_view name) {
   if (!hasExtension(eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS), name)) {
-    throw std::runtime_error(fmt::format("{}: this EGL lacks {} (Debian: libegl1 with Mesa's libegl-mesa0)", backendLabel, name));
+    throw std::runtime_error(
+        fmt::format("{}: this EGL lacks {} (Debian: libegl1 with Mesa's libegl-mesa0)", backendLabel, name));
   }
 }
 
@@ -99,14 +100,16 @@ class ScopedEnvironmentVariable {
 class EglContext final : public GlContext {
  public:
   // Creates a 3.3 core context on `display` (initialised) and makes it current with no surface.
-  EglContext(GlBackend backend, EGLDisplay display) : GlContext(backend), label_(backendLabel(backend)), display_(display) {
+  EglContext(GlBackend backend, EGLDisplay display)
+      : GlContext(backend), label_(backendLabel(backend)), display_(display) {
     if (!hasExtension(eglQueryString(display_, EGL_EXTENSIONS), "EGL_KHR_surfaceless_context")) {
       throw std::runtime_error(fmt::format("{}: this EGL display lacks EGL_KHR_surfaceless_context", label_));
     }
     if (eglBindAPI(EGL_OPENGL_API) != EGL_TRUE) throw eglFailure(label_, "eglBindAPI(EGL_OPENGL_API)");
     // Any configuration that can render OpenGL will do: its surface type is never used, and
     // pbuffer configurations are the ones both Mesa's platforms and GPU drivers offer.
-    const EGLint configAttributes[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
+    const EGLint configAttributes[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT,
+                                       EGL_NONE};
     EGLConfig config = nullptr;
     EGLint configCount = 0;
     if (eglChooseConfig(display_, configAttributes, &config, 1, &configCount) != EGL_TRUE) {
@@ -134,13 +137,17 @@ class EglContext final : public GlContext {
   // current-context slot with it (one libglapi) and may have taken it since: release first, so
   // the binding is made again whatever happened in between.
   void makeCurrent() override {
-    if (eglGetCurrentContext() == context_ && !releaseCurrent()) throw eglFailure(label_, "eglMakeCurrent(EGL_NO_CONTEXT)");
-    if (eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_) != EGL_TRUE) throw eglFailure(label_, "eglMakeCurrent");
+    if (eglGetCurrentContext() == context_ && !releaseCurrent())
+      throw eglFailure(label_, "eglMakeCurrent(EGL_NO_CONTEXT)");
+    if (eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_) != EGL_TRUE)
+      throw eglFailure(label_, "eglMakeCurrent");
   }
 
  private:
   // Leaves the calling thread without a current EGL context.
-  bool releaseCurrent() const { return eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT) == EGL_TRUE; }
+  bool releaseCurrent() const {
+    return eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT) == EGL_TRUE;
+  }
 
   void destroy() const {
     if (eglGetCurrentContext() == context_) releaseCurrent();
@@ -166,17 +173,21 @@ std::unique_ptr<GlContext> makeEglSurfacelessContext() {
     // the variable is set for that call alone. (setenv is not safe against other threads reading
     // the environment: a Renderer is built before the frame loop it serves starts any.)
     const ScopedEnvironmentVariable software("LIBGL_ALWAYS_SOFTWARE", "1");
-    if (eglInitialize(display, nullptr, nullptr) != EGL_TRUE) throw eglFailure(label, "eglInitialize (surfaceless, llvmpipe)");
+    if (eglInitialize(display, nullptr, nullptr) != EGL_TRUE)
+      throw eglFailure(label, "eglInitialize (surfaceless, llvmpipe)");
   }
   // Never a GPU unless asked for: refuse a display that is not on Mesa's software device (another
   // EGL vendor, or a display initialised earlier in this process without the variable).
-  const auto queryDisplayAttribute = extensionFunction<PFNEGLQUERYDISPLAYATTRIBEXTPROC>(label, "eglQueryDisplayAttribEXT");
+  const auto queryDisplayAttribute =
+      extensionFunction<PFNEGLQUERYDISPLAYATTRIBEXTPROC>(label, "eglQueryDisplayAttribEXT");
   EGLAttrib device = 0;
-  if (queryDisplayAttribute(display, EGL_DEVICE_EXT, &device) != EGL_TRUE) throw eglFailure(label, "eglQueryDisplayAttribEXT(EGL_DEVICE_EXT)");
+  if (queryDisplayAttribute(display, EGL_DEVICE_EXT, &device) != EGL_TRUE)
+    throw eglFailure(label, "eglQueryDisplayAttribEXT(EGL_DEVICE_EXT)");
   if (!isSoftwareDevice(reinterpret_cast<EGLDeviceEXT>(device), label)) {
-    throw std::runtime_error(fmt::format("{}: Mesa's surfaceless platform chose a GPU, not llvmpipe; coinroll renders on a GPU "
-                                         "only with {}=egl-device",
-                                         label, kGlBackendVariable));
+    throw std::runtime_error(
+        fmt::format("{}: Mesa's surfaceless platform chose a GPU, not llvmpipe; coinroll renders on a GPU "
+                    "only with {}=egl-device",
+                    label, kGlBackendVariable));
   }
   return std::make_unique<EglContext>(GlBackend::Egl, display);
 }
@@ -198,10 +209,11 @@ std::unique_ptr<GlContext> makeEglDeviceContext() {
     if (eglInitialize(display, nullptr, nullptr) != EGL_TRUE) throw eglFailure(label, "eglInitialize (GPU device)");
     return std::make_unique<EglContext>(GlBackend::EglDevice, display);
   }
-  throw std::runtime_error(fmt::format("{}: no GPU: EGL lists {} device(s), none of them a GPU (Mesa's software rasteriser "
-                                       "is not one), and egl-device never falls back to the CPU; {}=egl renders on llvmpipe. "
-                                       "(egl-device is built but untested on GPU hardware.)",
-                                       label, count, kGlBackendVariable));
+  throw std::runtime_error(
+      fmt::format("{}: no GPU: EGL lists {} device(s), none of them a GPU (Mesa's software rasteriser "
+                  "is not one), and egl-device never falls back to the CPU; {}=egl renders on llvmpipe. "
+                  "(egl-device is built but untested on GPU hardware.)",
+                  label, count, kGlBackendVariable));
 }
 
 }  // namespace coinroll::render

@@ -10,7 +10,8 @@ GlFunctions loadGlFunctions(GlProcedureLookup lookup, const char* backendName) {
   GlFunctions functions;
   const auto resolve = [&](const char* name) {
     const GlProcedure procedure = lookup(name);
-    if (procedure == nullptr) throw std::runtime_error(fmt::format("OpenGL ({}): the function {} is missing", backendName, name));
+    if (procedure == nullptr)
+      throw std::runtime_error(fmt::format("OpenGL ({}): the function {} is missing", backendName, name));
     return procedure;
   };
 #define COINROLL_GL_LOAD(type, name) functions.name = reinterpret_cast<type>(resolve("gl" #name));

@@ -49,9 +49,10 @@ GlBackend defaultGlBackend() { return isCompiledIn(GlBackend::OsMesa) ? GlBacken
 void requireCompiledIn(GlBackend backend) {
   if (isCompiledIn(backend)) return;
   const bool osmesa = backend == GlBackend::OsMesa;
-  throw std::invalid_argument(fmt::format("{}={}: this coinroll was built without {} (CMake option {}); accepted values: {}",
-                                          kGlBackendVariable, glBackendName(backend), osmesa ? "OSMesa" : "EGL",
-                                          osmesa ? "COINROLL_WITH_OSMESA" : "COINROLL_WITH_EGL", acceptedValues()));
+  throw std::invalid_argument(
+      fmt::format("{}={}: this coinroll was built without {} (CMake option {}); accepted values: {}",
+                  kGlBackendVariable, glBackendName(backend), osmesa ? "OSMesa" : "EGL",
+                  osmesa ? "COINROLL_WITH_OSMESA" : "COINROLL_WITH_EGL", acceptedValues()));
 }
 
 GlBackend parseGlBackend(std::string_view value) {

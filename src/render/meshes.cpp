@@ -46,8 +46,8 @@ std::vector<RimPoint> outerRimProfile(const CoinShape& shape) {
     for (int k = skipFirst ? 1 : 0; k <= kFilletRings; ++k) {
       const double beta = beta0 + 0.5 * std::numbers::pi * k / kFilletRings;
       const double c = std::cos(beta), s = std::sin(beta);
-      RimPoint p{static_cast<float>(centreR + rho * c), static_cast<float>(side * centreZ + rho * s), static_cast<float>(c),
-                 static_cast<float>(s)};
+      RimPoint p{static_cast<float>(centreR + rho * c), static_cast<float>(side * centreZ + rho * s),
+                 static_cast<float>(c), static_cast<float>(s)};
       const bool atFace = side < 0 ? k == 0 : k == kFilletRings, atBand = side < 0 ? k == kFilletRings : k == 0;
       if (atFace) p = {centreR, side * halfThickness, 0, side};
       if (atBand) p = {outer, side * centreZ, 1, 0};
@@ -78,14 +78,18 @@ std::vector<CoinVertex> coinTriangles(const CoinShape& shape, int segments) {
     const glm::vec2 u0(std::cos(angle0), std::sin(angle0)), u1(std::cos(angle1), std::sin(angle1));
     const glm::vec3 up(0, 0, 1), down(0, 0, -1);
     if (inner > 0) {
-      addQuad(triangles, {glm::vec3(inner * u0, halfThickness), up, front}, {glm::vec3(faceOuter * u0, halfThickness), up, front},
+      addQuad(triangles, {glm::vec3(inner * u0, halfThickness), up, front},
+              {glm::vec3(faceOuter * u0, halfThickness), up, front},
               {glm::vec3(faceOuter * u1, halfThickness), up, front}, {glm::vec3(inner * u1, halfThickness), up, front});
       addQuad(triangles, {glm::vec3(inner * u1, -halfThickness), down, back},
-              {glm::vec3(faceOuter * u1, -halfThickness), down, back}, {glm::vec3(faceOuter * u0, -halfThickness), down, back},
+              {glm::vec3(faceOuter * u1, -halfThickness), down, back},
+              {glm::vec3(faceOuter * u0, -halfThickness), down, back},
               {glm::vec3(inner * u0, -halfThickness), down, back});
       const glm::vec3 n0(-u0, 0), n1(-u1, 0);
-      addQuad(triangles, {glm::vec3(inner * u1, -halfThickness), n1, innerRim}, {glm::vec3(inner * u0, -halfThickness), n0, innerRim},
-              {glm::vec3(inner * u0, halfThickness), n0, innerRim}, {glm::vec3(inner * u1, halfThickness), n1, innerRim});
+      addQuad(triangles, {glm::vec3(inner * u1, -halfThickness), n1, innerRim},
+              {glm::vec3(inner * u0, -halfThickness), n0, innerRim},
+              {glm::vec3(inner * u0, halfThickness), n0, innerRim},
+              {glm::vec3(inner * u1, halfThickness), n1, innerRim});
     } else {
       const glm::vec3 centreFront(0, 0, halfThickness), centreBack(0, 0, -halfThickness);
       append<CoinVertex>(triangles, {{centreFront, up, front},
@@ -109,7 +113,8 @@ std::vector<CoinVertex> coinTriangles(const CoinShape& shape, int segments) {
   return triangles;
 }
 
-std::vector<RibbonVertex> ribbonStrip(const std::vector<glm::vec2>& points, float width, const std::vector<bool>& slides) {
+std::vector<RibbonVertex> ribbonStrip(const std::vector<glm::vec2>& points, float width,
+                                      const std::vector<bool>& slides) {
   std::vector<glm::vec2> distinct;
   std::vector<std::size_t> index;
   distinct.reserve(points.size());

@@ -31,6 +31,7 @@ struct RibbonVertex {
 // A triangle strip of the given width along `points` (oldest first). Consecutive duplicates
 // are skipped; fewer than two distinct points give an empty strip.
 // `slides`: empty, or which points the coin slid at.
-std::vector<RibbonVertex> ribbonStrip(const std::vector<glm::vec2>& points, float width, const std::vector<bool>& slides = {});
+std::vector<RibbonVertex> ribbonStrip(const std::vector<glm::vec2>& points, float width,
+                                      const std::vector<bool>& slides = {});
 
 }  // namespace coinroll::render

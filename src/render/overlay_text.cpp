@@ -32,7 +32,8 @@ std::vector<int> repertoire() {
     if (c != 0x3A2) codepoints.push_back(c);  // 0x3A2 is unassigned
   }
   for (int c = 0x3B1; c <= 0x3C9; ++c) codepoints.push_back(c);
-  for (int c : {0x2026, 0x2032, 0x2192, 0x2212, 0x2248, 0x2264, 0x2265, static_cast<int>(kReplacement)}) codepoints.push_back(c);
+  for (int c : {0x2026, 0x2032, 0x2192, 0x2212, 0x2248, 0x2264, 0x2265, static_cast<int>(kReplacement)})
+    codepoints.push_back(c);
   return codepoints;
 }
 
@@ -55,10 +56,12 @@ float overlayTextPixels(int height) { return std::max(10.0f, static_cast<float>(
 GlyphAtlas::GlyphAtlas(float pixelHeight) {
   const std::span<const std::uint8_t> font = fontBytes();
   stbtt_fontinfo info;
-  if (stbtt_InitFont(&info, font.data(), 0) == 0) throw std::runtime_error(fmt::format("overlay: cannot read the font {}", kFontName));
+  if (stbtt_InitFont(&info, font.data(), 0) == 0)
+    throw std::runtime_error(fmt::format("overlay: cannot read the font {}", kFontName));
   std::vector<int> codepoints = repertoire();
   for (int c : codepoints) {
-    if (stbtt_FindGlyphIndex(&info, c) == 0) throw std::runtime_error(fmt::format("overlay: {} has no glyph for U+{:04X}", kFontName, c));
+    if (stbtt_FindGlyphIndex(&info, c) == 0)
+      throw std::runtime_error(fmt::format("overlay: {} has no glyph for U+{:04X}", kFontName, c));
   }
   const float scale = stbtt_ScaleForPixelHeight(&info, pixelHeight);
   int ascent = 0, descent = 0, lineGap = 0;
@@ -73,7 +76,8 @@ GlyphAtlas::GlyphAtlas(float pixelHeight) {
   width_ = nextPowerOfTwo(std::sqrt(glyphTexels * static_cast<double>(codepoints.size())));
   std::vector<stbtt_packedchar> packed(codepoints.size());
   for (int glyphRows = width_ / 4;; glyphRows *= 2) {
-    if (glyphRows > 16384) throw std::runtime_error(fmt::format("overlay: cannot fit the font at {} px into a texture", pixelHeight));
+    if (glyphRows > 16384)
+      throw std::runtime_error(fmt::format("overlay: cannot fit the font at {} px into a texture", pixelHeight));
     height_ = glyphRows + kSolidRows;
     coverage_.assign(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_), 0);
     stbtt_pack_context context;
@@ -136,9 +140,10 @@ namespace {
 // The panel's margin inside its edge, pixels: a third of a line.
 float panelPadding(const GlyphAtlas& atlas) { return std::round(atlas.lineHeight() / 3.0f); }
 
-void appendQuad(std::vector<TextVertex>& out, glm::vec2 min, glm::vec2 max, glm::vec2 texelMin, glm::vec2 texelMax, glm::vec4 colour) {
-  const TextVertex a{min, texelMin, colour}, b{{max.x, min.y}, {texelMax.x, texelMin.y}, colour}, c{max, texelMax, colour},
-      d{{min.x, max.y}, {texelMin.x, texelMax.y}, colour};
+void appendQuad(std::vector<TextVertex>& out, glm::vec2 min, glm::vec2 max, glm::vec2 texelMin, glm::vec2 texelMax,
+                glm::vec4 colour) {
+  const TextVertex a{min, texelMin, colour}, b{{max.x, min.y}, {texelMax.x, texelMin.y}, colour},
+      c{max, texelMax, colour}, d{{min.x, max.y}, {texelMin.x, texelMax.y}, colour};
   // push_back rather than insert(end, {...}): GCC 12 misreports the latter (-Wstringop-overflow).
   for (const TextVertex& v : {a, b, c, a, c, d}) out.push_back(v);
 }
@@ -159,7 +164,8 @@ glm::vec2 appendTextPanel(const GlyphAtlas& atlas, const std::vector<std::string
   appendQuad(out, origin, origin + size, atlas.solidTexel(), atlas.solidTexel(), style.panel);
   const float padding = panelPadding(atlas);
   for (std::size_t row = 0; row < lines.size(); ++row) {
-    const float baseline = origin.y + padding + std::round(atlas.ascent() + atlas.lineHeight() * static_cast<float>(row));
+    const float baseline =
+        origin.y + padding + std::round(atlas.ascent() + atlas.lineHeight() * static_cast<float>(row));
     float pen = origin.x + padding;
     for (const char32_t c : decodeUtf8(lines[row])) {
       const AtlasGlyph& g = atlas.glyph(c);

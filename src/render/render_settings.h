@@ -40,8 +40,8 @@ struct CoinShape {
   float radius = 0.0375f;     // m
   float innerRadius = 0.0f;   // m, 0 for a solid disk
   float thickness = 0.00225f; // m
-  float edgeRadius = 0.0f;    // m, rho: the fillet rounding the outer rim, in [0, min(thickness/2, radius - innerRadius)];
-                              // 0 a sharp-edged cylinder, thickness/2 a fully rounded (half-torus) rim
+  float edgeRadius = 0.0f;    // m, rho: the fillet rounding the outer rim, in [0, min(thickness/2, radius -
+                            // innerRadius)]; 0 a sharp-edged cylinder, thickness/2 a fully rounded (half-torus) rim
 };
 
 // render.theme. Classic: a dark floor under a pale sky, light text on dark panels. Paper: for print,
@@ -58,7 +58,8 @@ struct ScaleBar {
 };
 
 struct RenderSettings {
-  int width = image::kDefaultPictureWidth, height = image::kDefaultPictureHeight;  // pixels, in [kMinImageSide, kMaxImageSide]
+  int width = image::kDefaultPictureWidth,
+      height = image::kDefaultPictureHeight;  // pixels, in [kMinImageSide, kMaxImageSide]
   Antialiasing antialiasing = Antialiasing::Msaa;
   int msaa = 4;                    // samples per pixel, one of kMsaaSampleCounts (1: none)
   CoinShape coin;

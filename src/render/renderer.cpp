@@ -23,13 +23,16 @@ constexpr int kCoinSegments = 128;
 void validate(const RenderSettings& s) {
   for (const auto& [field, side] : {std::pair{"width", s.width}, std::pair{"height", s.height}}) {
     if (side < kMinImageSide || side > kMaxImageSide) {
-      throw std::invalid_argument(fmt::format("render.{}: must be {}..{} pixels, got {}", field, kMinImageSide, kMaxImageSide, side));
+      throw std::invalid_argument(
+          fmt::format("render.{}: must be {}..{} pixels, got {}", field, kMinImageSide, kMaxImageSide, side));
     }
   }
   if (!isMsaaSampleCount(s.msaa) && s.antialiasing == Antialiasing::Msaa) {
-    throw std::invalid_argument(fmt::format("render.msaa: must be one of {} samples, got {}", fmt::join(kMsaaSampleCounts, ", "), s.msaa));
+    throw std::invalid_argument(
+        fmt::format("render.msaa: must be one of {} samples, got {}", fmt::join(kMsaaSampleCounts, ", "), s.msaa));
   }
-  if (!(s.coin.radius > 0) || !(s.coin.thickness > 0) || !(s.coin.innerRadius >= 0 && s.coin.innerRadius < s.coin.radius)) {
+  if (!(s.coin.radius > 0) || !(s.coin.thickness > 0) ||
+      !(s.coin.innerRadius >= 0 && s.coin.innerRadius < s.coin.radius)) {
     throw std::invalid_argument(fmt::format("coin: radius {} m, inner radius {} m and thickness {} m cannot be drawn",
                                             s.coin.radius, s.coin.innerRadius, s.coin.thickness));
   }
@@ -44,10 +47,12 @@ void validate(const RenderSettings& s) {
   }
 }
 
-void uploadMipmapped(const GlFunctions& gl, const Texture& texture, const image::Image& picture, GLint minFilter, GLint wrap) {
+void uploadMipmapped(const GlFunctions& gl, const Texture& texture, const image::Image& picture, GLint minFilter,
+                     GLint wrap) {
   gl.BindTexture(GL_TEXTURE_2D, texture.get());
   gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, picture.width, picture.height, 0, GL_RGBA, GL_UNSIGNED_BYTE, picture.rgba.data());
+  gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, picture.width, picture.height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
+                picture.rgba.data());
   gl.GenerateMipmap(GL_TEXTURE_2D);
   gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, minFilter);
   gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
@@ -75,7 +80,8 @@ Renderer::Renderer(const RenderSettings& settings, GlBackend backend) : settings
   GLint maxSamples = 0;
   gl.GetIntegerv(GL_MAX_SAMPLES, &maxSamples);
   if (settings_.antialiasing == Antialiasing::Msaa && settings_.msaa > maxSamples) {
-    throw std::invalid_argument(fmt::format("render.msaa: this OpenGL allows at most {} samples, got {}", maxSamples, settings_.msaa));
+    throw std::invalid_argument(
+        fmt::format("render.msaa: this OpenGL allows at most {} samples, got {}", maxSamples, settings_.msaa));
   }
   const bool fxaa = settings_.antialiasing == Antialiasing::Fxaa;
   const bool multisampled = !fxaa && settings_.msaa > 1;
@@ -100,9 +106,11 @@ Renderer::Renderer(const RenderSettings& settings, GlBackend backend) : settings
   }
   gl.BindRenderbuffer(GL_RENDERBUFFER, state.drawDepthStencil.get());
   gl.RenderbufferStorageMultisample(GL_RENDERBUFFER, multisampled ? settings_.msaa : 0, GL_DEPTH24_STENCIL8, w, h);
-  gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, state.drawDepthStencil.get());
+  gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER,
+                             state.drawDepthStencil.get());
   if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
-    throw std::runtime_error(fmt::format("OpenGL: cannot create a {}x{} framebuffer with {} samples", w, h, settings_.msaa));
+    throw std::runtime_error(
+        fmt::format("OpenGL: cannot create a {}x{} framebuffer with {} samples", w, h, settings_.msaa));
   }
   if (multisampled || fxaa) {
     state.resolveTarget = makeFramebuffer(gl);
@@ -124,13 +132,15 @@ Renderer::Renderer(const RenderSettings& settings, GlBackend backend) : settings
   // a faithful average of the one above. Two levels blended per lookup: with one, the floor shows
   // a seam where the level changes (sharp lines beside blurred ones), plain on the paper theme's
   // dark lines on white. The floor is drawn once per camera position (a fixed camera reuses it).
-  uploadMipmapped(gl, state.floorGrid, floorTile(512, palette(settings_.theme).floor), GL_LINEAR_MIPMAP_LINEAR, GL_REPEAT);
+  uploadMipmapped(gl, state.floorGrid, floorTile(512, palette(settings_.theme).floor), GL_LINEAR_MIPMAP_LINEAR,
+                  GL_REPEAT);
 
   // The overlay's glyphs at the size they are drawn: every texel row lands on one pixel row, so
   // the text is as sharp as the rasteriser made it, and no mipmaps are needed.
   const GlyphAtlas& atlas = state.atlas.emplace(overlayTextPixels(h));
   gl.BindTexture(GL_TEXTURE_2D, state.glyphs.get());
-  gl.TexImage2D(GL_TEXTURE_2D, 0, GL_R8, atlas.width(), atlas.height(), 0, GL_RED, GL_UNSIGNED_BYTE, atlas.coverage().data());
+  gl.TexImage2D(GL_TEXTURE_2D, 0, GL_R8, atlas.width(), atlas.height(), 0, GL_RED, GL_UNSIGNED_BYTE,
+                atlas.coverage().data());
   gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
   gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
@@ -155,7 +165,8 @@ Renderer::Renderer(const RenderSettings& settings, GlBackend backend) : settings
   std::vector<glm::vec3> marker;
   for (int i = 0; i < 32; ++i) {
     const double a0 = 2 * std::numbers::pi * i / 32, a1 = 2 * std::numbers::pi * (i + 1) / 32;
-    marker.insert(marker.end(), {glm::vec3(0), glm::vec3(std::cos(a1), 0, std::sin(a1)), glm::vec3(std::cos(a0), 0, std::sin(a0))});
+    marker.insert(marker.end(),
+                  {glm::vec3(0), glm::vec3(std::cos(a1), 0, std::sin(a1)), glm::vec3(std::cos(a0), 0, std::sin(a0))});
   }
   state.markerVertices = static_cast<GLsizei>(marker.size());
   gl.BindVertexArray(state.markerArray.get());

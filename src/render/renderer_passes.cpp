@@ -36,7 +36,9 @@ glm::vec3 ghostColour(std::size_t age, std::size_t count) {
   return f < 0.5f ? glm::mix(oldest, middle, 2.0f * f) : glm::mix(middle, newest, 2.0f * f - 1.0f);
 }
 
-glm::mat4 modelMatrix(const CoinPose& pose) { return glm::translate(glm::mat4(1.0f), pose.centre) * glm::mat4_cast(pose.attitude); }
+glm::mat4 modelMatrix(const CoinPose& pose) {
+  return glm::translate(glm::mat4(1.0f), pose.centre) * glm::mat4_cast(pose.attitude);
+}
 
 // Projects points onto the floor (y = lift) along the light direction: a planar shadow, exact for
 // a flat receiver and far cheaper than a shadow map on a software rasteriser.
@@ -130,7 +132,8 @@ void Renderer::allocateBackgroundCache() {
   gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, state.backgroundColour.get());
   gl.BindRenderbuffer(GL_RENDERBUFFER, state.backgroundDepthStencil.get());
   gl.RenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_DEPTH24_STENCIL8, w, h);
-  gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, state.backgroundDepthStencil.get());
+  gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER,
+                             state.backgroundDepthStencil.get());
   if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
     throw std::runtime_error(fmt::format("OpenGL: cannot create a {}x{} background framebuffer", w, h));
   }
@@ -171,7 +174,8 @@ void Renderer::drawBackground(const CameraView& camera, const glm::mat4& viewPro
 
 
 // Decals on the floor: nothing but the coins can hide them, and those are drawn afterwards.
-std::optional<ScaleBarPlacement> Renderer::drawFloorDecals(const FrameSnapshot& snapshot, const glm::mat4& viewProjection) {
+std::optional<ScaleBarPlacement> Renderer::drawFloorDecals(const FrameSnapshot& snapshot,
+                                                           const glm::mat4& viewProjection) {
   const GlFunctions& gl = state_->gl;
   gl.Disable(GL_DEPTH_TEST);
   gl.Disable(GL_CULL_FACE);
@@ -237,7 +241,8 @@ void Renderer::drawContactMarker(const FrameSnapshot& snapshot, const glm::mat4&
 
 ScaleBarPlacement Renderer::drawScaleBar(const FrameSnapshot& snapshot, const glm::mat4& viewProjection) {
   GlState& state = *state_;
-  ScaleBarPlacement bar = placeScaleBar(settings_.scaleBar, settings_.coin.radius, snapshot.camera, snapshot.coin, settings_.height);
+  ScaleBarPlacement bar =
+      placeScaleBar(settings_.scaleBar, settings_.coin.radius, snapshot.camera, snapshot.coin, settings_.height);
   const glm::vec3 along = bar.end - bar.start;
   glm::mat4 model(1.0f);
   model[0] = glm::vec4(along, 0.0f);
@@ -302,7 +307,8 @@ void Renderer::applyFxaa() {
   gl.Disable(GL_BLEND);
   state.fxaaProgram->use();
   state.fxaaProgram->set("scene", 0);
-  state.fxaaProgram->set("texelSize", glm::vec2(1.0f / static_cast<float>(settings_.width), 1.0f / static_cast<float>(settings_.height)));
+  state.fxaaProgram->set(
+      "texelSize", glm::vec2(1.0f / static_cast<float>(settings_.width), 1.0f / static_cast<float>(settings_.height)));
   gl.ActiveTexture(GL_TEXTURE0);
   gl.BindTexture(GL_TEXTURE_2D, state.sceneColour.get());
   gl.BindVertexArray(state.fullScreenArray.get());
@@ -323,7 +329,8 @@ void Renderer::drawOverlay(const FrameSnapshot& snapshot, const std::optional<Sc
   if (scaleBar) {  // the label centred under the bar's middle
     const glm::vec2 middle = pixelFromWorld(snapshot.camera, w, h, 0.5f * (scaleBar->start + scaleBar->end));
     const glm::vec2 size = textPanelSize(atlas, {scaleBar->label});
-    appendTextPanel(atlas, {scaleBar->label}, middle + glm::vec2(-0.5f * size.x, 0.4f * atlas.lineHeight()), colours.overlay, text);
+    appendTextPanel(atlas, {scaleBar->label}, middle + glm::vec2(-0.5f * size.x, 0.4f * atlas.lineHeight()),
+                    colours.overlay, text);
   }
   if (!text.empty()) {
     gl.Disable(GL_DEPTH_TEST);

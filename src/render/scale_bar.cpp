@@ -36,7 +36,8 @@ ScaleBarPlacement placeScaleBar(const ScaleBar& bar, float coinRadius, const Cam
   // A pixel at the bar's distance, in metres across the floor towards the camera (foreshortened
   // by the sine of the view's elevation there); the bar is a 240th of the picture high, at least 3 px.
   const glm::vec3 ray = centre - camera.eye;
-  const float pixelMetres = 2.0f * glm::length(ray) * std::tan(glm::radians(0.5f * camera.fovYDegrees)) / static_cast<float>(pictureHeight);
+  const float pixelMetres =
+      2.0f * glm::length(ray) * std::tan(glm::radians(0.5f * camera.fovYDegrees)) / static_cast<float>(pictureHeight);
   const float elevation = std::max(0.2f, std::abs(ray.y) / glm::length(ray));
   const float pixels = std::max(3.0f, static_cast<float>(pictureHeight) / 240.0f);
   return {.start = centre - 0.5f * length * right,

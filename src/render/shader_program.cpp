@@ -23,17 +23,22 @@ namespace {
 std::string readFile(const std::filesystem::path& path) {
   std::error_code error;
   if (std::filesystem::is_directory(path, error)) {
-    throw std::runtime_error(fmt::format("shader: {} is a directory; $COINROLL_SHADER_DIR must hold the shader files "
-                                         "(e.g. the checkout's shaders/), or unset it for the built-in ones", path.string()));
+    throw std::runtime_error(
+        fmt::format("shader: {} is a directory; $COINROLL_SHADER_DIR must hold the shader files "
+                    "(e.g. the checkout's shaders/), or unset it for the built-in ones",
+                    path.string()));
   }
   std::ifstream in(path, std::ios::binary);
   if (!in) {
-    throw std::runtime_error(fmt::format("shader: cannot read {}: {} ($COINROLL_SHADER_DIR names the directory it is "
-                                         "read from; unset it for the built-in shaders)", path.string(), std::strerror(errno)));
+    throw std::runtime_error(
+        fmt::format("shader: cannot read {}: {} ($COINROLL_SHADER_DIR names the directory it is "
+                    "read from; unset it for the built-in shaders)",
+                    path.string(), std::strerror(errno)));
   }
   std::ostringstream text;
   text << in.rdbuf();
-  if (in.bad()) throw std::runtime_error(fmt::format("shader: reading {} failed: {}", path.string(), std::strerror(errno)));
+  if (in.bad())
+    throw std::runtime_error(fmt::format("shader: reading {} failed: {}", path.string(), std::strerror(errno)));
   return text.str();
 }
 
@@ -56,7 +61,8 @@ Shader compile(const GlFunctions& gl, GLenum stage, const ShaderSource& source) 
     gl.GetShaderiv(shader.get(), GL_INFO_LOG_LENGTH, &length);
     std::string log(static_cast<std::size_t>(std::max(length, 1)), '\0');
     gl.GetShaderInfoLog(shader.get(), length, nullptr, log.data());
-    throw std::runtime_error(fmt::format("shader {} does not compile:\n{}", source.origin, withOrigin(log, source.origin)));
+    throw std::runtime_error(
+        fmt::format("shader {} does not compile:\n{}", source.origin, withOrigin(log, source.origin)));
   }
   return shader;
 }
@@ -73,7 +79,8 @@ ShaderSource loadShaderSource(std::string_view name) {
   return {std::string(*embedded), fmt::format("embedded:{}", name)};
 }
 
-ShaderProgram::ShaderProgram(const GlFunctions& gl, std::string_view vertexName, std::string_view fragmentName) : gl_(&gl) {
+ShaderProgram::ShaderProgram(const GlFunctions& gl, std::string_view vertexName, std::string_view fragmentName)
+    : gl_(&gl) {
   const ShaderSource vertexSource = loadShaderSource(vertexName);
   const ShaderSource fragmentSource = loadShaderSource(fragmentName);
   const Shader vertex = compile(gl, GL_VERTEX_SHADER, vertexSource);
@@ -89,7 +96,8 @@ ShaderProgram::ShaderProgram(const GlFunctions& gl, std::string_view vertexName,
     gl.GetProgramiv(program_.get(), GL_INFO_LOG_LENGTH, &length);
     std::string log(static_cast<std::size_t>(std::max(length, 1)), '\0');
     gl.GetProgramInfoLog(program_.get(), length, nullptr, log.data());
-    throw std::runtime_error(fmt::format("shaders {} + {} do not link:\n{}", vertexSource.origin, fragmentSource.origin, log));
+    throw std::runtime_error(
+        fmt::format("shaders {} + {} do not link:\n{}", vertexSource.origin, fragmentSource.origin, log));
   }
 }
 

@@ -117,14 +117,16 @@ int JsonReader::integer(std::string_view key, int fallback) const {
     fail(key, fmt::format("out of range [{}, {}], got {}", -kLimit, kLimit, value->get<unsigned long long>()));
   }
   const auto number = value->get<long long>();
-  if (number < -kLimit || number > kLimit) fail(key, fmt::format("out of range [{}, {}], got {}", -kLimit, kLimit, number));
+  if (number < -kLimit || number > kLimit)
+    fail(key, fmt::format("out of range [{}, {}], got {}", -kLimit, kLimit, number));
   return static_cast<int>(number);
 }
 
 bool JsonReader::boolean(std::string_view key, bool fallback) const {
   const nlohmann::json* value = child(key);
   if (value == nullptr) return fallback;
-  if (!value->is_boolean()) fail(key, "must be true or false, got " + describeJson(*value), SceneError::Kind::WrongType);
+  if (!value->is_boolean())
+    fail(key, "must be true or false, got " + describeJson(*value), SceneError::Kind::WrongType);
   return value->get<bool>();
 }
 

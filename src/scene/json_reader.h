@@ -39,7 +39,8 @@ class JsonReader {
 
   // "<source>: <path>.<key>" for messages.
   std::string where(std::string_view key) const;
-  [[noreturn]] void fail(std::string_view key, const std::string& rule, SceneError::Kind kind = SceneError::Kind::BadValue) const;
+  [[noreturn]] void fail(std::string_view key, const std::string& rule,
+                         SceneError::Kind kind = SceneError::Kind::BadValue) const;
 
  private:
   const nlohmann::json& object_;

@@ -5,7 +5,8 @@
 namespace coinroll::scene {
 
 std::optional<PictureSize> pictureSizeNamed(std::string_view name) {
-  const auto found = std::find_if(kPictureSizes.begin(), kPictureSizes.end(), [&](const PictureSize& s) { return s.name == name; });
+  const auto found =
+      std::find_if(kPictureSizes.begin(), kPictureSizes.end(), [&](const PictureSize& s) { return s.name == name; });
   if (found == kPictureSizes.end()) return std::nullopt;
   return *found;
 }

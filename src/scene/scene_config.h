@@ -57,7 +57,7 @@ using InitialSpec = std::variant<ExplicitInitial, SteadyInitial>;
 using physics::Formulation;
 
 struct SolverSpec {
-  // README "Formulations": the Euler angles are the more accurate per unit of time on every
+  // docs/physics.md "Formulations": the Euler angles are the more accurate per unit of time on every
   // example; the quaternion is for runs that must go nearer flat than 89 degrees. Absent: the Euler
   // angles, except for a coin with thickness and effects, whose landing only the quaternion reaches.
   std::optional<Formulation> formulation;

@@ -51,7 +51,9 @@ double positive(const JsonReader& r, std::string_view key, double value) {
 }
 
 // The number at `key` (`fallback` when absent), in the schema's range for it.
-double boundedNumber(const JsonReader& r, std::string_view key, double fallback) { return r.bounded(key, r.number(key, fallback)); }
+double boundedNumber(const JsonReader& r, std::string_view key, double fallback) {
+  return r.bounded(key, r.number(key, fallback));
+}
 
 // An angle in the file's degrees, in the schema's range, to radians.
 double degrees(const JsonReader& r, std::string_view key) { return boundedNumber(r, key, 0) * kRadiansPerDegree; }
@@ -85,11 +87,12 @@ CoinSpec parseCoin(const JsonReader& top, render::CoinShape& drawn) {
     if (!(coin.edgeRadius >= 0 && coin.edgeRadius <= largest)) {
       // Name the bound that holds; {:.15g}: 0.0375 - 0.037 would print as 0.0005000000000000004.
       const std::string widthBound =
-          coin.shape == Shape::Ring        ? fmt::format(" and radius - inner_radius = {:.15g} m, the ring's width", coin.radius - hole)
+          coin.shape == Shape::Ring
+              ? fmt::format(" and radius - inner_radius = {:.15g} m, the ring's width", coin.radius - hole)
           : coin.radius < 0.5 * thickness ? fmt::format(" and radius = {:.15g} m", coin.radius)
                                           : std::string();
-      r.fail("edge_radius", fmt::format("must be in [0, {:.15g}] m (at most thickness / 2 = {:.15g} m{}), got {}", largest,
-                                        0.5 * thickness, widthBound, coin.edgeRadius));
+      r.fail("edge_radius", fmt::format("must be in [0, {:.15g}] m (at most thickness / 2 = {:.15g} m{}), got {}",
+                                        largest, 0.5 * thickness, widthBound, coin.edgeRadius));
     }
     drawn.edgeRadius = static_cast<float>(coin.edgeRadius);
   }
@@ -125,15 +128,18 @@ CoinSpec parseCoin(const JsonReader& top, render::CoinShape& drawn) {
 InitialSpec parseInitial(const JsonReader& top) {
   const nlohmann::json* node = top.child("initial");
   if (node == nullptr) {
-    top.fail("initial", "required: give angles and rates, or a steady state like {\"steady\": \"circle\", \"theta\": 20, "
-                        "\"omega_Z\": 10}");
+    top.fail("initial",
+             "required: give angles and rates, or a steady state like {\"steady\": \"circle\", \"theta\": 20, "
+             "\"omega_Z\": 10}");
   }
   if (node->is_object() && node->contains("steady")) {
     // Before the keys: with a steady kind that is not a name, the message is about the kind, not
     // about the explicit start's rates beside it.
     if (const nlohmann::json& kind = node->at("steady"); !kind.is_string()) {
       JsonReader(nlohmann::json::object(), "initial", "", "initial[steady]")
-          .fail("steady", fmt::format("must be {}, got {}", schema::quotedAlternatives(schema::kSteadyKindNames), describeJson(kind)),
+          .fail("steady",
+                fmt::format("must be {}, got {}", schema::quotedAlternatives(schema::kSteadyKindNames),
+                            describeJson(kind)),
                 SceneError::Kind::WrongType);
     }
     const JsonReader r(*node, "initial", "", "initial[steady]");
@@ -144,7 +150,8 @@ InitialSpec parseInitial(const JsonReader& top) {
     if (needsTheta && !r.has("theta")) r.fail("theta", fmt::format("required for steady \"{}\" (degrees)", kind));
     if (!needsTheta && r.has("theta")) r.fail("theta", "not allowed for steady \"straight\" (it rolls upright)");
     if (needsSpin && !r.has("omega_Z")) r.fail("omega_Z", fmt::format("required for steady \"{}\" (rad/s)", kind));
-    if (!needsSpin && r.has("omega_Z")) r.fail("omega_Z", "not allowed for steady \"spin-in-place\" (omega_Z = 0 there)");
+    if (!needsSpin && r.has("omega_Z"))
+      r.fail("omega_Z", "not allowed for steady \"spin-in-place\" (omega_Z = 0 there)");
     if (r.has("branch") && s.kind != SteadyKind::Circle) r.fail("branch", "only allowed for steady \"circle\"");
     s.theta = degrees(r, "theta");
     s.omega_Z = boundedNumber(r, "omega_Z", 0);
@@ -167,7 +174,8 @@ InitialSpec parseInitial(const JsonReader& top) {
   e.omega_Z = boundedNumber(r, "omega_Z", 0);
   e.x = boundedNumber(r, "x", 0);
   e.z = boundedNumber(r, "z", 0);
-  if (r.has("v_x") || r.has("v_z")) e.velocity = std::array<double, 2>{boundedNumber(r, "v_x", 0), boundedNumber(r, "v_z", 0)};
+  if (r.has("v_x") || r.has("v_z"))
+    e.velocity = std::array<double, 2>{boundedNumber(r, "v_x", 0), boundedNumber(r, "v_z", 0)};
   return e;
 }
 
@@ -177,13 +185,15 @@ SolverSpec parseSolver(const JsonReader& top) {
   if (node == nullptr) return solver;
   const JsonReader r(*node, "solver", "", "solver");
   if (r.has("formulation")) {
-    solver.formulation = enumValue(r, "formulation", Formulation{},
-                                   fmt::format("unknown formulation \"{{}}\"; available: {}", fmt::join(schema::kFormulationNames, ", ")));
+    solver.formulation = enumValue(
+        r, "formulation", Formulation{},
+        fmt::format("unknown formulation \"{{}}\"; available: {}", fmt::join(schema::kFormulationNames, ", ")));
   }
   if (const std::optional<std::string> method = r.optionalString("method")) {
     const std::optional<integrate::Method> known = integrate::methodFromName(*method);
     if (!known) {
-      r.fail("method", fmt::format("unknown method \"{}\"; available: {}", *method, fmt::join(integrate::methodNames(), ", ")));
+      r.fail("method",
+             fmt::format("unknown method \"{}\"; available: {}", *method, fmt::join(integrate::methodNames(), ", ")));
     }
     solver.method = *known;
   }
@@ -244,7 +254,8 @@ std::optional<AudioSpec> parseAudio(const JsonReader& render) {
   if (node == nullptr || (node->is_boolean() && !node->get<bool>())) return std::nullopt;
   AudioSpec audio;
   if (node->is_boolean()) return audio;
-  if (!node->is_object()) render.fail("audio", "must be true, false or an object of options, got " + describeJson(*node));
+  if (!node->is_object())
+    render.fail("audio", "must be true, false or an object of options, got " + describeJson(*node));
   const JsonReader a(*node, "render.audio", "", "render.audio");
   audio.pitch = enumValue(a, "pitch", audio.pitch,
                           "must be \"video\" (follows slow motion) or \"real\", got \"{}\"");
@@ -271,8 +282,9 @@ RenderSpec parseRender(const JsonReader& top) {
   picture.antialiasing = enumValue(r, "antialiasing", picture.antialiasing);
   picture.msaa = r.integer("msaa", picture.msaa);
   if (!render::isMsaaSampleCount(picture.msaa)) {
-    r.fail("msaa", fmt::format("must be {} samples, got {}",
-                               alternatives(render::kMsaaSampleCounts, [](int n) { return std::to_string(n); }), picture.msaa));
+    r.fail("msaa",
+           fmt::format("must be {} samples, got {}",
+                       alternatives(render::kMsaaSampleCounts, [](int n) { return std::to_string(n); }), picture.msaa));
   }
   render.timeScale = boundedNumber(r, "time_scale", render.timeScale);
   if (const nlohmann::json* remap = r.child("time_remap")) {
@@ -306,12 +318,13 @@ RenderSpec parseRender(const JsonReader& top) {
     x264.threads = static_cast<int>(v.bounded("threads", v.integer("threads", x264.threads)));
   }
   render.audio = parseAudio(r);
-  picture.transparentBackground = enumValue(r, "background", 0, "expected \"opaque\" or \"transparent\", got \"{}\"") == 1;
+  picture.transparentBackground =
+      enumValue(r, "background", 0, "expected \"opaque\" or \"transparent\", got \"{}\"") == 1;
   render.provenance = r.boolean("provenance", render.provenance);
   picture.theme = enumValue(r, "theme", picture.theme);
   const schema::Key& bar = r.spec("scale_bar");
-  const std::string scaleBarRule = fmt::format("must be true, false or a length in ({:g}, {:g}] {}, got ", bar.lower->value,
-                                               bar.upper->value, bar.unit);
+  const std::string scaleBarRule = fmt::format("must be true, false or a length in ({:g}, {:g}] {}, got ",
+                                               bar.lower->value, bar.upper->value, bar.unit);
   if (const nlohmann::json* given = r.child("scale_bar"); given != nullptr && given->is_number()) {
     const double metres = r.number("scale_bar", 0);
     if (!schema::rangeViolation(bar, metres).empty()) r.fail("scale_bar", scaleBarRule + describeJson(*given));
@@ -360,7 +373,8 @@ physics::Effect parseEffect(const nlohmann::json& node, const std::string& path)
     law.length = boundedNumber(r, "length", law.length);
     return law;
   }
-  throw SceneError(fmt::format("{}.type: must be {}, got \"{}\"", path, schema::quotedAlternatives(schema::kEffectTypeNames), type));
+  throw SceneError(
+      fmt::format("{}.type: must be {}, got \"{}\"", path, schema::quotedAlternatives(schema::kEffectTypeNames), type));
 }
 
 // Rolling resistance and pivoting friction are couples N * length whose lever arm lies inside the
@@ -381,8 +395,9 @@ void refuseLeverArmsPastTheRim(const std::vector<physics::Effect>& effects, doub
 std::vector<physics::Effect> parseEffects(const JsonReader& top) {
   const nlohmann::json* node = top.child("effects");
   if (node == nullptr) return {};
-  if (!node->is_array()) top.fail("effects", "must be a list of effects, e.g. [{\"type\": \"air_drag\"}], got " + describeJson(*node),
-                                  SceneError::Kind::WrongType);
+  if (!node->is_array())
+    top.fail("effects", "must be a list of effects, e.g. [{\"type\": \"air_drag\"}], got " + describeJson(*node),
+             SceneError::Kind::WrongType);
   std::vector<physics::Effect> effects;
   for (std::size_t i = 0; i < node->size(); ++i) {
     const std::string path = fmt::format("effects[{}]", i);
@@ -420,7 +435,8 @@ SceneConfig parseScene(const nlohmann::json& document, std::string_view sourceNa
     }
     scene.sliding = top.boolean("sliding", false);
     if (scene.sliding && !scene.friction) {
-      top.fail("sliding", "needs friction (the coefficient of Coulomb friction while the coin slides), e.g. \"friction\": 0.3");
+      top.fail("sliding",
+               "needs friction (the coefficient of Coulomb friction while the coin slides), e.g. \"friction\": 0.3");
     }
     scene.initial = parseInitial(top);
     if (const auto* e = std::get_if<ExplicitInitial>(&scene.initial); e && e->velocity && !scene.sliding) {

@@ -32,23 +32,25 @@ void applyOverride(nlohmann::json& document, std::string_view assignment) {
   }
 
   // Objects are walked by key, lists (effects) by index: effects.0.length is the first effect's
-  // length. A missing key is created as an object (except to remove what is not there); a list is never created or lengthened, since
-  // a half-given entry (an effect without its type) would only fail later with a vaguer message.
+  // length. A missing key is created as an object (except to remove what is not there); a list is never created or
+  // lengthened, since a half-given entry (an effect without its type) would only fail later with a vaguer message.
   nlohmann::json* node = &document;
   std::string_view rest = path;
   std::string walked;  // the path so far, for messages
   while (true) {
     const auto dot = rest.find('.');
     const std::string key(rest.substr(0, dot));
-    const bool isIndex = !key.empty() && std::all_of(key.begin(), key.end(), [](char c) { return c >= '0' && c <= '9'; });
+    const bool isIndex =
+        !key.empty() && std::all_of(key.begin(), key.end(), [](char c) { return c >= '0' && c <= '9'; });
     if (node->is_array()) {
       std::size_t index = 0;
       const auto [end, error] = std::from_chars(key.data(), key.data() + key.size(), index);
       if (!isIndex || error != std::errc() || end != key.data() + key.size() || index >= node->size()) {
-        throw SceneError(fmt::format("--set {}: {} is a list of {} entries, numbered 0 to {}; '{}' is none of them (--set "
-                                     "changes an entry, it cannot add one: add it in the scene file)", assignment, walked,
-                                     node->size(), static_cast<long>(node->size()) - 1, key),
-                         SceneError::Kind::UnknownKey);
+        throw SceneError(
+            fmt::format("--set {}: {} is a list of {} entries, numbered 0 to {}; '{}' is none of them (--set "
+                        "changes an entry, it cannot add one: add it in the scene file)",
+                        assignment, walked, node->size(), static_cast<long>(node->size()) - 1, key),
+            SceneError::Kind::UnknownKey);
       }
       if (dot == std::string_view::npos) {
         if (value.is_null()) node->erase(index);
@@ -58,9 +60,11 @@ void applyOverride(nlohmann::json& document, std::string_view assignment) {
       node = &(*node)[index];
     } else if (node->is_object()) {
       if (isIndex && node != &document && node->empty()) {
-        throw SceneError(fmt::format("--set {}: the scene has no {} list; --set changes an entry of a list but cannot make "
-                                     "one: write {} in the scene file", assignment, walked, walked),
-                         SceneError::Kind::UnknownKey);
+        throw SceneError(
+            fmt::format("--set {}: the scene has no {} list; --set changes an entry of a list but cannot make "
+                        "one: write {} in the scene file",
+                        assignment, walked, walked),
+            SceneError::Kind::UnknownKey);
       }
       const bool removal = value.is_null();
       if (dot == std::string_view::npos) {

@@ -64,7 +64,8 @@ std::string nameOf(Enum value, const std::array<std::string_view, N>& names) {
 std::string powerOfTen(double value) {
   if (value == 0) return "0";
   const int exponent = static_cast<int>(std::lround(std::log10(value)));
-  return exponent == 0 ? fmt::format("{:g}", value) : fmt::format("{:g}e{}", value / std::pow(10.0, exponent), exponent);
+  return exponent == 0 ? fmt::format("{:g}", value)
+                       : fmt::format("{:g}e{}", value / std::pow(10.0, exponent), exponent);
 }
 
 std::vector<Key> buildTable() {
@@ -99,7 +100,8 @@ std::vector<Key> buildTable() {
        .doc = "the start: angles and rates, or a steady state (`initial[steady]`)"},
       {.path = "duration", .type = T::Number, .unit = "s", .defaultText = "", .required = true, .lower = open(0),
        .doc = "simulated time"},
-      {.path = "solver", .type = T::Object, .unit = "", .defaultText = "{}", .doc = "the integrator and its tolerances"},
+      {.path = "solver", .type = T::Object, .unit = "", .defaultText = "{}",
+       .doc = "the integrator and its tolerances"},
       {.path = "effects", .type = T::List, .unit = "", .defaultText = "[]",
        .doc = "dissipation laws, each at most once (`effects[air_drag]`, `effects[rolling_resistance]`, "
               "`effects[spin_friction]`); empty: the seed's ideal rolling, bit for bit"},
@@ -107,7 +109,8 @@ std::vector<Key> buildTable() {
        .names = namesOf(kOnInvalidNames),
        .doc = "`stop` ends the run at lift-off or slip; `warn` reports each crossing and goes on (with `sliding`, "
               "lift-off still ends the run)"},
-      {.path = "render", .type = T::Object, .unit = "", .defaultText = "{}", .doc = "the picture, the video and the sound"},
+      {.path = "render", .type = T::Object, .unit = "", .defaultText = "{}",
+       .doc = "the picture, the video and the sound"},
 
       {.path = "coin.shape", .type = T::Name, .unit = "", .defaultText = nameOf(coin.shape, kShapeNames),
        .names = namesOf(kShapeNames),
@@ -123,7 +126,8 @@ std::vector<Key> buildTable() {
        .lower = closed(kMinLength * 0.06), .upper = closed(kMaxLength),
        .doc = "given, the coin is a solid of this thickness in the dynamics, not only in the picture (docs/rim.md); "
               "absent, the seed's thin coin, drawn 0.06 x radius thick"},
-      {.path = "coin.edge_radius", .type = T::Number, .unit = "m", .defaultText = "", .onlyWith = {"coin.thickness=0.003"},
+      {.path = "coin.edge_radius", .type = T::Number, .unit = "m", .defaultText = "",
+       .onlyWith = {"coin.thickness=0.003"},
        .doc = "the rim's rounding rho, 0 <= rho <= min(thickness / 2, radius - inner_radius); default the largest "
               "(a fully rounded rim); 0 is a sharp-cornered cylinder"},
       {.path = "coin.I_X", .type = T::Number, .unit = "kg m^2", .defaultText = "", .lower = closed(kMinInertia),
@@ -159,14 +163,16 @@ std::vector<Key> buildTable() {
        .upper = closed(kMaxSpeed), .onlyWith = {"friction=0.5", "sliding=true"},
        .doc = "the centre's velocity, a skidding launch; absent, the rolling velocity"},
 
-      {.path = "initial[steady].steady", .type = T::Name, .unit = "", .defaultText = "", .names = namesOf(kSteadyKindNames),
+      {.path = "initial[steady].steady", .type = T::Name, .unit = "", .defaultText = "",
+       .names = namesOf(kSteadyKindNames),
        .doc = "instead of rates: the program solves for a steady motion, `straight` (needs `omega_Z`), `circle` "
               "(`theta`, `omega_Z`, optional `branch`) or `spin-in-place` (`theta`)"},
       {.path = "initial[steady].theta", .type = T::Number, .unit = "degrees", .defaultText = "", .lower = open(-90),
        .upper = open(90), .onlyWith = {"initial.steady=circle", "initial.omega_Z=10"},
        .why = "the seed's equations are singular when the coin lies flat",
        .doc = "the steady tilt; required for `circle` and `spin-in-place`, refused for `straight`"},
-      {.path = "initial[steady].omega_Z", .type = T::Number, .unit = "rad/s", .defaultText = "", .lower = closed(-kMaxRate),
+      {.path = "initial[steady].omega_Z", .type = T::Number, .unit = "rad/s", .defaultText = "",
+       .lower = closed(-kMaxRate),
        .upper = closed(kMaxRate), .onlyWith = {"initial.steady=circle", "initial.theta=20"},
        .doc = "the rolling rate; required for `straight` and `circle`, refused for `spin-in-place`"},
       {.path = "initial[steady].branch", .type = T::Name, .unit = "", .defaultText = "\"+\"", .names = {"+", "-"},
@@ -174,11 +180,13 @@ std::vector<Key> buildTable() {
        .doc = "`circle` only: `+` for the f+ root of the steady circle's equation, `-` for f-"},
       {.path = "initial[steady].phi", .type = T::Number, .unit = "deg", .defaultText = "0",
        .lower = closed(-kMaxAngleDegrees), .upper = closed(kMaxAngleDegrees),
-       .onlyWith = {"initial.steady=straight", "initial.omega_Z=10"}, .why = "an angle is the same modulo 360; reduce it",
+       .onlyWith = {"initial.steady=straight", "initial.omega_Z=10"},
+       .why = "an angle is the same modulo 360; reduce it",
        .doc = "the heading"},
       {.path = "initial[steady].psi", .type = T::Number, .unit = "deg", .defaultText = "0",
        .lower = closed(-kMaxAngleDegrees), .upper = closed(kMaxAngleDegrees),
-       .onlyWith = {"initial.steady=straight", "initial.omega_Z=10"}, .why = "an angle is the same modulo 360; reduce it",
+       .onlyWith = {"initial.steady=straight", "initial.omega_Z=10"},
+       .why = "an angle is the same modulo 360; reduce it",
        .doc = "the spin angle"},
       {.path = "initial[steady].x", .type = T::Number, .unit = "m", .defaultText = "0", .lower = closed(-kMaxPosition),
        .upper = closed(kMaxPosition), .onlyWith = {"initial.steady=straight", "initial.omega_Z=10"},
@@ -187,30 +195,37 @@ std::vector<Key> buildTable() {
        .upper = closed(kMaxPosition), .onlyWith = {"initial.steady=straight", "initial.omega_Z=10"},
        .doc = "the centre of mass on the floor"},
 
-      {.path = "solver.formulation", .type = T::Name, .unit = "", .defaultText = "", .names = namesOf(kFormulationNames),
+      {.path = "solver.formulation", .type = T::Name, .unit = "", .defaultText = "",
+       .names = namesOf(kFormulationNames),
        .doc = "`euler-angles` (the seed's equations) or `quaternion` (no flat-coin singularity); absent, "
               "`euler-angles`, except `quaternion` for a coin with `thickness` and `effects`, whose landing only the "
               "quaternion reaches"},
-      {.path = "solver.method", .type = T::Name, .unit = "", .defaultText = jsonString(integrate::nameOf(solver.method)),
+      {.path = "solver.method", .type = T::Name, .unit = "",
+       .defaultText = jsonString(integrate::nameOf(solver.method)),
        .names = {integrate::methodNames().begin(), integrate::methodNames().end()},
-       .doc = "`euler`, `rk4` and `gauss4` take fixed steps `dt`; `dopri5` and `dop853` adapt theirs to `rtol`, `atol`"},
+       .doc = "`euler`, `rk4` and `gauss4` take fixed steps `dt`; `dopri5` and `dop853` adapt theirs to `rtol`, "
+              "`atol`"},
       {.path = "solver.rtol", .type = T::Number, .unit = "", .defaultText = number(solver.rtol),
        .lower = closed(integrate::kMinRtol), .upper = closed(integrate::kMaxRtol),
        .why = "default " + powerOfTen(solver.rtol), .powersOfTen = true,
-       .doc = "adaptive methods' relative tolerance per step: tighter is lost in round-off, looser is not worth reading"},
+       .doc = "adaptive methods' relative tolerance per step: tighter is lost in round-off, looser is not worth "
+              "reading"},
       {.path = "solver.atol", .type = T::Number, .unit = "", .defaultText = number(solver.atol), .lower = open(0),
        .upper = closed(integrate::kMaxAtol),
-       .why = "default " + powerOfTen(solver.atol) + "; 0 cannot weigh a state component that is 0", .powersOfTen = true,
+       .why = "default " + powerOfTen(solver.atol) + "; 0 cannot weigh a state component that is 0",
+       .powersOfTen = true,
        .doc = "adaptive methods' absolute tolerance per step, in the state's units"},
       {.path = "solver.dt", .type = T::Number, .unit = "s", .defaultText = number(solver.dt),
-       .lower = closed(integrate::kMinDt), .upper = closed(integrate::kMaxDt), .why = "default " + powerOfTen(solver.dt),
+       .lower = closed(integrate::kMinDt), .upper = closed(integrate::kMaxDt),
+       .why = "default " + powerOfTen(solver.dt),
        .powersOfTen = true, .doc = "fixed-step methods' step"},
   };
 
   const auto effect = [](std::string_view type) { return fmt::format("effects=[{{\"type\": \"{}\"}}]", type); };
   const std::vector<Key> effects = {
       {.path = "effects[air_drag].type", .type = T::Name, .unit = "", .defaultText = "", .required = true,
-       .names = namesOf(kEffectTypeNames), .onlyWith = {effect("air_drag")}, .doc = "air drag on the face rolling over the floor (docs/euler_disk.md)"},
+       .names = namesOf(kEffectTypeNames), .onlyWith = {effect("air_drag")},
+       .doc = "air drag on the face rolling over the floor (docs/euler_disk.md)"},
       {.path = "effects[air_drag].model", .type = T::Name, .unit = "", .defaultText = nameOf(air.model, kAirFlowNames),
        .names = namesOf(kAirFlowNames), .onlyWith = {effect("air_drag")},
        .doc = "`moffatt` (lubrication flow filling the gap) or `boundary_layer` (Bildsten's Stokes layer)"},
@@ -218,11 +233,14 @@ std::vector<Key> buildTable() {
        .lower = open(0), .upper = closed(1e3), .onlyWith = {effect("air_drag")},
        .doc = "the air's dynamic viscosity (the bound admits glycerine)"},
       {.path = "effects[air_drag].density", .type = T::Number, .unit = "kg/m^3", .defaultText = number(air.density),
-       .lower = open(0), .upper = closed(1e5), .onlyWith = {R"(effects=[{"type": "air_drag", "model": "boundary_layer"}])"},
+       .lower = open(0), .upper = closed(1e5),
+       .onlyWith = {R"(effects=[{"type": "air_drag", "model": "boundary_layer"}])"},
        .doc = "the air's density; `boundary_layer` only"},
       {.path = "effects[rolling_resistance].type", .type = T::Name, .unit = "", .defaultText = "", .required = true,
-       .names = namesOf(kEffectTypeNames), .onlyWith = {effect("rolling_resistance")}, .doc = "a couple resisting the rim's rolling over the floor"},
-      {.path = "effects[rolling_resistance].length", .type = T::Number, .unit = "m", .defaultText = number(rolling.length),
+       .names = namesOf(kEffectTypeNames), .onlyWith = {effect("rolling_resistance")},
+       .doc = "a couple resisting the rim's rolling over the floor"},
+      {.path = "effects[rolling_resistance].length", .type = T::Number, .unit = "m",
+       .defaultText = number(rolling.length),
        .lower = closed(0), .onlyWith = {effect("rolling_resistance")},
        .doc = "below `coin.radius`: the energy lost per distance rolled is (length / radius) N"},
       {.path = "effects[rolling_resistance].load_exponent", .type = T::Number, .unit = "",
@@ -235,7 +253,8 @@ std::vector<Key> buildTable() {
        .why = "1: a constant couple, power ~ |psi-dot|; 2: power ~ |psi-dot|^2, McDonald and McDonald's measurement",
        .doc = "m: the couple also grows as (|psi-dot| / 1 rad/s)^(m-1), so the power goes as |psi-dot|^m"},
       {.path = "effects[spin_friction].type", .type = T::Name, .unit = "", .defaultText = "", .required = true,
-       .names = namesOf(kEffectTypeNames), .onlyWith = {effect("spin_friction")}, .doc = "a pivoting couple about the floor normal"},
+       .names = namesOf(kEffectTypeNames), .onlyWith = {effect("spin_friction")},
+       .doc = "a pivoting couple about the floor normal"},
       {.path = "effects[spin_friction].length", .type = T::Number, .unit = "m", .defaultText = number(pivoting.length),
        .lower = closed(0), .onlyWith = {effect("spin_friction")},
        .doc = "below `coin.radius`: the couple is length x N ((2/3) mu r for a contact patch of radius r)"},
@@ -264,17 +283,20 @@ std::vector<Key> buildTable() {
        .lower = open(0), .doc = "simulated seconds per video second (0.5 = half speed, 2 = twice as fast)"},
       {.path = "render.time_remap", .type = T::Object, .unit = "", .defaultText = "",
        .doc = "slow motion where the motion is fast: exactly one of `spin_rate` and `precession_rate`"},
-      {.path = "render.camera", .type = T::Object, .unit = "", .defaultText = "{}", .doc = "where the picture is seen from"},
+      {.path = "render.camera", .type = T::Object, .unit = "", .defaultText = "{}",
+       .doc = "where the picture is seen from"},
       {.path = "render.trace", .type = T::Boolean, .unit = "", .defaultText = render.trace ? "true" : "false",
        .doc = "the contact point's trace on the floor, and its marker"},
       {.path = "render.hud", .type = T::Boolean, .unit = "", .defaultText = render.hud ? "true" : "false",
        .doc = "the corner overlay (time, tilt, rates, energy)"},
-      {.path = "render.video", .type = T::Object, .unit = "", .defaultText = "{}", .doc = "x264's settings for MP4 and MOV"},
+      {.path = "render.video", .type = T::Object, .unit = "", .defaultText = "{}",
+       .doc = "x264's settings for MP4 and MOV"},
       {.path = "render.audio", .type = T::Audio, .unit = "", .defaultText = "false",
        .doc = "`true`, or an object of options: a sound track in the MP4 or MOV whose fundamental is k Omega / 2 pi "
               "(docs/sound.md); PNG sequences ignore it, `.gif` and `.webm` refuse it"},
       {.path = "render.background", .type = T::Name, .unit = "",
-       .defaultText = jsonString(kBackgroundNames[picture.transparentBackground ? 1 : 0]), .names = namesOf(kBackgroundNames),
+       .defaultText = jsonString(kBackgroundNames[picture.transparentBackground ? 1 : 0]),
+       .names = namesOf(kBackgroundNames),
        .doc = "`transparent`: no sky and no visible floor, alpha 0 where nothing is drawn; kept by PNGs, `.mov` and "
               "`.webm`, refused with `.mp4` and `.gif`"},
       {.path = "render.provenance", .type = T::Boolean, .unit = "", .defaultText = render.provenance ? "true" : "false",
@@ -283,7 +305,8 @@ std::vector<Key> buildTable() {
       {.path = "render.theme", .type = T::Name, .unit = "", .defaultText = nameOf(picture.theme, kThemeNames),
        .names = namesOf(kThemeNames),
        .doc = "`classic` (dark floor under a pale sky) or `paper` (for print: white sky, near-white floor, dark text)"},
-      {.path = "render.scale_bar", .type = T::ScaleBar, .unit = "m", .defaultText = picture.scaleBar.shown ? "true" : "false",
+      {.path = "render.scale_bar", .type = T::ScaleBar, .unit = "m",
+       .defaultText = picture.scaleBar.shown ? "true" : "false",
        .lower = open(0), .upper = closed(10),
        .doc = "`true` (the largest 1, 2 or 5 x 10^k m not above the coin's radius) or a length: a labelled bar on the "
               "floor two radii in front of the coin (docs/outputs.md)"},
@@ -327,10 +350,12 @@ std::vector<Key> buildTable() {
        .doc = "encoder threads, fixed, never \"auto\": x264's bytes depend on it"},
 
       {.path = "render.audio.pitch", .type = T::Name, .unit = "", .defaultText = nameOf(audio.pitch, kPitchNames),
-       .names = namesOf(kPitchNames), .doc = "`video` (slow motion lowers the pitch) or `real` (the real motion's pitch)"},
+       .names = namesOf(kPitchNames),
+       .doc = "`video` (slow motion lowers the pitch) or `real` (the real motion's pitch)"},
       {.path = "render.audio.timbre", .type = T::Name, .unit = "", .defaultText = nameOf(audio.timbre, kTimbreNames),
        .names = namesOf(kTimbreNames), .doc = "`clicks` (a click per turn of the contact point) or `tone` (a sine)"},
-      {.path = "render.audio.frequency_scale", .type = T::Number, .unit = "", .defaultText = number(audio.frequencyScale),
+      {.path = "render.audio.frequency_scale", .type = T::Number, .unit = "",
+       .defaultText = number(audio.frequencyScale),
        .lower = open(0), .upper = closed(1000), .doc = "k: the fundamental is k Omega / 2 pi; 1 is the physical rate"},
       {.path = "render.audio.volume", .type = T::Number, .unit = "", .defaultText = number(audio.volume),
        .lower = open(0), .upper = closed(1), .doc = "the peak amplitude"},
@@ -385,8 +410,8 @@ std::string rangeViolation(const Key& key, double value) {
   if (key.lower && !key.upper) {
     interval = fmt::format("{} {}", key.lower->inclusive ? ">=" : ">", bound(key.lower->value));
   } else {
-    interval = fmt::format("in {}{}, {}{}", key.lower->inclusive ? '[' : '(', bound(key.lower->value), bound(key.upper->value),
-                           key.upper->inclusive ? ']' : ')');
+    interval = fmt::format("in {}{}, {}{}", key.lower->inclusive ? '[' : '(', bound(key.lower->value),
+                           bound(key.upper->value), key.upper->inclusive ? ']' : ')');
     if (key.unitInRule && !key.unit.empty()) interval += " " + key.unit;
   }
   const std::string why = key.why.empty() ? std::string() : fmt::format(" ({})", key.why);
@@ -467,10 +492,13 @@ std::string toMarkdown() {
   std::string text = "| key | type | unit | default | range | only with | meaning |\n|---|---|---|---|---|---|---|\n";
   for (const Key& k : table()) {
     std::string onlyWith;
-    for (const std::string& assignment : k.onlyWith) onlyWith += fmt::format("{}`{}`", onlyWith.empty() ? "" : ", ", assignment);
-    const std::string fallback = k.required ? "required" : k.defaultText.empty() ? "" : fmt::format("`{}`", k.defaultText);
-    text += fmt::format("| `{}` | {} | {} | {} | {} | {} | {} |\n", k.path, typeName(k.type), cell(k.unit), cell(fallback),
-                        cell(rangeText(k)), cell(onlyWith), cell(k.doc));
+    for (const std::string& assignment : k.onlyWith)
+      onlyWith += fmt::format("{}`{}`", onlyWith.empty() ? "" : ", ", assignment);
+    const std::string fallback = k.required              ? "required"
+                                 : k.defaultText.empty() ? ""
+                                                         : fmt::format("`{}`", k.defaultText);
+    text += fmt::format("| `{}` | {} | {} | {} | {} | {} | {} |\n", k.path, typeName(k.type), cell(k.unit),
+                        cell(fallback), cell(rangeText(k)), cell(onlyWith), cell(k.doc));
   }
   return text;
 }

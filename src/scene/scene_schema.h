@@ -65,7 +65,8 @@ struct Bound {
 };
 
 struct Key {
-  std::string path;  // "coin.radius"; an effect's keys under "effects[<type>]"; a steady start's under "initial[steady]"
+  std::string
+      path;  // "coin.radius"; an effect's keys under "effects[<type>]"; a steady start's under "initial[steady]"
   Type type;
   std::string unit;         // as the docs write it: "m", "rad/s", "degrees"; empty when dimensionless
   std::string defaultText;  // the default as JSON text, taken from the structs; empty: required or absent

@@ -59,8 +59,11 @@ class DuplicateKeyGuard {
     switch (event) {
       case Event::object_start:
       case Event::array_start:
-        frames_.push_back(
-            {.name = nameOfNextValue(), .isArray = event == Event::array_start, .elements = 0, .keys = {}, .pendingKey = {}});
+        frames_.push_back({.name = nameOfNextValue(),
+                           .isArray = event == Event::array_start,
+                           .elements = 0,
+                           .keys = {},
+                           .pendingKey = {}});
         break;
       case Event::object_end:
       case Event::array_end:
@@ -124,7 +127,8 @@ nlohmann::json readSceneDocument(const std::filesystem::path& file) {
   in.read(text.data(), static_cast<std::streamsize>(text.size()));
   text.resize(static_cast<std::size_t>(in.gcount()));
   if (text.size() > kMaxSceneBytes) {
-    throw SceneError(fmt::format("{}: more than {} bytes; a scene file is a small JSON document", file.string(), kMaxSceneBytes));
+    throw SceneError(
+        fmt::format("{}: more than {} bytes; a scene file is a small JSON document", file.string(), kMaxSceneBytes));
   }
   return parseSceneText(text, file.string());
 }
@@ -145,7 +149,8 @@ nlohmann::json parseSceneText(std::string_view text, std::string_view sourceName
   } catch (const nlohmann::json::parse_error& e) {
     // nlohmann reports the byte just past the offending token; its own text says what was expected.
     const auto [line, column] = lineAndColumn(text, e.byte == 0 ? 0 : e.byte - 1);
-    throw SceneError(fmt::format("{}: invalid JSON at line {}, column {}: {}", sourceName, line, column, parseErrorReason(e)));
+    throw SceneError(
+        fmt::format("{}: invalid JSON at line {}, column {}: {}", sourceName, line, column, parseErrorReason(e)));
   } catch (const nlohmann::json::exception& e) {
     // E.g. a number beyond double range ("1e400"): not finite, so never a valid value.
     std::string reason = e.what();

@@ -58,7 +58,8 @@ double onePixelPsnr() {
 // Thresholds with every field named (GCC warns about designated initializers that skip one).
 CompareThresholds limits(std::optional<long> pixels, std::optional<double> fraction = std::nullopt,
                          std::optional<double> psnr = std::nullopt, int tolerance = 0) {
-  return {.maxDifferingPixels = pixels, .maxDifferingFraction = fraction, .channelTolerance = tolerance, .minPsnr = psnr};
+  return {
+      .maxDifferingPixels = pixels, .maxDifferingFraction = fraction, .channelTolerance = tolerance, .minPsnr = psnr};
 }
 
 TEST(CompareImages, IdenticalPicturesHaveInfinitePsnrAndNoDifferingPixel) {
@@ -111,7 +112,8 @@ TEST(CompareThresholds, ExactByDefaultAndEveryGivenLimitMustHold) {
   EXPECT_TRUE(withinThresholds(c, limits(1, std::nullopt, psnr - 0.01)));
   EXPECT_FALSE(withinThresholds(c, limits(1, std::nullopt, psnr + 0.01)));
   EXPECT_FALSE(withinThresholds(c, limits(0, 0.5)));  // both given: both hold
-  EXPECT_TRUE(withinThresholds(compareImages(pattern(), patternWithOnePixelChanged(), 20), limits(std::nullopt, std::nullopt, std::nullopt, 20)));
+  EXPECT_TRUE(withinThresholds(compareImages(pattern(), patternWithOnePixelChanged(), 20),
+                               limits(std::nullopt, std::nullopt, std::nullopt, 20)));
   // A PSNR bound alone keeps the exact pixel count: tolerance is never implied.
   EXPECT_FALSE(withinThresholds(c, limits(std::nullopt, std::nullopt, 30)));
   // The other-CPU rule: at most 0.1 % of the pixels and at least 60 dB; this change is neither.
@@ -125,7 +127,8 @@ TEST(CompareThresholds, BadLimitsAreRefused) {
   EXPECT_THROW(withinThresholds(c, limits(std::nullopt, 1.5)), std::invalid_argument);
   EXPECT_THROW(withinThresholds(c, limits(std::nullopt, std::nan(""))), std::invalid_argument);
   EXPECT_THROW(withinThresholds(c, limits(std::nullopt, std::nullopt, std::nan(""))), std::invalid_argument);
-  EXPECT_THROW(withinThresholds(c, limits(std::nullopt, std::nullopt, std::nullopt, 3)), std::invalid_argument);  // c was counted with 0
+  EXPECT_THROW(withinThresholds(c, limits(std::nullopt, std::nullopt, std::nullopt, 3)),
+               std::invalid_argument);  // c was counted with 0
   EXPECT_THROW(compareImages(pattern(), pattern(), 256), std::invalid_argument);
   EXPECT_THROW(compareImages(pattern(), pattern(), -1), std::invalid_argument);
 }
@@ -164,7 +167,8 @@ TEST(DifferenceImage, IsWrittenAtomicallyAsPng) {
   const coinroll::testing::ScratchDirectory scratch;
   const fs::path path = scratch / "diff.png";
   coinroll::image::writeDifferenceImage(pattern(), patternWithOnePixelChanged(), 0, path);
-  EXPECT_EQ(coinroll::image::readPng(path).rgba, coinroll::image::differenceImage(pattern(), patternWithOnePixelChanged()).rgba);
+  EXPECT_EQ(coinroll::image::readPng(path).rgba,
+            coinroll::image::differenceImage(pattern(), patternWithOnePixelChanged()).rgba);
   EXPECT_EQ(scratch.fileCount(), 1) << "a temporary file was left beside the diff";
   EXPECT_THROW(coinroll::image::writeDifferenceImage(pattern(), pattern(), 0, scratch / "no_such_dir" / "diff.png"),
                std::runtime_error);
@@ -183,7 +187,8 @@ TEST(CompareVerdict, NamesTheLimitsBrokenOrHeldTo) {
   EXPECT_TRUE(held.pass);
   EXPECT_EQ(held.text, "SAME within --max-differing-pixels 1, --max-differing-fraction 0.5");
   // A fraction alone: the pixel count is not a limit then, and is not named.
-  EXPECT_EQ(coinroll::image::judge(c, limits(std::nullopt, 0.01)).text, "DIFFERENT (0.0125 > --max-differing-fraction 0.01)");
+  EXPECT_EQ(coinroll::image::judge(c, limits(std::nullopt, 0.01)).text,
+            "DIFFERENT (0.0125 > --max-differing-fraction 0.01)");
   const double psnr = onePixelPsnr();
   EXPECT_EQ(coinroll::image::judge(c, limits(1, std::nullopt, 100)).text,
             fmt::format("DIFFERENT ({:.2f} dB < --min-psnr 100)", psnr));
@@ -197,9 +202,10 @@ TEST(CompareVerdict, NamesTheLimitsBrokenOrHeldTo) {
 TEST(CompareVerdict, TheLineGivesPsnrCountsAndVerdict) {
   const ImageComparison c = compareImages(pattern(), patternWithOnePixelChanged());
   const std::string line = coinroll::image::comparisonLine(c, coinroll::image::judge(c, {}));
-  EXPECT_EQ(line, fmt::format("PSNR {:.2f} dB, 1 of 80 pixels differ (1.25 %, channel tolerance 0), max channel difference {}: "
-                              "DIFFERENT (1 > --max-differing-pixels 0)",
-                              onePixelPsnr(), c.maxChannelDifference));
+  EXPECT_EQ(line, fmt::format(
+                      "PSNR {:.2f} dB, 1 of 80 pixels differ (1.25 %, channel tolerance 0), max channel difference {}: "
+                      "DIFFERENT (1 > --max-differing-pixels 0)",
+                      onePixelPsnr(), c.maxChannelDifference));
 }
 
 TEST(CompareThresholds, BadLimitsAreNamedAsTheOptionsThatSetThem) {
@@ -212,8 +218,10 @@ TEST(CompareThresholds, BadLimitsAreNamedAsTheOptionsThatSetThem) {
     return std::string("accepted");
   };
   EXPECT_EQ(messageOf(limits(-1)), "--max-differing-pixels: must be >= 0, got -1");
-  EXPECT_EQ(messageOf(limits(std::nullopt, 1.5)), "--max-differing-fraction: must be in [0, 1] (0.01 is 1 % of the pixels), got 1.5");
+  EXPECT_EQ(messageOf(limits(std::nullopt, 1.5)),
+            "--max-differing-fraction: must be in [0, 1] (0.01 is 1 % of the pixels), got 1.5");
   EXPECT_EQ(messageOf(limits(std::nullopt, std::nullopt, std::nan(""))), "--min-psnr: must be a number of dB, got nan");
-  EXPECT_EQ(messageOf(limits(std::nullopt, std::nullopt, std::nullopt, 256)), "--channel-tolerance: must be a whole number 0..255, got 256");
+  EXPECT_EQ(messageOf(limits(std::nullopt, std::nullopt, std::nullopt, 256)),
+            "--channel-tolerance: must be a whole number 0..255, got 256");
   EXPECT_EQ(messageOf(limits(0, 0, 60, 255)), "accepted");
 }

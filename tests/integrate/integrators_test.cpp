@@ -56,10 +56,16 @@ double observedOrder(Method method, int n) {
 
 constexpr double kOrderTolerance = 0.3;  // asymptotic slopes on a smooth problem
 
-TEST(FixedStep, EulerConvergesAtOrderOne) { EXPECT_TRUE(isNear(observedOrder(Method::Euler, 400), 1, kOrderTolerance)); }
+TEST(FixedStep, EulerConvergesAtOrderOne) {
+  EXPECT_TRUE(isNear(observedOrder(Method::Euler, 400), 1, kOrderTolerance));
+}
 TEST(FixedStep, Rk4ConvergesAtOrderFour) { EXPECT_TRUE(isNear(observedOrder(Method::Rk4, 80), 4, kOrderTolerance)); }
-TEST(FixedStep, Gauss4ConvergesAtOrderFour) { EXPECT_TRUE(isNear(observedOrder(Method::Gauss4, 40), 4, kOrderTolerance)); }
-TEST(FixedStep, Dopri5ConvergesAtOrderFive) { EXPECT_TRUE(isNear(observedOrder(Method::Dopri5, 160), 5, kOrderTolerance)); }
+TEST(FixedStep, Gauss4ConvergesAtOrderFour) {
+  EXPECT_TRUE(isNear(observedOrder(Method::Gauss4, 40), 4, kOrderTolerance));
+}
+TEST(FixedStep, Dopri5ConvergesAtOrderFive) {
+  EXPECT_TRUE(isNear(observedOrder(Method::Dopri5, 160), 5, kOrderTolerance));
+}
 
 TEST(FixedStep, Dop853ConvergesAtOrderEight) {
   // The Riccati problem is solved to round-off by DOP853 within 20 steps; five periods of an
@@ -78,8 +84,9 @@ TEST(ButcherTables, Dop853WeightsSatisfyTheFirstOrderConditions) {
   using namespace dop853;
   EXPECT_TRUE(isNear(b1 + b6 + b7 + b8 + b9 + b10 + b11 + b12, 1.0, 1e-15));
   EXPECT_TRUE(isNear(b6 * c6 + b7 * c7 + b8 * c8 + b9 * c9 + b10 * c10 + b11 * c11 + b12, 0.5, 1e-15));
-  EXPECT_TRUE(isNear(b6 * c6 * c6 + b7 * c7 * c7 + b8 * c8 * c8 + b9 * c9 * c9 + b10 * c10 * c10 + b11 * c11 * c11 + b12,
-                     1.0 / 3, 1e-15));
+  EXPECT_TRUE(
+      isNear(b6 * c6 * c6 + b7 * c7 * c7 + b8 * c8 * c8 + b9 * c9 * c9 + b10 * c10 * c10 + b11 * c11 * c11 + b12,
+             1.0 / 3, 1e-15));
   // Row sums equal the nodes.
   EXPECT_TRUE(isNear(a121 + a124 + a125 + a126 + a127 + a128 + a129 + a1210 + a1211, 1.0, 1e-14));
   EXPECT_TRUE(isNear(a91 + a94 + a95 + a96 + a97 + a98, c9, 1e-14));
@@ -106,7 +113,8 @@ double midpointError(Method method, double h) {
 
 TEST(DenseOutput, Dopri5InterpolantHasOrderFour) {
   // Local interpolation error O(h^5).
-  EXPECT_TRUE(isNear(std::log2(midpointError(Method::Dopri5, 0.05) / midpointError(Method::Dopri5, 0.025)), 5, kOrderTolerance));
+  EXPECT_TRUE(isNear(std::log2(midpointError(Method::Dopri5, 0.05) / midpointError(Method::Dopri5, 0.025)), 5,
+                     kOrderTolerance));
 }
 
 TEST(DenseOutput, Dop853InterpolantHasOrderSeven) {
@@ -158,7 +166,8 @@ TEST(Trajectory, Dop853PaysForDenseOutputOnlyInStepsThatAreQueried) {
   // Evaluations: the first slope, one for the starting step's estimate, 12 per attempted step
   // and 3 for each interpolant actually built.
   auto run = [](int queries) {
-    Trajectory trajectory(Oscillator{}, 0.0, V2(0, 1), SolverConfig{.method = Method::Dop853, .rtol = 1e-10, .atol = 1e-10});
+    Trajectory trajectory(Oscillator{}, 0.0, V2(0, 1),
+                          SolverConfig{.method = Method::Dop853, .rtol = 1e-10, .atol = 1e-10});
     for (int k = 1; k <= queries; ++k) trajectory.stateAt(10.0 * k / queries);
     return trajectory.stats();
   };
@@ -243,7 +252,8 @@ TEST(Events, AGrazeInsideOneStepIsFoundOnlyWithInteriorChecks) {
   // both have g = 0.2499: read at the ends the dip is missed; with three interior points (0.25,
   // 0.5, 0.75) the one at 0.5 finds it, and the root is located at 0.49 on the dense output.
   for (int checks : {0, 3}) {
-    Event<2> graze{.name = "graze", .g = [](double t, const V2&) { return (t - 0.5) * (t - 0.5) - 1e-4; }, .direction = -1};
+    Event<2> graze{
+        .name = "graze", .g = [](double t, const V2&) { return (t - 0.5) * (t - 0.5) - 1e-4; }, .direction = -1};
     graze.interiorChecks = checks;
     Trajectory trajectory(Oscillator{}, 0.0, V2(0, 1), SolverConfig{.method = Method::Rk4, .dt = 1.0}, {graze});
     const bool reachedTheEnd = trajectory.stateAt(1.0).has_value();

@@ -86,8 +86,8 @@ TEST(EffectLoads, LoadDependentCouplesVanishWithoutLoad) {
   const CoinState s{.theta = 0.7, .phi = 0.3, .omega_X = 2, .omega_Y = -3, .omega_Z = 9};
   for (const double N : {0.0, -1.0, -1e-3}) {
     const ContactKinematics k = contactKinematics(kToy, s, N);
-    for (const Effect& law : {Effect{RollingResistance{}}, Effect{RollingResistance{.length = 3e-6, .loadExponent = 0.7}},
-                              Effect{SpinFriction{}}}) {
+    for (const Effect& law : {Effect{RollingResistance{}},
+                              Effect{RollingResistance{.length = 3e-6, .loadExponent = 0.7}}, Effect{SpinFriction{}}}) {
       const Loads l = loadsOf(law, k);
       EXPECT_EQ(l.torque, Eigen::Vector3d::Zero()) << typeName(law) << " at N = " << N;
       EXPECT_EQ(l.power, 0.0) << typeName(law) << " at N = " << N;
@@ -107,8 +107,8 @@ TEST(AirDrag, QuasiSteadyPowerIsMoffattsAndBildstensClosedForm) {
     const double moffattPower = forward(toyWith({moffatt}), s).loads.power;
     const double bildstenPower = forward(toyWith({boundaryLayer}), s).loads.power;
     EXPECT_TRUE(isNear(moffattPower / (std::numbers::pi * mu * g * a * a / (alpha * alpha)), 1, kClosedForm));
-    const double bildsten = std::sqrt(2) * std::numbers::pi * std::sqrt(mu * rho) * std::pow(g, 1.25) * std::pow(a, 2.75) *
-                            std::pow(alpha, -1.25);
+    const double bildsten = std::sqrt(2) * std::numbers::pi * std::sqrt(mu * rho) * std::pow(g, 1.25) *
+                            std::pow(a, 2.75) * std::pow(alpha, -1.25);
     EXPECT_TRUE(isNear(bildstenPower / bildsten, 1, kClosedForm));
   }
 }
@@ -152,12 +152,13 @@ struct BudgetCase {
 std::vector<BudgetCase> budgetCases() {
   // Ten times room air's viscosity makes the Moffatt-only fall ten times shorter; the budget
   // does not care how fast it is spent.
-  return {{"moffatt", {AirDrag{.viscosity = 1.8e-4}}, 1e4},
-          {"boundary_layer", {AirDrag{.model = AirFlow::BoundaryLayer}}, 1e4},
-          {"rolling_resistance", {RollingResistance{.length = 3.75e-6}}, 1e4},
-          {"rolling_resistance_rate_2", {RollingResistance{.length = 1e-7, .rateExponent = 2}}, 1e4},
-          {"spin_friction", {SpinFriction{.length = 5e-6}}, 30},
-          {"all", {AirDrag{.model = AirFlow::BoundaryLayer}, RollingResistance{.length = 3.75e-6}, SpinFriction{}}, 1e4}};
+  return {
+      {"moffatt", {AirDrag{.viscosity = 1.8e-4}}, 1e4},
+      {"boundary_layer", {AirDrag{.model = AirFlow::BoundaryLayer}}, 1e4},
+      {"rolling_resistance", {RollingResistance{.length = 3.75e-6}}, 1e4},
+      {"rolling_resistance_rate_2", {RollingResistance{.length = 1e-7, .rateExponent = 2}}, 1e4},
+      {"spin_friction", {SpinFriction{.length = 5e-6}}, 30},
+      {"all", {AirDrag{.model = AirFlow::BoundaryLayer}, RollingResistance{.length = 3.75e-6}, SpinFriction{}}, 1e4}};
 }
 
 // The quaternion formulation reads the contact direction from q, which amplifies q's local error
@@ -233,7 +234,9 @@ LogLogRun runTowardsFlat(const CoinModel& m, double alpha0, double endAlpha) {
   EXPECT_TRUE(first.flatAt.has_value());
   LogLogRun run;
   run.tFlat = first.flatAt.value_or(0);
-  run.samples = runSpinDown<Formulation::Quaternion>(m, start, endAlpha, timesBefore(run.tFlat, 0.9 * run.tFlat, 1e-7 * run.tFlat, 1500)).samples;
+  run.samples = runSpinDown<Formulation::Quaternion>(m, start, endAlpha,
+                                                     timesBefore(run.tFlat, 0.9 * run.tFlat, 1e-7 * run.tFlat, 1500))
+                    .samples;
   run.samples.pop_back();  // the stop, beyond the last requested time
   pipeline::SingularTimeFit fit;
   for (const SpinDownSample& s : run.samples) fit.add(s.t, energy(m, s.state), forward(m, s.state).loads.power);
@@ -280,11 +283,13 @@ struct ExponentCase {
 };
 
 TEST(SpinDownExponents, MatchTheQuasiSteadyTheoryOverTwoDecades) {
-  for (const ExponentCase& c : {ExponentCase{"moffatt", AirDrag{}, -2, 4 * kDeg, 0.4 * kDeg},
-                                ExponentCase{"boundary_layer", AirDrag{.model = AirFlow::BoundaryLayer}, -1.25, 6 * kDeg, 0.3 * kDeg},
-                                ExponentCase{"rolling_resistance", RollingResistance{.length = 3.75e-6}, -0.5, 6 * kDeg, 0.1 * kDeg},
-                                // McDonald and McDonald's P ~ Omega^2: alpha ~ (t0 - t)^(1/2), Omega ~ (t0 - t)^(-1/4)
-                                ExponentCase{"rolling_resistance_rate_2", RollingResistance{.length = 3e-10, .rateExponent = 2}, -1, 6 * kDeg, 0.3 * kDeg}}) {
+  for (const ExponentCase& c :
+       {ExponentCase{"moffatt", AirDrag{}, -2, 4 * kDeg, 0.4 * kDeg},
+        ExponentCase{"boundary_layer", AirDrag{.model = AirFlow::BoundaryLayer}, -1.25, 6 * kDeg, 0.3 * kDeg},
+        ExponentCase{"rolling_resistance", RollingResistance{.length = 3.75e-6}, -0.5, 6 * kDeg, 0.1 * kDeg},
+        // McDonald and McDonald's P ~ Omega^2: alpha ~ (t0 - t)^(1/2), Omega ~ (t0 - t)^(-1/4)
+        ExponentCase{"rolling_resistance_rate_2", RollingResistance{.length = 3e-10, .rateExponent = 2}, -1, 6 * kDeg,
+                     0.3 * kDeg}}) {
     const CoinModel m = toyWith({c.law});
     const LogLogRun run = runTowardsFlat(m, c.alpha0, c.alphaLow / 2);
     const SpinDownSample& low = sampleAtTilt(run, c.alphaLow);
@@ -303,7 +308,8 @@ TEST(SpinDownExponents, MatchTheQuasiSteadyTheoryOverTwoDecades) {
     for (const SpinDownSample& sample : run.samples) {
       if (run.t0 - sample.t > 10 * shortest) continue;
       EXPECT_TRUE(isBelow(std::abs(steadyResidual(m, sample.state)) / (m.M * m.g * m.a), 0.01)) << c.name;
-      const double ratio = Omega(sample.state) * Omega(sample.state) * std::sin(tiltAboveFloor(sample.state)) * m.a / (4 * m.g);
+      const double ratio =
+          Omega(sample.state) * Omega(sample.state) * std::sin(tiltAboveFloor(sample.state)) * m.a / (4 * m.g);
       EXPECT_TRUE(isNear(ratio, 1, 0.01)) << c.name;
       break;
     }

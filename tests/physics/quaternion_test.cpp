@@ -68,8 +68,9 @@ TEST(QuaternionRhs, EqualsTheSeedRhsAtRandomStatesAwayFromFlat) {
   std::mt19937 random(20261124);
   std::uniform_real_distribution<double> tilt(-80 * kDeg, 80 * kDeg), angle(-7, 7), rate(-20, 20), position(-1, 1);
   int checked = 0;
-  for (const CoinModel& m : {diskModel(0.4, 0.0375, 9.81), ringModel(0.4, 0.0375, 0.03, 9.81),
-                             CoinModel{.M = 2, .a = 0.1, .g = 3, .I_X = 0.004, .I_Z = 0.0065, .rim = {}, .effects = {}}}) {
+  for (const CoinModel& m :
+       {diskModel(0.4, 0.0375, 9.81), ringModel(0.4, 0.0375, 0.03, 9.81),
+        CoinModel{.M = 2, .a = 0.1, .g = 3, .I_X = 0.004, .I_Z = 0.0065, .rim = {}, .effects = {}}}) {
     for (int i = 0; i < 1000; ++i) {
       const CoinState s{tilt(random), angle(random), angle(random), rate(random), rate(random), rate(random),
                         position(random), position(random)};
@@ -108,14 +109,16 @@ TEST(QuaternionRhs, EqualsTheSeedRhsForCoinsWithARim) {
       EXPECT_TRUE(isNear(quaternion.energy / euler.energy, 1, kRhsTolerance));
       EXPECT_TRUE(isBelow((quaternion.contactPoint - euler.contactPoint).norm(), 1e-15));
       EXPECT_TRUE(isBelow(std::abs(quaternion.contactPoint.y()), 1e-15));
-      EXPECT_TRUE(isNear(quaternion.precessionRate, euler.precessionRate, kRhsTolerance * std::abs(euler.precessionRate) + 1e-12));
+      EXPECT_TRUE(isNear(quaternion.precessionRate, euler.precessionRate,
+                         kRhsTolerance * std::abs(euler.precessionRate) + 1e-12));
       EXPECT_TRUE(isNear(quaternion.spinRate, euler.spinRate, kRhsTolerance * std::abs(euler.spinRate) + 1e-12));
     }
   }
 }
 
 TEST(QuaternionConversion, RoundTripsAndUnwrapsTheAngles) {
-  const CoinState s{.theta = -0.7, .phi = 9.0, .psi = -13.0, .omega_X = 1.5, .omega_Y = -2.5, .omega_Z = 8.0, .x = 0.3, .z = -0.4};
+  const CoinState s{
+      .theta = -0.7, .phi = 9.0, .psi = -13.0, .omega_X = 1.5, .omega_Y = -2.5, .omega_Z = 8.0, .x = 0.3, .z = -0.4};
   const CoinState back = toEulerState(fromEulerState(s), CoinState{.phi = 8.0, .psi = -12.0});
   const StateVec difference = toVector(back) - toVector(s);
   EXPECT_TRUE(isBelow(difference.cwiseAbs().maxCoeff(), 1e-13));
@@ -124,7 +127,8 @@ TEST(QuaternionConversion, RoundTripsAndUnwrapsTheAngles) {
 TEST(QuaternionDynamics, ReactionMatchesTheSeedFormulas) {
   // Eq. (5.2) in material components against seed section 4 in XYZ: two derivations of one force.
   const CoinModel m = ringModel(0.4, 0.0375, 0.02, 9.81);
-  const CoinState s{.theta = 0.6, .phi = -1.1, .psi = 2.3, .omega_X = 0.7, .omega_Y = -1.9, .omega_Z = 5.2, .x = 0.1, .z = -0.2};
+  const CoinState s{
+      .theta = 0.6, .phi = -1.1, .psi = 2.3, .omega_X = 0.7, .omega_Y = -1.9, .omega_Z = 5.2, .x = 0.1, .z = -0.2};
   const QuaternionState q = fromEulerState(s);
   EXPECT_TRUE(isBelow((forward(m, q).reaction.R - forward(m, s).reaction.R).norm(), 1e-14));
   EXPECT_TRUE(isNear(tiltMagnitude(q), 0.6, 1e-15));
@@ -194,10 +198,15 @@ TEST(NearFlat, EulerAnglesStopAtTheCoinFlatEventWhileTheQuaternionContinues) {
   const CoinModel m = diskModel(0.4, 0.0375, 9.81);
   const CoinState start = fallingNearlyFlat();
   std::vector<integrate::Event<kStateSize>> eulerFlat{
-      {.name = "coin-flat", .g = [](double, const StateVec& y) { return flatMargin(toState(y).theta, kFlatTilt); }, .direction = -1}};
+      {.name = "coin-flat",
+       .g = [](double, const StateVec& y) { return flatMargin(toState(y).theta, kFlatTilt); },
+       .direction = -1}};
   std::vector<integrate::Event<kQuaternionStateSize>> quaternionFlat{
       {.name = "coin-flat",
-       .g = [](double, const QuaternionStateVec& y) { return flatMargin(seed(toQuaternionState(y)).theta, kQuaternionFlatTilt); },
+       .g =
+           [](double, const QuaternionStateVec& y) {
+             return flatMargin(seed(toQuaternionState(y)).theta, kQuaternionFlatTilt);
+           },
        .direction = -1}};
   integrate::Trajectory euler(SeedRhs{m}, 0.0, toVector(start), kTight, eulerFlat);
   integrate::Trajectory quaternion(QuaternionRhs{m}, 0.0, toVector(fromEulerState(start)), kTight, quaternionFlat);
@@ -227,17 +236,21 @@ TEST(NearFlat, PlanarFallRunsToTheQuaternionFlatStopWithTheEnergyIntegralsRate) 
   // (I_X + M a^2) omega_X^2 / 2 = M g a (cos theta0 - cos theta).
   const CoinModel m = diskModel(0.4, 0.0375, 9.81);
   const CoinState start{.theta = 60 * kDeg};
-  std::vector<integrate::Event<kQuaternionStateSize>> flat{
-      {.name = "coin-flat",
-       .g = [](double, const QuaternionStateVec& y) { return flatMargin(seed(toQuaternionState(y)).theta, kQuaternionFlatTilt); },
-       .direction = -1}};
+  std::vector<integrate::Event<kQuaternionStateSize>> flat{{.name = "coin-flat",
+                                                            .g =
+                                                                [](double, const QuaternionStateVec& y) {
+                                                                  return flatMargin(seed(toQuaternionState(y)).theta,
+                                                                                    kQuaternionFlatTilt);
+                                                                },
+                                                            .direction = -1}};
   integrate::Trajectory quaternion(QuaternionRhs{m}, 0.0, toVector(fromEulerState(start)), kTight, flat);
   EXPECT_FALSE(quaternion.stateAt(1.0).has_value());
   ASSERT_TRUE(quaternion.stoppedBy().has_value());
   const QuaternionState s = toQuaternionState(quaternion.stoppedBy()->y);
   EXPECT_TRUE(isNear(tiltMagnitude(s), kQuaternionFlatTilt, 1e-12));
   const double Ma2 = m.M * m.a * m.a;
-  const double expectedRate = std::sqrt(2 * m.M * m.g * m.a * (std::cos(start.theta) - std::cos(kQuaternionFlatTilt)) / (m.I_X + Ma2));
+  const double expectedRate =
+      std::sqrt(2 * m.M * m.g * m.a * (std::cos(start.theta) - std::cos(kQuaternionFlatTilt)) / (m.I_X + Ma2));
   EXPECT_TRUE(isNear(s.omegaBody.norm(), expectedRate, 1e-9 * naturalRate(m)));
   EXPECT_TRUE(isNear(energy(m, seed(s)), energy(m, start), 1e-12 * energy(m, start)));
   EXPECT_GT(forward(m, s).reaction.N, 0);  // still on the floor: the stop is the geometry's, not lift-off

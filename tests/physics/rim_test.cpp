@@ -44,7 +44,8 @@ TEST(Rim, TendsToTheThinCoinLinearlyInTheThickness) {
   for (double h : {1e-4, 1e-5, 1e-6}) {
     CoinModel m = thin;
     m.rim = {.thickness = h, .edgeRadius = h / 2};
-    const double difference = (rhs(m, 0, toVector(s)) - reference).cwiseAbs().maxCoeff() / reference.cwiseAbs().maxCoeff();
+    const double difference =
+        (rhs(m, 0, toVector(s)) - reference).cwiseAbs().maxCoeff() / reference.cwiseAbs().maxCoeff();
     EXPECT_TRUE(isBelow(difference, h / thin.a)) << "h = " << h;
     if (previous > 0) {
       EXPECT_TRUE(isNear(previous / difference, 10, 0.05)) << "h = " << h;
@@ -69,7 +70,8 @@ TEST(Rim, ReactionIsMassTimesAccelerationPlusWeight) {
     const Eigen::Vector3d acceleration =
         (centreOfMassVelocity(m, toState(step(y, dt))) - centreOfMassVelocity(m, toState(step(y, -dt)))) / (2 * dt);
     const Eigen::Vector3d expected = m.M * acceleration + Eigen::Vector3d(0, m.M * m.g, 0);
-    EXPECT_TRUE(isBelow((forward(m, s).reaction.R - expected).norm() / expected.norm(), 1e-8)) << "rho " << m.rim.edgeRadius;
+    EXPECT_TRUE(isBelow((forward(m, s).reaction.R - expected).norm() / expected.norm(), 1e-8))
+        << "rho " << m.rim.edgeRadius;
     EXPECT_TRUE(isNear(f[kTheta], s.omega_X, 0));
   }
 }
@@ -129,13 +131,19 @@ TEST(Rim, ABallRollsInAStraightLineAtConstantVelocityWhateverItsSpin) {
   // a = rho, h = 2 rho: the rim is the whole body, a sphere of radius r with I = 2/5 M r^2. Its centre
   // is r above the contact and a rolling ball keeps v and omega (Routh): whatever the "tilt".
   const double r = 0.02, M = 0.1;
-  CoinModel ball{.M = M, .a = r, .g = 9.81, .I_X = 0.4 * M * r * r, .I_Z = 0.4 * M * r * r, .rim = {.thickness = 2 * r, .edgeRadius = r},
+  CoinModel ball{.M = M,
+                 .a = r,
+                 .g = 9.81,
+                 .I_X = 0.4 * M * r * r,
+                 .I_Z = 0.4 * M * r * r,
+                 .rim = {.thickness = 2 * r, .edgeRadius = r},
                  .effects = {}};
   // omega mostly along the axis, so the axis cones within 12 degrees of its start and the tilt stays
   // between 10 and 50 degrees, where both formulations' e_Y is defined.
   const CoinState start{.theta = 30 * kDeg, .phi = 0.4, .omega_X = 1.0, .omega_Y = 2.0, .omega_Z = 11.0};
   const Forward f0 = forward(ball, start);
-  integrate::Trajectory quaternion(CoinRhs<Formulation::Quaternion>{ball}, 0.0, toVector(fromEulerState(start)), kTight);
+  integrate::Trajectory quaternion(CoinRhs<Formulation::Quaternion>{ball}, 0.0, toVector(fromEulerState(start)),
+                                   kTight);
   integrate::Trajectory euler(CoinRhs<Formulation::EulerAngles>{ball}, 0.0, toVector(start), kTight);
   double worst = 0, height = 0;
   for (int k = 1; k <= 300; ++k) {

@@ -112,14 +112,17 @@ TEST(StraightRolling, CriticalSpinSeparatesGrowthFromBoundedWobble) {
 
 TEST(WobbleFrequency, SimulatedPeriodMatchesTwoPiOverRootK) {
   for (const CoinModel& m : {diskModel(0.4, 0.0375, 9.81), ringModel(0.4, 0.0375, 0.02, 9.81)}) {
-    for (auto [thetaDeg, spin, branch] : {std::tuple{20.0, 1.0, +1}, std::tuple{45.0, 0.5, +1}, std::tuple{30.0, 0.8, -1}}) {
+    for (auto [thetaDeg, spin, branch] :
+         {std::tuple{20.0, 1.0, +1}, std::tuple{45.0, 0.5, +1}, std::tuple{30.0, 0.8, -1}}) {
       CoinState s = steadyCircle(m, thetaDeg * kDeg, spin * naturalRate(m), branch);
       const double K = wobbleStiffness(m, s.theta, s.omega_Y, s.omega_Z);
       ASSERT_GT(K, 0);
       s.theta += 1e-5;  // small kick in tilt
       // Tilt maxima: omega_X = theta-dot falls through zero.
-      std::vector<integrate::Event<kStateSize>> maxima{
-          {.name = "max", .g = [](double, const StateVec& y) { return y[kOmega_X]; }, .direction = -1, .terminal = false}};
+      std::vector<integrate::Event<kStateSize>> maxima{{.name = "max",
+                                                        .g = [](double, const StateVec& y) { return y[kOmega_X]; },
+                                                        .direction = -1,
+                                                        .terminal = false}};
       integrate::Trajectory trajectory(CoinRhs<Formulation::EulerAngles>{m}, 0.0, toVector(s), kTight, maxima);
       const double expectedPeriod = 2 * std::numbers::pi / std::sqrt(K);
       trajectory.stateAt(10.5 * expectedPeriod);
@@ -136,7 +139,8 @@ TEST(Rk4OnTheCoin, ConvergesAtOrderFour) {
   integrate::Trajectory reference(CoinRhs<Formulation::EulerAngles>{m}, 0.0, toVector(wobblingState()), kTight);
   const StateVec exact = *reference.stateAt(0.5);
   auto errorWith = [&](double dt) {
-    integrate::Trajectory rk4(CoinRhs<Formulation::EulerAngles>{m}, 0.0, toVector(wobblingState()), SolverConfig{.method = Method::Rk4, .dt = dt});
+    integrate::Trajectory rk4(CoinRhs<Formulation::EulerAngles>{m}, 0.0, toVector(wobblingState()),
+                              SolverConfig{.method = Method::Rk4, .dt = dt});
     return (*rk4.stateAt(0.5) - exact).norm();
   };
   EXPECT_TRUE(isNear(std::log2(errorWith(1e-3) / errorWith(5e-4)), 4, 0.2));
@@ -145,10 +149,12 @@ TEST(Rk4OnTheCoin, ConvergesAtOrderFour) {
 TEST(Dop853OnTheCoin, ErrorFallsWithTheTolerance) {
   // The adaptive method's "order": tightening rtol 100x cuts the error by 20x or more.
   const CoinModel m = diskModel(0.4, 0.0375, 9.81);
-  integrate::Trajectory reference(CoinRhs<Formulation::EulerAngles>{m}, 0.0, toVector(wobblingState()), SolverConfig{.rtol = 1e-13, .atol = 1e-15});
+  integrate::Trajectory reference(CoinRhs<Formulation::EulerAngles>{m}, 0.0, toVector(wobblingState()),
+                                  SolverConfig{.rtol = 1e-13, .atol = 1e-15});
   const StateVec exact = *reference.stateAt(2.0);
   auto errorWith = [&](double rtol) {
-    integrate::Trajectory run(CoinRhs<Formulation::EulerAngles>{m}, 0.0, toVector(wobblingState()), SolverConfig{.rtol = rtol, .atol = rtol * 1e-2});
+    integrate::Trajectory run(CoinRhs<Formulation::EulerAngles>{m}, 0.0, toVector(wobblingState()),
+                              SolverConfig{.rtol = rtol, .atol = rtol * 1e-2});
     return (*run.stateAt(2.0) - exact).norm();
   };
   EXPECT_GT(errorWith(1e-7) / errorWith(1e-9), 20);

@@ -30,10 +30,12 @@ TEST(Sliding, NormalEffectiveMassIsPainlevesClosedForm) {
       for (const double along : {-1.0, 1.0}) {
         const CoinState s{.theta = theta * kDeg};
         const QuaternionState q = fromEulerState(s);
-        const Forward f = slidingForward(m, {.attitude = q, .slip = Eigen::Vector2d(0, along)}, mu, Eigen::Vector3d::UnitZ());
+        const Forward f =
+            slidingForward(m, {.attitude = q, .slip = Eigen::Vector2d(0, along)}, mu, Eigen::Vector3d::UnitZ());
         const double Lambda = m.a * std::sin(s.theta), H = m.a * std::cos(s.theta);
         const double expected = 1 + m.M / m.I_X * (Lambda * Lambda + mu * Lambda * H * along);
-        EXPECT_TRUE(isNear(f.normalEffectiveMass, expected, 1e-13)) << theta << " deg, mu " << mu << ", along " << along;
+        EXPECT_TRUE(isNear(f.normalEffectiveMass, expected, 1e-13))
+            << theta << " deg, mu " << mu << ", along " << along;
       }
     }
   }

@@ -48,7 +48,8 @@ constexpr double kRk4StepLimit = 0.07972;
 std::vector<double> energyErrors(Method method, double dt, double periods, int samples) {
   const CoinState start = kickedCircle();
   const double E0 = energy(kDisk, start);
-  integrate::Trajectory trajectory(CoinRhs<Formulation::EulerAngles>{kDisk}, 0.0, toVector(start), SolverConfig{.method = method, .dt = dt});
+  integrate::Trajectory trajectory(CoinRhs<Formulation::EulerAngles>{kDisk}, 0.0, toVector(start),
+                                   SolverConfig{.method = method, .dt = dt});
   std::vector<double> errors(samples, std::numeric_limits<double>::infinity());
   try {
     for (int k = 0; k < samples; ++k) {
@@ -70,11 +71,13 @@ TEST(ExplicitEuler, EnergyGrowsAtEveryCheckpointAsItsAmplificationPredicts) {
   const double dt = kRk4StepLimit / 500;
   const std::vector<double> errors = energyErrors(Method::Euler, dt, 100, 10);
   for (std::size_t k = 1; k < errors.size(); ++k) EXPECT_GT(errors[k], errors[k - 1]) << "checkpoint " << k;
-  const double growthPerStep = 1 + dt * dt * 4 * std::numbers::pi * std::numbers::pi / (wobblePeriod() * wobblePeriod());
+  const double growthPerStep =
+      1 + dt * dt * 4 * std::numbers::pi * std::numbers::pi / (wobblePeriod() * wobblePeriod());
   auto predicted = [&](double periods) { return std::pow(growthPerStep, periods * wobblePeriod() / dt) - 1; };
   // Measured 80.20 against 80.11 predicted; 2 % covers the checkpoints' rounding to step points
   // and the mode's small share in the other, non-oscillating directions.
-  EXPECT_TRUE(isNear(errors.back() / errors.front(), predicted(100) / predicted(10), 0.02 * predicted(100) / predicted(10)));
+  EXPECT_TRUE(
+      isNear(errors.back() / errors.front(), predicted(100) / predicted(10), 0.02 * predicted(100) / predicted(10)));
 }
 
 TEST(Rk4, StaysBoundedJustBelowItsStepLimit) {

@@ -45,7 +45,8 @@ TEST(SteadyStates, CirclesOfBothBranchesHaveNoAngularAcceleration) {
       for (double spin : {0.3, 2.0, 8.0}) {
         for (int branch : {+1, -1}) {
           const CoinState s = steadyCircle(m, thetaDeg * kDeg, spin * naturalRate(m), branch);
-          EXPECT_TRUE(isBelow(steadyDrift(m, s), 1e-12)) << "theta " << thetaDeg << " spin " << spin << " branch " << branch;
+          EXPECT_TRUE(isBelow(steadyDrift(m, s), 1e-12))
+              << "theta " << thetaDeg << " spin " << spin << " branch " << branch;
         }
       }
     }
@@ -73,8 +74,10 @@ TEST(SteadyStates, DiskMatchesTheSeedsDimensionlessFormulas) {
   for (double theta : {0.1, 0.5, 1.2}) {
     for (double omega_Z : {0.5, 3.0}) {
       const double root = std::sqrt(9 * omega_Z * omega_Z + 4 * std::sin(theta) * std::sin(theta) / std::cos(theta));
-      EXPECT_TRUE(isNear(steadyCircle(unit, theta, omega_Z, +1).omega_Y, (-3 * omega_Z + root) / std::tan(theta), 1e-12));
-      EXPECT_TRUE(isNear(steadyCircle(unit, theta, omega_Z, -1).omega_Y, (-3 * omega_Z - root) / std::tan(theta), 1e-11));
+      EXPECT_TRUE(
+          isNear(steadyCircle(unit, theta, omega_Z, +1).omega_Y, (-3 * omega_Z + root) / std::tan(theta), 1e-12));
+      EXPECT_TRUE(
+          isNear(steadyCircle(unit, theta, omega_Z, -1).omega_Y, (-3 * omega_Z - root) / std::tan(theta), 1e-11));
     }
     EXPECT_TRUE(isNear(spinInPlace(unit, theta).omega_Y, 2 * std::sqrt(std::cos(theta)), 1e-15));
   }
@@ -184,7 +187,8 @@ TEST(WobbleStiffness, SpinInPlaceIsAlwaysStable) {
     for (double thetaDeg : {2.0, 30.0, 80.0}) {
       const CoinState s = spinInPlace(m, thetaDeg * kDeg);
       const double Ma2 = m.M * m.a * m.a, th = s.theta;
-      const double expected = (Ma2 * s.omega_Y * s.omega_Y + 3 * m.M * m.g * m.a * std::sin(th) * std::tan(th)) / (m.I_X + Ma2);
+      const double expected =
+          (Ma2 * s.omega_Y * s.omega_Y + 3 * m.M * m.g * m.a * std::sin(th) * std::tan(th)) / (m.I_X + Ma2);
       const double K = wobbleStiffness(m, s.theta, s.omega_Y, s.omega_Z);
       EXPECT_GT(K, 0);
       EXPECT_TRUE(isNear(K / expected, 1.0, 1e-12));

@@ -35,16 +35,18 @@ pipeline::Simulation simulationOf(const nlohmann::json& doc) {
 const nlohmann::json kTightSolver = {{"rtol", 1e-12}, {"atol", 1e-14}};
 
 nlohmann::json skid(const nlohmann::json& coin, double v0, double mu, const nlohmann::json& solver = kTightSolver) {
-  return {{"coin", coin}, {"friction", mu}, {"sliding", true}, {"initial", {{"theta", 0}, {"v_x", v0}}}, {"duration", 1}, {"solver", solver}};
+  return {{"coin", coin},  {"friction", mu},  {"sliding", true}, {"initial", {{"theta", 0}, {"v_x", v0}}},
+          {"duration", 1}, {"solver", solver}};
 }
 
 TEST(Sliding, AnUprightSkidRollsAtTheClosedFormTimeSpeedAndWork) {
   // v0 / (mu g (1 + M a^2 / I_Z)) and v0 M a^2 / (I_Z + M a^2): a disk, a ring, and a thick disk whose
   // fully rounded rim touches at radius a when upright, with the I_Z of its solid.
   const double v0 = 1.3, mu = 0.25, g = 9.81;
-  for (const nlohmann::json& coin : {nlohmann::json{{"radius", 0.0375}, {"mass", 0.4}},
-                                     nlohmann::json{{"shape", "ring"}, {"radius", 0.04}, {"inner_radius", 0.03}, {"mass", 0.2}},
-                                     nlohmann::json{{"radius", 0.0375}, {"mass", 0.449}, {"thickness", 0.013}}}) {
+  for (const nlohmann::json& coin :
+       {nlohmann::json{{"radius", 0.0375}, {"mass", 0.4}},
+        nlohmann::json{{"shape", "ring"}, {"radius", 0.04}, {"inner_radius", 0.03}, {"mass", 0.2}},
+        nlohmann::json{{"radius", 0.0375}, {"mass", 0.449}, {"thickness", 0.013}}}) {
     const pipeline::Simulation sim = simulationOf(skid(coin, v0, mu));
     const double M = sim.model.M, a = sim.model.a, I_Z = sim.model.I_Z;
     const double tStar = v0 / (mu * g * (1 + M * a * a / I_Z));
@@ -58,8 +60,10 @@ TEST(Sliding, AnUprightSkidRollsAtTheClosedFormTimeSpeedAndWork) {
     EXPECT_FALSE(end.forward.sliding);
     EXPECT_TRUE(isNear(end.forward.velocity.x() / vAfter, 1, 1e-9)) << coin.dump();
     EXPECT_TRUE(isNear(end.dissipated / work, 1, 1e-9)) << coin.dump();
-    EXPECT_TRUE(isBelow(std::abs(end.forward.energy + end.dissipated - 0.5 * M * v0 * v0 - M * g * end.forward.centre.y()) /
-                            (0.5 * M * v0 * v0), 1e-9));
+    EXPECT_TRUE(
+        isBelow(std::abs(end.forward.energy + end.dissipated - 0.5 * M * v0 * v0 - M * g * end.forward.centre.y()) /
+                    (0.5 * M * v0 * v0),
+                1e-9));
   }
 }
 
@@ -68,7 +72,8 @@ TEST(Sliding, AnUprightSkidAtTheDefaultTolerancesCreepsToItsStop) {
   // the upright coin's rest is neutral: friction must keep its side while a trial step passes zero
   // slip (it once flipped with the slip, and the step shrank without end).
   const double v0 = 0.5, mu = 0.3, g = 9.81;
-  const pipeline::Simulation sim = simulationOf(skid({{"radius", 0.0375}, {"mass", 0.4}}, v0, mu, nlohmann::json::object()));
+  const pipeline::Simulation sim =
+      simulationOf(skid({{"radius", 0.0375}, {"mass", 0.4}}, v0, mu, nlohmann::json::object()));
   const double tStar = v0 / (mu * g * (1 + sim.model.M * sim.model.a * sim.model.a / sim.model.I_Z));
   pipeline::CoinRun run(sim);
   const pipeline::RunSample end = *run.sampleAt(1.0);
@@ -148,7 +153,8 @@ TEST(Sliding, ASlideDrivenIntoPainlevesBandStopsWithPainleveAtTheClosedFormTilt)
   ASSERT_TRUE(run.stoppedBy().has_value());
   EXPECT_EQ(run.stoppedBy()->event, physics::ModelEvent::Painleve);
   const auto residual = [&](double theta) {
-    return std::sin(theta) * std::sin(theta) - mu * std::sin(theta) * std::cos(theta) + k * (1 - physics::kPainleveMargin);
+    return std::sin(theta) * std::sin(theta) - mu * std::sin(theta) * std::cos(theta) +
+           k * (1 - physics::kPainleveMargin);
   };
   double lo = 45 * std::numbers::pi / 180, hi = 60 * std::numbers::pi / 180;  // residual < 0 at lo, > 0 at hi
   ASSERT_LT(residual(lo), 0);
@@ -164,13 +170,14 @@ TEST(Sliding, ASlideDrivenIntoPainlevesBandStopsWithPainleveAtTheClosedFormTilt)
 TEST(Sliding, TheEnergyBudgetClosesAcrossSwitches) {
   // A tilted spinning coin set down skidding sideways: it slides, rolls, and may switch again; energy
   // + dissipated (friction's mu N |s| and the air's) stays the initial energy.
-  const nlohmann::json doc = {{"coin", {{"radius", 0.0375}, {"mass", 0.4}, {"thickness", 0.003}}},
-                              {"initial", {{"theta", 20}, {"omega_Y", 5.0}, {"omega_Z", 12.0}, {"v_x", 0.3}, {"v_z", -0.2}}},
-                              {"friction", 0.3},
-                              {"sliding", true},
-                              {"effects", {{{"type", "air_drag"}}}},
-                              {"duration", 1},
-                              {"solver", {{"rtol", 1e-10}}}};
+  const nlohmann::json doc = {
+      {"coin", {{"radius", 0.0375}, {"mass", 0.4}, {"thickness", 0.003}}},
+      {"initial", {{"theta", 20}, {"omega_Y", 5.0}, {"omega_Z", 12.0}, {"v_x", 0.3}, {"v_z", -0.2}}},
+      {"friction", 0.3},
+      {"sliding", true},
+      {"effects", {{{"type", "air_drag"}}}},
+      {"duration", 1},
+      {"solver", {{"rtol", 1e-10}}}};
   const pipeline::Simulation sim = simulationOf(doc);
   pipeline::CoinRun run(sim);
   const double E0 = run.sampleAt(0)->forward.energy;
@@ -255,8 +262,9 @@ TEST(Sliding, TheCsvCarriesTheSlipAndTheSwitches) {
   std::string header, first;
   std::getline(lines, header);
   std::getline(lines, first);
-  EXPECT_EQ(header, "t,theta,phi,psi,omega_X,omega_Y,omega_Z,x,y,z,contact_x,contact_z,energy,normal_force,friction_force,"
-                    "power,dissipated,slip_speed,sliding");
+  EXPECT_EQ(header,
+            "t,theta,phi,psi,omega_X,omega_Y,omega_Z,x,y,z,contact_x,contact_z,energy,normal_force,friction_force,"
+            "power,dissipated,slip_speed,sliding");
   EXPECT_EQ(first.substr(first.rfind(',') - 1), "1,1");  // slip speed 1 m/s, sliding
   ASSERT_EQ(result.switches.size(), 1u);
 }
@@ -285,5 +293,6 @@ TEST(Sliding, TheOverlayShowsTheSlipWhileSlidingAndOnlyThen) {
   pipeline::SnapshotMaker maker(scene, sim.model, record);
   const std::string slip = hudLineStartingWith(maker.makeSnapshot(record.frames.at(0)).hudLines, "sliding");
   EXPECT_EQ(slip, fmt::format("sliding  {:9.2f} mm/s slip", 1e3 * (v0 - 3 * mu * g * t)));
-  EXPECT_EQ(hudLineStartingWith(maker.makeSnapshot(record.frames.at(1)).hudLines, "sliding"), "");  // rolling from t = 0.0566 s
+  EXPECT_EQ(hudLineStartingWith(maker.makeSnapshot(record.frames.at(1)).hudLines, "sliding"),
+            "");  // rolling from t = 0.0566 s
 }

@@ -78,7 +78,8 @@ TEST(RunRecord, EachFrameIsWhatARunSampledOnlyAtTheFrameTimesGives) {
     ASSERT_LE(record.frames.back().time, end);
     // Without a remap the frames are those of k time_scale / fps up to the end, an early one too.
     if (!scene.render.timeRemap) {
-      EXPECT_EQ(static_cast<long>(record.frames.size()), pipeline::frameCount(end, scene.render.timeScale, scene.render.fps));
+      EXPECT_EQ(static_cast<long>(record.frames.size()),
+                pipeline::frameCount(end, scene.render.timeScale, scene.render.fps));
     }
     const std::optional<pipeline::RunSample> last = alone.sampleAt(end);
     ASSERT_TRUE(last.has_value());

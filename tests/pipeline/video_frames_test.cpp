@@ -32,7 +32,8 @@ class RecordingSink final : public video::FrameSink {
 // The frame times the one pass over the run chose.
 std::vector<double> frameTimes(const scene::SceneConfig& scene, const pipeline::Simulation& simulation) {
   std::vector<double> times;
-  for (const pipeline::FrameState& frame : pipeline::recordFrames(scene, simulation).frames) times.push_back(frame.time);
+  for (const pipeline::FrameState& frame : pipeline::recordFrames(scene, simulation).frames)
+    times.push_back(frame.time);
   return times;
 }
 
@@ -71,7 +72,8 @@ TEST(FrameCount, MatchesExactRationalArithmeticWhereTheProductRoundsBelowAWholeN
   for (long n = 1; n <= 3000; ++n) {
     for (const Ratio ts : {Ratio{1, 1}, Ratio{1, 2}, Ratio{1, 4}, Ratio{1, 10}, Ratio{3, 10}, Ratio{2, 1}}) {
       for (const long fps : {7, 10, 24, 25, 30, 60, 100, 120}) {
-        const double d = static_cast<double>(n) / 100, timeScale = static_cast<double>(ts.num) / static_cast<double>(ts.den);
+        const double d = static_cast<double>(n) / 100,
+                     timeScale = static_cast<double>(ts.num) / static_cast<double>(ts.den);
         const long expected = exactFrameCount(n, 100, ts.num, ts.den, fps);
         const long actual = pipeline::frameCount(d, timeScale, static_cast<int>(fps));
         if (actual != expected && ++failures <= 10) {
@@ -97,7 +99,8 @@ TEST(FrameCount, LongClipsWhoseProductFallsShortByMoreThanAnAbsoluteNudge) {
     const long expected = exactFrameCount(n, 100, 1, 10, 60);
     const long actual = pipeline::frameCount(d, 0.1, 60);
     if (actual != expected && ++failures <= 10) {
-      ADD_FAILURE() << "frameCount(" << n << " / 100 s, time scale 0.1, 60 fps) = " << actual << ", exactly " << expected;
+      ADD_FAILURE() << "frameCount(" << n << " / 100 s, time scale 0.1, 60 fps) = " << actual << ", exactly "
+                    << expected;
     }
     if (x + 1e-9 < static_cast<double>(expected - 1)) ++beyondAnAbsoluteNudge;
   }
@@ -110,12 +113,14 @@ TEST(FrameTimes, RemapHoldsTheOnScreenSpinRateAtTheLimit) {
   const pipeline::Simulation simulation = pipeline::buildSimulation(scene);
   const std::vector<double> constant = frameTimes(scene, simulation);
   ASSERT_EQ(constant.size(), 21u);
-  scene.render.timeRemap = scene::TimeRemap{.rate = scene::TimeRemap::Rate::Spin, .limit = 1000};  // far above the coin's ~15 rad/s: no effect
+  scene.render.timeRemap = scene::TimeRemap{.rate = scene::TimeRemap::Rate::Spin,
+                                            .limit = 1000};  // far above the coin's ~15 rad/s: no effect
   const std::vector<double> unchanged = frameTimes(scene, simulation);
   ASSERT_EQ(unchanged.size(), constant.size());
   for (std::size_t k = 0; k < constant.size(); ++k) EXPECT_NEAR(unchanged[k], constant[k], 1e-14);
 
-  scene.render.timeRemap = scene::TimeRemap{.rate = scene::TimeRemap::Rate::Spin, .limit = 5};  // the coin spins at about 15 rad/s: about three times slower
+  scene.render.timeRemap = scene::TimeRemap{.rate = scene::TimeRemap::Rate::Spin,
+                                            .limit = 5};  // the coin spins at about 15 rad/s: about three times slower
   const std::vector<double> remapped = frameTimes(scene, simulation);
   EXPECT_GT(remapped.size(), 2.5 * constant.size());
   pipeline::CoinRun trajectory(simulation);
@@ -138,7 +143,8 @@ TEST(FrameTimes, RemapWithGrowthShowsTheRateGrowingAsItsPowerOfTheRealOne) {
     ASSERT_GT(spin, 2);
     // On screen, time_scale S (spin / S)^(1/2) rad per video second: about 2.7 for ~15 rad/s, far
     // below the quarter turn per frame (15.7 at 10 fps).
-    EXPECT_NEAR(spin * (remapped[k + 1] - remapped[k]) * scene.render.fps, 0.5 * 2 * std::sqrt(spin / 2), 1e-12) << "frame " << k;
+    EXPECT_NEAR(spin * (remapped[k + 1] - remapped[k]) * scene.render.fps, 0.5 * 2 * std::sqrt(spin / 2), 1e-12)
+        << "frame " << k;
   }
 }
 
@@ -196,7 +202,8 @@ TEST(RenderVideo, AFrameDependsOnlyOnItsTimeNotOnTheFrameRate) {
   ASSERT_EQ(ten.frames.size(), 11u);
   ASSERT_EQ(five.frames.size(), 6u);
   // The HUD shows the same t; the trace holds the same points up to t; the pose is the same.
-  for (std::size_t k = 0; k < five.frames.size(); ++k) EXPECT_EQ(five.frames[k].rgba, ten.frames[2 * k].rgba) << "frame " << k;
+  for (std::size_t k = 0; k < five.frames.size(); ++k)
+    EXPECT_EQ(five.frames[k].rgba, ten.frames[2 * k].rgba) << "frame " << k;
 }
 
 // The frames a window writes (--from/--to), against the full render's: the same frames, byte for
@@ -217,7 +224,8 @@ void expectWindowIsASliceOfTheFullRender(const scene::SceneConfig& scene, double
   EXPECT_EQ(result.frames, static_cast<long>(inside.size()));
   EXPECT_EQ(window.finishes, 1);
   for (std::size_t i = 0; i < inside.size(); ++i) {
-    EXPECT_EQ(window.frames[i].rgba, full.frames[inside[i]].rgba) << "window frame " << i << " (t = " << times[inside[i]] << " s)";
+    EXPECT_EQ(window.frames[i].rgba, full.frames[inside[i]].rgba)
+        << "window frame " << i << " (t = " << times[inside[i]] << " s)";
   }
 }
 
@@ -298,7 +306,8 @@ TEST(RenderVideo, TheSoundTrackFadesInFromAndOutToSilence) {
   for (std::size_t i = 0; i < fade; ++i) {
     const double ramp = 0.5 - 0.5 * std::cos(std::numbers::pi * static_cast<double>(i) / static_cast<double>(fade));
     EXPECT_LE(std::abs(sink.samples[i]), volume * ramp + 1e-6) << "sample " << i;
-    EXPECT_LE(std::abs(sink.samples[sink.samples.size() - 1 - i]), volume * ramp + 1e-6) << "sample " << i << " from the end";
+    EXPECT_LE(std::abs(sink.samples[sink.samples.size() - 1 - i]), volume * ramp + 1e-6)
+        << "sample " << i << " from the end";
   }
   EXPECT_EQ(sink.samples.front(), 0.0f);
   EXPECT_EQ(sink.samples.back(), 0.0f);

@@ -82,7 +82,8 @@ TEST(GlBackendNames, ABackEndThisBuildLacksIsRefusedNamingItsCMakeOption) {
     if (isCompiledIn(backend)) continue;
     const std::string message = refusal(glBackendName(backend));
     EXPECT_NE(message.find("built without"), std::string::npos) << message;
-    EXPECT_NE(message.find(backend == GlBackend::OsMesa ? "COINROLL_WITH_OSMESA" : "COINROLL_WITH_EGL"), std::string::npos)
+    EXPECT_NE(message.find(backend == GlBackend::OsMesa ? "COINROLL_WITH_OSMESA" : "COINROLL_WITH_EGL"),
+              std::string::npos)
         << message;
   }
 }
@@ -115,7 +116,8 @@ TEST(GlBackendNames, TheVersionLineNamesTheCompiledBackEndsAndTheSelectedOne) {
 // marker, the coin and its ghosts, the overlay.
 FrameSnapshot busySnapshot(float time) {
   const auto attitude = [](float theta, float phi, float psi) {
-    return glm::angleAxis(phi, glm::vec3(0, 1, 0)) * glm::angleAxis(theta, glm::vec3(1, 0, 0)) * glm::angleAxis(psi, glm::vec3(0, 0, 1));
+    return glm::angleAxis(phi, glm::vec3(0, 1, 0)) * glm::angleAxis(theta, glm::vec3(1, 0, 0)) *
+           glm::angleAxis(psi, glm::vec3(0, 0, 1));
   };
   FrameSnapshot s;
   s.camera = {{0.0f, 0.20f, 0.30f}, {0.0f, 0.0f, 0.0f}, 35.0f};
@@ -127,7 +129,8 @@ FrameSnapshot busySnapshot(float time) {
   s.coin = {glm::vec3(s.trace.back().x, 0.034f, s.trace.back().y), attitude(0.45f, time, 5 * time)};
   for (int g = 0; g < 3; ++g) {
     const glm::vec2 at = s.trace[static_cast<std::size_t>(40 * g)];
-    s.ghosts.push_back({glm::vec3(at.x, 0.034f, at.y), attitude(0.45f, 0.5f * static_cast<float>(g), 0.3f * static_cast<float>(g))});
+    s.ghosts.push_back(
+        {glm::vec3(at.x, 0.034f, at.y), attitude(0.45f, 0.5f * static_cast<float>(g), 0.3f * static_cast<float>(g))});
   }
   s.hudLines = {"t        1.000 s", "tilt     25.00 deg"};
   return s;
@@ -165,7 +168,8 @@ TEST(GlBackends, OsmesaAndEglDrawTheSameBytesSideBySide) {
       const Image before = kept.draw(busySnapshot(1.2f));
       ASSERT_EQ(before.rgba[3], 255) << "an opaque picture";
       (survivor == GlBackend::Egl ? osmesa : egl).reset();
-      EXPECT_EQ(kept.draw(busySnapshot(1.2f)).rgba, before.rgba) << glBackendName(survivor) << " after the other was destroyed";
+      EXPECT_EQ(kept.draw(busySnapshot(1.2f)).rgba, before.rgba)
+          << glBackendName(survivor) << " after the other was destroyed";
     }
   }
 }

@@ -68,7 +68,8 @@ std::optional<PixelBox> differingBox(const Image& a, const Image& b) {
 // Renders `lines` over the upright coin, and the same with every character but spaces replaced
 // by spaces: the panel is then the same size (the font is monospaced), so the pixels that differ
 // are the glyphs' ink alone.
-std::pair<Image, Image> withAndWithoutInk(Renderer& renderer, const std::vector<std::string>& lines, std::size_t blankColumns) {
+std::pair<Image, Image> withAndWithoutInk(Renderer& renderer, const std::vector<std::string>& lines,
+                                          std::size_t blankColumns) {
   FrameSnapshot s = uprightCoin();
   s.hudLines = lines;
   const Image ink = renderer.draw(s);
@@ -83,7 +84,8 @@ TEST(OverlayText, EverySymbolTheLabelsUseHasInk) {
     EXPECT_NE(&g, &atlas.glyph(0xFFFD)) << "U+" << std::hex << unsigned(c) << " falls back to the replacement glyph";
     long ink = 0;
     for (int y = int(g.atlasMin.y); y < int(g.atlasMax.y); ++y) {
-      for (int x = int(g.atlasMin.x); x < int(g.atlasMax.x); ++x) ink += atlas.coverage()[std::size_t(y) * atlas.width() + x];
+      for (int x = int(g.atlasMin.x); x < int(g.atlasMax.x); ++x)
+        ink += atlas.coverage()[std::size_t(y) * atlas.width() + x];
     }
     EXPECT_GT(ink, 255 * 4) << "U+" << std::hex << unsigned(c) << " has (almost) no ink";
   }
@@ -113,7 +115,8 @@ TEST(OverlayText, HeightScalesWithThePictureHeight) {
     ASSERT_TRUE(box.has_value());
     heights.push_back(box->height());
   }
-  EXPECT_NEAR(heights[1], 3 * heights[0], 3) << "H is " << heights[0] << " px at 480 rows, " << heights[1] << " at 1440";
+  EXPECT_NEAR(heights[1], 3 * heights[0], 3)
+      << "H is " << heights[0] << " px at 480 rows, " << heights[1] << " at 1440";
   // DejaVu Sans Mono's capitals are 1493 of the 2384 font units from descent to ascent, the size set.
   EXPECT_NEAR(heights[0], 1493.0 / 2384 * 480 / 45, 1.5);
 }
@@ -199,7 +202,8 @@ TEST(ScaleBar, SpansTheProjectionOfItsLengthOnTheFloor) {
     EXPECT_NEAR(left, std::min(start.x, end.x), 1.0) << metres;
     EXPECT_NEAR(right + 1, std::max(start.x, end.x), 1.0) << metres;
     EXPECT_NEAR(covered, std::abs(end.x - start.x), 1.0) << metres;
-    std::cerr << "scale bar " << bar.label << ": covers " << covered << " px, projects to " << std::abs(end.x - start.x) << " px\n";
+    std::cerr << "scale bar " << bar.label << ": covers " << covered << " px, projects to " << std::abs(end.x - start.x)
+              << " px\n";
     EXPECT_GT(std::abs(end.x - start.x), 20) << "the bar must be long enough for the test to mean something";
   }
 }

@@ -49,8 +49,8 @@ RenderSettings smallSettings() {
 
 // The physics' attitude convention (docs/seed.md §4): q = q_y(phi) q_x(theta) q_z(psi).
 CoinPose pose(double theta, double phi, double psi, glm::vec2 floorPosition = {0, 0}) {
-  const glm::quat q = glm::angleAxis(float(phi), glm::vec3(0, 1, 0)) * glm::angleAxis(float(theta), glm::vec3(1, 0, 0)) *
-                      glm::angleAxis(float(psi), glm::vec3(0, 0, 1));
+  const glm::quat q = glm::angleAxis(float(phi), glm::vec3(0, 1, 0)) *
+                      glm::angleAxis(float(theta), glm::vec3(1, 0, 0)) * glm::angleAxis(float(psi), glm::vec3(0, 0, 1));
   return {glm::vec3(floorPosition.x, kRadius * std::cos(theta), floorPosition.y), q};
 }
 
@@ -80,7 +80,9 @@ FrameSnapshot goldenSnapshot(const std::string& name) {
   return s;
 }
 
-fs::path goldenPath(const std::string& name) { return fs::path(COINROLL_SOURCE_DIR) / "tests/render/golden" / (name + ".png"); }
+fs::path goldenPath(const std::string& name) {
+  return fs::path(COINROLL_SOURCE_DIR) / "tests/render/golden" / (name + ".png");
+}
 
 class GoldenTest : public ::testing::TestWithParam<std::string> {};
 
@@ -104,7 +106,8 @@ TEST_P(GoldenTest, MatchesGolden) {
   ASSERT_TRUE(fs::exists(golden)) << golden << " is missing; run with COINROLL_UPDATE_GOLDEN=1 to create it";
   const Image expected = coinroll::image::readPng(golden);
   ASSERT_TRUE(actual.width == expected.width && actual.height == expected.height)
-      << golden << " is " << expected.width << "x" << expected.height << ", the render " << actual.width << "x" << actual.height;
+      << golden << " is " << expected.width << "x" << expected.height << ", the render " << actual.width << "x"
+      << actual.height;
   const ImageComparison d = coinroll::image::compareImages(actual, expected, thresholds.channelTolerance);
   if (actual.rgba == expected.rgba) return;
   const fs::path diffPath = fs::path(COINROLL_BINARY_DIR) / ("golden_diff_" + name + ".png");
@@ -115,15 +118,17 @@ TEST_P(GoldenTest, MatchesGolden) {
                              std::to_string(coinroll::testing::pixelChecksum(expected)) + ": " +
                              std::to_string(d.differingPixels) + " pixels differ (" +
                              std::to_string(100 * d.differingFraction()) + " %), max channel difference " +
-                             std::to_string(d.maxChannelDifference) + ", PSNR " + std::to_string(d.psnr) + " dB; diff " +
-                             diffPath.string() + ", actual " + actualPath.string();
+                             std::to_string(d.maxChannelDifference) + ", PSNR " + std::to_string(d.psnr) +
+                             " dB; diff " + diffPath.string() + ", actual " + actualPath.string();
   const bool passes = coinroll::image::withinThresholds(d, thresholds);
   EXPECT_TRUE(passes) << report
                       << (tolerant ? ""
                                           : "; exact match required. On a CPU other than the goldens' (llvmpipe rounds "
                                             "edge pixels per CPU), COINROLL_GOLDEN_TOLERANT=1 accepts rounding-level "
                                             "differences (docs/snapshot_testing.md)");
-  if (passes) std::cerr << "note: " << name << " is not bit-exact on this machine (passing: COINROLL_GOLDEN_TOLERANT=1): " << report << '\n';
+  if (passes)
+    std::cerr << "note: " << name
+              << " is not bit-exact on this machine (passing: COINROLL_GOLDEN_TOLERANT=1): " << report << '\n';
 }
 
 INSTANTIATE_TEST_SUITE_P(Snapshots, GoldenTest, ::testing::Values("upright", "tilted30", "spun90", "circle_trace"));
@@ -142,7 +147,8 @@ std::vector<glm::dvec2> changedPixelCentres(const Image& withCoin, const Image& 
     for (int x = 0; x < withCoin.width; ++x) {
       const std::uint8_t* a = withCoin.pixel(x, y);
       const std::uint8_t* b = without.pixel(x, y);
-      if (std::abs(a[0] - b[0]) + std::abs(a[1] - b[1]) + std::abs(a[2] - b[2]) >= threshold) centres.emplace_back(x + 0.5, y + 0.5);
+      if (std::abs(a[0] - b[0]) + std::abs(a[1] - b[1]) + std::abs(a[2] - b[2]) >= threshold)
+        centres.emplace_back(x + 0.5, y + 0.5);
     }
   }
   return centres;
@@ -216,7 +222,8 @@ TEST(RenderSemantics, SilhouetteSitsWhereTheCameraProjectsTheCoin) {
   // The silhouette's extent in the image must match the extremes of the rim circles of both
   // faces (computed from the pose alone) through the pinhole above: placement, size, orientation.
   double worst = 0;
-  for (const CoinPose& coin : {pose(0, 0, 0), pose(0.4, 0.7, 0, {0.04f, -0.02f}), pose(0.9, -1.2, 2.0, {-0.05f, 0.03f})}) {
+  for (const CoinPose& coin :
+       {pose(0, 0, 0), pose(0.4, 0.7, 0, {0.04f, -0.02f}), pose(0.9, -1.2, 2.0, {-0.05f, 0.03f})}) {
     const FrameSnapshot s = bareSnapshot(coin, camera);
     const PixelBox drawn = changedPixels(renderer.draw(s), withoutCoin(renderer, s));
     double minX = 1e9, maxX = -1e9, minY = 1e9, maxY = -1e9;
@@ -225,7 +232,8 @@ TEST(RenderSemantics, SilhouetteSitsWhereTheCameraProjectsTheCoin) {
       const double angle = 2 * kPi * i / 720;
       for (double side : {-0.5, 0.5}) {
         const glm::dvec3 body(kRadius * std::cos(angle), kRadius * std::sin(angle), side * settings.coin.thickness);
-        const glm::dvec2 p = pinholePixel(camera, settings.width, settings.height, glm::dvec3(coin.centre) + attitude * body);
+        const glm::dvec2 p =
+            pinholePixel(camera, settings.width, settings.height, glm::dvec3(coin.centre) + attitude * body);
         minX = std::min(minX, p.x);
         maxX = std::max(maxX, p.x);
         minY = std::min(minY, p.y);
@@ -280,8 +288,8 @@ TEST(RenderSemantics, SpinMarkerTurnsWithPsi) {
     const CameraView camera{coin.centre + glm::vec3(0.0f, 0.0f, 0.25f), coin.centre, 30.0f};
     const Image picture = renderer.draw(bareSnapshot(coin, camera));
     const glm::dvec2 centre = pinholePixel(camera, settings.width, settings.height, coin.centre);
-    const double radiusPixels =
-        glm::length(pinholePixel(camera, settings.width, settings.height, coin.centre + glm::vec3(kRadius, 0, 0)) - centre);
+    const double radiusPixels = glm::length(
+        pinholePixel(camera, settings.width, settings.height, coin.centre + glm::vec3(kRadius, 0, 0)) - centre);
     // The bar reaches 0.78 a from the centre, the dot only 0.68 a: blue beyond 0.72 a is the
     // bar's tip alone, and its mean direction is the bar's.
     glm::dvec2 sum(0);
@@ -351,8 +359,10 @@ TEST(RenderSemantics, RoundedRimRestsOnTheFloorAtItsContactPoint) {
     ASSERT_GT(coinPixels.size(), 1000u) << "rho " << rho;
 
     // The floor line: the image of any two floor points (all of them lie on it).
-    const glm::dvec2 left = pinholePixel(camera, settings.width, settings.height, resting.contact + glm::dvec3(0, 0, 0.05));
-    const glm::dvec2 right = pinholePixel(camera, settings.width, settings.height, resting.contact - glm::dvec3(0, 0, 0.05));
+    const glm::dvec2 left =
+        pinholePixel(camera, settings.width, settings.height, resting.contact + glm::dvec3(0, 0, 0.05));
+    const glm::dvec2 right =
+        pinholePixel(camera, settings.width, settings.height, resting.contact - glm::dvec3(0, 0, 0.05));
     auto floorLineY = [&](double x) { return left.y + (right.y - left.y) * (x - left.x) / (right.x - left.x); };
     const glm::dvec2 contact = pinholePixel(camera, settings.width, settings.height, resting.contact);
 
@@ -379,14 +389,17 @@ TEST(RenderSemantics, RoundedRimRestsOnTheFloorAtItsContactPoint) {
     // A coin at or above the floor covers no sample below the line, so its pixel centres end at
     // most half a pixel below it. Bound: the centre at most one pixel below (rasterisation slack).
     // Measured: 0.07 px below (rho = h/2) and 0.50 px above (rho = h/4); none wholly below.
-    EXPECT_TRUE(isBelow(deepest, 1.0)) << "rho " << rho << ": " << whollyBelow << " coin pixels wholly below the floor line";
+    EXPECT_TRUE(isBelow(deepest, 1.0)) << "rho " << rho << ": " << whollyBelow
+                                       << " coin pixels wholly below the floor line";
     // The lowest pixel row touches the line at the contact point, and across the rounded corner
     // its run is symmetric about it. Measured: at most 0.44 px off horizontally and 0.50 px
     // vertically (the row's centre is half a pixel above a line on a pixel edge). Bound: 1 px.
     EXPECT_TRUE(isNear(lowest.x, contact.x, 1.0)) << "rho " << rho << " horizontally";
     EXPECT_TRUE(isNear(lowest.y, contact.y, 1.0)) << "rho " << rho << " vertically";
-    std::cerr << "rho " << rho * 1000 << " mm: contact (" << contact.x << ", " << contact.y << ") px on the floor line, lowest "
-              << "coin pixel (" << lowest.x << ", " << lowest.y << ") px (mean of " << countX << " in its row), deepest coin "
+    std::cerr << "rho " << rho * 1000 << " mm: contact (" << contact.x << ", " << contact.y
+              << ") px on the floor line, lowest "
+              << "coin pixel (" << lowest.x << ", " << lowest.y << ") px (mean of " << countX
+              << " in its row), deepest coin "
               << "pixel centre " << deepest << " px below the line, " << whollyBelow << " pixels wholly below, "
               << coinPixels.size() << " coin pixels\n";
   }
@@ -413,7 +426,8 @@ TEST(RenderAntialiasing, EdgesApproachASupersampledReference) {
   // Measured here 33.3, 34.5 and 36.2 dB: each mode must keep its rank by about a decibel.
   EXPECT_GT(fxaa, none + 0.6) << "FXAA no longer smooths edges";
   EXPECT_GT(msaa4, fxaa + 1.0) << "4x MSAA no longer beats FXAA clearly";
-  std::cerr << "edge PSNR against 64 samples: none " << none << " dB, fxaa " << fxaa << " dB, msaa 4 " << msaa4 << " dB\n";
+  std::cerr << "edge PSNR against 64 samples: none " << none << " dB, fxaa " << fxaa << " dB, msaa 4 " << msaa4
+            << " dB\n";
 }
 
 TEST(RenderDeterminism, SameSnapshotSameBytesAcrossRenderers) {
@@ -438,7 +452,8 @@ TEST(RenderDeterminism, ReusedBackgroundGivesTheSameBytesAsShadingIt) {
   CameraView moved = still;
   moved.eye.x += 0.02f;
   const std::vector<CameraView> cameras = {still, still, still, still, moved, moved, still, still, still};
-  for (const auto& [antialiasing, msaa] : {std::pair{Antialiasing::Msaa, 4}, {Antialiasing::Msaa, 1}, {Antialiasing::Fxaa, 1}}) {
+  for (const auto& [antialiasing, msaa] :
+       {std::pair{Antialiasing::Msaa, 4}, {Antialiasing::Msaa, 1}, {Antialiasing::Fxaa, 1}}) {
     RenderSettings reusing = smallSettings();
     reusing.antialiasing = antialiasing;
     reusing.msaa = msaa;
@@ -478,7 +493,8 @@ TEST(RenderErrors, EdgeRadiusMustFitTheCrossSection) {
     s.coin = {kRadius, inner, 0.013f, edgeRadius};
     return s;
   };
-  for (const auto& [inner, edgeRadius] : {std::pair{0.0f, -0.001f}, {0.0f, 0.0066f}, {0.035f, 0.0026f}, {0.0f, std::nanf("")}}) {
+  for (const auto& [inner, edgeRadius] :
+       {std::pair{0.0f, -0.001f}, {0.0f, 0.0066f}, {0.035f, 0.0026f}, {0.0f, std::nanf("")}}) {
     try {
       Renderer renderer(settingsWith(inner, edgeRadius));
       FAIL() << "edge radius " << edgeRadius << " with inner radius " << inner << " accepted";
@@ -573,7 +589,8 @@ TEST(CoinMesh, FilletedRimStaysInsideTheRoundedSolid) {
           const glm::dvec3 n(v.normal);
           ASSERT_TRUE(isNear(glm::length(p - tubeCentre), rho, tol)) << "off the torus: r " << r << ", z " << z;
           ASSERT_TRUE(isNear(glm::length(n), 1.0, 1e-6)) << "normal not unit at r " << r << ", z " << z;
-          ASSERT_TRUE(isNear(glm::dot(n, (p - tubeCentre) / rho), 1.0, 1e-5)) << "normal not outward at r " << r << ", z " << z;
+          ASSERT_TRUE(isNear(glm::dot(n, (p - tubeCentre) / rho), 1.0, 1e-5))
+              << "normal not outward at r " << r << ", z " << z;
         } else if (v.part != float(CoinPart::InnerRim)) {
           ASSERT_TRUE(isNear(std::abs(z), h / 2, tol) && r <= a - rho + tol) << "face vertex at r " << r << ", z " << z;
         }
@@ -592,7 +609,8 @@ TEST(CoinMesh, FilletedIsClosedWithOutwardNormals) {
   constexpr int kSegments = 64;
   for (const double inner : {0.0, 0.01}) {
     for (const double rho : {h / 4, h / 2}) {
-      const std::vector<CoinVertex> triangles = coinTriangles({float(a), float(inner), float(h), float(rho)}, kSegments);
+      const std::vector<CoinVertex> triangles =
+          coinTriangles({float(a), float(inner), float(h), float(rho)}, kSegments);
       const double rc = a - rho, zc = h / 2 - rho;
       double signedVolume = 0;
       for (std::size_t i = 0; i < triangles.size(); i += 3) {
@@ -615,7 +633,8 @@ TEST(TraceRibbon, SkipsRepeatsAndKeepsTheWidth) {
   const std::vector<glm::vec2> points = {{0, 0}, {0, 0}, {1, 0}, {2, 0}, {2, 0}};
   const std::vector<RibbonVertex> strip = ribbonStrip(points, 0.1f);
   ASSERT_EQ(strip.size(), 6u);
-  for (std::size_t i = 0; i < strip.size(); i += 2) EXPECT_FLOAT_EQ(glm::length(strip[i].position - strip[i + 1].position), 0.1f);
+  for (std::size_t i = 0; i < strip.size(); i += 2)
+    EXPECT_FLOAT_EQ(glm::length(strip[i].position - strip[i + 1].position), 0.1f);
   EXPECT_FLOAT_EQ(strip.front().age, 1.0f);
   EXPECT_FLOAT_EQ(strip.back().age, 0.25f);  // the last distinct point is index 3 of 0..4
   EXPECT_TRUE(ribbonStrip({{1, 1}, {1, 1}}, 0.1f).empty());

@@ -39,12 +39,14 @@ void PrintTo(const BadScene& c, std::ostream* out) { *out << c.id; }
 
 std::vector<BadScene> tableCases() {
   std::ifstream file(COINROLL_BAD_SCENE_CASES);
-  if (!file) throw std::runtime_error("cannot open " COINROLL_BAD_SCENE_CASES "; the build exports it from bad_inputs.py");
+  if (!file)
+    throw std::runtime_error("cannot open " COINROLL_BAD_SCENE_CASES "; the build exports it from bad_inputs.py");
   std::vector<BadScene> cases;
   for (const nlohmann::json& entry : nlohmann::json::parse(file)) {
     const std::string hex = entry.at("scene_hex");
     std::string bytes;
-    for (std::size_t i = 0; i + 1 < hex.size(); i += 2) bytes.push_back(static_cast<char>(std::stoi(hex.substr(i, 2), nullptr, 16)));
+    for (std::size_t i = 0; i + 1 < hex.size(); i += 2)
+      bytes.push_back(static_cast<char>(std::stoi(hex.substr(i, 2), nullptr, 16)));
     cases.push_back({entry.at("id"), bytes, entry.at("overrides"), entry.at("message"), entry.at("or_message")});
   }
   return cases;

@@ -116,7 +116,8 @@ TEST(SceneSchema, EveryDefaultIsAccepted) {
 
 TEST(SceneSchema, EachObjectAllowsTheTablesKeysInItsOrder) {
   const std::string refused = refusal(schema::key("coin.radius"), {"coin.colour=1"});
-  EXPECT_EQ(refused, fmt::format("scene.json: coin.colour: unknown key; allowed here: {}", fmt::join(schema::keysIn("coin"), ", ")));
+  EXPECT_EQ(refused, fmt::format("scene.json: coin.colour: unknown key; allowed here: {}",
+                                 fmt::join(schema::keysIn("coin"), ", ")));
   EXPECT_EQ(fmt::format("{}", fmt::join(schema::keysIn("render.video"), ", ")), "crf, preset, threads");
 }
 
@@ -160,7 +161,8 @@ TEST(SceneSchema, TheFuzzersDictionaryHasEveryKeyAndName) {
     for (const std::string_view name : key.names) words.insert(std::string(name));
   }
   for (const std::string& word : words) {
-    EXPECT_NE(dictionary.find(fmt::format("\"\\\"{}\\\"\"", word)), std::string::npos) << "tests/fuzz/scene.dict lacks " << word;
+    EXPECT_NE(dictionary.find(fmt::format("\"\\\"{}\\\"\"", word)), std::string::npos)
+        << "tests/fuzz/scene.dict lacks " << word;
   }
 }
 
@@ -168,9 +170,11 @@ TEST(SceneSchema, TheFuzzersDictionaryHasEveryKeyAndName) {
 // its siblings by name. Each must be a key of the schema, so the contract cannot name a key the program lost.
 TEST(SceneSchema, TheContractsSceneTableNamesOnlySchemaKeys) {
   const std::string contract = readSource("docs/contract.md");
-  const std::string section = contract.substr(contract.find("## 1. The scene file"), contract.find("## 2.") - contract.find("## 1."));
+  const std::string section =
+      contract.substr(contract.find("## 1. The scene file"), contract.find("## 2.") - contract.find("## 1."));
   std::set<std::string> paths;
-  for (const schema::Key& key : schema::keys()) paths.insert(std::regex_replace(key.path, std::regex(R"(\[steady\])"), ""));
+  for (const schema::Key& key : schema::keys())
+    paths.insert(std::regex_replace(key.path, std::regex(R"(\[steady\])"), ""));
   int named = 0;
   std::istringstream lines(section);
   for (std::string line; std::getline(lines, line);) {

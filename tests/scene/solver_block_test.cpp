@@ -40,12 +40,14 @@ TEST(SolverBlock, TheMethodIsResolvedToItsType) {
 TEST(SolverBlock, RangesAreNamedWithTheirDefaults) {
   EXPECT_EQ(refusal({{"rtol", 0}}), "scene.json: solver.rtol: must be in [1e-14, 1e-2] (default 1e-10), got 0");
   EXPECT_EQ(refusal({{"atol", 0.1}}),
-            "scene.json: solver.atol: must be in (0, 1e-2] (default 1e-12; 0 cannot weigh a state component that is 0), got 0.1");
+            "scene.json: solver.atol: must be in (0, 1e-2] (default 1e-12; 0 cannot weigh a state component that is "
+            "0), got 0.1");
   EXPECT_EQ(refusal({{"dt", 2}}), "scene.json: solver.dt: must be in [1e-7, 1] s (default 1e-3), got 2");
   EXPECT_EQ(refusal({{"formulation", "euler"}}),
             "scene.json: solver.formulation: unknown formulation \"euler\"; available: euler-angles, quaternion");
-  EXPECT_EQ(withSolver({{"rtol", integrate::kMinRtol}, {"atol", integrate::kMaxAtol}, {"dt", integrate::kMaxDt}}).solver.rtol,
-            integrate::kMinRtol);
+  EXPECT_EQ(
+      withSolver({{"rtol", integrate::kMinRtol}, {"atol", integrate::kMaxAtol}, {"dt", integrate::kMaxDt}}).solver.rtol,
+      integrate::kMinRtol);
 }
 
 TEST(SolverBlock, AFixedStepRunTooLongForTheStepLimitIsRefusedByName) {

@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
-# Installs every Debian package coinroll needs to build, test, render and chart.
-# Idempotent: skips apt entirely when everything is already installed (tools/apt_install.sh).
+# Installs every Debian package coinroll needs to build, test, render and chart, and the page's npm
+# packages (web/package-lock.json) into web/node_modules.
+# Idempotent: skips apt entirely when everything is already installed (tools/apt_install.sh), and
+# npm when web/node_modules was installed from the same lockfile.
 set -euo pipefail
+here=$(cd "$(dirname "$0")" && pwd)
 
 packages=(
   cmake g++ pkg-config make
@@ -17,7 +20,20 @@ packages=(
   python3-dev pybind11-dev python3-pybind11 python3-pytest  # the Python module (python/) and its tests
   parallel
   emscripten node-acorn  # the WebAssembly core (tools/build_wasm.sh, docs/web.md); acorn for em++'s JavaScript optimizer
+  chromium  # the page's browser test (tests/web/page_test.mjs), driven by puppeteer-core without a browser download
   slurm-wlm munge  # tests/slurm/slurm_test.py starts a one-node Slurm
 )
 
-exec "$(dirname "$0")/apt_install.sh" "${packages[@]}"
+"$here/apt_install.sh" "${packages[@]}"
+
+# The page's build (esbuild, three.js) and browser test (puppeteer-core): exactly the lockfile's
+# versions. The stamp is the lockfile they were installed from.
+web=$here/../web
+if [ -f "$web/package-lock.json" ] && ! cmp -s "$web/package-lock.json" "$web/node_modules/.coinroll-lock"; then
+  if command -v npm >/dev/null; then
+    (cd "$web" && npm ci --no-audit --no-fund --loglevel=error)
+    cp "$web/package-lock.json" "$web/node_modules/.coinroll-lock"
+  else
+    echo "setup.sh: npm not found: the page (web/) cannot be built and its tests skip" >&2
+  fi
+fi

@@ -91,6 +91,13 @@ struct CompareOptions {
 // exit 2, as cmp(1) does, so a CI can tell "differs" from "could not compare".
 int runCompare(const CompareOptions& options);
 
+// `coinroll export [SCENE] -o page.html`: the web page with the scene in it (docs/web.md).
+struct ExportOptions {
+  SceneSource scene;
+  std::string output;
+};
+void runExport(const ExportOptions& options);
+
 // `coinroll schema`: every key a scene file may hold (scene/scene_schema.h), as JSON for scripts
 // and the web page's controls, or as docs/scene.md's Markdown table.
 struct SchemaOptions {

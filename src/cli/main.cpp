@@ -275,6 +275,19 @@ CLI::App* addCompareCommand(CLI::App& app, CompareOptions& options) {
   return command;
 }
 
+CLI::App* addExportCommand(CLI::App& app, ExportOptions& options) {
+  CLI::App* command = app.add_subcommand(
+      "export", "Write the scene as a web page: coinroll's own physics in WebAssembly, drawn with three.js, with sliders");
+  addSceneOptions(*command, options.scene, false);
+  command->add_option("-o,--output", options.output, "The page to write (one HTML file, about 1.5 MB)")->required();
+  command->footer(
+      "The page opens from file:// with no network: the scene plays at once, and its sliders (from coinroll schema)\n"
+      "re-run it in the browser. \"Download scene\" gives back a scene file that coinroll simulate runs exactly.\n"
+      "  coinroll export examples/euler_disk.json -o euler.html\n"
+      "The page is built beside the program by tools/build_page.sh (docs/web.md \"The page\").");
+  return command;
+}
+
 CLI::App* addSchemaCommand(CLI::App& app, SchemaOptions& options) {
   CLI::App* command = app.add_subcommand(
       "schema", "Print every key a scene file may hold: path, type, unit, default, range, the keys it needs, a line of doc");
@@ -359,7 +372,8 @@ int main(int argc, char** argv) {
       addCommand(app, addSimulateCommand, runSimulate), addCommand(app, addSteadyCommand, runSteady),
       addCommand(app, addRenderCommand, runRender),     addCommand(app, addStillCommand, runStill),
       addCommand(app, addSweepCommand, runSweep),       addCommand(app, addSweepMergeCommand, runSweepMerge),
-      addCommand(app, addCompareCommand, runCompare),   addCommand(app, addSchemaCommand, runSchema)};
+      addCommand(app, addCompareCommand, runCompare),   addCommand(app, addSchemaCommand, runSchema),
+      addCommand(app, addExportCommand, runExport)};
 
   if (const std::optional<std::string> message = unknownCommandMessage(app, argc, argv)) {
     std::cerr << *message;

@@ -1,0 +1,301 @@
+// The page (docs/web.md "The page"): controls built from the scene schema edit a scene, the
+// WebAssembly core runs it in a worker, and three.js plays the run back as the program draws it.
+import { coreSource, workerSource } from 'inline:worker';
+import examples from 'inline:examples';
+import { CameraRig } from './camera_rig.js';
+import { drawnCoinShape } from './coin_geometry.js';
+import { Controls, suggestedValue } from './controls.js';
+import { Cancelled, Runner } from './runner.js';
+import { defaultOf, pathInMessage } from './schema.js';
+import { Trajectory, traceInterval } from './trajectory.js';
+import { View } from './view.js';
+
+const $ = (id) => document.getElementById(id);
+const kLandingHoldSeconds = 1.5;  // pipeline/video_frames.h: a clip holds its last picture this long
+
+// The scene's render settings that playback and the camera read, with the schema's defaults.
+function renderSpec(scene) {
+  const render = scene.render || {}, camera = render.camera || {}, remap = render.time_remap;
+  const or = (value, path) => (value !== undefined ? value : defaultOf(path));
+  return {
+    time_scale: or(render.time_scale, 'render.time_scale'),
+    fps: or(render.fps, 'render.fps'),
+    time_remap: remap && Object.assign({}, remap, { growth: or(remap.growth, 'render.time_remap.growth') }),
+    trace: or(render.trace, 'render.trace'),
+    hud: or(render.hud, 'render.hud'),
+    camera: {
+      mode: or(camera.mode, 'render.camera.mode'), eye: camera.eye, target: camera.target, fov: or(camera.fov, 'render.camera.fov'),
+      orbit_period: or(camera.orbit_period, 'render.camera.orbit_period'), elevation: or(camera.elevation, 'render.camera.elevation'),
+    },
+  };
+}
+
+// The step the page samples a scene at (the renderer's trace interval); 0.01 s, the program's
+// default, where the text is not a scene with a duration (the core then says what is wrong).
+function sampleDtOf(text) {
+  try {
+    const duration = JSON.parse(text).duration;
+    return typeof duration === 'number' && duration > 0 ? traceInterval(duration) : 0.01;
+  } catch (e) {
+    return 0.01;
+  }
+}
+
+const page = {
+  scene: null,          // the scene the controls edit
+  trajectory: null,     // the run on screen
+  run: null,            // {text, sourceName, sampleDt} of that run, what "download scene" writes
+  runRequest: 0,        // the request that made it
+  t: 0, playing: true, speed: 1, holdUntil: 0,
+  changed: (path) => onControl(path),
+  suggestedValue,
+};
+
+const runner = new Runner(coreSource, workerSource);
+const view = new View($('canvas'));
+const controls = new Controls($('controls'), page);
+let rig = null, fixedSize = null, lastFrameTime, request = 0;
+// Whether the latest request is still to be drawn (or refused), and who waits for it (the test hook).
+let pending = true;
+let waiters = [];
+function settle() {
+  pending = false;
+  for (const resolve of waiters) resolve();
+  waiters = [];
+}
+const timing = { firstFrameAt: undefined, last: undefined };
+
+function showSceneText(text) {
+  $('scene-text').value = text;
+}
+
+function onControl(path) {
+  const text = JSON.stringify(page.scene, null, 2);
+  showSceneText(text);
+  controls.refresh();
+  start(text, 'scene.json', { control: path });
+}
+
+// Runs `text`; `origin` is where the user typed it ({control: path} or {box: true}), where a refusal shows.
+async function start(text, sourceName, origin) {
+  const id = ++request;
+  const requestedAt = performance.now();
+  pending = true;
+  controls.clearErrors();
+  $('scene-error').textContent = '';
+  const sampleDt = sampleDtOf(text);
+  const busy = setTimeout(() => { $('busy').hidden = false; }, 150);
+  const progress = (rows, expected) => {
+    $('progress').value = expected > 0 ? rows / expected : 0;
+    $('progress-text').textContent = `${rows} of ${expected} rows`;
+  };
+  progress(0, 0);
+  try {
+    const result = await runner.run(text, sampleDt, sourceName, progress);
+    if (id !== request) return;
+    const scene = JSON.parse(text);
+    if (origin.box) page.scene = scene;
+    page.trajectory = new Trajectory(result, scene, sampleDt, renderSpec(scene));
+    page.run = { text, sourceName, sampleDt };
+    page.runRequest = id;
+    timing.last = { requestedAt, resultAt: performance.now(), workerMs: result.ms };
+    newRun(result);
+    draw();  // now, not at the next animation frame: a frame can take 10 ms and more in software WebGL
+  } catch (e) {
+    if (e instanceof Cancelled || id !== request) return;
+    const message = e.message;
+    const shown = origin.control && (controls.showError(pathInMessage(message, page.scene) || '', message) ||
+                                      controls.showError(origin.control, message));
+    if (!shown) $('scene-error').textContent = message;
+    settle();
+  } finally {
+    if (id === request) {
+      clearTimeout(busy);
+      $('busy').hidden = true;
+    }
+  }
+}
+
+function newRun(result) {
+  const trajectory = page.trajectory;
+  resize();
+  const spec = renderSpec(trajectory.scene);
+  view.setRun(trajectory, drawnCoinShape(trajectory.scene.coin), spec.trace);
+  makeRig();
+  controls.refresh();
+  page.t = 0;
+  page.playing = true;
+  page.holdUntil = 0;
+  $('play').textContent = 'Pause';
+  $('time').max = trajectory.endTime;
+  const end = result.end.event === 'duration' ? `ran its ${result.end.time} s` : `stopped at t = ${result.end.time} s: ${result.end.description}`;
+  $('run-info').textContent = `${result.rows} rows every ${+trajectory.sampleDt.toPrecision(6)} s, ${end}; ` +
+                              `computed in ${result.ms.toFixed(0)} ms by coinroll's WebAssembly core\n${result.report.join('\n')}`;
+  const file = `${trajectory.scene.name || 'coinroll'}.json`;
+  $('command').textContent = `"Download scene" writes the scene of the run on screen; coinroll simulate ${file} --csv - ` +
+                             `--sample-dt ${trajectory.sampleDt} prints its numbers.`;
+  view.dirty = true;
+}
+
+function makeRig() {
+  const trajectory = page.trajectory;
+  if (!trajectory) return;
+  rig = new CameraRig(renderSpec(trajectory.scene).camera, trajectory.survey(), trajectory.scene.coin.radius, view.width, view.height);
+  view.dirty = true;
+}
+
+function resize() {
+  const box = $('view');
+  const width = fixedSize ? fixedSize[0] : box.clientWidth, height = fixedSize ? fixedSize[1] : box.clientHeight;
+  if (width === view.width && height === view.height) return;
+  view.setSize(width, height, fixedSize ? 1 : window.devicePixelRatio);
+  // render/overlay_text.cpp: the em from ascent to descent is a 45th of the height; DejaVu Sans
+  // Mono's ascent to descent is 1.164 of its CSS font size.
+  $('hud').style.fontSize = `${(Math.max(10, height / 45) / 1.164).toFixed(1)}px`;
+  makeRig();
+}
+
+// Draws the picture at the current time and shows its overlay.
+function draw() {
+  const trajectory = page.trajectory;
+  const state = trajectory.stateAt(page.t);
+  const camera = rig.at(state.t, [state.x, state.y, state.z]);
+  camera.follows = rig.spec.mode === 'follow';
+  view.draw(state, camera, trajectory);
+  $('hud').textContent = renderSpec(trajectory.scene).hud ? state.hudLines.join('\n') : '';
+  $('time').value = page.t;
+  $('time-text').textContent = `${state.t.toFixed(3)} / ${trajectory.endTime.toFixed(3)} s`;
+  if (timing.firstFrameAt === undefined) timing.firstFrameAt = performance.now();
+  if (timing.last && timing.last.firstFrameAt === undefined) timing.last.firstFrameAt = performance.now();
+  if (page.runRequest === request) settle();
+  return state;
+}
+
+// Playback: simulated seconds advance at the scene's playback rate (render.time_scale, slowed by
+// render.time_remap where the motion is fast) times the speed chosen; the end is held 1.5 s, then
+// the run plays again.
+function frame(now) {
+  requestAnimationFrame(frame);
+  const elapsed = lastFrameTime === undefined ? 0 : Math.min((now - lastFrameTime) / 1000, 0.1);
+  lastFrameTime = now;
+  resize();
+  const trajectory = page.trajectory;
+  if (!trajectory) return;
+  if (page.playing) {
+    if (page.t >= trajectory.endTime) {
+      if (!page.holdUntil) page.holdUntil = now + 1000 * kLandingHoldSeconds;
+      if (now >= page.holdUntil) { page.t = 0; page.holdUntil = 0; }
+    } else {
+      const rate = trajectory.playbackRate(trajectory.stateAt(page.t));
+      page.t = Math.min(page.t + elapsed * rate * page.speed, trajectory.endTime);
+    }
+    view.dirty = true;
+  }
+  if (view.dirty) draw();
+}
+
+function setPlaying(on) {
+  page.playing = on;
+  $('play').textContent = on ? 'Pause' : 'Play';
+}
+
+$('play').addEventListener('click', () => setPlaying(!page.playing));
+$('time').addEventListener('input', () => { page.t = Number($('time').value); page.holdUntil = 0; view.dirty = true; });
+$('speed').addEventListener('change', () => { page.speed = Number($('speed').value); });
+$('reset-view').addEventListener('click', () => { view.userCamera = false; view.dirty = true; });
+$('run-text').addEventListener('click', () => start($('scene-text').value, 'scene.json', { box: true }));
+for (const name of Object.keys(examples)) $('example').append(new Option(`examples/${name}.json`, name));
+$('example').prepend(new Option('load an example…', ''));
+$('example').value = '';
+$('example').addEventListener('change', () => {
+  const name = $('example').value;
+  if (!name) return;
+  showSceneText(examples[name]);
+  start(examples[name], `examples/${name}.json`, { box: true });
+});
+$('file').addEventListener('change', async () => {
+  const file = $('file').files[0];
+  if (!file) return;
+  const text = await file.text();
+  showSceneText(text);
+  start(text, file.name, { box: true });
+});
+$('download').addEventListener('click', () => {
+  if (!page.run) return;
+  const link = document.createElement('a');
+  link.href = URL.createObjectURL(new Blob([page.run.text], { type: 'application/json' }));
+  link.download = `${page.trajectory.scene.name || 'coinroll'}.json`;
+  link.click();
+  setTimeout(() => URL.revokeObjectURL(link.href), 0);
+});
+
+let defaultSceneText = '';
+runner.ready.then(({ version, defaultScene }) => {
+  $('version').textContent = version;
+  defaultSceneText = defaultScene;
+  page.scene = JSON.parse(defaultScene);
+  showSceneText(defaultScene);
+  controls.refresh();
+  start(defaultScene, 'built-in default scene', { box: true });
+}, (e) => { $('scene-error').textContent = e.message; });
+requestAnimationFrame(frame);
+
+// For tests and benchmarks (tests/web/page_test.mjs, bench/page_bench.mjs): what the page shows,
+// read through the page itself.
+window.coinrollPage = {
+  settled: () => (pending ? new Promise((resolve) => waiters.push(resolve)) : Promise.resolve()),
+  stateAt: (t) => page.trajectory.stateAt(t),
+  // Stops playback at simulated time t and draws it; returns the overlay's text.
+  seek(t) {
+    setPlaying(false);
+    page.t = t;
+    page.holdUntil = 0;
+    draw();
+    return $('hud').textContent;
+  },
+  run: () => page.run && Object.assign({ rows: page.trajectory.rows, end: page.trajectory.end, names: page.trajectory.names }, page.run),
+  camera: () => ({ eye: view.camera.position.toArray(), target: view.controls.target.toArray(), fov: view.camera.fov,
+                   width: view.width, height: view.height, up: view.camera.up.toArray() }),
+  setViewSize(width, height) {
+    fixedSize = [width, height];
+    Object.assign($('view').style, { width: `${width}px`, height: `${height}px` });
+    $('view').classList.add('fixed-size');
+    resize();
+  },
+  showTestMarks: (on) => view.showTestMarks(on),
+  timing: () => Object.assign({}, timing, { last: timing.last && Object.assign({}, timing.last) }),
+  playing: () => page.playing,
+  defaultScene: () => defaultSceneText,
+  // Milliseconds per frame drawn `frames` times in a row, each waited for (a pixel read back: in
+  // Chromium gl.finish does not wait for the GPU process): as played with the camera still, with the
+  // sky and floor drawn anew each frame (a moving camera), and without each other part in turn.
+  profile(frames) {
+    const context = view.renderer.getContext(), pixel = new Uint8Array(4);
+    const perFrame = (moving) => {
+      draw();
+      context.readPixels(0, 0, 1, 1, context.RGBA, context.UNSIGNED_BYTE, pixel);
+      const start = performance.now();
+      for (let i = 0; i < frames; ++i) {
+        page.t = (page.t + 0.01) % page.trajectory.endTime;
+        if (moving) view.backgroundSeen = undefined;
+        draw();
+        context.readPixels(0, 0, 1, 1, context.RGBA, context.UNSIGNED_BYTE, pixel);
+      }
+      return (performance.now() - start) / frames;
+    };
+    const result = { 'camera still': perFrame(false), 'camera moving': perFrame(true) };
+    const parts = { coin: [view.coin], shadow: [view.shadow], trace: [view.trace, view.traceTail, view.marker] };
+    for (const [name, objects] of Object.entries(parts)) {
+      const shown = objects.map((o) => o.visible);
+      objects.forEach((o) => { o.visible = false; });
+      result[`still, without ${name}`] = perFrame(false);
+      objects.forEach((o, k) => { o.visible = shown[k]; });
+    }
+    const start = performance.now();
+    for (let i = 0; i < frames; ++i) page.trajectory.stateAt((i * 0.01) % page.trajectory.endTime);
+    result['stateAt alone'] = (performance.now() - start) / frames;
+    return result;
+  },
+  playbackRate: (t) => page.trajectory.playbackRate(page.trajectory.stateAt(t)),
+  time: () => page.t,
+};

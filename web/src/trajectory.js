@@ -1,0 +1,127 @@
+// One run of the core as the page reads it: the CSV's columns (every number from the WebAssembly
+// module), the coin's state between rows, the overlay's lines as the renderer prints them
+// (src/pipeline/snapshot.cpp hudLines) and the playback rate of render.time_scale and
+// render.time_remap (src/pipeline/video_frames.cpp playbackRate).
+//
+// The overlay's rates are the CSV's own rates in other components, not physics: in the seed's frame
+// omega = theta-dot e_X + phi-dot e_y + psi-dot e_Z with e_y = cos(theta) e_Y - sin(theta) e_Z
+// (docs/seed.md §2), so omega_X = theta-dot, omega_Y = phi-dot cos(theta) and
+// omega_Z = psi-dot - phi-dot sin(theta).
+
+const kTurn = 2 * Math.PI;
+
+// Simulated seconds between the renderer's trace points and survey samples
+// (src/pipeline/motion_survey.cpp traceInterval): the page samples its runs at this step, so that its
+// trace and its automatic camera are the program's.
+export const traceInterval = (duration) => Math.max(1 / 240, duration / 20000);
+
+export function rates(theta, omegaX, omegaY, omegaZ) {
+  const phiDot = omegaY / Math.cos(theta);
+  return { thetaDot: omegaX, phiDot, psiDot: omegaZ + phiDot * Math.sin(theta),
+           // physics::axisGoesRound: the axis circles the vertical (|phi-dot cos(theta)|) at least as
+           // fast as it nods (|theta-dot|); an exactly flat axis has no heading.
+           axisGoesRound: Math.abs(Math.cos(theta)) >= 1e-12 && Math.abs(omegaY) >= Math.abs(omegaX) };
+}
+
+// Cubic Hermite between two rows of an angle and its rate, so that a heading that turns a radian
+// between rows still turns smoothly on screen.
+function hermite(p0, p1, d0, d1, h, f) {
+  const f2 = f * f, f3 = f2 * f;
+  const value = (2 * f3 - 3 * f2 + 1) * p0 + (f3 - 2 * f2 + f) * h * d0 + (-2 * f3 + 3 * f2) * p1 + (f3 - f2) * h * d1;
+  return Number.isFinite(value) ? value : p0 + (p1 - p0) * f;
+}
+
+const fixed = (value, digits, width) => value.toFixed(digits).padStart(width);
+const shownToTwoDecimals = (value) => (Math.abs(value) < 0.005 ? 0 : value);
+
+export class Trajectory {
+  // result: what the worker sends back (core.simulate's names, columns, rows, end, events, report);
+  // scene: the scene object that was run; sampleDt: the step it was sampled at, s; render: the
+  // scene's time_scale, fps and time_remap with the schema's defaults filled in.
+  constructor(result, scene, sampleDt, render) {
+    Object.assign(this, { names: result.names, columns: result.columns, rows: result.rows, end: result.end,
+                          events: result.events, report: result.report, scene, sampleDt, render });
+    this.endTime = this.columns.t[this.rows - 1];
+    this.hasEffects = Array.isArray(scene.effects) && scene.effects.length > 0;
+  }
+
+  // The row at or before t and the fraction of the step past it; a time on a row is that row.
+  locate(t) {
+    const x = Math.min(Math.max(t, 0), this.endTime) / this.sampleDt;
+    const nearest = Math.round(x);
+    if (Math.abs(x - nearest) < 1e-9) return { i: Math.min(nearest, this.rows - 1), f: 0 };
+    const i = Math.min(Math.floor(x), this.rows - 2);
+    return { i, f: x - i };
+  }
+
+  row(i) {
+    const state = {};
+    for (const name of this.names) state[name] = this.columns[name][i];
+    return state;
+  }
+
+  // Every column at t (the CSV's own numbers on a row), with the rates and the overlay's lines.
+  stateAt(t) {
+    const { i, f } = this.locate(t);
+    const state = this.row(i);
+    if (f > 0) {
+      const next = this.row(i + 1);
+      const a = rates(state.theta, state.omega_X, state.omega_Y, state.omega_Z);
+      const b = rates(next.theta, next.omega_X, next.omega_Y, next.omega_Z);
+      const h = this.sampleDt;
+      for (const name of this.names) {
+        if (name !== 't' && name !== 'sliding') state[name] += (next[name] - state[name]) * f;
+      }
+      state.theta = hermite(this.columns.theta[i], next.theta, a.thetaDot, b.thetaDot, h, f);
+      state.phi = hermite(this.columns.phi[i], next.phi, a.phiDot, b.phiDot, h, f);
+      state.psi = hermite(this.columns.psi[i], next.psi, a.psiDot, b.psiDot, h, f);
+      state.t = this.columns.t[i] + f * h;
+    }
+    Object.assign(state, rates(state.theta, state.omega_X, state.omega_Y, state.omega_Z));
+    state.hudLines = this.hudLines(state);
+    return state;
+  }
+
+  // The renderer's overlay, word for word and in its number formats.
+  hudLines(s) {
+    const degrees = 180 / Math.PI;
+    const lines = [
+      `t        ${fixed(s.t, 3, 9)} s`,
+      `θ        ${fixed(shownToTwoDecimals(s.theta * degrees), 2, 9)}° from vertical, ${(90 - Math.abs(s.theta) * degrees).toFixed(2)}° above the floor`,
+      s.axisGoesRound ? `contact  ${fixed(Math.abs(s.phiDot) / kTurn, 2, 9)} Hz round the floor` : 'contact         -- rocking, not going round',
+      `face     ${fixed(shownToTwoDecimals(s.omega_Z / kTurn), 2, 9)} Hz about its axis`,
+      `E        ${fixed(s.energy, 5, 9)} J`,
+    ];
+    if (this.hasEffects) lines.push(`P        ${fixed(1e3 * s.power, 3, 9)} mW dissipated`);
+    if (s.sliding === 1) lines.push(`sliding  ${fixed(1e3 * s.slip_speed, 2, 9)} mm/s slip`);
+    return lines;
+  }
+
+  // Simulated seconds per second of playback at a moment of the run: render.time_scale, slowed where
+  // render.time_remap's rate (|psi-dot| or |phi-dot|) exceeds its limit S, to
+  // v = max(time_scale S, min(time_scale S (rate / S)^growth, pi fps / 2)) rad per second on screen.
+  playbackRate(state) {
+    const { time_scale: timeScale, fps, time_remap: remap } = this.render;
+    if (!remap) return timeScale;
+    const bySpin = remap.spin_rate !== undefined;
+    const limit = bySpin ? remap.spin_rate : remap.precession_rate;
+    const rate = Math.abs(bySpin ? state.psiDot : state.phiDot);
+    if (!(rate > limit)) return timeScale;
+    const held = timeScale * limit;
+    const quarterTurnPerFrame = Math.PI / 2 * fps;
+    const visible = Math.max(held, Math.min(held * Math.pow(rate / limit, remap.growth), quarterTurnPerFrame));
+    return Math.min(timeScale, visible / rate);
+  }
+
+  // The box round every centre and contact point (the renderer's survey).
+  survey() {
+    const { x, y, z, contact_x: cx, contact_z: cz } = this.columns;
+    const lower = [Infinity, Infinity, Infinity], upper = [-Infinity, -Infinity, -Infinity];
+    for (let i = 0; i < this.rows; ++i) {
+      for (const p of [[x[i], y[i], z[i]], [cx[i], 0, cz[i]]]) {
+        for (let c = 0; c < 3; ++c) { lower[c] = Math.min(lower[c], p[c]); upper[c] = Math.max(upper[c], p[c]); }
+      }
+    }
+    return { lower, upper };
+  }
+}

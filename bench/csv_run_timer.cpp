@@ -34,7 +34,7 @@ int main(int argc, char** argv) try {
   const nlohmann::json document = argc > 1 ? scene::parseSceneText(text, name) : scene::builtInDefaultScene();
   const pipeline::Simulation simulation = pipeline::buildSimulation(scene::parseScene(document, name));
   std::ostringstream csv;
-  const pipeline::CsvRunResult result = pipeline::writeTrajectoryCsv(simulation, 0.01, csv);
+  const pipeline::TrajectoryReport result = pipeline::writeTrajectoryCsv(simulation, 0.01, csv);
   const double cpu = static_cast<double>(std::clock() - cpuStart) / CLOCKS_PER_SEC;
   fmt::print("{:.9f} {:.9f} {}\n", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), cpu,
              result.rows);

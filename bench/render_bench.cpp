@@ -27,6 +27,7 @@
 #include "render/renderer.h"
 #include "pipeline/video_frames.h"
 #include "scene/scene_loader.h"
+#include "scene/scene_schema.h"
 #include "video/frame_sink.h"
 
 namespace {
@@ -300,7 +301,7 @@ void usersFrames(int frames, double probeFps) {
     const double shaded = sceneFramesPerSecond(named.scene, frames, false);
     const double reused = sceneFramesPerSecond(named.scene, frames, true);
     const std::string_view camera =
-        coinroll::scene::kCameraModeNames.at(static_cast<std::size_t>(named.scene.render.camera.mode));
+        coinroll::scene::schema::kCameraModeNames.at(static_cast<std::size_t>(named.scene.render.camera.mode));
     fmt::print("{:>22} {:>8} {:>14.1f} {:>14.1f} {:>9.2f} {:>14.2f}\n", named.name, camera, shaded, reused,
                reused / shaded, reused / probeFps);
   }

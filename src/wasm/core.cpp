@@ -1,7 +1,8 @@
 // The core's entry point for JavaScript (docs/web.md): `coinroll simulate` as one call. It makes the
 // calls the command makes (cli/commands.cpp runSimulate, cli/command_support.cpp
 // loadSceneDocument), in the command's order, so the CSV is the command's CSV and a refused scene
-// the command's message. src/wasm/core_api.js wraps it in the module's documented functions.
+// the command's message; the columns are the rows the CSV writer prints (sampleTrajectory), kept as
+// numbers. src/wasm/core_api.js wraps it in the module's documented functions.
 
 #include <emscripten/bind.h>
 #include <emscripten/val.h>
@@ -16,6 +17,8 @@
 #include <cstring>
 #include <exception>
 #include <new>
+#include <span>
+#include <string_view>
 #include <ostream>
 #include <stdexcept>
 #include <streambuf>
@@ -27,6 +30,7 @@
 #include "pipeline/cancelled.h"
 #include "pipeline/simulation.h"
 #include "pipeline/trajectory_csv.h"
+#include "pipeline/trajectory_samples.h"
 #include "scene/json_reader.h"
 #include "scene/scene_error.h"
 #include "scene/scene_loader.h"
@@ -44,56 +48,76 @@ class BadRequest : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// The CSV collected in memory, with the rows counted as they are written so that a page can show
-// progress (and stop the run) from a callback: `progress(rowsWritten, rowsExpected)` after every
-// `every` rows and after the last; returning false sets the run's cancel flag, which the run
-// checks before its next sample.
+// Tells a page how far a run is, and lets it stop the run: `progress(rowsWritten, rowsExpected)`
+// after every `every` rows and after the last; returning false sets the run's cancel flag, which
+// the run checks before its next sample.
+class Progress {
+ public:
+  Progress(val callback, long expectedRows, std::atomic<bool>& cancel)
+      : callback_(std::move(callback)), expected_(expectedRows), cancel_(cancel),
+        every_(std::max(1L, expectedRows / kCalls)) {}
+
+  void row() {
+    if (++rows_ % every_ == 0) report();
+  }
+  void finish() { report(); }
+
+ private:
+  // Often enough for a smooth bar, seldom enough that the calls into JavaScript cost nothing.
+  static constexpr long kCalls = 200;
+
+  void report() {
+    if (callback_.isUndefined() || rows_ == reported_) return;
+    reported_ = rows_;
+    if (callback_(static_cast<double>(rows_), static_cast<double>(expected_)).strictlyEquals(val(false))) cancel_ = true;
+  }
+
+  val callback_;
+  long expected_;
+  std::atomic<bool>& cancel_;
+  long every_;
+  long rows_ = 0;
+  long reported_ = -1;
+};
+
+// The CSV collected in memory, its rows counted as the writer ends each line (the header's is no row).
 class CsvCollector : public std::streambuf {
  public:
-  CsvCollector(val progress, long expectedRows, std::atomic<bool>& cancel)
-      : progress_(std::move(progress)), expected_(expectedRows), cancel_(cancel),
-        every_(std::max(1L, expectedRows / kProgressCalls)) {}
+  explicit CsvCollector(Progress& progress) : progress_(progress) {}
 
   const std::string& text() const { return text_; }
-  void finish() { report(); }
 
  protected:
   std::streamsize xsputn(const char* data, std::streamsize size) override {
     text_.append(data, static_cast<std::size_t>(size));
     for (const char* end = data + size; (data = static_cast<const char*>(std::memchr(data, '\n', end - data))); ++data) {
-      newLine();
+      lineEnded();
     }
     return size;
   }
   int_type overflow(int_type c) override {
     if (traits_type::eq_int_type(c, traits_type::eof())) return traits_type::not_eof(c);
     text_.push_back(traits_type::to_char_type(c));
-    if (c == '\n') newLine();
+    if (c == '\n') lineEnded();
     return c;
   }
 
  private:
-  // Often enough for a smooth bar, seldom enough that the calls into JavaScript cost nothing.
-  static constexpr long kProgressCalls = 200;
-
-  void newLine() {
-    if (++lines_ > 1 && (lines_ - 1) % every_ == 0) report();
-  }
-  void report() {
-    const long rows = std::max(0L, lines_ - 1);  // the header is no row
-    if (progress_.isUndefined() || rows == reported_) return;
-    reported_ = rows;
-    if (progress_(static_cast<double>(rows), static_cast<double>(expected_)).strictlyEquals(val(false))) cancel_ = true;
+  void lineEnded() {
+    if (headerWritten_) progress_.row();
+    headerWritten_ = true;
   }
 
-  val progress_;
-  long expected_;
-  std::atomic<bool>& cancel_;
-  long every_;
-  long lines_ = 0;
-  long reported_ = -1;
+  Progress& progress_;
+  bool headerWritten_ = false;
   std::string text_;
 };
+
+// Bytes or doubles copied out of the module's memory (slice) into a typed array of JavaScript's own.
+template <class T>
+val copiedOut(std::span<const T> values) {
+  return val(emscripten::typed_memory_view(values.size(), values.data())).call<val>("slice");
+}
 
 // The lines `coinroll simulate` prints on stderr about a run (cli/commands.cpp reportStop and the
 // summary after it), word for word; tests/web/wasm_core_test.js compares them with the command's.
@@ -133,13 +157,10 @@ val stringArray(const std::vector<std::string>& strings) {
   return array;
 }
 
-val runResult(const std::string& csv, const pipeline::TrajectoryReport& result, double duration, const std::string& note) {
+// What a run gives besides its rows: the end, the events in time order, the singular time, the
+// step statistics and the command's stderr report.
+val runResult(const pipeline::TrajectoryReport& result, double duration, const std::string& note) {
   val out = val::object();
-  // As bytes, copied out of the module's memory (slice), for core_api.js to decode with TextDecoder:
-  // embind's own std::string conversion walks the text a byte at a time in JavaScript, which took a
-  // tenth of a long run.
-  out.set("csvBytes", val(emscripten::typed_memory_view(csv.size(), reinterpret_cast<const std::uint8_t*>(csv.data())))
-                          .call<val>("slice"));
   out.set("rows", static_cast<double>(result.rows));
   val end = val::object();
   if (result.stoppedBy) {
@@ -204,11 +225,12 @@ val failure(std::string_view kind, int exitCode, const std::string& message) {
 }
 
 // `scene`: the scene file's bytes (a JavaScript string arrives as UTF-8); `hasScene` false: the
-// built-in default scene, as the command without a scene file. The result holds `error` (kind,
-// exitCode and message, as the command's exit code and message) instead of throwing, so no C++
-// exception crosses into JavaScript; core_api.js throws it.
-val simulateCsv(const std::string& scene, bool hasScene, val overrides, const std::string& sourceName, double sampleDt,
-                double maxRows, val progress) {
+// built-in default scene, as the command without a scene file. `asColumns`: the rows as one
+// Float64Array per column (`names`, `columns`) instead of the CSV's text (`csvBytes`). The result
+// holds `error` (kind, exitCode and message, as the command's exit code and message) instead of
+// throwing, so no C++ exception crosses into JavaScript; core_api.js throws it.
+val simulate(const std::string& scene, bool hasScene, val overrides, const std::string& sourceName, double sampleDt,
+             double maxRows, val progressCallback, bool asColumns) {
   try {
     if (!(sampleDt > 0) || !std::isfinite(sampleDt)) {
       throw BadRequest(fmt::format("sampleDt: must be a finite number > 0 s, got {}", sampleDt));
@@ -225,16 +247,43 @@ val simulateCsv(const std::string& scene, bool hasScene, val overrides, const st
     pipeline::Simulation simulation = pipeline::buildSimulation(config);
     std::atomic<bool> cancel = false;
     simulation.cancel = &cancel;
-    CsvCollector collector(progress, pipeline::sampleCount(config.duration, sampleDt), cancel);
-    std::ostream out(&collector);
+    Progress progress(std::move(progressCallback), pipeline::sampleCount(config.duration, sampleDt), cancel);
+    CsvCollector csv(progress);
+    std::vector<std::vector<double>> columns(asColumns ? pipeline::trajectoryColumns(simulation).size() : 0);
     pipeline::TrajectoryReport result;
     try {
-      result = pipeline::writeTrajectoryCsv(simulation, sampleDt, out);
+      if (asColumns) {
+        result = pipeline::sampleTrajectory(simulation, sampleDt, [&](std::span<const double> row) {
+          for (std::size_t i = 0; i < row.size(); ++i) columns[i].push_back(row[i]);
+          progress.row();
+        });
+      } else {
+        std::ostream out(&csv);
+        result = pipeline::writeTrajectoryCsv(simulation, sampleDt, out);
+      }
     } catch (const std::invalid_argument& e) {  // as the command's withProgress maps it
       throw BadRequest(e.what());
     }
-    collector.finish();
-    return runResult(collector.text(), result, config.duration, pipeline::steadyStartNote(config));
+    progress.finish();
+
+    val out = runResult(result, config.duration, pipeline::steadyStartNote(config));
+    if (asColumns) {
+      val names = val::array();
+      val values = val::array();
+      const std::vector<std::string_view> columnNames = pipeline::trajectoryColumns(simulation);
+      for (std::size_t i = 0; i < columns.size(); ++i) {
+        names.call<void>("push", std::string(columnNames[i]));
+        values.call<void>("push", copiedOut(std::span<const double>(columns[i])));
+      }
+      out.set("names", names);
+      out.set("columnValues", values);
+    } else {
+      // As bytes, for core_api.js to decode with TextDecoder: embind's own std::string conversion
+      // walks the text a byte at a time in JavaScript, which took a tenth of a long run.
+      const std::string& text = csv.text();
+      out.set("csvBytes", copiedOut(std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size())));
+    }
+    return out;
   } catch (const scene::SceneError& e) {
     return failure("scene", 2, e.what());
   } catch (const pipeline::Cancelled&) {
@@ -242,7 +291,7 @@ val simulateCsv(const std::string& scene, bool hasScene, val overrides, const st
   } catch (const BadRequest& e) {
     return failure("request", 2, e.what());
   } catch (const std::bad_alloc&) {
-    return failure("failure", 1, "out of memory: the run's CSV does not fit in the module's memory; raise sampleDt");
+    return failure("failure", 1, "out of memory: the run does not fit in the module's memory; raise sampleDt");
   } catch (const std::exception& e) {
     return failure("failure", 1, e.what());
   }
@@ -253,7 +302,7 @@ std::string defaultSceneJson() { return scene::builtInDefaultScene().dump(2) + "
 }  // namespace
 
 EMSCRIPTEN_BINDINGS(coinroll_core) {
-  emscripten::function("coreSimulateCsv", &simulateCsv);
+  emscripten::function("coreSimulate", &simulate);
   emscripten::function("coreDefaultSceneJson", &defaultSceneJson);
   emscripten::constant("coreVersion", std::string(COINROLL_VERSION));
 }

@@ -58,7 +58,8 @@
     return { sampleDt, sourceName, maxRows, onProgress };
   }
 
-  function simulateRun(scene, overrides, options) {
+  // asColumns: the rows as Float64Array columns instead of the CSV's text.
+  function simulateRun(scene, overrides, options, asColumns) {
     const [sceneText, hasScene] = sceneArgument(scene);
     const list = overridesArgument(overrides);
     const { sampleDt, sourceName, maxRows, onProgress } = simulateOptions(options);
@@ -74,37 +75,23 @@
         return false;
       }
     });
-    const result = Module['coreSimulateCsv'](sceneText, hasScene, list, sourceName, sampleDt, maxRows, progress);
+    const result = Module['coreSimulate'](sceneText, hasScene, list, sourceName, sampleDt, maxRows, progress, asColumns);
     if (thrown) throw thrown.e;
     if (result.error) throw new CoinrollError(result.error.kind, result.error.exitCode, result.error.message);
-    result.csv = new TextDecoder().decode(result.csvBytes);
-    delete result.csvBytes;
-    return result;
-  }
-
-  // The CSV's columns as the numbers it prints: %.17g reads back as the very doubles.
-  function columnsOf(csv) {
-    const lines = csv.split('\n');
-    lines.pop();  // the text ends with a line break
-    const names = lines[0].split(',');
-    const columns = names.map(() => new Float64Array(lines.length - 1));
-    for (let row = 1; row < lines.length; ++row) {
-      const fields = lines[row].split(',');
-      for (let c = 0; c < names.length; ++c) columns[c][row - 1] = Number(fields[c]);
+    if (asColumns) {
+      result.columns = Object.fromEntries(result.names.map((name, i) => [name, result.columnValues[i]]));
+      delete result.columnValues;
+    } else {
+      result.csv = new TextDecoder().decode(result.csvBytes);
+      delete result.csvBytes;
     }
-    return { names, columns: Object.fromEntries(names.map((name, c) => [name, columns[c]])) };
+    return result;
   }
 
   Module['CoinrollError'] = CoinrollError;
   // The bindings (core.cpp) exist once the WebAssembly has started, after this file ran: looked up when called.
   Module['version'] = () => Module['coreVersion'];
   Module['defaultSceneJson'] = () => Module['coreDefaultSceneJson']();
-  Module['simulateCsv'] = (scene, overrides, options) => simulateRun(scene, overrides, options);
-  Module['simulate'] = (scene, overrides, options) => {
-    const result = simulateRun(scene, overrides, options);
-    const table = columnsOf(result.csv);
-    delete result.csv;
-    // Object.assign, not spread syntax: Emscripten 3.1.6's JavaScript optimizer cannot parse that.
-    return Object.assign(table, result);
-  };
+  Module['simulateCsv'] = (scene, overrides, options) => simulateRun(scene, overrides, options, false);
+  Module['simulate'] = (scene, overrides, options) => simulateRun(scene, overrides, options, true);
 })();

@@ -48,8 +48,6 @@ class OutputGroup {
   // commit fails). Links are not followed: the name itself goes.
   void retire(const std::filesystem::path& path, const std::string& what = "");
 
-  std::size_t size() const { return staged_.size(); }
-
   // Publishes every staged file and removes every retired one, or none of it: throws
   // std::runtime_error naming the file that failed, after putting the earlier files back.
   void commit();

@@ -55,6 +55,7 @@ scene::SceneConfig loadScene(const SceneSource& source, const std::optional<nloh
 struct ResolvedScene {
   scene::SceneConfig config;
   video::Provenance provenance;  // empty with render.provenance: false
+  bool named = false;            // the document gives a name that is not empty
 };
 
 video::Provenance provenanceOf(const nlohmann::json& document) {
@@ -67,6 +68,7 @@ ResolvedScene resolveScene(const SceneSource& source) {
   const auto [document, sourceName] = loadSceneDocument(source);
   ResolvedScene resolved{scene::parseScene(document, sourceName), {}};
   if (resolved.config.render.provenance) resolved.provenance = provenanceOf(document);
+  resolved.named = document.contains("name") && document.at("name") != "";
   return resolved;
 }
 
@@ -140,6 +142,31 @@ std::optional<io::Destination> destinationOf(const std::filesystem::path& name) 
   } catch (const std::exception&) {
     return std::nullopt;
   }
+}
+
+// The scene with --size applied: after the --set ones, so the option names the size whatever the
+// scene or a --set says.
+SceneSource withPictureSize(const SceneSource& scene, const std::optional<std::string>& sizeName) {
+  SceneSource source = scene;
+  if (!sizeName) return source;
+  const std::optional<scene::PictureSize> size = scene::pictureSizeNamed(*sizeName);
+  if (!size) {
+    throw UsageError(fmt::format("--size {}: unknown size; give {} (or set render.width and render.height with --set)",
+                                 scene::printable(*sizeName), scene::pictureSizeNames()));
+  }
+  source.overrides.push_back(fmt::format("render.width={}", size->width));
+  source.overrides.push_back(fmt::format("render.height={}", size->height));
+  return source;
+}
+
+// What render names its video after without -o: the scene's name, or, for a scene file that gives
+// none, the file's own name (two unnamed scenes rendered in one directory no longer both write
+// coinroll.mp4, the second replacing the first); the built-in scene's name is "coinroll". A scene
+// read from a stream (standard input, a pipe) has no name of its own to lend.
+std::string defaultOutputStem(const ResolvedScene& resolved, const SceneSource& source) {
+  std::error_code error;
+  if (resolved.named || !source.file || !std::filesystem::is_regular_file(*source.file, error)) return resolved.config.name;
+  return std::filesystem::path(*source.file).stem().string();
 }
 
 // render --frame-times: a file of its own, neither the video, nor a frame of its sequence (which
@@ -340,7 +367,7 @@ void runStill(const StillOptions& options) {
   }
   refuseOverwritingInput("-o", output, inputsOf(options.scene));
   io::checkOutputName(output);  // the PNG is written after the rendering: a name that cannot work fails first
-  const auto [scene, provenance] = resolveScene(options.scene);
+  const auto [scene, provenance, named] = resolveScene(withPictureSize(options.scene, options.size));
   reportSteadyStart(scene);
   pipeline::StillResult result;
   try {
@@ -365,17 +392,7 @@ void runStill(const StillOptions& options) {
 
 void runRender(const RenderOptions& options) {
   if (options.output) refuseEmptyOutputName("-o", *options.output, "clip.mp4");
-  SceneSource source = options.scene;
-  if (options.size) {
-    const std::optional<scene::PictureSize> size = scene::pictureSizeNamed(*options.size);
-    if (!size) {
-      throw UsageError(fmt::format("--size {}: unknown size; give {} (or set render.width and render.height with --set)",
-                                   scene::printable(*options.size), scene::pictureSizeNames()));
-    }
-    // After the --set ones, so the option names the size whatever the scene or a --set says.
-    source.overrides.push_back(fmt::format("render.width={}", size->width));
-    source.overrides.push_back(fmt::format("render.height={}", size->height));
-  }
+  const SceneSource source = withPictureSize(options.scene, options.size);
   pipeline::TimeWindow window;
   for (const auto& [name, value] : {std::pair{"--from", options.from}, std::pair{"--to", options.to}}) {
     if (value && !(std::isfinite(*value) && *value >= 0)) {
@@ -395,7 +412,8 @@ void runRender(const RenderOptions& options) {
   encoding.provenance = provenance;
   const std::filesystem::path output =
       options.output ? std::filesystem::path(*options.output)
-                     : std::filesystem::path(fileNameFrom(scene.name) + std::string(video::videoKind(encoding.format).extension));
+                     : std::filesystem::path(fileNameFrom(defaultOutputStem(resolved, options.scene)) +
+                                             std::string(video::videoKind(encoding.format).extension));
   if (const std::optional<video::VideoFormat> format = video::videoFormatOf(output)) {
     try {
       video::refuseOutputThatCannotCarry(encoding, *format);
@@ -416,6 +434,7 @@ void runRender(const RenderOptions& options) {
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
+  // Staged before the first frame reaches the sink's thread, which stages frames in the same group.
   std::optional<FrameTimesSidecar> frameTimes;
   if (options.frameTimesPath) frameTimes.emplace(*options.frameTimesPath, scene.render.fps, outputs);
   // A render's log keeps to its summary line (its progress only on a terminal, as before).

@@ -45,6 +45,7 @@ struct StillOptions {
   std::string output;    // PNG path
   int strobe = 0;        // earlier copies of the coin overlaid, evenly spaced over [strobeFrom, time)
   std::optional<double> strobeFrom;  // s; 0 when absent, and only with strobe >= 1
+  std::optional<std::string> size;   // "480p" .. "2160p": render.width and render.height
 };
 void runStill(const StillOptions& options);
 

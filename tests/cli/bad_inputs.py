@@ -644,6 +644,21 @@ case("cmd-misspelt", C, "misspelt command simulat", "simulat scene.json", 2,
      "unknown command 'simulat'; the commands are simulate,", key="simulat", gtest=(G_ABSURD,))
 case("cmd-case", C, "command in capitals (Simulate)", "Simulate scene.json --csv o.csv", 2,
      "unknown command 'Simulate'", key="Simulate")
+CONVENTIONS = "no such behaviour before (issue 39.4)"
+G_CONVENTIONS = "CliTest.HelpCommandIsTheCommandsHelpAndAMisspeltCommandGetsASuggestion"
+case("cmd-suggestion", C, "misspelt command rendr: the command it is a slip of is suggested", "rendr scene.json", 2,
+     "(coinroll --help); did you mean 'render'?", key="rendr", na_before=CONVENTIONS, gtest=(G_CONVENTIONS,))
+case("cmd-help-command", C, "coinroll help render: render's help (must work)",
+     "exec {bin} help render | grep -q -e --frame-times", 0, None, shell=True, na_before=CONVENTIONS,
+     gtest=(G_CONVENTIONS,))
+case("cmd-help-unknown", C, "coinroll help rendr", "help rendr", 2, "unknown command 'rendr'", key="rendr",
+     na_before=CONVENTIONS, gtest=(G_CONVENTIONS,))
+case("still-size", C, "still --size 480p, as render takes it (must work: an 854x480 PNG)",
+     "still scene.json --time 0.1 -o s.png --size 480p", 0, None, produces=("s.png",), na_before=CONVENTIONS,
+     check=lambda d: None if (d / "s.png").read_bytes()[16:24] == (854).to_bytes(4, "big") + (480).to_bytes(4, "big")
+     else "s.png is not 854x480")
+case("still-size-unknown", C, "still --size 9p", "still scene.json --time 0.1 -o s.png --size 9p", 2,
+     "--size 9p: unknown size; give 480p, 720p, 1080p, 1440p or 2160p", key="--size", na_before=CONVENTIONS)
 case("flag-unknown", C, "unknown flag --bogus", SIM + " --bogus", 2,
      "The following argument was not expected: --bogus", key="--bogus")
 case("flag-fps", C, "render --fps 30 (fps is render.fps in the scene)", "render scene.json -o o.mp4 --fps 30", 2,
@@ -1174,6 +1189,11 @@ case("default-name-unsafe", C, "scenes named 'a/b' and 'a_b': two files",
      f"{{bin}} render scene.json -q {SMALL} --set duration=0.1 --set 'name=\"a/b\"' && "
      f"exec {{bin}} render scene.json -q {SMALL} --set duration=0.1 --set 'name=\"a_b\"'", 0, None, shell=True,
      produces=("a_b.mp4", "a_b+*.mp4"), check=check_files("*.mp4", is_mp4, count=2))
+case("default-name-scene-file", C, "render without -o, two scenes without a name: named after their files, not both coinroll.mp4",
+     f"{{bin}} render a.json -q {SMALL} --set duration=0.1 && exec {{bin}} render b.json -q {SMALL} --set duration=0.1",
+     0, None, shell=True, files={"a.json": VALID, "b.json": VALID}, produces=("a.mp4", "b.mp4"),
+     check=check_files("*.mp4", is_mp4, count=2), na_before="no such behaviour before (issue 39.4)",
+     gtest=("CliTest.RenderWithoutANameOrOutputNamesTheVideoAfterTheSceneFile",))
 case("default-name-dot", C, "render without -o, scene named '.hidden': no hidden file",
      SEQ.replace("-o ", "") + "--set 'name=\".hidden\"'", 0, None, produces=("_hidden+*.mp4",),
      check=lambda d: None if not any(p.name.startswith(".") for p in d.iterdir()) else "left a hidden file")

@@ -413,6 +413,14 @@ int main(int argc, char** argv) {
   try {
     app.parse(count, arguments.data());
   } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() != static_cast<int>(CLI::ExitCodes::Success)) {
+      // In the style of every other refusal, naming where the command's options are listed,
+      // instead of CLI11's own "Run with --help for more information."
+      const std::vector<CLI::App*> parsed = app.get_subcommands();
+      const std::string help = parsed.empty() ? "coinroll --help" : "coinroll " + parsed.front()->get_name() + " --help";
+      std::cerr << "coinroll: error: " << coinroll::scene::printable(e.what()) << " (" << help << ")\n";
+      return kExitBadInput;
+    }
     errno = 0;
     const int code = app.exit(e);
     // --help and --version are output too: a full device or a closed stdout is no success.

@@ -653,6 +653,9 @@ case("cmd-help-command", C, "coinroll help render: render's help (must work)",
      gtest=(G_CONVENTIONS,))
 case("cmd-help-unknown", C, "coinroll help rendr", "help rendr", 2, "unknown command 'rendr'", key="rendr",
      na_before=CONVENTIONS, gtest=(G_CONVENTIONS,))
+case("cmd-parse-error-style", C, "simulate without --csv: the parser's refusal in the program's style",
+     "simulate scene.json", 2, "coinroll: error: --csv is required (coinroll simulate --help)", key="--csv",
+     na_before=CONVENTIONS, gtest=("CliTest.ParseErrorsComeInTheProgramsOwnStyle",))
 case("still-size", C, "still --size 480p, as render takes it (must work: an 854x480 PNG)",
      "still scene.json --time 0.1 -o s.png --size 480p", 0, None, produces=("s.png",), na_before=CONVENTIONS,
      check=lambda d: None if (d / "s.png").read_bytes()[16:24] == (854).to_bytes(4, "big") + (480).to_bytes(4, "big")

@@ -108,6 +108,21 @@ TEST_F(CliTest, HelpCommandIsTheCommandsHelpAndAMisspeltCommandGetsASuggestion) 
   EXPECT_NE(helpMisspelt.output.find("unknown command 'rendr'"), std::string::npos) << helpMisspelt.output;
 }
 
+// The argument parser's refusals read like every other one: "coinroll: error: ...", naming the
+// option and where the command's options are listed, instead of the parser's own two lines.
+TEST_F(CliTest, ParseErrorsComeInTheProgramsOwnStyle) {
+  const fs::path scene = writeScene(kValid);
+  for (const auto& [arguments, message] :
+       {std::pair{"simulate " + scene.string(), std::string("coinroll: error: --csv is required (coinroll simulate --help)\n")},
+        std::pair{"render " + scene.string() + " --max-frames 0",
+                  std::string("coinroll: error: --max-frames: must be a whole number >= 1, got 0 (coinroll render --help)\n")},
+        std::pair{std::string(""), std::string("coinroll: error: A subcommand is required (coinroll --help)\n")}}) {
+    const RunResult r = run(arguments);
+    EXPECT_EQ(r.exitCode, 2) << arguments;
+    EXPECT_EQ(r.output, message) << arguments;
+  }
+}
+
 // Two scene files without a name rendered without -o in one directory each get their own video,
 // named after the file, instead of both writing coinroll.mp4, the second replacing the first.
 TEST_F(CliTest, RenderWithoutANameOrOutputNamesTheVideoAfterTheSceneFile) {

@@ -20,6 +20,8 @@
 #include "cli/interrupts.h"
 #include "io/destination.h"
 #include "io/fnv1a.h"
+#include "io/output_file.h"
+#include "io/output_group.h"
 #include "physics/observables.h"
 #include "physics/steady.h"
 #include "physics/validity.h"
@@ -28,6 +30,7 @@
 #include "pipeline/video_frames.h"
 #include "video/async_sink.h"
 #include "video/make_sink.h"
+#include "video/png_sequence_sink.h"
 #include "video/video_kinds.h"
 #include "cli/progress.h"
 #include "pipeline/trajectory_csv.h"
@@ -52,6 +55,7 @@ scene::SceneConfig loadScene(const SceneSource& source, const std::optional<nloh
 struct ResolvedScene {
   scene::SceneConfig config;
   video::Provenance provenance;  // empty with render.provenance: false
+  bool named = false;            // the document gives a name that is not empty
 };
 
 video::Provenance provenanceOf(const nlohmann::json& document) {
@@ -64,6 +68,7 @@ ResolvedScene resolveScene(const SceneSource& source) {
   const auto [document, sourceName] = loadSceneDocument(source);
   ResolvedScene resolved{scene::parseScene(document, sourceName), {}};
   if (resolved.config.render.provenance) resolved.provenance = provenanceOf(document);
+  resolved.named = document.contains("name") && document.at("name") != "";
   return resolved;
 }
 
@@ -75,7 +80,7 @@ nlohmann::json csvProvenance(const nlohmann::json& document, const SimulateOptio
           {"version", COINROLL_VERSION},
           {"scene_digest", provenance.sceneDigest},
           {"command", "simulate"},
-          {"csv", options.csvPath},
+          {"csv", options.csvPath},  // any bytes: dumped with invalid UTF-8 replaced (U+FFFD)
           {"sample_dt", options.sampleDt},
           {"rows", result.rows},
           {"end", result.stoppedBy ? std::string(physics::eventName(result.stoppedBy->event)) : "duration"},
@@ -129,7 +134,44 @@ std::string fileNameFrom(const std::string& sceneName) {
   return fmt::format("{}+{:08x}", name, static_cast<std::uint32_t>(hash ^ (hash >> 32)));
 }
 
-// render --frame-times: a file of its own, neither the video nor an input.
+// Where a sidecar's name leads, for comparing it with its run's other outputs; nothing for a name
+// that does not resolve, which the output layer then refuses with its reason when it opens it.
+std::optional<io::Destination> destinationOf(const std::filesystem::path& name) {
+  try {
+    return io::resolveDestination(name);
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+}
+
+// The scene with --size applied: after the --set ones, so the option names the size whatever the
+// scene or a --set says.
+SceneSource withPictureSize(const SceneSource& scene, const std::optional<std::string>& sizeName) {
+  SceneSource source = scene;
+  if (!sizeName) return source;
+  const std::optional<scene::PictureSize> size = scene::pictureSizeNamed(*sizeName);
+  if (!size) {
+    throw UsageError(fmt::format("--size {}: unknown size; give {} (or set render.width and render.height with --set)",
+                                 scene::printable(*sizeName), scene::pictureSizeNames()));
+  }
+  source.overrides.push_back(fmt::format("render.width={}", size->width));
+  source.overrides.push_back(fmt::format("render.height={}", size->height));
+  return source;
+}
+
+// What render names its video after without -o: the scene's name, or, for a scene file that gives
+// none, the file's own name (two unnamed scenes rendered in one directory no longer both write
+// coinroll.mp4, the second replacing the first); the built-in scene's name is "coinroll". A scene
+// read from a stream (standard input, a pipe) has no name of its own to lend.
+std::string defaultOutputStem(const ResolvedScene& resolved, const SceneSource& source) {
+  std::error_code error;
+  if (resolved.named || !source.file || !std::filesystem::is_regular_file(*source.file, error)) return resolved.config.name;
+  return std::filesystem::path(*source.file).stem().string();
+}
+
+// render --frame-times: a file of its own, neither the video, nor a frame of its sequence (which
+// would replace it, or remove it as a frame of an earlier, longer sequence), nor an input. Names
+// are compared by the file they lead to, not by their spelling.
 void refuseFrameTimesName(const std::string& path, const std::filesystem::path& video,
                           const std::vector<std::filesystem::path>& inputs) {
   const std::string example = video.stem().string() + "_frames.csv";
@@ -138,12 +180,45 @@ void refuseFrameTimesName(const std::string& path, const std::filesystem::path& 
     throw UsageError(fmt::format("--frame-times -: give a file of its own beside the video, e.g. {}", example));
   }
   refuseOverwritingInput("--frame-times", path, inputs);
-  std::error_code error;
-  const std::filesystem::path sidecar = std::filesystem::weakly_canonical(path, error);
-  if (!error && sidecar == std::filesystem::weakly_canonical(video, error) && !error) {
+  const std::optional<io::Destination> sidecar = destinationOf(path);
+  if (!sidecar) return;
+  if (video::namesPngSequence(video)) {
+    std::optional<video::SequencePattern> frames;
+    try {
+      frames = video::parseSequencePattern(video);
+    } catch (const std::invalid_argument&) {
+      return;  // the sink refuses the pattern, naming the rule it breaks
+    }
+    std::error_code error;
+    const std::filesystem::path framesDirectory = video.parent_path().empty() ? "." : video.parent_path();
+    if (!sidecar->path.empty() && std::filesystem::equivalent(sidecar->path.parent_path(), framesDirectory, error) &&
+        frames->frameNumberOf(sidecar->path.filename().string())) {
+      const std::string sequenceExample = frames->prefix + "frames.csv";
+      throw UsageError(fmt::format("--frame-times {}: that is named like a frame of -o {}, which would replace it or "
+                                   "remove it; give a name the pattern cannot make, e.g. {}",
+                                   path, video.string(), sequenceExample));
+    }
+    return;
+  }
+  if (const std::optional<io::Destination> output = destinationOf(video); output && io::sameOutput(*sidecar, *output)) {
     throw UsageError(fmt::format("--frame-times {}: that is the video's own name; give a file of its own beside it, e.g. {}",
                                  path, example));
   }
+}
+
+// simulate --provenance: a file of its own beside the CSV, whatever the spellings of the two.
+void refuseProvenanceName(const SimulateOptions& options) {
+  const std::string& path = *options.provenancePath;
+  const std::string example = options.csvPath == "-" ? "run.json" : options.csvPath + ".json";
+  refuseEmptyOutputName("--provenance", path, example);
+  refuseOverwritingInput("--provenance", path, inputsOf(options.scene));
+  const auto ownFile = [&] {
+    return UsageError(fmt::format("--provenance {}: give a file of its own beside the CSV, e.g. {}", path, example));
+  };
+  if (path == "-" || path == options.csvPath) throw ownFile();
+  const std::optional<io::Destination> sidecar = destinationOf(path);
+  const std::optional<io::Destination> csv = destinationOf(options.csvPath == "-" ? "/dev/stdout" : options.csvPath);
+  if (sidecar && csv && io::sameOutput(*sidecar, *csv)) throw ownFile();
 }
 
 }  // namespace
@@ -155,13 +230,7 @@ void runSimulate(const SimulateOptions& options) {
   }
   refuseEmptyOutputName("--csv", options.csvPath, "out.csv (or - for standard output)");
   if (options.csvPath != "-") refuseOverwritingInput("--csv", options.csvPath, inputsOf(options.scene));
-  if (!options.provenancePath.empty()) {
-    refuseOverwritingInput("--provenance", options.provenancePath, inputsOf(options.scene));
-    if (options.provenancePath == "-" || options.provenancePath == options.csvPath) {
-      throw UsageError(fmt::format("--provenance {}: give a file of its own beside the CSV, e.g. {}.json",
-                                   options.provenancePath, options.csvPath == "-" ? "run" : options.csvPath));
-    }
-  }
+  if (options.provenancePath) refuseProvenanceName(options);
   // Named, not a structured binding: the CSV's lambda captures the document, which clang 14 (the
   // sanitizer build's compiler) cannot do with a binding.
   const std::pair<nlohmann::json, std::string> loaded = loadSceneDocument(options.scene);
@@ -179,16 +248,28 @@ void runSimulate(const SimulateOptions& options) {
   ProgressLine noProgress(ProgressLine::Style::Off, "", "");
   const pipeline::TrajectoryReport result = withProgress(noProgress, options.csvPath, [&] {
     pipeline::TrajectoryReport r;
-    writeTextOutput(options.csvPath, "CSV", [&](std::ostream& out) {
-      r = pipeline::writeTrajectoryCsv(simulation, options.sampleDt, out);
-      // Published before the CSV takes its name, so a failed sidecar leaves neither; only a failed
-      // rename of the CSV itself could leave the sidecar alone.
-      if (!options.provenancePath.empty()) {
-        writeTextOutput(options.provenancePath, "provenance JSON", [&](std::ostream& json) {
-          json << csvProvenance(document, options, r, scene.duration).dump(2) << '\n';
-        });
-      }
-    });
+    const auto writeCsv = [&](std::ostream& out) { r = pipeline::writeTrajectoryCsv(simulation, options.sampleDt, out); };
+    if (!options.provenancePath) {
+      writeTextOutput(options.csvPath, "CSV", writeCsv);
+      return r;
+    }
+    // The CSV and its sidecar are published together or not at all, so a failed or interrupted
+    // run leaves both earlier files as they were.
+    io::OutputGroup outputs;
+    std::optional<io::OutputFile> csv;
+    if (options.csvPath != "-") csv.emplace(options.csvPath, "CSV", io::OutputFile::Access::Sequential, &outputs);
+    io::OutputFile json(*options.provenancePath, "provenance JSON", io::OutputFile::Access::Sequential, &outputs);
+    if (csv) {
+      writeCsv(csv->stream());
+    } else {
+      writeTextOutput("-", "CSV", writeCsv);
+    }
+    json.stream() << csvProvenance(document, options, r, scene.duration)
+                         .dump(2, ' ', false, nlohmann::json::error_handler_t::replace)
+                  << '\n';
+    if (csv) csv->commit();
+    json.commit();
+    outputs.commit();
     return r;
   });
   reportStop(result);
@@ -286,7 +367,7 @@ void runStill(const StillOptions& options) {
   }
   refuseOverwritingInput("-o", output, inputsOf(options.scene));
   io::checkOutputName(output);  // the PNG is written after the rendering: a name that cannot work fails first
-  const auto [scene, provenance] = resolveScene(options.scene);
+  const auto [scene, provenance, named] = resolveScene(withPictureSize(options.scene, options.size));
   reportSteadyStart(scene);
   pipeline::StillResult result;
   try {
@@ -311,17 +392,7 @@ void runStill(const StillOptions& options) {
 
 void runRender(const RenderOptions& options) {
   if (options.output) refuseEmptyOutputName("-o", *options.output, "clip.mp4");
-  SceneSource source = options.scene;
-  if (options.size) {
-    const std::optional<scene::PictureSize> size = scene::pictureSizeNamed(*options.size);
-    if (!size) {
-      throw UsageError(fmt::format("--size {}: unknown size; give {} (or set render.width and render.height with --set)",
-                                   scene::printable(*options.size), scene::pictureSizeNames()));
-    }
-    // After the --set ones, so the option names the size whatever the scene or a --set says.
-    source.overrides.push_back(fmt::format("render.width={}", size->width));
-    source.overrides.push_back(fmt::format("render.height={}", size->height));
-  }
+  const SceneSource source = withPictureSize(options.scene, options.size);
   pipeline::TimeWindow window;
   for (const auto& [name, value] : {std::pair{"--from", options.from}, std::pair{"--to", options.to}}) {
     if (value && !(std::isfinite(*value) && *value >= 0)) {
@@ -341,7 +412,8 @@ void runRender(const RenderOptions& options) {
   encoding.provenance = provenance;
   const std::filesystem::path output =
       options.output ? std::filesystem::path(*options.output)
-                     : std::filesystem::path(fileNameFrom(scene.name) + std::string(video::videoKind(encoding.format).extension));
+                     : std::filesystem::path(fileNameFrom(defaultOutputStem(resolved, options.scene)) +
+                                             std::string(video::videoKind(encoding.format).extension));
   if (const std::optional<video::VideoFormat> format = video::videoFormatOf(output)) {
     try {
       video::refuseOutputThatCannotCarry(encoding, *format);
@@ -351,24 +423,27 @@ void runRender(const RenderOptions& options) {
   }
   refuseOverwritingInput("-o", output, inputsOf(options.scene));
   if (options.frameTimesPath) refuseFrameTimesName(*options.frameTimesPath, output, inputsOf(options.scene));
-  std::optional<FrameTimesSidecar> frameTimes;  // outlives the sink that publishes it
+  // Every file of the run (the video or its frames, the sidecar) is staged here and published by
+  // one commit, all or none; declared first, it outlives their writers and removes what they staged
+  // when the run fails or is interrupted.
+  io::OutputGroup outputs;
+  outputs.protect(inputsOf(options.scene));
   std::unique_ptr<video::FrameSink> sink;
   try {
-    sink = std::make_unique<video::AsyncSink>(video::makeSinkForPath(output, encoding, inputsOf(options.scene)));
+    sink = std::make_unique<video::AsyncSink>(video::makeSinkForPath(output, encoding, inputsOf(options.scene), &outputs));
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
-  if (options.frameTimesPath) {
-    frameTimes.emplace(*options.frameTimesPath, scene.render.fps);
-    sink = frameTimes->publishedWith(std::move(sink));
-  }
+  // Staged before the first frame reaches the sink's thread, which stages frames in the same group.
+  std::optional<FrameTimesSidecar> frameTimes;
+  if (options.frameTimesPath) frameTimes.emplace(*options.frameTimesPath, scene.render.fps, outputs);
   // A render's log keeps to its summary line (its progress only on a terminal, as before).
   ProgressLine progress(ProgressLine::terminalStyleFor(options.quiet), "render", "frame");
   const auto start = std::chrono::steady_clock::now();
   const pipeline::VideoRunResult result = withProgress(
       progress, output.string(),
       [&] {
-        return pipeline::renderVideo(
+        const pipeline::VideoRunResult ran = pipeline::renderVideo(
             scene, *sink,
             {.onFrame = [&](const pipeline::FrameProgress& p) { progress.update(p.frame, p.total); },
              .onFrameTiming = frameTimes ? [&](const pipeline::FrameTiming& timing) { frameTimes->add(timing); }
@@ -376,6 +451,9 @@ void runRender(const RenderOptions& options) {
              .cancel = &interruptRequested(),
              .maxFrames = options.maxFrames > 0 ? options.maxFrames : pipeline::kDefaultMaxFrames,
              .window = window});
+        if (frameTimes) frameTimes->finish();
+        outputs.commit();
+        return ran;
       },
       [&] { sink.reset(); });  // removes the partial output before we report
   if (result.stopDescription) {

@@ -20,8 +20,8 @@ struct SimulateOptions {
   long maxRows = 0;       // 0: kDefaultMaxRows
   // A JSON file naming what made the CSV (the contract fixes the CSV's header, so its provenance
   // goes beside it): program, release, scene digest, the resolved scene, the sampling and how the
-  // run ended. Empty: none.
-  std::string provenancePath;
+  // run ended. Unset: none.
+  std::optional<std::string> provenancePath;
 };
 
 // Rows above this need --max-rows: 10^9 rows is about 300 GB of CSV. Counted from the duration,
@@ -45,6 +45,7 @@ struct StillOptions {
   std::string output;    // PNG path
   int strobe = 0;        // earlier copies of the coin overlaid, evenly spaced over [strobeFrom, time)
   std::optional<double> strobeFrom;  // s; 0 when absent, and only with strobe >= 1
+  std::optional<std::string> size;   // "480p" .. "2160p": render.width and render.height
 };
 void runStill(const StillOptions& options);
 

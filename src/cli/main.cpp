@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cerrno>
 #include <charconv>
 #include <cstdio>
@@ -123,6 +124,18 @@ CLI::App* addSteadyCommand(CLI::App& app, SteadyOptions& options) {
   return command;
 }
 
+// --size NAME, the same on every command that draws pictures (render, still).
+void addSizeOption(CLI::App& command, std::optional<std::string>& size) {
+  std::string sizes, sizeNames;
+  for (const coinroll::scene::PictureSize& picture : coinroll::scene::kPictureSizes) {
+    const bool last = &picture == &coinroll::scene::kPictureSizes.back();
+    sizes += fmt::format("{}{} ({}x{})", sizes.empty() ? "" : last ? " or " : ", ", picture.name, picture.width,
+                         picture.height);
+    sizeNames += fmt::format("{}{}", sizeNames.empty() ? "" : "|", picture.name);
+  }
+  command.add_option("--size", size, "Picture size, setting render.width x render.height: " + sizes)->type_name(sizeNames);
+}
+
 CLI::App* addRenderCommand(CLI::App& app, RenderOptions& options) {
   // "an MP4 (H.264)" for the command, "NAME.mp4 (H.264)" for -o: the codec where the kind is not
   // named after it, and whether it loops.
@@ -145,13 +158,7 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& options) {
                                   "frames_%05d.png (frames numbered from 0); default: the scene's name + {} (coinroll{} "
                                   "for the built-in scene)",
                                   names, defaultExtension, defaultExtension));
-  std::string sizes, sizeNames;
-  for (const coinroll::scene::PictureSize& size : coinroll::scene::kPictureSizes) {
-    const bool last = &size == &coinroll::scene::kPictureSizes.back();
-    sizes += fmt::format("{}{} ({}x{})", sizes.empty() ? "" : last ? " or " : ", ", size.name, size.width, size.height);
-    sizeNames += fmt::format("{}{}", sizeNames.empty() ? "" : "|", size.name);
-  }
-  command->add_option("--size", options.size, "Picture size, setting render.width x render.height: " + sizes)->type_name(sizeNames);
+  addSizeOption(*command, options.size);
   command->add_option("--from", options.from,
                             "Write only the frames whose simulated time is at least T0 s (default 0); the simulation still "
                             "runs from 0, so they are the full render's frames")
@@ -190,6 +197,7 @@ CLI::App* addStillCommand(CLI::App& app, StillOptions& options) {
       ->capture_default_str();
   command->add_option("--strobe-from", options.strobeFrom,
                            "Simulated time of the first copy, s (default 0): e.g. the last second of a spin-down");
+  addSizeOption(*command, options.size);
   command->footer(
       "Size, anti-aliasing, camera, trace and overlay come from the scene's render block, e.g.\n"
       "  coinroll still examples/steady_circle.json --time 1.5 -o circle.png --set render.width=640 --set render.height=360\n"
@@ -300,18 +308,46 @@ CLI::App* addSchemaCommand(CLI::App& app, SchemaOptions& options) {
   return command;
 }
 
+// The Levenshtein distance: single-character insertions, deletions and substitutions from a to b.
+std::size_t editDistance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];  // the distance of a[0, i-1) and b[0, j-1)
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+// Edits at most that a misspelt command is taken to be a slip of: two catches a dropped and a
+// swapped letter ("simulat", "rendr", "stil"), and no two commands are that close to each other.
+constexpr std::size_t kMaxSuggestionEdits = 2;
+
 // CLI11 reports a misspelt command only as "a subcommand is required": the message naming it and
-// the choices, when argv[1] is no command.
+// the choices, when argv[1] is no command, and the command it is a slip of, if one is close.
 std::optional<std::string> unknownCommandMessage(const CLI::App& app, int argc, char** argv) {
   std::string commands;
   bool known = false;
+  std::string given = argc > 1 ? argv[1] : "";
+  std::transform(given.begin(), given.end(), given.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::optional<std::string> nearest;
+  std::size_t nearestEdits = kMaxSuggestionEdits + 1;
   for (const CLI::App* command : app.get_subcommands({})) {
     commands += (commands.empty() ? "" : ", ") + command->get_name();
     known = known || (argc > 1 && command->get_name() == argv[1]);
+    if (const std::size_t edits = editDistance(given, command->get_name()); edits < nearestEdits && edits < given.size()) {
+      nearest = command->get_name();
+      nearestEdits = edits;
+    }
   }
   if (argc > 1 && argv[1][0] != '-' && !known) {
     return "coinroll: error: unknown command '" + coinroll::scene::printable(argv[1]) + "'; the commands are " + commands +
-           " (coinroll --help)\n";
+           " (coinroll --help)" + (nearest ? "; did you mean '" + *nearest + "'?" : "") + "\n";
   }
   return std::nullopt;
 }
@@ -375,14 +411,30 @@ int main(int argc, char** argv) {
       addCommand(app, addCompareCommand, runCompare),   addCommand(app, addSchemaCommand, runSchema),
       addCommand(app, addExportCommand, runExport)};
 
-  if (const std::optional<std::string> message = unknownCommandMessage(app, argc, argv)) {
+  // `coinroll help [COMMAND]` is read as `coinroll [COMMAND] --help`, as git and cargo read it.
+  std::vector<char*> arguments(argv, argv + argc);
+  static char helpFlag[] = "--help";
+  if (argc >= 2 && argc <= 3 && std::string_view(argv[1]) == "help") {
+    arguments.erase(arguments.begin() + 1);
+    arguments.push_back(helpFlag);
+  }
+  const int count = static_cast<int>(arguments.size());
+  if (const std::optional<std::string> message = unknownCommandMessage(app, count, arguments.data())) {
     std::cerr << *message;
     return kExitBadInput;
   }
   refuseEmptyNumbers(app);
   try {
-    app.parse(argc, argv);
+    app.parse(count, arguments.data());
   } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() != static_cast<int>(CLI::ExitCodes::Success)) {
+      // In the style of every other refusal, naming where the command's options are listed,
+      // instead of CLI11's own "Run with --help for more information."
+      const std::vector<CLI::App*> parsed = app.get_subcommands();
+      const std::string help = parsed.empty() ? "coinroll --help" : "coinroll " + parsed.front()->get_name() + " --help";
+      std::cerr << "coinroll: error: " << coinroll::scene::printable(e.what()) << " (" << help << ")\n";
+      return kExitBadInput;
+    }
     errno = 0;
     const int code = app.exit(e);
     // --help and --version are output too: a full device or a closed stdout is no success.

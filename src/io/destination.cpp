@@ -172,6 +172,16 @@ Destination checkOutputName(const std::filesystem::path& name) {
   return destination;
 }
 
+bool sameOutput(const Destination& a, const Destination& b) {
+  if (!a.path.empty() && a.path == b.path) return true;
+  const auto identify = [](const Destination& destination, struct stat& info) {
+    if (destination.kind == Destination::Kind::Descriptor) return ::fstat(destination.descriptor, &info) == 0;
+    return destination.kind != Destination::Kind::NewFile && ::stat(destination.path.c_str(), &info) == 0;
+  };
+  struct stat first {}, second {};
+  return identify(a, first) && identify(b, second) && first.st_dev == second.st_dev && first.st_ino == second.st_ino;
+}
+
 bool namesStream(const std::filesystem::path& name) {
   try {
     return resolveDestination(name).isStream();

@@ -47,6 +47,11 @@ void checkReplaceable(const Destination& destination);
 // at the end (a still), so a name that cannot work is refused before the work.
 Destination checkOutputName(const std::filesystem::path& name);
 
+// True when `a` and `b` are one output however they were spelt: the same path once links are
+// followed and the directory made canonical, the same file (device and inode: hard links), or the
+// same open file behind two descriptors (-, /dev/stdout, /dev/fd/1).
+bool sameOutput(const Destination& a, const Destination& b);
+
 // True when `name` resolves to a stream destination; false for files and for names that do not
 // resolve at all (whose writer then reports why).
 bool namesStream(const std::filesystem::path& name);

@@ -110,12 +110,20 @@ class OutputFile::StreamBuffer : public std::streambuf {
   std::vector<char> bytes_;
 };
 
-OutputFile::OutputFile(const std::filesystem::path& name, std::string what, Access access)
+OutputFile::OutputFile(const std::filesystem::path& name, std::string what, Access access, OutputGroup* group)
     : destination_(resolveDestination(name)), what_(std::move(what)), access_(access) {
   if (destination_.kind == Destination::Kind::Descriptor) {
     descriptor_ = duplicateForWriting(destination_);
   } else if (destination_.kind == Destination::Kind::Device) {
     descriptor_ = openDevice(destination_);
+  } else if (group != nullptr) {
+    temporary_ = group->add(name, what_);
+    grouped_ = true;
+    if (access_ == Access::Sequential) {
+      descriptor_ = ::open(temporary_.c_str(), O_WRONLY | O_CLOEXEC);
+      if (descriptor_ < 0) throw std::runtime_error(destination_.name.string() + ": cannot write: " + describe(errno));
+    }
+    return;
   } else {
     checkReplaceable(destination_);
     TemporaryFile temporary = createTemporaryFor(destination_);
@@ -143,7 +151,7 @@ OutputFile::OutputFile(const std::filesystem::path& name, std::string what, Acce
 
 OutputFile::~OutputFile() {
   if (descriptor_ >= 0) ::close(descriptor_);
-  if (!committed_ && !temporary_.empty()) ::unlink(temporary_.c_str());
+  if (!committed_ && !grouped_ && !temporary_.empty()) ::unlink(temporary_.c_str());
 }
 
 std::ostream& OutputFile::stream() {
@@ -227,7 +235,7 @@ void OutputFile::commit() {
     // Some file systems (NFS) report a failed write only at close.
     if (::close(descriptor) != 0 && errno != EINTR) failWrite(errno);
   }
-  if (!destination_.isStream()) {
+  if (!destination_.isStream() && !grouped_) {
     std::error_code error;
     std::filesystem::rename(temporary_, destination_.path, error);
     if (error) {

@@ -19,6 +19,7 @@
 #include <string_view>
 
 #include "io/destination.h"
+#include "io/output_group.h"
 #include "io/unfinished_files.h"
 
 namespace coinroll::io {
@@ -40,7 +41,11 @@ class OutputFile {
   // fails here, before any work. `what` names the content in messages ("CSV" gives
   // "o.csv: writing the CSV failed: No space left on device"). Throws std::invalid_argument for
   // an empty name, std::runtime_error naming it otherwise.
-  OutputFile(const std::filesystem::path& name, std::string what, Access access = Access::Sequential);
+  // With a `group`, a file (not a stream) is one of the group's: staged there, so it is compared
+  // with the group's other files by where it leads, and published by the group's commit() with
+  // them, all or none; the group, which must outlive this, removes the temporary if it never is.
+  OutputFile(const std::filesystem::path& name, std::string what, Access access = Access::Sequential,
+             OutputGroup* group = nullptr);
   ~OutputFile();  // without commit(): removes the temporary; a stream is closed as it is
 
   OutputFile(const OutputFile&) = delete;
@@ -58,8 +63,9 @@ class OutputFile {
   // that reached it (its exception mask holds badbit), so a long run stops at the first failure.
   std::ostream& stream();
 
-  // Completes the output: flushes and closes, then renames the temporary into place, or copies
-  // it to the stream (Access::ByPath). Throws std::runtime_error naming the output.
+  // Completes the output: flushes and closes, then renames the temporary into place (for a file
+  // of a group, the group's commit() does), or copies it to the stream (Access::ByPath). Throws
+  // std::runtime_error naming the output.
   void commit();
 
  private:
@@ -74,6 +80,7 @@ class OutputFile {
   const Access access_;
   std::filesystem::path temporary_;  // the file by path: beside the destination, or in $TMPDIR
   ListedFile listedTemporary_;       // temporary_ on the list of unfinished files, until published
+  bool grouped_ = false;             // temporary_ is an OutputGroup's, published and removed by it
   int descriptor_ = -1;              // where the bytes go: the temporary, or the stream
   std::unique_ptr<StreamBuffer> buffer_;
   std::unique_ptr<std::ostream> stream_;

@@ -22,19 +22,21 @@ OutputGroup::~OutputGroup() {
   }
 }
 
-std::filesystem::path OutputGroup::add(const std::filesystem::path& name) {
+std::filesystem::path OutputGroup::add(const std::filesystem::path& name, const std::string& what) {
   if (committed_) throw std::logic_error(name.string() + ": add() after commit()");
+  const std::string& content = what.empty() ? what_ : what;
   Destination destination = resolveDestination(name);
   if (destination.isStream()) {
     throw std::runtime_error(name.string() + ": cannot write: not a regular file (a device, FIFO or open descriptor); each " +
-                             what_ + " of a sequence is a file of its own");
+                             content + " of a sequence is a file of its own");
   }
   checkReplaceable(destination);
-  refuseSharedTarget(destination);
+  refuseSharedTarget(destination, content);
   TemporaryFile temporary = createTemporaryFor(destination);
   ::close(temporary.descriptor);  // the caller writes it by path
   Staged file;
   file.destination = std::move(destination);
+  file.what = content;
   file.temporary = temporary.path;
   file.listedTemporary = std::move(temporary.listed);
   staged_.push_back(std::move(file));
@@ -56,18 +58,19 @@ std::optional<std::filesystem::path> OutputGroup::inputBehind(const std::filesys
   return input->second;
 }
 
-// Two frames written to one file would lose one of them without a word, and a frame written to
+// Two outputs written to one file would lose one of them without a word, and an output written to
 // an input would destroy it: names are compared by where they lead, links followed.
-void OutputGroup::refuseSharedTarget(const Destination& destination) {
-  const auto refuse = [&](const std::string& what) {
-    throw std::runtime_error(destination.name.string() + ": cannot write: it leads to " + what);
+void OutputGroup::refuseSharedTarget(const Destination& destination, const std::string& what) {
+  const auto refuse = [&](const std::string& target) {
+    throw std::runtime_error(destination.name.string() + ": cannot write: it leads to " + target);
   };
-  const auto sameFileAs = [&](const std::filesystem::path& earlier) {
-    refuse("the same file as " + earlier.string() + " (through a link, or as another name of that file); each " + what_ +
-           " of a sequence needs a file of its own");
+  const auto sameFileAs = [&](const StagedName& earlier) {
+    refuse("the same file as " + earlier.name.string() + " (through a link, or as another name of that file); " +
+           (earlier.what == what ? "each " + what + " of a sequence needs a file of its own"
+                                 : "the " + earlier.what + " and the " + what + " each need a file of their own"));
   };
   if (const auto earlier = stagedTargets_.find(destination.path); earlier != stagedTargets_.end()) sameFileAs(earlier->second);
-  stagedTargets_.emplace(destination.path, destination.name);
+  stagedTargets_.emplace(destination.path, StagedName{destination.name, what});
   struct stat info {};
   if (::stat(destination.path.c_str(), &info) != 0) return;  // a new file: no other name has it yet
   const FileIdentity identity{info.st_dev, info.st_ino};
@@ -76,13 +79,14 @@ void OutputGroup::refuseSharedTarget(const Destination& destination) {
                                     "choose another output name");
   }
   if (const auto earlier = stagedIdentities_.find(identity); earlier != stagedIdentities_.end()) sameFileAs(earlier->second);
-  stagedIdentities_.emplace(identity, destination.name);
+  stagedIdentities_.emplace(identity, StagedName{destination.name, what});
 }
 
-void OutputGroup::retire(const std::filesystem::path& path) {
+void OutputGroup::retire(const std::filesystem::path& path, const std::string& what) {
   if (committed_) throw std::logic_error(path.string() + ": retire() after commit()");
   Retired file;
   file.path = path;
+  file.what = what.empty() ? what_ : what;
   retired_.push_back(std::move(file));
 }
 
@@ -94,7 +98,7 @@ void OutputGroup::keepPrevious(Staged& file) {
     throw std::runtime_error(file.destination.name.string() + ": " + std::strerror(errno));
   }
   if (!S_ISREG(info.st_mode)) {
-    throw std::runtime_error(file.destination.name.string() + ": is no longer a regular file; the " + what_ +
+    throw std::runtime_error(file.destination.name.string() + ": is no longer a regular file; the " + file.what +
                              " cannot replace it");
   }
   file.previous = siblingName(path, "previous");
@@ -124,7 +128,7 @@ void OutputGroup::commit() {
       for (Staged& file : staged_) {
         keepPrevious(file);
         if (std::rename(file.temporary.c_str(), file.destination.path.c_str()) != 0) {
-          throw std::runtime_error(file.destination.name.string() + ": cannot move the finished " + what_ +
+          throw std::runtime_error(file.destination.name.string() + ": cannot move the finished " + file.what +
                                    " into place: " + std::strerror(errno));
         }
         file.placed = true;
@@ -137,7 +141,7 @@ void OutputGroup::commit() {
           old.previous = previous;
           old.listedPrevious = std::move(listed);
         } else if (errno != ENOENT) {  // already gone is as good as removed
-          throw std::runtime_error(old.path.string() + ": cannot remove this " + what_ +
+          throw std::runtime_error(old.path.string() + ": cannot remove this " + old.what +
                                    " left from an earlier, longer sequence: " + std::strerror(errno));
         }
       }

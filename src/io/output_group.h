@@ -1,5 +1,6 @@
 #pragma once
-// Files published together or not at all: a PNG sequence's frames (docs/outputs.md). Each file is
+// Files published together or not at all: a run's outputs, such as a PNG sequence's frames, or a
+// video and its sidecar (docs/outputs.md). Each file is
 // written under a hidden temporary beside its name; commit() renames them all into place and
 // removes the files retired with them, and if any step fails it undoes the steps before it, so
 // the directory holds the earlier files exactly as they were. No file system renames many files
@@ -21,8 +22,9 @@ namespace coinroll::io {
 
 class OutputGroup {
  public:
-  // `what` names one file's content in messages ("PNG").
-  explicit OutputGroup(std::string what);
+  // `what` names one file's content in messages ("PNG"), for the files add() and retire() are not
+  // told another name for.
+  explicit OutputGroup(std::string what = "output");
   ~OutputGroup();  // without commit(): removes the temporaries; the earlier files stay
 
   OutputGroup(const OutputGroup&) = delete;
@@ -31,8 +33,9 @@ class OutputGroup {
   // Stages `name`: resolves it (links followed; it must be a new name or a regular file, since
   // it is published by a rename), refuses it as OutputFile would, creates its temporary with the
   // mode of the file it replaces, and returns the temporary's path for the caller to write.
-  // Throws std::runtime_error naming `name`.
-  std::filesystem::path add(const std::filesystem::path& name);
+  // `what` names its content in messages (empty: the group's). Throws std::runtime_error naming
+  // `name`.
+  std::filesystem::path add(const std::filesystem::path& name, const std::string& what = "");
 
   // Files add() must never lead to (the command's inputs): a frame name that reaches one, through
   // a link or as another name of the same file, is refused. Files that do not exist are ignored.
@@ -43,9 +46,7 @@ class OutputGroup {
 
   // An existing file for commit() to remove along with publishing the staged ones (kept if the
   // commit fails). Links are not followed: the name itself goes.
-  void retire(const std::filesystem::path& path);
-
-  std::size_t size() const { return staged_.size(); }
+  void retire(const std::filesystem::path& path, const std::string& what = "");
 
   // Publishes every staged file and removes every retired one, or none of it: throws
   // std::runtime_error naming the file that failed, after putting the earlier files back.
@@ -54,6 +55,7 @@ class OutputGroup {
  private:
   struct Staged {
     Destination destination;
+    std::string what;
     std::filesystem::path temporary;
     std::filesystem::path previous;  // the replaced file, kept until the commit holds
     bool previousIsLink = false;     // `previous` is a second hard link: the name kept its file
@@ -63,6 +65,7 @@ class OutputGroup {
   };
   struct Retired {
     std::filesystem::path path;
+    std::string what;
     std::filesystem::path previous;  // where it was moved; empty while it is still in place
     ListedFile listedPrevious;
   };
@@ -78,16 +81,21 @@ class OutputGroup {
   };
 
   void keepPrevious(Staged& file);
-  void refuseSharedTarget(const Destination& destination);
+  void refuseSharedTarget(const Destination& destination, const std::string& what);
   std::string rollBack();
 
   std::string what_;
   std::vector<Staged> staged_;
   std::vector<Retired> retired_;
   std::map<FileIdentity, std::filesystem::path> protected_;  // an input's identity -> its name
+  // A staged name as messages give it: the name, and what its content is.
+  struct StagedName {
+    std::filesystem::path name;
+    std::string what;
+  };
   // Where the staged names lead -> the name that leads there first.
-  std::map<std::filesystem::path, std::filesystem::path> stagedTargets_;
-  std::map<FileIdentity, std::filesystem::path> stagedIdentities_;
+  std::map<std::filesystem::path, StagedName> stagedTargets_;
+  std::map<FileIdentity, StagedName> stagedIdentities_;
   bool committed_ = false;
 };
 

@@ -112,7 +112,7 @@ struct EncoderSink::Encoder {
   std::vector<float> pending;
   std::int64_t audioSamplesSent = 0;
 
-  Encoder(const std::filesystem::path& destination, const VideoOptions& options);
+  Encoder(const std::filesystem::path& destination, const VideoOptions& options, io::OutputGroup* group);
 
   // Opens `encoder` (named `name` in messages), set up by `configure`, and adds its stream, the
   // `medium`'s, to the muxer.
@@ -141,8 +141,9 @@ EncodedStream EncoderSink::Encoder::openStream(const AVCodec* encoder, const std
   return opened;
 }
 
-EncoderSink::Encoder::Encoder(const std::filesystem::path& destination, const VideoOptions& options)
-    : file(destination, std::string(videoKind(options.format).label), io::OutputFile::Access::ByPath),
+EncoderSink::Encoder::Encoder(const std::filesystem::path& destination, const VideoOptions& options,
+                              io::OutputGroup* group)
+    : file(destination, std::string(videoKind(options.format).label), io::OutputFile::Access::ByPath, group),
       context(destination.string() + ": "),
       kind(videoKind(options.format)) {
   const std::string temporary = file.temporaryPath().string();
@@ -269,13 +270,13 @@ void EncoderSink::Encoder::encodeAudioBlock(int count) {
   encode(audio, audio.frame.get());
 }
 
-EncoderSink::EncoderSink(std::filesystem::path destination, const VideoOptions& options)
+EncoderSink::EncoderSink(std::filesystem::path destination, const VideoOptions& options, io::OutputGroup* group)
     : destination_(std::move(destination)), options_(options) {
   validate(options_);
   // The encoders and the muxers report settings and statistics at "info" level; a command-line tool
   // prints its own summary, and every failure reaches the caller as an exception.
   av_log_set_level(AV_LOG_ERROR);
-  encoder_ = std::make_unique<Encoder>(destination_, options_);
+  encoder_ = std::make_unique<Encoder>(destination_, options_, group);
 }
 
 EncoderSink::~EncoderSink() = default;

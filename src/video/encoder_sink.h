@@ -7,6 +7,7 @@
 #include <memory>
 #include <span>
 
+#include "io/output_group.h"
 #include "video/frame_sink.h"
 #include "video/video_options.h"
 
@@ -27,11 +28,13 @@ void validate(const VideoOptions& options);
 // The file is written under a temporary name beside the destination and renamed in finish();
 // for a stream destination (a device, FIFO or descriptor, which the muxer cannot seek) it is
 // encoded in $TMPDIR and copied to the stream in finish() (io::OutputFile::Access::ByPath).
+// With a `group`, a file is staged in it instead, and published by the group's commit() along
+// with the run's other outputs (a sidecar); finish() then only completes it.
 class EncoderSink final : public FrameSink {
  public:
   // Throws std::invalid_argument for bad options, std::runtime_error naming the destination if
   // its directory does not exist or the encoder cannot be set up.
-  EncoderSink(std::filesystem::path destination, const VideoOptions& options);
+  EncoderSink(std::filesystem::path destination, const VideoOptions& options, io::OutputGroup* group = nullptr);
   ~EncoderSink() override;
 
   // The frame must be options.width x options.height (std::invalid_argument otherwise).
@@ -40,7 +43,7 @@ class EncoderSink final : public FrameSink {
   // muxer interleaves them with the video by timestamp. std::logic_error without options.audio.
   void pushAudio(std::span<const float> samples) override;
   // Drains the encoder, writes the trailer (moving moov to the front) and renames the file into
-  // place. Throws std::runtime_error if no frame was pushed.
+  // place (unless a group does). Throws std::runtime_error if no frame was pushed.
   void finish() override;
   // The encoder's frames in flight (for x264, lookahead, references and B-frames by preset, measured).
   std::uint64_t workingMemory(std::uint64_t frameBytes) const override;

@@ -35,12 +35,12 @@ bool namesPngSequence(const std::filesystem::path& path) {
 }
 
 std::unique_ptr<FrameSink> makeSinkForPath(const std::filesystem::path& path, const VideoOptions& options,
-                                           const std::vector<std::filesystem::path>& inputs) {
-  if (namesPngSequence(path)) return std::make_unique<PngSequenceSink>(path, inputs, options.provenance);
+                                           const std::vector<std::filesystem::path>& inputs, io::OutputGroup* group) {
+  if (namesPngSequence(path)) return std::make_unique<PngSequenceSink>(path, inputs, options.provenance, group);
   if (const std::optional<VideoFormat> format = videoFormatOf(path)) {
     VideoOptions chosen = options;
     chosen.format = *format;
-    return std::make_unique<EncoderSink>(path, chosen);
+    return std::make_unique<EncoderSink>(path, chosen, group);
   }
   std::vector<std::string> extensions;
   for (const VideoKind& kind : videoKinds()) extensions.emplace_back(kind.extension);

@@ -23,8 +23,10 @@ bool namesPngSequence(const std::filesystem::path& path);
 // a PNG sequence pattern gives a PngSequenceSink (which takes only the provenance and the frames'
 // alpha as they are). Anything else throws std::invalid_argument naming the path and the accepted
 // forms; the sinks' constructors throw for a bad pattern, bad options or a missing directory.
-// `inputs`: the command's input files, which no frame of a sequence may lead to.
+// `inputs`: the command's input files, which no frame of a sequence may lead to. With a `group`,
+// the sink's files are staged in it and published by its commit(), not by the sink's finish().
 std::unique_ptr<FrameSink> makeSinkForPath(const std::filesystem::path& path, const VideoOptions& options,
-                                           const std::vector<std::filesystem::path>& inputs = {});
+                                           const std::vector<std::filesystem::path>& inputs = {},
+                                           io::OutputGroup* group = nullptr);
 
 }  // namespace coinroll::video

@@ -93,8 +93,8 @@ std::optional<int> SequencePattern::frameNumberOf(std::string_view fileName) con
 }
 
 PngSequenceSink::PngSequenceSink(std::filesystem::path pattern, const std::vector<std::filesystem::path>& inputs,
-                                 const Provenance& provenance)
-    : pattern_(parseSequencePattern(pattern)), text_(provenance.pngText()) {
+                                 const Provenance& provenance, io::OutputGroup* group)
+    : pattern_(parseSequencePattern(pattern)), text_(provenance.pngText()), frames_(group ? *group : ownFrames_) {
   frames_.protect(inputs);
   const std::string whole = pattern.string();
   directory_ = pattern.parent_path();
@@ -119,8 +119,9 @@ std::filesystem::path PngSequenceSink::pathOfFrame(int index) const { return dir
 
 void PngSequenceSink::push(const image::Image& frame) {
   if (finished_) throw std::logic_error(pathOfFrame(0).string() + ": push() after finish()");
-  const std::filesystem::path name = pathOfFrame(static_cast<int>(frames_.size()));
-  image::writePngBytes(frame, frames_.add(name), name, text_);
+  const std::filesystem::path name = pathOfFrame(frameCount_);
+  image::writePngBytes(frame, frames_.add(name, "PNG"), name, text_);
+  ++frameCount_;
 }
 
 std::vector<std::filesystem::path> PngSequenceSink::framesFrom(int count) const {
@@ -146,9 +147,9 @@ std::vector<std::filesystem::path> PngSequenceSink::framesFrom(int count) const 
 
 void PngSequenceSink::finish() {
   if (finished_) throw std::logic_error(pathOfFrame(0).string() + ": finish() called twice");
-  if (frames_.size() == 0) throw std::runtime_error(pathOfFrame(0).string() + ": no frames to write");
-  for (const std::filesystem::path& stale : framesFrom(static_cast<int>(frames_.size()))) frames_.retire(stale);
-  frames_.commit();
+  if (frameCount_ == 0) throw std::runtime_error(pathOfFrame(0).string() + ": no frames to write");
+  for (const std::filesystem::path& stale : framesFrom(frameCount_)) frames_.retire(stale, "PNG");
+  if (&frames_ == &ownFrames_) frames_.commit();
   finished_ = true;
 }
 

@@ -44,7 +44,9 @@ SequencePattern parseSequencePattern(const std::filesystem::path& pattern);
 // pathOfFrame gives for numbers from the frame count on, and no other file), so the directory
 // holds exactly this sequence. If any of that fails, the renames already done are undone.
 // Destroyed without finish(), the sink removes only its temporaries, so an interrupted or failed
-// render leaves the directory as it was.
+// render leaves the directory as it was. With a `group`, the frames are staged in it, and the
+// group's commit() publishes them along with the run's other outputs (a sidecar), all or none;
+// finish() then only stages the removal of the earlier sequence's higher-numbered frames.
 class PngSequenceSink final : public FrameSink {
  public:
   // Throws std::invalid_argument naming the pattern if it is malformed, std::runtime_error if its
@@ -53,7 +55,7 @@ class PngSequenceSink final : public FrameSink {
   // lead to one of `inputs` or to another frame's file (io::OutputGroup::protect). Every frame
   // carries `provenance` as tEXt chunks (Provenance::pngText), and the alpha it is pushed with.
   explicit PngSequenceSink(std::filesystem::path pattern, const std::vector<std::filesystem::path>& inputs = {},
-                           const Provenance& provenance = {});
+                           const Provenance& provenance = {}, io::OutputGroup* group = nullptr);
   ~PngSequenceSink() override;
 
   void push(const image::Image& frame) override;
@@ -70,7 +72,9 @@ class PngSequenceSink final : public FrameSink {
   std::filesystem::path directory_;
   SequencePattern pattern_;
   image::PngText text_;
-  io::OutputGroup frames_{"PNG"};  // frame i is the i-th file staged
+  io::OutputGroup ownFrames_{"PNG"};  // the frames' group when the sink is given none
+  io::OutputGroup& frames_;
+  int frameCount_ = 0;
   bool finished_ = false;
 
   // Frames with this pattern already in the directory numbered `count` or more: those of an

@@ -644,6 +644,24 @@ case("cmd-misspelt", C, "misspelt command simulat", "simulat scene.json", 2,
      "unknown command 'simulat'; the commands are simulate,", key="simulat", gtest=(G_ABSURD,))
 case("cmd-case", C, "command in capitals (Simulate)", "Simulate scene.json --csv o.csv", 2,
      "unknown command 'Simulate'", key="Simulate")
+CONVENTIONS = "no such behaviour before (issue 39.4)"
+G_CONVENTIONS = "CliTest.HelpCommandIsTheCommandsHelpAndAMisspeltCommandGetsASuggestion"
+case("cmd-suggestion", C, "misspelt command rendr: the command it is a slip of is suggested", "rendr scene.json", 2,
+     "(coinroll --help); did you mean 'render'?", key="rendr", na_before=CONVENTIONS, gtest=(G_CONVENTIONS,))
+case("cmd-help-command", C, "coinroll help render: render's help (must work)",
+     "exec {bin} help render | grep -q -e --frame-times", 0, None, shell=True, na_before=CONVENTIONS,
+     gtest=(G_CONVENTIONS,))
+case("cmd-help-unknown", C, "coinroll help rendr", "help rendr", 2, "unknown command 'rendr'", key="rendr",
+     na_before=CONVENTIONS, gtest=(G_CONVENTIONS,))
+case("cmd-parse-error-style", C, "simulate without --csv: the parser's refusal in the program's style",
+     "simulate scene.json", 2, "coinroll: error: --csv is required (coinroll simulate --help)", key="--csv",
+     na_before=CONVENTIONS, gtest=("CliTest.ParseErrorsComeInTheProgramsOwnStyle",))
+case("still-size", C, "still --size 480p, as render takes it (must work: an 854x480 PNG)",
+     "still scene.json --time 0.1 -o s.png --size 480p", 0, None, produces=("s.png",), na_before=CONVENTIONS,
+     check=lambda d: None if (d / "s.png").read_bytes()[16:24] == (854).to_bytes(4, "big") + (480).to_bytes(4, "big")
+     else "s.png is not 854x480")
+case("still-size-unknown", C, "still --size 9p", "still scene.json --time 0.1 -o s.png --size 9p", 2,
+     "--size 9p: unknown size; give 480p, 720p, 1080p, 1440p or 2160p", key="--size", na_before=CONVENTIONS)
 case("flag-unknown", C, "unknown flag --bogus", SIM + " --bogus", 2,
      "The following argument was not expected: --bogus", key="--bogus")
 case("flag-fps", C, "render --fps 30 (fps is render.fps in the scene)", "render scene.json -o o.mp4 --fps 30", 2,
@@ -1174,6 +1192,11 @@ case("default-name-unsafe", C, "scenes named 'a/b' and 'a_b': two files",
      f"{{bin}} render scene.json -q {SMALL} --set duration=0.1 --set 'name=\"a/b\"' && "
      f"exec {{bin}} render scene.json -q {SMALL} --set duration=0.1 --set 'name=\"a_b\"'", 0, None, shell=True,
      produces=("a_b.mp4", "a_b+*.mp4"), check=check_files("*.mp4", is_mp4, count=2))
+case("default-name-scene-file", C, "render without -o, two scenes without a name: named after their files, not both coinroll.mp4",
+     f"{{bin}} render a.json -q {SMALL} --set duration=0.1 && exec {{bin}} render b.json -q {SMALL} --set duration=0.1",
+     0, None, shell=True, files={"a.json": VALID, "b.json": VALID}, produces=("a.mp4", "b.mp4"),
+     check=check_files("*.mp4", is_mp4, count=2), na_before="no such behaviour before (issue 39.4)",
+     gtest=("CliTest.RenderWithoutANameOrOutputNamesTheVideoAfterTheSceneFile",))
 case("default-name-dot", C, "render without -o, scene named '.hidden': no hidden file",
      SEQ.replace("-o ", "") + "--set 'name=\".hidden\"'", 0, None, produces=("_hidden+*.mp4",),
      check=lambda d: None if not any(p.name.startswith(".") for p in d.iterdir()) else "left a hidden file")
@@ -1323,6 +1346,74 @@ for sig in (signal.SIGSEGV, signal.SIGABRT):
          "ulimit -c 0; exec {bin} " + LONG_RENDER + "f_%03d.png", -sig, None, shell=True, files=EARLIER, signal=sig,
          unsanitized="AddressSanitizer handles SIGSEGV itself: it reports, then aborts"
          if sig == signal.SIGSEGV else None)
+
+# --- sidecars (issue 39.1): render --frame-times and simulate --provenance are outputs of their run like
+# the video or the CSV: one group, compared by the file a name leads to (not its spelling), published
+# with the rest or not at all, earlier files kept on a failure and on a signal (docs/outputs.md).
+C = "sidecars"
+NO_SIDECARS = "no --frame-times or --provenance before"
+G_SIDECAR = "FrameTimesCliTest.TheSidecarIsRefusedAsAFrameOrTheVideoUnderAnySpelling"
+G_SIDECAR_FAIL = "FrameTimesCliTest.AFailedRunKeepsBothEarlierFiles"
+G_SIDECAR_SIGNAL = "SignalsCliTest.ARequestToStopLeavesTheEarlierOutputsAndTheirSidecars"
+SHORT_RENDER = f"render scene.json -q {SMALL} --set duration=0.1 "  # 4 frames
+case("frame-times-is-frame", C, "--frame-times f_002.png with -o f_%03d.png (the frame would replace it)",
+     SHORT_RENDER + "-o f_%03d.png --frame-times f_002.png", 2,
+     "--frame-times f_002.png: that is named like a frame of -o f_%03d.png, which would replace it or remove it; "
+     "give a name the pattern cannot make, e.g. f_frames.csv", key="--frame-times", na_before=NO_SIDECARS,
+     gtest=(G_SIDECAR,))
+case("frame-times-is-stale-frame", C, "--frame-times f_007.png, a frame of an earlier, longer sequence (its cleanup would remove it)",
+     SHORT_RENDER + "-o f_%03d.png --frame-times f_007.png", 2, "--frame-times f_007.png: that is named like a frame of",
+     key="--frame-times", files=FRAMES, na_before=NO_SIDECARS)
+case("frame-times-is-video-dot", C, "-o v.mp4 --frame-times ./v.mp4", SHORT_RENDER + "-o v.mp4 --frame-times ./v.mp4", 2,
+     "--frame-times ./v.mp4: that is the video's own name; give a file of its own beside it, e.g. v_frames.csv",
+     key="--frame-times", na_before=NO_SIDECARS, gtest=(G_SIDECAR,))
+case("frame-times-is-video-link", C, "--frame-times a symlink to the (earlier) video",
+     SHORT_RENDER + "-o v.mp4 --frame-times link.csv", 2, "--frame-times link.csv: that is the video's own name",
+     key="--frame-times", files={"scene.json": VALID, "v.mp4": "an earlier video", "link.csv": ("symlink", "v.mp4")},
+     na_before=NO_SIDECARS)
+case("frame-times-empty", C, "--frame-times ''", SHORT_RENDER + "-o v.mp4 --frame-times ''", 2,
+     "--frame-times: the output name is empty; give a file name, e.g. --frame-times v_frames.csv", key="--frame-times",
+     na_before=NO_SIDECARS)
+case("provenance-is-csv-dot", C, "--csv o.csv --provenance ./o.csv", SIM + " --provenance ./o.csv", 2,
+     "--provenance ./o.csv: give a file of its own beside the CSV, e.g. o.csv.json", key="--provenance",
+     na_before=NO_SIDECARS, gtest=(G_SIDECAR,))
+case("provenance-is-csv-absolute", C, "--csv o.csv --provenance $PWD/o.csv",
+     'exec {bin} simulate scene.json --csv o.csv --provenance "$PWD/o.csv"', 2,
+     "o.csv: give a file of its own beside the CSV, e.g. o.csv.json", key="--provenance", shell=True,
+     na_before=NO_SIDECARS)
+case("provenance-is-csv-link", C, "--provenance a symlink to the (earlier) CSV", SIM + " --provenance link.json", 2,
+     "--provenance link.json: give a file of its own beside the CSV", key="--provenance",
+     files={"scene.json": VALID, "o.csv": "an earlier CSV\n", "link.json": ("symlink", "o.csv")}, na_before=NO_SIDECARS)
+case("provenance-both-stdout", C, "--csv - --provenance -", "simulate scene.json --csv - --provenance -", 2,
+     "--provenance -: give a file of its own beside the CSV, e.g. run.json", key="--provenance", na_before=NO_SIDECARS)
+case("provenance-stdout-dev", C, "--csv - --provenance /dev/stdout", "simulate scene.json --csv - --provenance /dev/stdout", 2,
+     "--provenance /dev/stdout: give a file of its own beside the CSV, e.g. run.json", key="--provenance",
+     na_before=NO_SIDECARS)
+case("provenance-empty", C, "--provenance ''", SIM + " --provenance ''", 2,
+     "--provenance: the output name is empty; give a file name, e.g. --provenance o.csv.json", key="--provenance",
+     na_before=NO_SIDECARS)
+case("provenance-non-utf8-csv", C, "--provenance for a CSV whose name is not UTF-8 (the JSON names it with U+FFFD)",
+     "exec {bin} simulate scene.json --csv $'o\\xff.csv' --provenance p.json", 0, None, shell=True,
+     produces=("o*.csv", "p.json"), na_before=NO_SIDECARS)
+case("frame-times-sequence", C, "--frame-times beside a PNG sequence (must work)",
+     SHORT_RENDER + "-o f_%03d.png --frame-times times.csv", 0, None, produces=("f_00[0-3].png", "times.csv"),
+     na_before=NO_SIDECARS)
+case("frame-times-video-fails", C, "-o /dev/full --frame-times t.csv over an earlier t.csv: the video fails, t.csv stays",
+     SHORT_RENDER + "-o /dev/full --frame-times t.csv", 1, "/dev/full: writing the MP4 failed: No space left on device",
+     key="/dev/full", files={"scene.json": VALID, "t.csv": "an earlier sidecar\n"}, na_before=NO_SIDECARS,
+     gtest=(G_SIDECAR_FAIL,))
+case("provenance-csv-fails", C, "--csv /dev/full --provenance p.json over an earlier p.json: the CSV fails, p.json stays",
+     "simulate scene.json --csv /dev/full --provenance p.json", 1, "/dev/full: writing the CSV failed: No space left on device",
+     key="/dev/full", files={"scene.json": VALID, "p.json": "an earlier provenance\n"}, na_before=NO_SIDECARS,
+     gtest=(G_SIDECAR_FAIL,))
+case("sigint-render-frame-times", C, "SIGINT during a render with --frame-times over earlier files (hung before)",
+     LONG_RENDER + "o.mp4 --frame-times t.csv", 1, interrupted(INT, "o.mp4"), key="interrupted", signal=INT,
+     files={"scene.json": VALID, "o.mp4": "an earlier video", "t.csv": "an earlier sidecar\n"}, na_before=NO_SIDECARS,
+     gtest=(G_SIDECAR_SIGNAL,))
+case("sigint-simulate-provenance", C, "SIGINT during simulate --provenance over earlier files (exit 0 before)",
+     LONG_SIM + " --provenance p.json", 1, interrupted(INT, "o.csv"), key="interrupted", signal=INT,
+     files={"scene.json": VALID, "o.csv": "an earlier CSV\n", "p.json": "an earlier provenance\n"},
+     na_before=NO_SIDECARS, gtest=(G_SIDECAR_SIGNAL,))
 
 # --- compare: a golden check in someone else's CI; 2 means "could not compare", never "same"
 C = "compare"

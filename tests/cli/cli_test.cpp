@@ -86,6 +86,61 @@ TEST_F(CliTest, BadCommandLinesGetExitTwo) {
   EXPECT_FALSE(fs::exists(csv));
 }
 
+// One set of conventions (issue 39.4): `coinroll help COMMAND` is `coinroll COMMAND --help`, and a
+// misspelt command is answered with the command it is a slip of.
+TEST_F(CliTest, HelpCommandIsTheCommandsHelpAndAMisspeltCommandGetsASuggestion) {
+  const RunResult help = run("help render"), flag = run("render --help");
+  EXPECT_EQ(help.exitCode, 0) << help.output;
+  EXPECT_EQ(help.output, flag.output);
+  EXPECT_NE(help.output.find("--frame-times"), std::string::npos) << help.output;
+  EXPECT_EQ(run("help").output, run("--help").output);
+  for (const auto& [given, meant] : {std::pair{"rendr", "render"}, std::pair{"Simulate", "simulate"},
+                                     std::pair{"stil", "still"}, std::pair{"sweep-marge", "sweep-merge"}}) {
+    const RunResult r = run(given);
+    EXPECT_EQ(r.exitCode, 2) << given;
+    EXPECT_NE(r.output.find(std::string("(coinroll --help); did you mean '") + meant + "'?"), std::string::npos) << r.output;
+  }
+  const RunResult far = run("frobnicate");
+  EXPECT_EQ(far.exitCode, 2);
+  EXPECT_EQ(far.output.find("did you mean"), std::string::npos) << far.output;
+  const RunResult helpMisspelt = run("help rendr");
+  EXPECT_EQ(helpMisspelt.exitCode, 2);
+  EXPECT_NE(helpMisspelt.output.find("unknown command 'rendr'"), std::string::npos) << helpMisspelt.output;
+}
+
+// The argument parser's refusals read like every other one: "coinroll: error: ...", naming the
+// option and where the command's options are listed, instead of the parser's own two lines.
+TEST_F(CliTest, ParseErrorsComeInTheProgramsOwnStyle) {
+  const fs::path scene = writeScene(kValid);
+  for (const auto& [arguments, message] :
+       {std::pair{"simulate " + scene.string(), std::string("coinroll: error: --csv is required (coinroll simulate --help)\n")},
+        std::pair{"render " + scene.string() + " --max-frames 0",
+                  std::string("coinroll: error: --max-frames: must be a whole number >= 1, got 0 (coinroll render --help)\n")},
+        std::pair{std::string(""), std::string("coinroll: error: A subcommand is required (coinroll --help)\n")}}) {
+    const RunResult r = run(arguments);
+    EXPECT_EQ(r.exitCode, 2) << arguments;
+    EXPECT_EQ(r.output, message) << arguments;
+  }
+}
+
+// Two scene files without a name rendered without -o in one directory each get their own video,
+// named after the file, instead of both writing coinroll.mp4, the second replacing the first.
+TEST_F(CliTest, RenderWithoutANameOrOutputNamesTheVideoAfterTheSceneFile) {
+  const std::string small = " -q --set render.width=64 --set render.height=48 --set duration=0.1";
+  for (const char* name : {"first.json", "second.json"}) {
+    std::ofstream(dir_ / name) << kValid;
+    const RunResult r = run(std::string("render ") + name + small, "cd " + dir_.string() + " &&");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+  }
+  EXPECT_TRUE(fs::exists(dir_ / "first.mp4"));
+  EXPECT_TRUE(fs::exists(dir_ / "second.mp4"));
+  EXPECT_FALSE(fs::exists(dir_ / "coinroll.mp4"));
+  // A name in the scene still names the video.
+  const RunResult named = run("render first.json" + small + " --set 'name=\"toy\"'", "cd " + dir_.string() + " &&");
+  ASSERT_EQ(named.exitCode, 0) << named.output;
+  EXPECT_TRUE(fs::exists(dir_ / "toy.mp4"));
+}
+
 TEST_F(CliTest, UnwritableOutputFailsWithoutLeavingFiles) {
   const RunResult r = run("simulate " + writeScene(kValid).string() + " --csv " + (dir_ / "no/such/dir/out.csv").string());
   EXPECT_EQ(r.exitCode, 1);

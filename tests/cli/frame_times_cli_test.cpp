@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -27,7 +28,9 @@ using coinroll::testing::RunResult;
 constexpr int kFps = 30;
 constexpr double kTimeScale = 1;
 
-RunResult run(const std::string& arguments) { return coinroll::testing::runCoinroll(arguments); }
+RunResult run(const std::string& arguments, const std::string& environment = "") {
+  return coinroll::testing::runCoinroll(arguments, environment);
+}
 
 class FrameTimesCliTest : public coinroll::testing::ScratchDirTest {
  protected:
@@ -112,6 +115,67 @@ TEST_F(FrameTimesCliTest, AFailedRenderLeavesNeitherFile) {
                 " --from 5").exitCode, 2);
   EXPECT_FALSE(fs::exists(video));
   EXPECT_FALSE(fs::exists(sidecar));
+}
+
+std::string contentOf(const fs::path& path) {
+  std::ifstream in(path);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+
+// A sidecar is an output of its run like the video: refused (exit 2, nothing written, the earlier
+// files as they were) when it is the video's file under another spelling, or a name the frame
+// pattern makes (which the frames would replace, or the stale-frame cleanup remove).
+TEST_F(FrameTimesCliTest, TheSidecarIsRefusedAsAFrameOrTheVideoUnderAnySpelling) {
+  const std::string earlier = "an earlier file, which must survive";
+  for (const char* name : {"f_002.png", "f_007.png"}) std::ofstream(dir_ / name) << earlier;
+  std::ofstream(dir_ / "v.mp4") << earlier;
+  fs::create_symlink("v.mp4", dir_ / "link.csv");
+  const std::string render = "render " + scene_.string() + " -q ";
+  for (const std::string& arguments :
+       {"-o f_%03d.png --frame-times f_002.png", "-o f_%03d.png --frame-times f_007.png",
+        "-o v.mp4 --frame-times ./v.mp4", "-o v.mp4 --frame-times link.csv"}) {
+    const RunResult r = run(render + arguments, "cd " + dir_.string() + " &&");
+    EXPECT_EQ(r.exitCode, 2) << arguments << ": " << r.output;
+    EXPECT_NE(r.output.find("coinroll: error: --frame-times "), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir_ / "f_000.png")) << arguments;
+    for (const char* name : {"f_002.png", "f_007.png", "v.mp4"}) EXPECT_EQ(contentOf(dir_ / name), earlier) << arguments;
+  }
+  std::ofstream(dir_ / "o.csv") << earlier;
+  for (const std::string& provenance : {std::string("./o.csv"), (dir_ / "o.csv").string(), std::string("")}) {
+    const RunResult r = run("simulate " + scene_.string() + " --csv o.csv --provenance '" + provenance + "'",
+                            "cd " + dir_.string() + " &&");
+    EXPECT_EQ(r.exitCode, 2) << provenance << ": " << r.output;
+    EXPECT_NE(r.output.find("coinroll: error: --provenance"), std::string::npos) << r.output;
+    EXPECT_EQ(contentOf(dir_ / "o.csv"), earlier) << provenance;
+  }
+  const RunResult r = run("simulate " + scene_.string() + " --csv - --provenance -");
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+}
+
+// The run's outputs are published together or not at all: a video (or CSV) that fails at its end
+// leaves the earlier sidecar as it was, and a failed simulate never replaces the earlier provenance.
+TEST_F(FrameTimesCliTest, AFailedRunKeepsBothEarlierFiles) {
+  const std::string earlier = "an earlier sidecar, which must survive";
+  const fs::path sidecar = dir_ / "t.csv", provenance = dir_ / "p.json";
+  std::ofstream(sidecar) << earlier;
+  std::ofstream(provenance) << earlier;
+  const RunResult rendered = run("render " + scene_.string() + " -q -o /dev/full --frame-times " + sidecar.string());
+  EXPECT_EQ(rendered.exitCode, 1) << rendered.output;
+  EXPECT_NE(rendered.output.find("/dev/full: writing the MP4 failed"), std::string::npos) << rendered.output;
+  EXPECT_EQ(contentOf(sidecar), earlier);
+  const RunResult simulated = run("simulate " + scene_.string() + " --csv /dev/full --provenance " + provenance.string());
+  EXPECT_EQ(simulated.exitCode, 1) << simulated.output;
+  EXPECT_EQ(contentOf(provenance), earlier);
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()), 3) << "a temporary was left";
+}
+
+// A CSV name that is not UTF-8 is named in the provenance with U+FFFD in place of the bad bytes,
+// instead of failing with the JSON library's text.
+TEST_F(FrameTimesCliTest, AProvenanceNamesACsvWhoseNameIsNotUtf8) {
+  const RunResult r = run("simulate " + scene_.string() + " --csv \"$(printf 'o\\377.csv')\" --provenance p.json",
+                          "cd " + dir_.string() + " &&");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(contentOf(dir_ / "p.json").find("\"csv\": \"o\xef\xbf\xbd.csv\""), std::string::npos) << contentOf(dir_ / "p.json");
 }
 
 }  // namespace

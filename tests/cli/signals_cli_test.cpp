@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <thread>
@@ -74,6 +75,17 @@ class BackgroundRun {
     return false;
   }
   void send(int signal) const { ::kill(pid_, signal); }
+  // The wait status (waitpid's), or nothing if the run is still going after `timeout` (a hang).
+  std::optional<int> waitAtMost(std::chrono::milliseconds timeout) {
+    const auto deadline = std::chrono::steady_clock::now() + timeout;
+    int status = 0;
+    while (::waitpid(pid_, &status, WNOHANG) == 0) {
+      if (std::chrono::steady_clock::now() > deadline) return std::nullopt;
+      std::this_thread::sleep_for(10ms);
+    }
+    waited_ = true;
+    return status;
+  }
   // The wait status (waitpid's).
   int wait() {
     int status = 0;
@@ -178,6 +190,38 @@ TEST_F(SignalsCliTest, ARequestToStopNotAnsweredInTimeEndsTheRunAtOnce) {
   EXPECT_NE(run.errors().find("interrupted by SIGTERM and not stopped within 3 s"), std::string::npos) << run.errors();
   EXPECT_GT(seconds, 2.5);  // the grace was given
   EXPECT_LT(seconds, 4.5);  // and not more
+}
+
+// A sidecar is an output like the others: a request to stop leaves the earlier video and sidecar
+// (or CSV and provenance) as they were and no temporary, and the run ends within the grace, with
+// exit 1 (a render with --frame-times hung; simulate --provenance exited 0 and lost its provenance).
+TEST_F(SignalsCliTest, ARequestToStopLeavesTheEarlierOutputsAndTheirSidecars) {
+  const std::string earlier = "an earlier output, which must survive";
+  for (const auto& [arguments, outputs] :
+       {std::pair{std::vector<std::string>{"render", "scene.json", "-q", "-o", "o.mp4", "--frame-times", "t.csv"},
+                  std::vector<std::string>{"o.mp4", "t.csv"}},
+        std::pair{std::vector<std::string>{"simulate", "scene.json", "--csv", "o.csv", "--sample-dt", "0.001", "--set",
+                                           "duration=1e4", "--provenance", "p.json"},
+                  std::vector<std::string>{"o.csv", "p.json"}}}) {
+    for (const std::string& name : outputs) std::ofstream(dir_ / name) << earlier;
+    BackgroundRun run(dir_, arguments);
+    ASSERT_TRUE(run.started());
+    ASSERT_TRUE(waitForHiddenFiles(1)) << arguments[0] << ": the run never started writing";
+    std::this_thread::sleep_for(300ms);
+    run.send(SIGINT);
+    const std::optional<int> status = run.waitAtMost(10s);
+    ASSERT_TRUE(status) << arguments[0] << ": still running 10 s after SIGINT";
+    ASSERT_TRUE(WIFEXITED(*status)) << arguments[0] << ": killed by a signal";
+    EXPECT_EQ(WEXITSTATUS(*status), 1) << arguments[0] << ": " << run.errors();
+    EXPECT_NE(run.errors().find("interrupted by SIGINT; nothing was written to o."), std::string::npos) << run.errors();
+    EXPECT_EQ(hiddenFiles(), 0) << arguments[0];
+    for (const std::string& name : outputs) {
+      std::ifstream in(dir_ / name);
+      EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}), earlier) << arguments[0] << ": " << name;
+      fs::remove(dir_ / name);
+    }
+    expectUntouched(arguments[0]);
+  }
 }
 
 }  // namespace

@@ -450,6 +450,48 @@ TEST(OutputGroup, AnUncommittedGroupLeavesTheDirectoryAsItWas) {
   EXPECT_EQ(scratch.fileCount(), 1);
 }
 
+// A video and its sidecar: OutputFiles of one group are published by the group's commit(), all or
+// none, and two of them leading to one file are refused whatever the spelling.
+TEST(OutputGroup, OutputFilesOfAGroupArePublishedByItsCommitOnly) {
+  const ScratchDirectory scratch;
+  writeFile(scratch / "v.mp4", "old video");
+  writeFile(scratch / "t.csv", "old sidecar");
+  {
+    OutputGroup group;
+    OutputFile video(scratch / "v.mp4", "MP4", OutputFile::Access::ByPath, &group);
+    OutputFile sidecar(scratch / "t.csv", "frame times CSV", OutputFile::Access::Sequential, &group);
+    const std::string error =
+        errorOf([&] { OutputFile again(scratch / "." / "v.mp4", "CSV", OutputFile::Access::Sequential, &group); });
+    EXPECT_NE(error.find("cannot write: it leads to the same file as " + (scratch / "v.mp4").string() +
+                         " (through a link, or as another name of that file); the MP4 and the CSV each need a file of "
+                         "their own"),
+              std::string::npos)
+        << error;
+    writeFile(video.temporaryPath(), "new video");
+    sidecar.write("new sidecar");
+    video.commit();
+    sidecar.commit();
+    EXPECT_EQ(contentOf(scratch / "v.mp4"), "old video") << "an OutputFile of a group does not publish itself";
+    EXPECT_EQ(contentOf(scratch / "t.csv"), "old sidecar");
+  }  // never committed: both earlier files stay
+  EXPECT_EQ(contentOf(scratch / "v.mp4"), "old video");
+  EXPECT_EQ(contentOf(scratch / "t.csv"), "old sidecar");
+  EXPECT_EQ(scratch.fileCount(), 2) << "no temporary is left";
+  {
+    OutputGroup group;
+    OutputFile video(scratch / "v.mp4", "MP4", OutputFile::Access::ByPath, &group);
+    OutputFile sidecar(scratch / "t.csv", "frame times CSV", OutputFile::Access::Sequential, &group);
+    writeFile(video.temporaryPath(), "new video");
+    sidecar.write("new sidecar");
+    video.commit();
+    sidecar.commit();
+    group.commit();
+  }
+  EXPECT_EQ(contentOf(scratch / "v.mp4"), "new video");
+  EXPECT_EQ(contentOf(scratch / "t.csv"), "new sidecar");
+  EXPECT_EQ(scratch.fileCount(), 2);
+}
+
 TEST(OutputGroup, AFileOfTheGroupMayBeALinkButNotAStream) {
   const ScratchDirectory scratch;
   writeFile(scratch / "target", "old");

@@ -74,7 +74,8 @@ std::vector<std::filesystem::path> inputsOf(const SceneSource& source) {
 
 void refuseEmptyOutputName(const std::string& option, const std::string& name, const std::string& example) {
   if (name.empty()) {
-    throw UsageError(fmt::format("{}: the output name is empty; give a file name, e.g. {} {}", option, option, example));
+    throw UsageError(
+        fmt::format("{}: the output name is empty; give a file name, e.g. {} {}", option, option, example));
   }
 }
 
@@ -83,7 +84,8 @@ void writeTextOutput(const std::string& path, std::string_view what, const std::
     write(std::cout);
     std::cout.flush();
     // A full device, a closed stdout or a reader gone while SIGPIPE is ignored: the stream says so.
-    if (!std::cout) throw std::runtime_error(fmt::format("writing the {} to stdout failed: {}", what, std::strerror(errno)));
+    if (!std::cout)
+      throw std::runtime_error(fmt::format("writing the {} to stdout failed: {}", what, std::strerror(errno)));
     return;
   }
   io::OutputFile file(path, std::string(what));

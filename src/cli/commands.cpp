@@ -101,14 +101,16 @@ void reportStop(const pipeline::TrajectoryReport& result) {
   }
   if (result.singularTime) {
     const pipeline::SingularTimeEstimate& e = *result.singularTime;
-    std::cerr << fmt::format("coinroll: singular time t0 = {:.6f} s, {:.3g} s after the stop (E ~ (t0 - t)^{:.3f}, fitted "
-                             "to E/P over t >= {:.6g} s, {} samples)\n",
-                             e.t0, e.t0 - result.stoppedBy->t, e.gamma, e.fitFrom, e.samples);
+    std::cerr << fmt::format(
+        "coinroll: singular time t0 = {:.6f} s, {:.3g} s after the stop (E ~ (t0 - t)^{:.3f}, fitted "
+        "to E/P over t >= {:.6g} s, {} samples)\n",
+        e.t0, e.t0 - result.stoppedBy->t, e.gamma, e.fitFrom, e.samples);
   }
 }
 
 void reportSteadyStart(const scene::SceneConfig& scene) {
-  if (const std::string note = pipeline::steadyStartNote(scene); !note.empty()) std::cerr << "coinroll: note: " << note << '\n';
+  if (const std::string note = pipeline::steadyStartNote(scene); !note.empty())
+    std::cerr << "coinroll: note: " << note << '\n';
 }
 
 // A default output name made from the scene name (docs/outputs.md): a name of letters, digits,
@@ -165,7 +167,8 @@ SceneSource withPictureSize(const SceneSource& scene, const std::optional<std::s
 // read from a stream (standard input, a pipe) has no name of its own to lend.
 std::string defaultOutputStem(const ResolvedScene& resolved, const SceneSource& source) {
   std::error_code error;
-  if (resolved.named || !source.file || !std::filesystem::is_regular_file(*source.file, error)) return resolved.config.name;
+  if (resolved.named || !source.file || !std::filesystem::is_regular_file(*source.file, error))
+    return resolved.config.name;
   return std::filesystem::path(*source.file).stem().string();
 }
 
@@ -201,8 +204,8 @@ void refuseFrameTimesName(const std::string& path, const std::filesystem::path& 
     return;
   }
   if (const std::optional<io::Destination> output = destinationOf(video); output && io::sameOutput(*sidecar, *output)) {
-    throw UsageError(fmt::format("--frame-times {}: that is the video's own name; give a file of its own beside it, e.g. {}",
-                                 path, example));
+    throw UsageError(fmt::format(
+        "--frame-times {}: that is the video's own name; give a file of its own beside it, e.g. {}", path, example));
   }
 }
 
@@ -238,8 +241,10 @@ void runSimulate(const SimulateOptions& options) {
   const scene::SceneConfig scene = scene::parseScene(document, loaded.second);
   const long maxRows = options.maxRows > 0 ? options.maxRows : kDefaultMaxRows;
   if (const double rows = scene.duration / options.sampleDt + 1; rows > static_cast<double>(maxRows)) {
-    throw UsageError(fmt::format("--sample-dt {}: duration {} s gives {:.4g} rows, more than the limit {}; raise "
-                                 "--sample-dt, or the limit with --max-rows", options.sampleDt, scene.duration, rows, maxRows));
+    throw UsageError(
+        fmt::format("--sample-dt {}: duration {} s gives {:.4g} rows, more than the limit {}; raise "
+                    "--sample-dt, or the limit with --max-rows",
+                    options.sampleDt, scene.duration, rows, maxRows));
   }
   pipeline::Simulation simulation = pipeline::buildSimulation(scene);
   simulation.cancel = &interruptRequested();
@@ -248,7 +253,9 @@ void runSimulate(const SimulateOptions& options) {
   ProgressLine noProgress(ProgressLine::Style::Off, "", "");
   const pipeline::TrajectoryReport result = withProgress(noProgress, options.csvPath, [&] {
     pipeline::TrajectoryReport r;
-    const auto writeCsv = [&](std::ostream& out) { r = pipeline::writeTrajectoryCsv(simulation, options.sampleDt, out); };
+    const auto writeCsv = [&](std::ostream& out) {
+      r = pipeline::writeTrajectoryCsv(simulation, options.sampleDt, out);
+    };
     if (!options.provenancePath) {
       writeTextOutput(options.csvPath, "CSV", writeCsv);
       return r;
@@ -278,9 +285,11 @@ void runSimulate(const SimulateOptions& options) {
 }
 
 void runSteady(const SteadyOptions& options) {
-  for (const auto& [name, value] : {std::pair{"--theta", options.thetaDegrees}, std::pair{"--omega-Z", options.omega_Z}}) {
+  for (const auto& [name, value] :
+       {std::pair{"--theta", options.thetaDegrees}, std::pair{"--omega-Z", options.omega_Z}}) {
     // JSON has no NaN or infinity: passed on, they would come back as a null the scene names.
-    if (value && !std::isfinite(*value)) throw UsageError(fmt::format("{}: must be a finite number, got {}", name, *value));
+    if (value && !std::isfinite(*value))
+      throw UsageError(fmt::format("{}: must be a finite number, got {}", name, *value));
   }
   std::optional<nlohmann::json> initial;  // the steady state the options name, as the scene file would
   if (options.kind) {
@@ -293,7 +302,8 @@ void runSteady(const SteadyOptions& options) {
   }
   const scene::SceneConfig scene = loadScene(options.scene, initial);
   if (!std::holds_alternative<scene::SteadyInitial>(scene.initial)) {
-    throw UsageError("steady: give --kind straight|circle|spin-in-place, or a scene whose initial names a steady state");
+    throw UsageError(
+        "steady: give --kind straight|circle|spin-in-place, or a scene whose initial names a steady state");
   }
   const pipeline::Simulation sim = pipeline::buildSimulation(scene);
   if (!scene.effects.empty()) {
@@ -320,8 +330,10 @@ void runSteady(const SteadyOptions& options) {
                    : "those of the uniform solid of thickness h with this rim (docs/rim_inertia.md)");
   }
   if (!report.criticalSpin) {
-    fmt::print("natural rate sqrt(g/a) = {:.6g} rad/s; straight rolling is not a steady motion of a coin whose rim has "
-               "corners (it switches corners at upright), so there is no critical spin (docs/rim.md eq. 5.4)\n\n", rateUnit);
+    fmt::print(
+        "natural rate sqrt(g/a) = {:.6g} rad/s; straight rolling is not a steady motion of a coin whose rim has "
+        "corners (it switches corners at upright), so there is no critical spin (docs/rim.md eq. 5.4)\n\n",
+        rateUnit);
   } else {
     const double omega_c = *report.criticalSpin;
     fmt::print("natural rate sqrt(g/a) = {:.6g} rad/s; critical spin for straight rolling omega_c = {:.6g} rad/s "
@@ -332,22 +344,25 @@ void runSteady(const SteadyOptions& options) {
              "\"omega_Y\": {:.12g}, \"omega_Z\": {:.12g}, \"x\": {:.12g}, \"z\": {:.12g}}}\n",
              s.theta * kDegreesPerRadian, s.phi * kDegreesPerRadian, s.psi * kDegreesPerRadian, s.omega_X, s.omega_Y,
              s.omega_Z, s.x, s.z);
-  fmt::print("  in units of sqrt(g/a): omega_Y = {:.9g}, omega_Z = {:.9g}\n", s.omega_Y / rateUnit, s.omega_Z / rateUnit);
+  fmt::print("  in units of sqrt(g/a): omega_Y = {:.9g}, omega_Z = {:.9g}\n", s.omega_Y / rateUnit,
+             s.omega_Z / rateUnit);
   fmt::print("  phi-dot = {:.9g} rad/s, psi-dot = {:.9g} rad/s\n", report.precessionRate, report.spinRate);
-  fmt::print("  circle radius: centre of mass R_G = {:.9g} m, contact point R_C = {:.9g} m\n", report.radii.centreOfMass,
-             report.radii.contact);
+  fmt::print("  circle radius: centre of mass R_G = {:.9g} m, contact point R_C = {:.9g} m\n",
+             report.radii.centreOfMass, report.radii.contact);
   const physics::Reaction& r = report.reaction;
-  fmt::print("  floor reaction: N = {:.6g} N, F = {:.6g} N (needs mu >= {:.4g})\n\n", r.N, r.F, r.N > 0 ? r.F / r.N : INFINITY);
+  fmt::print("  floor reaction: N = {:.6g} N, F = {:.6g} N (needs mu >= {:.4g})\n\n", r.N, r.F,
+             r.N > 0 ? r.F / r.N : INFINITY);
   fmt::print("stability ({}): K = {:.9g} 1/s^2 ({:.9g} in units g/a)\n",
              thick ? "docs/rim.md eq. 5.8" : "docs/derivations.md eq. 3.6", K, K / (rateUnit * rateUnit));
   switch (const physics::TiltStability& stability = report.stability; stability.kind) {
     case physics::TiltStability::Kind::Stable:
-      fmt::print("verdict: STABLE: a small tilt perturbation wobbles at {:.9g} rad/s (period {:.9g} s)\n", stability.rate,
-                 stability.time);
+      fmt::print("verdict: STABLE: a small tilt perturbation wobbles at {:.9g} rad/s (period {:.9g} s)\n",
+                 stability.rate, stability.time);
       break;
     case physics::TiltStability::Kind::Unstable:
-      fmt::print("verdict: UNSTABLE: a small tilt perturbation grows like exp({:.9g} t / s) (e-folding time {:.9g} s)\n",
-                 stability.rate, stability.time);
+      fmt::print(
+          "verdict: UNSTABLE: a small tilt perturbation grows like exp({:.9g} t / s) (e-folding time {:.9g} s)\n",
+          stability.rate, stability.time);
       break;
     case physics::TiltStability::Kind::Marginal:
       fmt::print("verdict: MARGINAL (K = 0)\n");
@@ -360,7 +375,8 @@ void runStill(const StillOptions& options) {
   refuseEmptyOutputName("-o", options.output, "still.png");
   // A device, FIFO or descriptor has no name to check: it gets the PNG.
   if (!video::namesExtension(output, video::kPngExtension) && !io::namesStream(output)) {
-    throw UsageError(fmt::format("-o: a still is written as PNG; give a name ending in .png, got \"{}\"", options.output));
+    throw UsageError(
+        fmt::format("-o: a still is written as PNG; give a name ending in .png, got \"{}\"", options.output));
   }
   if (options.strobeFrom && options.strobe == 0) {
     throw UsageError("--strobe-from: places the first of the --strobe copies, and there are none; give --strobe N too");
@@ -386,8 +402,8 @@ void runStill(const StillOptions& options) {
     std::cerr << fmt::format("coinroll: the run stopped early, so the still shows t = {:.6f} s: {}\n", result.shownTime,
                              *result.stopDescription);
   }
-  std::cerr << fmt::format("coinroll: wrote {} ({}x{}, t = {:.6g} s)\n", scene::printable(options.output), scene.render.picture.width, scene.render.picture.height,
-                           result.shownTime);
+  std::cerr << fmt::format("coinroll: wrote {} ({}x{}, t = {:.6g} s)\n", scene::printable(options.output),
+                           scene.render.picture.width, scene.render.picture.height, result.shownTime);
 }
 
 void runRender(const RenderOptions& options) {
@@ -402,7 +418,8 @@ void runRender(const RenderOptions& options) {
   if (options.from) window.from = *options.from;
   if (options.to) window.to = *options.to;
   if (window.from > window.to) {
-    throw UsageError(fmt::format("--from {} --to {}: the window ends before it starts; give --from <= --to", window.from, window.to));
+    throw UsageError(fmt::format("--from {} --to {}: the window ends before it starts; give --from <= --to",
+                                 window.from, window.to));
   }
   const ResolvedScene resolved = resolveScene(source);  // named: clang 14 cannot capture a structured binding
   const scene::SceneConfig& scene = resolved.config;
@@ -430,7 +447,8 @@ void runRender(const RenderOptions& options) {
   outputs.protect(inputsOf(options.scene));
   std::unique_ptr<video::FrameSink> sink;
   try {
-    sink = std::make_unique<video::AsyncSink>(video::makeSinkForPath(output, encoding, inputsOf(options.scene), &outputs));
+    sink =
+        std::make_unique<video::AsyncSink>(video::makeSinkForPath(output, encoding, inputsOf(options.scene), &outputs));
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
@@ -457,13 +475,14 @@ void runRender(const RenderOptions& options) {
       },
       [&] { sink.reset(); });  // removes the partial output before we report
   if (result.stopDescription) {
-    std::cerr << fmt::format("coinroll: the run stopped early, the clip ends at t = {:.6f} s: {}\n", result.simulatedSeconds,
-                             *result.stopDescription);
+    std::cerr << fmt::format("coinroll: the run stopped early, the clip ends at t = {:.6f} s: {}\n",
+                             result.simulatedSeconds, *result.stopDescription);
   }
   if (!options.quiet) {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::cerr << fmt::format("coinroll: wrote {} ({} frames, {}x{} at {} fps, {:.2f} s of video) in {:.1f} s\n",
-                             scene::printable(output.string()), result.frames, scene.render.picture.width, scene.render.picture.height, scene.render.fps,
+                             scene::printable(output.string()), result.frames, scene.render.picture.width,
+                             scene.render.picture.height, scene.render.fps,
                              static_cast<double>(result.frames) / scene.render.fps, seconds);
   }
 }

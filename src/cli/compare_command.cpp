@@ -29,7 +29,8 @@ namespace {
 // file and says what to give instead.
 image::PngSize checkComparedPng(const std::string& name) {
   const std::filesystem::path path(name);
-  if (name.empty()) throw UsageError("a PNG name is empty; give the paths of the two PNGs to compare, e.g. golden.png new.png");
+  if (name.empty())
+    throw UsageError("a PNG name is empty; give the paths of the two PNGs to compare, e.g. golden.png new.png");
   std::error_code error;
   if (!std::filesystem::exists(path, error)) {
     throw UsageError(fmt::format("{}: no such file; give the path of a PNG to compare", name));
@@ -44,8 +45,8 @@ image::PngSize checkComparedPng(const std::string& name) {
   char head[8] = {};
   in.read(head, sizeof head);
   if (in.gcount() != sizeof head || std::memcmp(head, kSignature, sizeof head) != 0) {
-    throw UsageError(fmt::format("{}: not a PNG file (no PNG signature); compare the PNGs coinroll still or render wrote",
-                                 name));
+    throw UsageError(
+        fmt::format("{}: not a PNG file (no PNG signature); compare the PNGs coinroll still or render wrote", name));
   }
   image::PngSize size;
   try {
@@ -91,7 +92,8 @@ int runCompare(const CompareOptions& options) {
     if (options.diff) {
       refuseEmptyOutputName("--diff", *options.diff, "diff.png");
       if (!video::namesExtension(*options.diff, video::kPngExtension) && !io::namesStream(*options.diff)) {
-        throw UsageError(fmt::format("--diff: the diff image is a PNG; give a name ending in .png, got \"{}\"", *options.diff));
+        throw UsageError(
+            fmt::format("--diff: the diff image is a PNG; give a name ending in .png, got \"{}\"", *options.diff));
       }
       refuseOverwritingInput("--diff", *options.diff, {options.a, options.b});
       io::checkOutputName(*options.diff);  // written after both pictures are read and compared
@@ -99,16 +101,19 @@ int runCompare(const CompareOptions& options) {
     // Judged by the headers before anything is decoded: a small file may declare a huge picture.
     const image::PngSize sizeA = checkComparedPng(options.a), sizeB = checkComparedPng(options.b);
     if (sizeA.width != sizeB.width || sizeA.height != sizeB.height) {
-      throw UsageError(fmt::format("{} is {}x{} but {} is {}x{}: compare pictures of the same size (render them with the same "
-                                   "render.width and render.height)",
-                                   options.a, sizeA.width, sizeA.height, options.b, sizeB.width, sizeB.height));
+      throw UsageError(
+          fmt::format("{} is {}x{} but {} is {}x{}: compare pictures of the same size (render them with the same "
+                      "render.width and render.height)",
+                      options.a, sizeA.width, sizeA.height, options.b, sizeB.width, sizeB.height));
     }
     static_assert(image::kMaxComparedPixels == static_cast<long>(render::kMaxImageSide) * render::kMaxImageSide);
     const long pixels = static_cast<long>(sizeA.width) * sizeA.height;
     if (pixels > image::kMaxComparedPixels) {
-      throw UsageError(fmt::format("{} and {} are {}x{}, more than the {} pixels compare decodes ({}x{}, the largest picture "
-                                   "coinroll draws); compare smaller pictures", options.a, options.b, sizeA.width,
-                                   sizeA.height, image::kMaxComparedPixels, render::kMaxImageSide, render::kMaxImageSide));
+      throw UsageError(
+          fmt::format("{} and {} are {}x{}, more than the {} pixels compare decodes ({}x{}, the largest picture "
+                      "coinroll draws); compare smaller pictures",
+                      options.a, options.b, sizeA.width, sizeA.height, image::kMaxComparedPixels, render::kMaxImageSide,
+                      render::kMaxImageSide));
     }
     // RGBA pictures at the peak: A, B and B's decoder buffer; with --diff, A, B, the diff image and
     // the two buffers encoding it.

@@ -29,8 +29,9 @@ std::filesystem::path pageTemplate() {
   if (const char* named = std::getenv("COINROLL_PAGE"); named != nullptr && *named != '\0') return named;
   std::error_code error;
   const std::filesystem::path program = std::filesystem::read_symlink("/proc/self/exe", error);
-  const std::filesystem::path candidates[] = {program.parent_path() / "web" / "coinroll.html",
-                                              program.parent_path().parent_path() / "share" / "coinroll" / "coinroll.html"};
+  const std::filesystem::path candidates[] = {
+      program.parent_path() / "web" / "coinroll.html",
+      program.parent_path().parent_path() / "share" / "coinroll" / "coinroll.html"};
   for (const std::filesystem::path& candidate : candidates) {
     if (std::filesystem::is_regular_file(candidate, error)) return candidate;
   }

@@ -154,7 +154,8 @@ InterruptGuard::InterruptGuard(int exitCode) {
 
 InterruptGuard::~InterruptGuard() {
   ::alarm(0);
-  for (auto entry = previous_.rbegin(); entry != previous_.rend(); ++entry) ::sigaction(entry->first, &entry->second, nullptr);
+  for (auto entry = previous_.rbegin(); entry != previous_.rend(); ++entry)
+    ::sigaction(entry->first, &entry->second, nullptr);
 }
 
 const std::atomic<bool>& interruptRequested() { return requested; }

@@ -40,7 +40,8 @@ namespace {
 using namespace coinroll::cli;
 
 void addSceneOptions(CLI::App& command, SceneSource& scene, bool fileRequired) {
-  CLI::Option* file = command.add_option("scene", scene.file, "Scene file (JSON; its keys: docs/scene.md, or coinroll schema)");
+  CLI::Option* file =
+      command.add_option("scene", scene.file, "Scene file (JSON; its keys: docs/scene.md, or coinroll schema)");
   if (fileRequired) file->required();
   command.add_option("--set", scene.overrides,
                      "Override one scene field, KEY.PATH=VALUE (e.g. --set initial.theta=12 --set solver.rtol=1e-9); "
@@ -99,7 +100,11 @@ CLI::App* addSimulateCommand(CLI::App& app, SimulateOptions& options) {
   command->add_option("--csv", options.csvPath, "Output CSV path, or - for stdout")->required();
   command->add_option("--sample-dt", options.sampleDt, "Time between rows, s (rows at t = k S)")
       ->capture_default_str();
-  command->add_option("--max-rows", options.maxRows, fmt::format("Refuse runs whose duration / sample step exceeds this many rows (default {})", kDefaultMaxRows))->check(kAtLeastOne);
+  command
+      ->add_option(
+          "--max-rows", options.maxRows,
+          fmt::format("Refuse runs whose duration / sample step exceeds this many rows (default {})", kDefaultMaxRows))
+      ->check(kAtLeastOne);
   command->add_option("--provenance", options.provenancePath,
                       "Also write FILE.json naming what made the CSV: coinroll's version, the scene's digest and the "
                       "resolved scene, the sample step and how the run ended (the CSV's header stays the contract's)");
@@ -133,7 +138,8 @@ void addSizeOption(CLI::App& command, std::optional<std::string>& size) {
                          picture.height);
     sizeNames += fmt::format("{}{}", sizeNames.empty() ? "" : "|", picture.name);
   }
-  command.add_option("--size", size, "Picture size, setting render.width x render.height: " + sizes)->type_name(sizeNames);
+  command.add_option("--size", size, "Picture size, setting render.width x render.height: " + sizes)
+      ->type_name(sizeNames);
 }
 
 CLI::App* addRenderCommand(CLI::App& app, RenderOptions& options) {
@@ -142,28 +148,34 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& options) {
   std::vector<std::string> kinds;
   std::string names;
   for (const coinroll::video::VideoKind& kind : coinroll::video::videoKinds()) {
-    kinds.push_back(fmt::format("{} {}{}", kind.article, kind.label, kind.codec.empty() ? "" : fmt::format(" ({})", kind.codec)));
+    kinds.push_back(
+        fmt::format("{} {}{}", kind.article, kind.label, kind.codec.empty() ? "" : fmt::format(" ({})", kind.codec)));
     std::vector<std::string_view> notes;
     if (!kind.codec.empty()) notes.push_back(kind.codec);
     if (kind.loops) notes.push_back("looping");
     names += fmt::format("NAME{} ({}), ", kind.extension, fmt::join(notes, ", "));
   }
   kinds.emplace_back("a PNG sequence");
-  const std::string_view defaultExtension = coinroll::video::videoKind(coinroll::video::VideoOptions{}.format).extension;
+  const std::string_view defaultExtension =
+      coinroll::video::videoKind(coinroll::video::VideoOptions{}.format).extension;
   CLI::App* command = app.add_subcommand(
-      "render", fmt::format("Render a scene to {}; without a scene, the built-in default", coinroll::video::joinedWithOr(kinds)));
+      "render",
+      fmt::format("Render a scene to {}; without a scene, the built-in default", coinroll::video::joinedWithOr(kinds)));
   addSceneOptions(*command, options.scene, false);
-  command->add_option("-o,--output", options.output,
-                      fmt::format("Output, its kind by the extension (any case): {}or a PNG sequence pattern like "
-                                  "frames_%05d.png (frames numbered from 0); default: the scene's name + {} (coinroll{} "
-                                  "for the built-in scene)",
-                                  names, defaultExtension, defaultExtension));
+  command->add_option(
+      "-o,--output", options.output,
+      fmt::format("Output, its kind by the extension (any case): {}or a PNG sequence pattern like "
+                  "frames_%05d.png (frames numbered from 0); default: the scene's name + {} (coinroll{} "
+                  "for the built-in scene)",
+                  names, defaultExtension, defaultExtension));
   addSizeOption(*command, options.size);
-  command->add_option("--from", options.from,
-                            "Write only the frames whose simulated time is at least T0 s (default 0); the simulation still "
-                            "runs from 0, so they are the full render's frames")
+  command
+      ->add_option("--from", options.from,
+                   "Write only the frames whose simulated time is at least T0 s (default 0); the simulation still "
+                   "runs from 0, so they are the full render's frames")
       ->type_name("T0");
-  command->add_option("--to", options.to, "Write only the frames whose simulated time is at most T1 s (default: the end)")
+  command
+      ->add_option("--to", options.to, "Write only the frames whose simulated time is at most T1 s (default: the end)")
       ->type_name("T1");
   command->add_flag("-q,--quiet", options.quiet, "No progress line and no summary on stderr");
   command->add_option("--frame-times", options.frameTimesPath,
@@ -172,7 +184,12 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& options) {
                       "playback_rate (simulated s per video s; 0 while a landing is held); published with the video, "
                       "never without it")
       ->type_name("FILE");
-  command->add_option("--max-frames", options.maxFrames, fmt::format("Refuse clips of more frames than this (default {}; a duration alone giving {} times as many is refused before any work)", coinroll::pipeline::kDefaultMaxFrames, coinroll::pipeline::kUpFrontFrameFactor))->check(kAtLeastOne);
+  command
+      ->add_option("--max-frames", options.maxFrames,
+                   fmt::format("Refuse clips of more frames than this (default {}; a duration alone giving {} times as "
+                               "many is refused before any work)",
+                               coinroll::pipeline::kDefaultMaxFrames, coinroll::pipeline::kUpFrontFrameFactor))
+      ->check(kAtLeastOne);
   command->footer(
       "Frame k shows simulated time k * render.time_scale / render.fps, from the integrator's dense output.\n"
       "Size, fps, anti-aliasing, camera, trace, overlay and encoder come from the scene's render block, e.g.\n"
@@ -200,7 +217,8 @@ CLI::App* addStillCommand(CLI::App& app, StillOptions& options) {
   addSizeOption(*command, options.size);
   command->footer(
       "Size, anti-aliasing, camera, trace and overlay come from the scene's render block, e.g.\n"
-      "  coinroll still examples/steady_circle.json --time 1.5 -o circle.png --set render.width=640 --set render.height=360\n"
+      "  coinroll still examples/steady_circle.json --time 1.5 -o circle.png --set render.width=640 --set "
+      "render.height=360\n"
       "  coinroll still examples/perturbed_circle.json --time 2 --strobe 12 -o strobe.png --set render.hud=false\n"
       "  coinroll still examples/euler_disk.json --time 98.77 --strobe 16 --strobe-from 97.77 -o last_second.png");
   return command;
@@ -210,26 +228,34 @@ CLI::App* addSweepCommand(CLI::App& app, SweepOptions& options) {
   CLI::App* command = app.add_subcommand(
       "sweep", "Simulate every point of a grid over scene fields; one summary row per point (all cores)");
   addSceneOptions(*command, options.scene, false);
-  command->add_option("--grid", options.grid,
-                           "KEY.PATH=START:STOP:COUNT: COUNT evenly spaced values of a scene field, in the scene's units "
-                           "(degrees for angles); START:STOP:COUNT:log: geometrically spaced (START, STOP > 0); "
-                           "V1,V2,V3: the values listed; repeatable, the last axis runs fastest")
+  command
+      ->add_option("--grid", options.grid,
+                   "KEY.PATH=START:STOP:COUNT: COUNT evenly spaced values of a scene field, in the scene's units "
+                   "(degrees for angles); START:STOP:COUNT:log: geometrically spaced (START, STOP > 0); "
+                   "V1,V2,V3: the values listed; repeatable, the last axis runs fastest")
       ->required()
       ->type_name("KEY=START:STOP:COUNT[:log]|KEY=V1,V2,...");
-  command->add_option("-o,--output", options.output, "Output CSV path (written atomically), or - for standard output")->required();
+  command->add_option("-o,--output", options.output, "Output CSV path (written atomically), or - for standard output")
+      ->required();
   command->add_option("--shard", options.shard,
                            "Compute only the points p with p mod N = K - 1 (K/N, 1 <= K <= N); auto/N: K from a Slurm "
                            "array task ($SLURM_ARRAY_TASK_ID, sbatch --array=1-N)")
       ->type_name("K/N|auto/N");
   command->add_option("--threads", options.threads, "Worker threads (default 0: every hardware thread)");
-  command->add_option("--max-points", options.maxPoints, fmt::format("Refuse grids larger than this (default {})", coinroll::pipeline::kDefaultMaxPoints))->check(kAtLeastOne);
+  command
+      ->add_option("--max-points", options.maxPoints,
+                   fmt::format("Refuse grids larger than this (default {})", coinroll::pipeline::kDefaultMaxPoints))
+      ->check(kAtLeastOne);
   command->add_flag("-q,--quiet", options.quiet,
                          "No progress and no summary on stderr (progress is a line in place on a terminal, else a line "
                          "per tenth of the points and at least one every 30 s)");
   command->footer(
-      "Rows: point, the grid values, end (duration, or the event that ended the run, or error: why), t_end, theta_min,\n"
-      "theta_max (rad, over samples every 0.01 s and the end), energy_start, energy_end (J). Same bytes for any --threads.\n"
-      "  coinroll sweep examples/straight_stable.json --grid initial.omega_Z=2:20:10 --grid initial.theta=1:10:10 -o map.csv\n"
+      "Rows: point, the grid values, end (duration, or the event that ended the run, or error: why), t_end, "
+      "theta_min,\n"
+      "theta_max (rad, over samples every 0.01 s and the end), energy_start, energy_end (J). Same bytes for any "
+      "--threads.\n"
+      "  coinroll sweep examples/straight_stable.json --grid initial.omega_Z=2:20:10 --grid initial.theta=1:10:10 -o "
+      "map.csv\n"
       "  coinroll sweep scene.json --grid coin.mass=0.01:1:5:log --grid initial.theta=5,10,20 -o mass.csv\n"
       "  coinroll sweep scene.json --grid coin.mass=0.1:1:10 --shard auto/8 -o part_${SLURM_ARRAY_TASK_ID}.csv\n"
       "      (one task of a Slurm array, sbatch --array=1-8)\n"
@@ -241,7 +267,8 @@ CLI::App* addSweepCommand(CLI::App& app, SweepOptions& options) {
 CLI::App* addSweepMergeCommand(CLI::App& app, SweepMergeOptions& options) {
   CLI::App* command = app.add_subcommand(
       "sweep-merge", "Merge the shard files of one sweep into the file the unsharded sweep writes");
-  command->add_option("-o,--output", options.output, "Output CSV path (written atomically), or - for standard output")->required();
+  command->add_option("-o,--output", options.output, "Output CSV path (written atomically), or - for standard output")
+      ->required();
   command->add_option("shards", options.shards, "Shard CSV files (any order)")->required();
   command->footer("Fails, naming the points, if a point is missing or repeated.");
   return command;
@@ -249,12 +276,14 @@ CLI::App* addSweepMergeCommand(CLI::App& app, SweepMergeOptions& options) {
 
 CLI::App* addCompareCommand(CLI::App& app, CompareOptions& options) {
   CLI::App* command = app.add_subcommand(
-      "compare", "Compare two PNGs with the rule of coinroll's golden tests: PSNR, differing pixels, exit 0 same / 1 different");
+      "compare",
+      "Compare two PNGs with the rule of coinroll's golden tests: PSNR, differing pixels, exit 0 same / 1 different");
   command->add_option("a", options.a, "Reference PNG (e.g. the committed golden); the diff image is drawn from it")
       ->required();
   command->add_option("b", options.b, "PNG to check against it")->required();
-  command->add_option("--max-differing-pixels", options.maxDifferingPixels,
-                             "Pass with at most N differing pixels (default 0 unless --max-differing-fraction is given)")
+  command
+      ->add_option("--max-differing-pixels", options.maxDifferingPixels,
+                   "Pass with at most N differing pixels (default 0 unless --max-differing-fraction is given)")
       ->type_name("N");
   command->add_option("--max-differing-fraction", options.maxDifferingFraction,
                              "Pass with at most this fraction of the pixels differing, 0..1 (0.01 = 1 %)")
@@ -265,17 +294,20 @@ CLI::App* addCompareCommand(CLI::App& app, CompareOptions& options) {
       ->capture_default_str();
   command->add_option("--min-psnr", options.minPsnr, "Pass only with a PSNR (over R, G, B) of at least DB decibels")
       ->type_name("DB");
-  command->add_option("--diff", options.diff,
-                             "Write a diff PNG here (written atomically, whatever the verdict): equal pixels dim grey of A, "
-                             "differing pixels red (brighter = larger), off by no more than --channel-tolerance amber")
+  command
+      ->add_option("--diff", options.diff,
+                   "Write a diff PNG here (written atomically, whatever the verdict): equal pixels dim grey of A, "
+                   "differing pixels red (brighter = larger), off by no more than --channel-tolerance amber")
       ->type_name("PATH.png");
   command->footer(
       "The default is an exact match; every limit given must hold. One line on stdout, e.g.\n"
       "  PSNR 47.31 dB, 12 of 57600 pixels differ (0.02083 %, channel tolerance 0), max channel difference 9: "
       "DIFFERENT (12 > --max-differing-pixels 0)\n"
-      "PSNR is inf for identical pixels. Exit: 0 within the limits, 1 outside them, 2 could not compare (a missing file,\n"
+      "PSNR is inf for identical pixels. Exit: 0 within the limits, 1 outside them, 2 could not compare (a missing "
+      "file,\n"
       "not a PNG, different sizes, a bad limit, the diff not written).\n"
-      "  coinroll compare golden.png new.png                (exact: the same Mesa and llvmpipe code path, or a pinned one)\n"
+      "  coinroll compare golden.png new.png                (exact: the same Mesa and llvmpipe code path, or a pinned "
+      "one)\n"
       "  coinroll compare golden.png new.png --max-differing-fraction 0.001 --min-psnr 60 --diff diff.png\n"
       "      (a CI runner with another x86-64 CPU and the same Mesa, where llvmpipe's shader code rounds a few pixels\n"
       "       differently: the rule of coinroll's own golden tests under COINROLL_GOLDEN_TOLERANT=1; measured in\n"
@@ -285,7 +317,8 @@ CLI::App* addCompareCommand(CLI::App& app, CompareOptions& options) {
 
 CLI::App* addExportCommand(CLI::App& app, ExportOptions& options) {
   CLI::App* command = app.add_subcommand(
-      "export", "Write the scene as a web page: coinroll's own physics in WebAssembly, drawn with three.js, with sliders");
+      "export",
+      "Write the scene as a web page: coinroll's own physics in WebAssembly, drawn with three.js, with sliders");
   addSceneOptions(*command, options.scene, false);
   command->add_option("-o,--output", options.output, "The page to write (one HTML file, about 1.5 MB)")->required();
   command->footer(
@@ -298,12 +331,14 @@ CLI::App* addExportCommand(CLI::App& app, ExportOptions& options) {
 
 CLI::App* addSchemaCommand(CLI::App& app, SchemaOptions& options) {
   CLI::App* command = app.add_subcommand(
-      "schema", "Print every key a scene file may hold: path, type, unit, default, range, the keys it needs, a line of doc");
+      "schema",
+      "Print every key a scene file may hold: path, type, unit, default, range, the keys it needs, a line of doc");
   command->add_flag("--markdown", options.markdown, "The table of docs/scene.md instead of JSON");
   command->footer(
       "JSON by default, one object per key in \"keys\", for scripts and the web page's controls:\n"
       "  coinroll schema | jq '.keys[] | select(.path == \"coin.radius\")'\n"
-      "`effects[air_drag].viscosity` is the key of an effects entry whose type is air_drag (--set effects.0.viscosity=...);\n"
+      "`effects[air_drag].viscosity` is the key of an effects entry whose type is air_drag (--set "
+      "effects.0.viscosity=...);\n"
       "`initial[steady].theta` is theta in an initial block that names a steady motion.");
   return command;
 }
@@ -340,14 +375,15 @@ std::optional<std::string> unknownCommandMessage(const CLI::App& app, int argc, 
   for (const CLI::App* command : app.get_subcommands({})) {
     commands += (commands.empty() ? "" : ", ") + command->get_name();
     known = known || (argc > 1 && command->get_name() == argv[1]);
-    if (const std::size_t edits = editDistance(given, command->get_name()); edits < nearestEdits && edits < given.size()) {
+    if (const std::size_t edits = editDistance(given, command->get_name());
+        edits < nearestEdits && edits < given.size()) {
       nearest = command->get_name();
       nearestEdits = edits;
     }
   }
   if (argc > 1 && argv[1][0] != '-' && !known) {
-    return "coinroll: error: unknown command '" + coinroll::scene::printable(argv[1]) + "'; the commands are " + commands +
-           " (coinroll --help)" + (nearest ? "; did you mean '" + *nearest + "'?" : "") + "\n";
+    return "coinroll: error: unknown command '" + coinroll::scene::printable(argv[1]) + "'; the commands are " +
+           commands + " (coinroll --help)" + (nearest ? "; did you mean '" + *nearest + "'?" : "") + "\n";
   }
   return std::nullopt;
 }
@@ -355,15 +391,30 @@ std::optional<std::string> unknownCommandMessage(const CLI::App& app, int argc, 
 // CLI11 reads an empty value of a number as 0 (--time '' drew t = 0; --min-psnr '' dropped the
 // limit): every numeric option refuses it, naming itself.
 void refuseEmptyNumbers(CLI::App& app) {
-  constexpr std::array<std::string_view, 16> kNumericOptions = {
-      "--sample-dt", "--max-rows", "--theta", "--omega-Z", "--max-frames", "--from", "--to", "--time", "--strobe", "--strobe-from",
-      "--threads", "--max-points", "--max-differing-pixels", "--max-differing-fraction", "--channel-tolerance",
-      "--min-psnr"};
+  constexpr std::array<std::string_view, 16> kNumericOptions = {"--sample-dt",
+                                                                "--max-rows",
+                                                                "--theta",
+                                                                "--omega-Z",
+                                                                "--max-frames",
+                                                                "--from",
+                                                                "--to",
+                                                                "--time",
+                                                                "--strobe",
+                                                                "--strobe-from",
+                                                                "--threads",
+                                                                "--max-points",
+                                                                "--max-differing-pixels",
+                                                                "--max-differing-fraction",
+                                                                "--channel-tolerance",
+                                                                "--min-psnr"};
   for (CLI::App* command : app.get_subcommands({})) {
     for (CLI::Option* option : command->get_options()) {
-      if (std::find(kNumericOptions.begin(), kNumericOptions.end(), option->get_name()) == kNumericOptions.end()) continue;
+      if (std::find(kNumericOptions.begin(), kNumericOptions.end(), option->get_name()) == kNumericOptions.end())
+        continue;
       option->check(CLI::Validator(
-          [](std::string& text) { return text.empty() ? std::string("the value is empty; give a number") : std::string(); },
+          [](std::string& text) {
+            return text.empty() ? std::string("the value is empty; give a number") : std::string();
+          },
           ""));
     }
   }
@@ -431,7 +482,8 @@ int main(int argc, char** argv) {
       // In the style of every other refusal, naming where the command's options are listed,
       // instead of CLI11's own "Run with --help for more information."
       const std::vector<CLI::App*> parsed = app.get_subcommands();
-      const std::string help = parsed.empty() ? "coinroll --help" : "coinroll " + parsed.front()->get_name() + " --help";
+      const std::string help =
+          parsed.empty() ? "coinroll --help" : "coinroll " + parsed.front()->get_name() + " --help";
       std::cerr << "coinroll: error: " << coinroll::scene::printable(e.what()) << " (" << help << ")\n";
       return kExitBadInput;
     }

@@ -36,27 +36,31 @@ void runSweep(const SweepOptions& options) {
     pipeline::refuseMisnamedAxes(spec);
     if (options.shard) {
       const char* arrayTaskId = std::getenv("SLURM_ARRAY_TASK_ID");
-      spec.shard = pipeline::parseShard(*options.shard, arrayTaskId ? std::optional<std::string_view>(arrayTaskId) : std::nullopt);
+      spec.shard = pipeline::parseShard(*options.shard,
+                                        arrayTaskId ? std::optional<std::string_view>(arrayTaskId) : std::nullopt);
     }
     if (options.maxPoints > 0) spec.maxPoints = options.maxPoints;
     if (options.threads < 0 || options.threads > 1024) {
-      throw std::invalid_argument(fmt::format("--threads: must be 1 to 1024 (0: every hardware thread), got {}", options.threads));
+      throw std::invalid_argument(
+          fmt::format("--threads: must be 1 to 1024 (0: every hardware thread), got {}", options.threads));
     }
     pipeline::gridPointCount(spec);
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
-  spec.threads = options.threads > 0 ? options.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  spec.threads =
+      options.threads > 0 ? options.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 
   // In a batch job (Slurm, parallel) stderr is a log file: the progress comes as lines that name the shard.
-  ProgressLine progress(ProgressLine::styleFor(options.quiet),
-                        spec.shard.count > 1 ? fmt::format("sweep shard {}/{}", spec.shard.index, spec.shard.count) : "sweep",
-                        "point");
+  ProgressLine progress(
+      ProgressLine::styleFor(options.quiet),
+      spec.shard.count > 1 ? fmt::format("sweep shard {}/{}", spec.shard.index, spec.shard.count) : "sweep", "point");
   const auto start = std::chrono::steady_clock::now();
   const pipeline::SweepResult result = withProgress(progress, options.output, [&] {
     pipeline::SweepResult r;
     writeTextOutput(options.output, "sweep", [&](std::ostream& out) {
-      r = pipeline::writeSweepCsv(spec, out, [&](long done, long total) { progress.update(done, total); }, &interruptRequested());
+      r = pipeline::writeSweepCsv(
+          spec, out, [&](long done, long total) { progress.update(done, total); }, &interruptRequested());
     });
     return r;
   });
@@ -66,10 +70,11 @@ void runSweep(const SweepOptions& options) {
     // without landing would otherwise pass for landed ones in a plot of t_end.
     std::string ends;
     for (const auto& [end, count] : result.ends) ends += fmt::format(", {} {}", count, end);
-    std::cerr << fmt::format("coinroll: wrote {} ({} points{}, {} failed{}; {:.1f} s, {:.0f} points/s on {} threads)\n",
-                             options.output == "-" ? "standard output" : scene::printable(options.output), result.points,
-                             spec.shard.count > 1 ? fmt::format(", shard {}/{}", spec.shard.index, spec.shard.count) : "",
-                             result.failed, ends, seconds, result.points / std::max(seconds, 1e-9), spec.threads);
+    std::cerr << fmt::format(
+        "coinroll: wrote {} ({} points{}, {} failed{}; {:.1f} s, {:.0f} points/s on {} threads)\n",
+        options.output == "-" ? "standard output" : scene::printable(options.output), result.points,
+        spec.shard.count > 1 ? fmt::format(", shard {}/{}", spec.shard.index, spec.shard.count) : "", result.failed,
+        ends, seconds, result.points / std::max(seconds, 1e-9), spec.threads);
   }
 }
 

@@ -148,8 +148,9 @@ void checkReplaceable(const Destination& destination) {
     // The rename would succeed in a writable directory whatever the file's own mode: refuse what
     // `>` would refuse. AT_EACCESS: the effective user, the one that would do the writing.
     if (::faccessat(AT_FDCWD, destination.path.c_str(), W_OK, AT_EACCESS) != 0) {
-      throw std::runtime_error(name + ": cannot write: " + std::strerror(errno) +
-                               ": the file is not writable for you; make it writable (chmod u+w) or choose another name");
+      throw std::runtime_error(
+          name + ": cannot write: " + std::strerror(errno) +
+          ": the file is not writable for you; make it writable (chmod u+w) or choose another name");
     }
     // In a sticky directory (/tmp) only the file's or the directory's owner may rename onto it; the
     // rename would fail only at the end.

@@ -28,7 +28,8 @@ std::string describe(int error) { return std::strerror(error); }
 
 std::string describeWriteError(int error) {
   rlimit limit{};
-  if (error != EFBIG || ::getrlimit(RLIMIT_FSIZE, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY) return describe(error);
+  if (error != EFBIG || ::getrlimit(RLIMIT_FSIZE, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY)
+    return describe(error);
   return describe(error) + " (the file-size limit, ulimit -f, is " + std::to_string(limit.rlim_cur) + " bytes)";
 }
 
@@ -171,12 +172,14 @@ void OutputFile::write(std::string_view bytes) {
 }
 
 void OutputFile::failWrite(int error) const {
-  throw std::runtime_error(destination_.name.string() + ": writing the " + what_ + " failed: " + describeWriteError(error));
+  throw std::runtime_error(destination_.name.string() + ": writing the " + what_ +
+                           " failed: " + describeWriteError(error));
 }
 
 void OutputFile::requireSequential() const {
   if (access_ != Access::Sequential || committed_) {
-    throw std::logic_error(destination_.name.string() + ": write() or stream() on an output written by path or committed");
+    throw std::logic_error(destination_.name.string() +
+                           ": write() or stream() on an output written by path or committed");
   }
 }
 

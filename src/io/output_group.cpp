@@ -27,8 +27,9 @@ std::filesystem::path OutputGroup::add(const std::filesystem::path& name, const 
   const std::string& content = what.empty() ? what_ : what;
   Destination destination = resolveDestination(name);
   if (destination.isStream()) {
-    throw std::runtime_error(name.string() + ": cannot write: not a regular file (a device, FIFO or open descriptor); each " +
-                             content + " of a sequence is a file of its own");
+    throw std::runtime_error(name.string() +
+                             ": cannot write: not a regular file (a device, FIFO or open descriptor); each " + content +
+                             " of a sequence is a file of its own");
   }
   checkReplaceable(destination);
   refuseSharedTarget(destination, content);
@@ -69,7 +70,8 @@ void OutputGroup::refuseSharedTarget(const Destination& destination, const std::
            (earlier.what == what ? "each " + what + " of a sequence needs a file of its own"
                                  : "the " + earlier.what + " and the " + what + " each need a file of their own"));
   };
-  if (const auto earlier = stagedTargets_.find(destination.path); earlier != stagedTargets_.end()) sameFileAs(earlier->second);
+  if (const auto earlier = stagedTargets_.find(destination.path); earlier != stagedTargets_.end())
+    sameFileAs(earlier->second);
   stagedTargets_.emplace(destination.path, StagedName{destination.name, what});
   struct stat info {};
   if (::stat(destination.path.c_str(), &info) != 0) return;  // a new file: no other name has it yet
@@ -78,7 +80,8 @@ void OutputGroup::refuseSharedTarget(const Destination& destination, const std::
     refuse(input->second.string() + ", an input of this command (through a link, or as another name of that file); "
                                     "choose another output name");
   }
-  if (const auto earlier = stagedIdentities_.find(identity); earlier != stagedIdentities_.end()) sameFileAs(earlier->second);
+  if (const auto earlier = stagedIdentities_.find(identity); earlier != stagedIdentities_.end())
+    sameFileAs(earlier->second);
   stagedIdentities_.emplace(identity, StagedName{destination.name, what});
 }
 
@@ -115,7 +118,8 @@ void OutputGroup::keepPrevious(Staged& file) {
   const int error = errno;
   file.previous.clear();
   file.listedPrevious.reset();
-  throw std::runtime_error(file.destination.name.string() + ": cannot set the earlier file aside: " + std::strerror(error));
+  throw std::runtime_error(file.destination.name.string() +
+                           ": cannot set the earlier file aside: " + std::strerror(error));
 }
 
 void OutputGroup::commit() {

@@ -50,7 +50,8 @@ TemporaryFile createExclusive(const std::filesystem::path& directory, const std:
     const int descriptor = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, mode);
     if (descriptor >= 0) return {path, descriptor, std::move(listed)};
     if (errno != EEXIST || attempt == kMaxAttempts) {
-      throw std::runtime_error(name.string() + ": cannot write in '" + directory.string() + "': " + std::strerror(errno));
+      throw std::runtime_error(name.string() + ": cannot write in '" + directory.string() +
+                               "': " + std::strerror(errno));
     }
   }
 }
@@ -93,7 +94,8 @@ TemporaryFile createScratchFileFor(const Destination& destination) {
   const std::filesystem::path directory = variable != nullptr && *variable != '\0' ? variable : "/tmp";
   std::error_code error;
   if (!std::filesystem::is_directory(directory, error)) {
-    throw std::runtime_error(destination.name.string() + ": no temporary directory to encode in: " + directory.string() +
+    throw std::runtime_error(destination.name.string() +
+                             ": no temporary directory to encode in: " + directory.string() +
                              (error ? ": " + error.message() : std::string(" is not a directory")) +
                              (variable != nullptr && *variable != '\0' ? " (from $TMPDIR)" : ""));
   }

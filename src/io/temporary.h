@@ -22,11 +22,10 @@ struct TemporaryFile {
 // threads and processes writing there. Only a name: nothing is created.
 std::filesystem::path siblingName(const std::filesystem::path& file, std::string_view tag);
 
-// Creates (O_EXCL, so it is ours alone, and listed as unfinished before it exists) the temporary for `destination`, a NewFile or a
-// RegularFile, beside destination.path. A new file gets 0666 less the umask, as any output; a
-// replacement gets the permission bits of the file it replaces (set before any content is
-// written) and, where the system lets us (always as root), its owner and group.
-// Throws std::runtime_error naming destination.name.
+// Creates (O_EXCL, so it is ours alone, and listed as unfinished before it exists) the temporary for `destination`, a
+// NewFile or a RegularFile, beside destination.path. A new file gets 0666 less the umask, as any output; a replacement
+// gets the permission bits of the file it replaces (set before any content is written) and, where the system lets us
+// (always as root), its owner and group. Throws std::runtime_error naming destination.name.
 TemporaryFile createTemporaryFor(const Destination& destination);
 
 // Creates a private (0600) temporary in the system's temporary directory ($TMPDIR, else /tmp),

@@ -34,7 +34,8 @@ std::string videoOptionError(const std::string& field, const std::string& rule, 
 
 const AVPixFmtDescriptor& pixelFormatNamed(std::string_view name) {
   const AVPixFmtDescriptor* descriptor = av_pix_fmt_desc_get(av_get_pix_fmt(std::string(name).c_str()));
-  if (descriptor == nullptr) throw std::logic_error("video_kinds.cpp names pixel format '" + std::string(name) + "', unknown to libav");
+  if (descriptor == nullptr)
+    throw std::logic_error("video_kinds.cpp names pixel format '" + std::string(name) + "', unknown to libav");
   return *descriptor;
 }
 
@@ -58,19 +59,22 @@ void validate(const VideoOptions& options) {
   };
   requireSide("width", options.width, pixels.log2_chroma_w);
   requireSide("height", options.height, pixels.log2_chroma_h);
-  if (options.fps <= 0) throw std::invalid_argument(videoOptionError("fps", "must be > 0", std::to_string(options.fps)));
+  if (options.fps <= 0)
+    throw std::invalid_argument(videoOptionError("fps", "must be > 0", std::to_string(options.fps)));
   const X264Options& x264 = options.x264;
   if (x264.crf < 0 || x264.crf > kMaxCrf) {
-    throw std::invalid_argument(videoOptionError("x264.crf", "must be in 0.." + std::to_string(kMaxCrf), std::to_string(x264.crf)));
+    throw std::invalid_argument(
+        videoOptionError("x264.crf", "must be in 0.." + std::to_string(kMaxCrf), std::to_string(x264.crf)));
   }
   if (std::find(kX264Presets.begin(), kX264Presets.end(), x264.preset) == kX264Presets.end()) {
     std::string presets;
     for (const std::string_view preset : kX264Presets) presets += (presets.empty() ? "" : ", ") + std::string(preset);
-    throw std::invalid_argument(videoOptionError("x264.preset", "must be an x264 preset (" + presets + ")", "'" + x264.preset + "'"));
+    throw std::invalid_argument(
+        videoOptionError("x264.preset", "must be an x264 preset (" + presets + ")", "'" + x264.preset + "'"));
   }
   if (x264.threads < 1 || x264.threads > kMaxX264Threads) {
-    throw std::invalid_argument(
-        videoOptionError("x264.threads", "must be in 1.." + std::to_string(kMaxX264Threads), std::to_string(x264.threads)));
+    throw std::invalid_argument(videoOptionError("x264.threads", "must be in 1.." + std::to_string(kMaxX264Threads),
+                                                 std::to_string(x264.threads)));
   }
   if (options.alpha && !kind.keepsAlpha()) {
     throw std::invalid_argument(videoOptionError("alpha", label + " has no alpha channel", "true"));
@@ -80,7 +84,8 @@ void validate(const VideoOptions& options) {
   }
   if (!kind.carriesFps(options.fps)) {
     throw std::invalid_argument(videoOptionError(
-        "fps", label + " plays at most " + std::to_string(kind.maxFps) + " fps (" + std::string(kind.maxFpsReason) + ")",
+        "fps",
+        label + " plays at most " + std::to_string(kind.maxFps) + " fps (" + std::string(kind.maxFpsReason) + ")",
         std::to_string(options.fps)));
   }
 }
@@ -134,7 +139,8 @@ EncodedStream EncoderSink::Encoder::openStream(const AVCodec* encoder, const std
   opened.codec->flags |= AV_CODEC_FLAG_BITEXACT;
   if ((format->oformat->flags & AVFMT_GLOBALHEADER) != 0) opened.codec->flags |= AV_CODEC_FLAG_GLOBAL_HEADER;
   checkAv(avcodec_open2(opened.codec.get(), encoder, nullptr), context + "opening " + opened.encoderName);
-  opened.stream = checkAllocated(avformat_new_stream(format.get(), nullptr), context + "adding the " + medium + " stream");
+  opened.stream =
+      checkAllocated(avformat_new_stream(format.get(), nullptr), context + "adding the " + medium + " stream");
   checkAv(avcodec_parameters_from_context(opened.stream->codecpar, opened.codec.get()),
           context + "copying the " + medium + " encoder's parameters to the stream");
   opened.stream->time_base = opened.codec->time_base;  // a hint; the muxer may choose a finer one
@@ -160,23 +166,24 @@ EncoderSink::Encoder::Encoder(const std::filesystem::path& destination, const Vi
   const AVPixelFormat pixelFormat = pixelFormatOf(kind, options.alpha);
   const bool paletted = (av_pix_fmt_desc_get(pixelFormat)->flags & AV_PIX_FMT_FLAG_PAL) != 0;
   const std::string encoderName(kind.encoder);
-  video = openStream(avcodec_find_encoder_by_name(encoderName.c_str()), encoderName, "video", [&](AVCodecContext& codec) {
-    codec.width = options.width;
-    codec.height = options.height;
-    codec.pix_fmt = pixelFormat;
-    codec.time_base = AVRational{1, options.fps};
-    codec.framerate = AVRational{options.fps, 1};
-    if (!paletted) {
-      codec.color_primaries = AVCOL_PRI_BT709;
-      codec.color_trc = AVCOL_TRC_BT709;
-      codec.colorspace = AVCOL_SPC_BT709;
-      codec.color_range = AVCOL_RANGE_MPEG;
-    }
-    for (const auto& [name, value] : kind.encoderOptions(options)) {
-      checkAv(av_opt_set(&codec, name.c_str(), value.c_str(), AV_OPT_SEARCH_CHILDREN),
-              context + "setting " + encoderName + "'s option " + name + " to " + value);
-    }
-  });
+  video =
+      openStream(avcodec_find_encoder_by_name(encoderName.c_str()), encoderName, "video", [&](AVCodecContext& codec) {
+        codec.width = options.width;
+        codec.height = options.height;
+        codec.pix_fmt = pixelFormat;
+        codec.time_base = AVRational{1, options.fps};
+        codec.framerate = AVRational{options.fps, 1};
+        if (!paletted) {
+          codec.color_primaries = AVCOL_PRI_BT709;
+          codec.color_trc = AVCOL_TRC_BT709;
+          codec.colorspace = AVCOL_SPC_BT709;
+          codec.color_range = AVCOL_RANGE_MPEG;
+        }
+        for (const auto& [name, value] : kind.encoderOptions(options)) {
+          checkAv(av_opt_set(&codec, name.c_str(), value.c_str(), AV_OPT_SEARCH_CHILDREN),
+                  context + "setting " + encoderName + "'s option " + name + " to " + value);
+        }
+      });
   video.stream->avg_frame_rate = video.codec->framerate;
 
   if (options.audio) {
@@ -190,7 +197,8 @@ EncoderSink::Encoder::Encoder(const std::filesystem::path& destination, const Vi
     audio.frame.reset(checkAllocated(av_frame_alloc(), context + "allocating an audio frame"));
     audio.frame->format = AV_SAMPLE_FMT_FLTP;
     audio.frame->sample_rate = kAudioSampleRate;
-    checkAv(av_channel_layout_copy(&audio.frame->ch_layout, &audio.codec->ch_layout), context + "setting the channel layout");
+    checkAv(av_channel_layout_copy(&audio.frame->ch_layout, &audio.codec->ch_layout),
+            context + "setting the channel layout");
     audio.frame->nb_samples = audio.codec->frame_size;
     checkAv(av_frame_get_buffer(audio.frame.get(), 0), context + "allocating audio frame buffers");
   }
@@ -219,8 +227,10 @@ EncoderSink::Encoder::Encoder(const std::filesystem::path& destination, const Vi
   // After avformat_init_output, which under AVFMT_FLAG_BITEXACT drops any "encoder" tag (it would
   // otherwise hold libavformat's version): ours names the release, which is as stable as the bytes.
   if (!options.provenance.empty()) {
-    checkAv(av_dict_set(&format->metadata, "encoder", options.provenance.software.c_str(), 0), context + "setting the encoder tag");
-    checkAv(av_dict_set(&format->metadata, "comment", options.provenance.comment().c_str(), 0), context + "setting the comment tag");
+    checkAv(av_dict_set(&format->metadata, "encoder", options.provenance.software.c_str(), 0),
+            context + "setting the encoder tag");
+    checkAv(av_dict_set(&format->metadata, "comment", options.provenance.comment().c_str(), 0),
+            context + "setting the comment tag");
   }
   checkAv(avformat_write_header(format.get(), nullptr), context + "writing the " + label + " header");
 
@@ -244,7 +254,8 @@ EncoderSink::Encoder::Encoder(const std::filesystem::path& destination, const Vi
 
 void EncoderSink::Encoder::encode(EncodedStream& target, const AVFrame* input) {
   AVCodecContext& encoder = *target.codec;
-  checkAv(avcodec_send_frame(&encoder, input), context + (input ? "sending a frame to " : "flushing ") + target.encoderName);
+  checkAv(avcodec_send_frame(&encoder, input),
+          context + (input ? "sending a frame to " : "flushing ") + target.encoderName);
   for (;;) {
     const int received = avcodec_receive_packet(&encoder, packet.get());
     if (received == AVERROR(EAGAIN) || received == AVERROR_EOF) return;
@@ -312,7 +323,8 @@ void EncoderSink::push(const image::Image& frame) {
 void EncoderSink::pushAudio(std::span<const float> samples) {
   if (finished_) throw std::logic_error(destination_.string() + ": pushAudio() after finish()");
   Encoder& encoder = *encoder_;
-  if (!encoder.audio.codec) throw std::logic_error(destination_.string() + ": audio pushed to a video without an audio track");
+  if (!encoder.audio.codec)
+    throw std::logic_error(destination_.string() + ": audio pushed to a video without an audio track");
   encoder.pending.insert(encoder.pending.end(), samples.begin(), samples.end());
   const auto block = static_cast<std::size_t>(encoder.audio.codec->frame_size);
   while (encoder.pending.size() >= block) encoder.encodeAudioBlock(static_cast<int>(block));
@@ -337,7 +349,8 @@ void EncoderSink::finish() {
     checkAv(av_opt_set_int(encoder.format->priv_data, option.c_str(), length, 0),
             encoder.context + "setting the muxer's option " + option);
   }
-  checkAv(av_write_trailer(encoder.format.get()), encoder.context + "writing the " + std::string(kind.label) + " trailer");
+  checkAv(av_write_trailer(encoder.format.get()),
+          encoder.context + "writing the " + std::string(kind.label) + " trailer");
   checkAv(avio_closep(&encoder.format->pb), encoder.context + "closing the file");
   if (kind.addComment != nullptr && !options_.provenance.empty()) {
     kind.addComment(encoder.file.temporaryPath(), options_.provenance.comment());

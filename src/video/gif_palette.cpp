@@ -48,8 +48,8 @@ std::array<std::uint32_t, 256> gifPalette() {
 }
 
 void quantizeForGif(const image::Image& frame, std::uint8_t* indices, int stride) {
-  static const ChannelTable red(kGifRedLevels, kGifGreenLevels * kGifBlueLevels), green(kGifGreenLevels, kGifBlueLevels),
-      blue(kGifBlueLevels, 1);
+  static const ChannelTable red(kGifRedLevels, kGifGreenLevels * kGifBlueLevels),
+      green(kGifGreenLevels, kGifBlueLevels), blue(kGifBlueLevels, 1);
   for (int y = 0; y < frame.height; ++y) {
     const std::uint8_t* pixel = frame.pixel(0, y);
     std::uint8_t* row = indices + static_cast<std::ptrdiff_t>(y) * stride;

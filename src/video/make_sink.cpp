@@ -44,8 +44,9 @@ std::unique_ptr<FrameSink> makeSinkForPath(const std::filesystem::path& path, co
   }
   std::vector<std::string> extensions;
   for (const VideoKind& kind : videoKinds()) extensions.emplace_back(kind.extension);
-  throw std::invalid_argument(path.string() + ": unknown output kind: expected a video ending in " + joinedWithOr(extensions) +
-                              " (out" + std::string(videoKind(VideoOptions{}.format).extension) +
+  throw std::invalid_argument(path.string() + ": unknown output kind: expected a video ending in " +
+                              joinedWithOr(extensions) + " (out" +
+                              std::string(videoKind(VideoOptions{}.format).extension) +
                               ") or a PNG sequence pattern with one %d or %0Nd conversion (out_%05d.png)");
 }
 

@@ -79,11 +79,13 @@ std::string SequencePattern::fileNameOf(int index) const {
 }
 
 std::optional<int> SequencePattern::frameNumberOf(std::string_view fileName) const {
-  if (fileName.size() <= prefix.size() + suffix.size() || !fileName.starts_with(prefix) || !fileName.ends_with(suffix)) {
+  if (fileName.size() <= prefix.size() + suffix.size() || !fileName.starts_with(prefix) ||
+      !fileName.ends_with(suffix)) {
     return std::nullopt;
   }
   const std::string_view digits = fileName.substr(prefix.size(), fileName.size() - prefix.size() - suffix.size());
-  if (digits.size() > static_cast<std::size_t>(kMaxDigits) || digits.find_first_not_of("0123456789") != std::string_view::npos) {
+  if (digits.size() > static_cast<std::size_t>(kMaxDigits) ||
+      digits.find_first_not_of("0123456789") != std::string_view::npos) {
     return std::nullopt;
   }
   const long long number = std::stoll(std::string(digits));
@@ -128,7 +130,8 @@ std::vector<std::filesystem::path> PngSequenceSink::framesFrom(int count) const 
   std::vector<std::filesystem::path> frames;
   std::error_code error;
   const std::filesystem::path directory = directory_.empty() ? "." : directory_;
-  for (std::filesystem::directory_iterator entry(directory, error), end; !error && entry != end; entry.increment(error)) {
+  for (std::filesystem::directory_iterator entry(directory, error), end; !error && entry != end;
+       entry.increment(error)) {
     const std::string name = entry->path().filename().string();
     const std::optional<int> number = pattern_.frameNumberOf(name);
     if (!number || *number < count) continue;

@@ -99,7 +99,8 @@ std::string kindsThat(bool (*carries)(const VideoKind&, const VideoOptions&), co
 std::span<const VideoKind> videoKinds() { return kKinds; }
 
 const VideoKind& videoKind(VideoFormat format) {
-  const auto row = std::find_if(kKinds.begin(), kKinds.end(), [&](const VideoKind& kind) { return kind.format == format; });
+  const auto row =
+      std::find_if(kKinds.begin(), kKinds.end(), [&](const VideoKind& kind) { return kind.format == format; });
   if (row == kKinds.end()) throw std::logic_error("a VideoFormat without a row in video_kinds.cpp");
   return *row;
 }
@@ -122,10 +123,11 @@ std::string joinedWithOr(std::span<const std::string> items) {
 void refuseOutputThatCannotCarry(const VideoOptions& wanted, VideoFormat format) {
   const VideoKind& kind = videoKind(format);
   if (wanted.alpha && !kind.keepsAlpha()) {
-    throw std::invalid_argument(
-        "render.background: \"transparent\" needs an output with alpha, and " + std::string(kind.extension) + " has none; write " +
-        kindsThat([](const VideoKind& k, const VideoOptions&) { return k.keepsAlpha(); }, wanted, "a PNG sequence (out_%05d.png)") +
-        ", or set render.background to \"opaque\"");
+    throw std::invalid_argument("render.background: \"transparent\" needs an output with alpha, and " +
+                                std::string(kind.extension) + " has none; write " +
+                                kindsThat([](const VideoKind& k, const VideoOptions&) { return k.keepsAlpha(); },
+                                          wanted, "a PNG sequence (out_%05d.png)") +
+                                ", or set render.background to \"opaque\"");
   }
   if (wanted.audio && !kind.audio) {
     throw std::invalid_argument("render.audio: a " + std::string(kind.extension) + " gets no sound track; write " +

@@ -16,8 +16,8 @@ namespace coinroll::video {
 
 // x264's own preset names (x264_preset_names), fastest first. Checked before the encoder opens,
 // so a typo is reported by name instead of as libx264's generic "Invalid argument".
-inline constexpr std::array<std::string_view, 10> kX264Presets = {"ultrafast", "superfast", "veryfast", "faster", "fast",
-                                                                  "medium",    "slow",      "slower",   "veryslow", "placebo"};
+inline constexpr std::array<std::string_view, 10> kX264Presets = {
+    "ultrafast", "superfast", "veryfast", "faster", "fast", "medium", "slow", "slower", "veryslow", "placebo"};
 inline constexpr int kMaxCrf = 51;          // x264's constant rate factor runs 0 (lossless) .. 51
 inline constexpr int kMaxX264Threads = 16;  // a bound on typos (x264 itself allows 128); see X264Options::threads
 

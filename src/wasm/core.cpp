@@ -69,7 +69,8 @@ class Progress {
   void report() {
     if (callback_.isUndefined() || rows_ == reported_) return;
     reported_ = rows_;
-    if (callback_(static_cast<double>(rows_), static_cast<double>(expected_)).strictlyEquals(val(false))) cancel_ = true;
+    if (callback_(static_cast<double>(rows_), static_cast<double>(expected_)).strictlyEquals(val(false)))
+      cancel_ = true;
   }
 
   val callback_;
@@ -90,7 +91,8 @@ class CsvCollector : public std::streambuf {
  protected:
   std::streamsize xsputn(const char* data, std::streamsize size) override {
     text_.append(data, static_cast<std::size_t>(size));
-    for (const char* end = data + size; (data = static_cast<const char*>(std::memchr(data, '\n', end - data))); ++data) {
+    for (const char* end = data + size; (data = static_cast<const char*>(std::memchr(data, '\n', end - data)));
+         ++data) {
       lineEnded();
     }
     return size;
@@ -184,7 +186,8 @@ val runResult(const pipeline::TrajectoryReport& result, double duration, const s
   }
   std::stable_sort(events.begin(), events.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   if (const auto& stop = result.stoppedBy) {
-    events.emplace_back(stop->t, runEvent("stop", physics::eventName(stop->event), stop->t, pipeline::describeStop(*stop)));
+    events.emplace_back(stop->t,
+                        runEvent("stop", physics::eventName(stop->event), stop->t, pipeline::describeStop(*stop)));
   }
   val eventList = val::array();
   for (const auto& [t, event] : events) eventList.call<void>("push", event);
@@ -241,8 +244,10 @@ val simulate(const std::string& scene, bool hasScene, val overrides, const std::
     }
     const scene::SceneConfig config = scene::parseScene(document, hasScene ? sourceName : "built-in default scene");
     if (const double rows = config.duration / sampleDt + 1; rows > maxRows) {
-      throw BadRequest(fmt::format("sampleDt {}: duration {} s gives {:.4g} rows, more than the limit {}; raise sampleDt, "
-                                   "or the limit with maxRows", sampleDt, config.duration, rows, maxRows));
+      throw BadRequest(
+          fmt::format("sampleDt {}: duration {} s gives {:.4g} rows, more than the limit {}; raise sampleDt, "
+                      "or the limit with maxRows",
+                      sampleDt, config.duration, rows, maxRows));
     }
     pipeline::Simulation simulation = pipeline::buildSimulation(config);
     std::atomic<bool> cancel = false;

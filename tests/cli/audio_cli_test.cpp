@@ -63,8 +63,11 @@ TEST_F(AudioCliTest, SteadyCircleSoundsAtItsContactRateAndSlowMotionLowersIt) {
   for (const double timeScale : {1.0, 0.5}) {
     const fs::path mp4 = dir_ / "circle.mp4";
     const std::string audio = R"(--set 'render.audio={"timbre": "tone", "frequency_scale": 200, "pitch": "video"}')";
-    ASSERT_EQ(runCoinroll("render " + scene + " -q -o " + mp4.string() + " --set render.width=64 --set render.height=36 " +
-                          "--set render.time_scale=" + std::to_string(timeScale) + " " + audio).exitCode, 0);
+    ASSERT_EQ(
+        runCoinroll("render " + scene + " -q -o " + mp4.string() + " --set render.width=64 --set render.height=36 " +
+                    "--set render.time_scale=" + std::to_string(timeScale) + " " + audio)
+            .exitCode,
+        0);
     const coinroll::video::DecodedAudio decoded = coinroll::video::decodeAudio(mp4);
     EXPECT_EQ(decoded.codecName, "aac");
     EXPECT_EQ(decoded.sampleRate, kRate);

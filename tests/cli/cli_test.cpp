@@ -59,7 +59,9 @@ TEST_F(CliTest, EveryBadSceneGetsExitTwoANamedKeyAndNoFile) {
       {"coin.mass", R"({"coin": {"radius": 0.03, "mass": 0}, "initial": {}, "duration": 1})"},
       {"theta", "{" + kCoin + R"(, "initial": {"theta": 95}, "duration": 1})"},
       {"I_X", R"({"coin": {"shape": "custom", "radius": 0.03, "mass": 0.4}, "initial": {}, "duration": 1})"},
-      {"I_Z", R"({"coin": {"shape": "custom", "radius": 0.03, "mass": 0.4, "I_X": 1e-5, "I_Z": 3e-5}, "initial": {}, "duration": 1})"},
+      {"I_Z",
+       R"({"coin": {"shape": "custom", "radius": 0.03, "mass": 0.4, "I_X": 1e-5, "I_Z": 3e-5}, )"
+       R"("initial": {}, "duration": 1})"},
       {"duration", "{" + kCoin + R"(, "initial": {}, "duration": -3})"},
       {"solver.dt", "{" + kCoin + R"(, "initial": {}, "duration": 1, "solver": {"method": "rk4", "dt": -0.1}})"},
       {"method", "{" + kCoin + R"(, "initial": {}, "duration": 1, "solver": {"method": "magic"}})"},
@@ -98,7 +100,8 @@ TEST_F(CliTest, HelpCommandIsTheCommandsHelpAndAMisspeltCommandGetsASuggestion) 
                                      std::pair{"stil", "still"}, std::pair{"sweep-marge", "sweep-merge"}}) {
     const RunResult r = run(given);
     EXPECT_EQ(r.exitCode, 2) << given;
-    EXPECT_NE(r.output.find(std::string("(coinroll --help); did you mean '") + meant + "'?"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(std::string("(coinroll --help); did you mean '") + meant + "'?"), std::string::npos)
+        << r.output;
   }
   const RunResult far = run("frobnicate");
   EXPECT_EQ(far.exitCode, 2);
@@ -113,9 +116,11 @@ TEST_F(CliTest, HelpCommandIsTheCommandsHelpAndAMisspeltCommandGetsASuggestion) 
 TEST_F(CliTest, ParseErrorsComeInTheProgramsOwnStyle) {
   const fs::path scene = writeScene(kValid);
   for (const auto& [arguments, message] :
-       {std::pair{"simulate " + scene.string(), std::string("coinroll: error: --csv is required (coinroll simulate --help)\n")},
+       {std::pair{"simulate " + scene.string(),
+                  std::string("coinroll: error: --csv is required (coinroll simulate --help)\n")},
         std::pair{"render " + scene.string() + " --max-frames 0",
-                  std::string("coinroll: error: --max-frames: must be a whole number >= 1, got 0 (coinroll render --help)\n")},
+                  std::string(
+                      "coinroll: error: --max-frames: must be a whole number >= 1, got 0 (coinroll render --help)\n")},
         std::pair{std::string(""), std::string("coinroll: error: A subcommand is required (coinroll --help)\n")}}) {
     const RunResult r = run(arguments);
     EXPECT_EQ(r.exitCode, 2) << arguments;
@@ -142,7 +147,8 @@ TEST_F(CliTest, RenderWithoutANameOrOutputNamesTheVideoAfterTheSceneFile) {
 }
 
 TEST_F(CliTest, UnwritableOutputFailsWithoutLeavingFiles) {
-  const RunResult r = run("simulate " + writeScene(kValid).string() + " --csv " + (dir_ / "no/such/dir/out.csv").string());
+  const RunResult r =
+      run("simulate " + writeScene(kValid).string() + " --csv " + (dir_ / "no/such/dir/out.csv").string());
   EXPECT_EQ(r.exitCode, 1);
   EXPECT_NE(r.output.find("out.csv"), std::string::npos) << r.output;
 }
@@ -161,7 +167,8 @@ TEST_F(CliTest, SimulateWritesTheContractHeaderAndRowsAtMultiplesOfTheSampleStep
 }
 
 TEST_F(CliTest, SetOverridesAFieldAndStdoutGetsTheCsv) {
-  const RunResult r = run("simulate " + writeScene(kValid).string() + " --csv - --set duration=0.02 --set initial.theta=0");
+  const RunResult r =
+      run("simulate " + writeScene(kValid).string() + " --csv - --set duration=0.02 --set initial.theta=0");
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("\n0.02,0,"), std::string::npos) << r.output;  // upright stays upright
 }
@@ -170,8 +177,9 @@ TEST_F(CliTest, CoinFallingFlatStopsWithANamedEvent) {
   // Below the critical spin from a large tilt the coin falls: the run must end with the
   // coin-flat event, not NaNs.
   const fs::path csv = dir_ / "out.csv";
-  const RunResult r = run("simulate " + writeScene("{" + kCoin + R"(, "initial": {"theta": 60}, "duration": 5})").string() +
-                          " --csv " + csv.string());
+  const RunResult r =
+      run("simulate " + writeScene("{" + kCoin + R"(, "initial": {"theta": 60}, "duration": 5})").string() + " --csv " +
+          csv.string());
   EXPECT_EQ(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("coin-flat"), std::string::npos) << r.output;
   std::ifstream in(csv);
@@ -233,7 +241,8 @@ TEST_F(CliTest, SteadyOfAFullyRoundedThickCoinPrintsItsRimAndALowerCriticalSpin)
   ASSERT_EQ(thin.exitCode, 0) << thin.output;
   const RunResult thick = run("steady --kind straight --omega-Z 12 --set coin.thickness=0.013");
   ASSERT_EQ(thick.exitCode, 0) << thick.output;
-  EXPECT_NE(thick.output.find("rim: thickness h = 0.013 m, edge radius rho = 0.0065 m"), std::string::npos) << thick.output;
+  EXPECT_NE(thick.output.find("rim: thickness h = 0.013 m, edge radius rho = 0.0065 m"), std::string::npos)
+      << thick.output;
   EXPECT_NE(thick.output.find("inertia used:"), std::string::npos) << thick.output;
   EXPECT_NE(thick.output.find("docs/rim.md eq. 5.8"), std::string::npos) << thick.output;
   EXPECT_EQ(thick.output.find("docs/derivations.md"), std::string::npos) << thick.output;
@@ -245,7 +254,8 @@ TEST_F(CliTest, SteadyOfAFullyRoundedThickCoinPrintsItsRimAndALowerCriticalSpin)
   EXPECT_LT(thickSpin, thinSpin);
   const double M = 0.4, a = 0.0375, g = 9.81, rho = 0.0065;
   const double I_X = numberAfter(thick.output, "I_X = "), I_Z = numberAfter(thick.output, "I_Z = ");
-  EXPECT_NEAR(thickSpin, std::sqrt(M * g * (a - rho) * I_X / (I_Z * (I_Z + M * a * a))), 1e-5 * thickSpin) << thick.output;
+  EXPECT_NEAR(thickSpin, std::sqrt(M * g * (a - rho) * I_X / (I_Z * (I_Z + M * a * a))), 1e-5 * thickSpin)
+      << thick.output;
   // The thick coin's verdict switches at its own critical spin.
   for (const auto& [factor, verdict] : {std::pair{0.99, "verdict: UNSTABLE"}, std::pair{1.01, "verdict: STABLE"}}) {
     const RunResult near = run("steady --kind straight --omega-Z " + std::to_string(factor * thickSpin) +
@@ -262,9 +272,10 @@ TEST_F(CliTest, SteadyOfACorneredRimHasAVerdictButNoCriticalSpin) {
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("verdict: "), std::string::npos) << r.output;
   EXPECT_EQ(r.output.find("omega_c"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("straight rolling is not a steady motion of a coin whose rim has corners (it switches corners "
-                          "at upright)"),
-            std::string::npos)
+  EXPECT_NE(
+      r.output.find("straight rolling is not a steady motion of a coin whose rim has corners (it switches corners "
+                    "at upright)"),
+      std::string::npos)
       << r.output;
   EXPECT_NE(r.output.find("edge radius rho = 0.0016 m"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("docs/rim.md eq. 5.8"), std::string::npos) << r.output;
@@ -343,7 +354,8 @@ TEST_F(CliTest, AFailedWriteToStdoutIsAnError) {
                               " --csv - 2>&1 >/dev/full";
   FILE* pipe = popen(command.c_str(), "r");
   std::string output;
-  for (std::array<char, 4096> buffer{}; std::fgets(buffer.data(), buffer.size(), pipe) != nullptr;) output += buffer.data();
+  for (std::array<char, 4096> buffer{}; std::fgets(buffer.data(), buffer.size(), pipe) != nullptr;)
+    output += buffer.data();
   const int status = pclose(pipe);
   EXPECT_EQ(WEXITSTATUS(status), 1) << output;
   EXPECT_NE(output.find("writing the CSV to stdout failed: No space left on device"), std::string::npos) << output;

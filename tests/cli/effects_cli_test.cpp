@@ -1,7 +1,7 @@
 // Dissipation through the program's contract (docs/contract.md §4), and the promise that a scene
-// without effects is computed exactly as before effects existed: every example's CSV, PNG and MP4 hash to what the program wrote before the effects
-// refactor (recorded with that build, overlay off: the overlay's labels changed deliberately since).
-// The pictures follow the golden rule of every image test (docs/snapshot_testing.md): exact bytes,
+// without effects is computed exactly as before effects existed: every example's CSV, PNG and MP4 hash to what the
+// program wrote before the effects refactor (recorded with that build, overlay off: the overlay's labels changed
+// deliberately since). The pictures follow the golden rule of every image test (docs/snapshot_testing.md): exact bytes,
 // and under COINROLL_GOLDEN_TOLERANT=1 their hashes are not compared (see that test).
 
 #include <gtest/gtest.h>
@@ -30,7 +30,9 @@ using coinroll::testing::runCoinroll;
 
 class EffectsCliTest : public coinroll::testing::ScratchDirTest {};
 
-std::string example(const std::string& name) { return std::string(COINROLL_SOURCE_DIR) + "/examples/" + name + ".json"; }
+std::string example(const std::string& name) {
+  return std::string(COINROLL_SOURCE_DIR) + "/examples/" + name + ".json";
+}
 
 std::uint64_t fnv1a(const fs::path& file) {
   std::ifstream in(file, std::ios::binary);
@@ -44,13 +46,14 @@ std::uint64_t fnv1a(const fs::path& file) {
 // The CSV of a spin-down: its columns, power >= 0, and energy + dissipated = the initial energy;
 // most of the energy above `restingEnergy` (the coin lying still) spent by the end.
 // With sliding on, the slip columns follow.
-std::vector<std::vector<double>> expectClosedEnergyBudget(const fs::path& csv, double restingEnergy, double spentFraction,
-                                                          bool sliding = false) {
+std::vector<std::vector<double>> expectClosedEnergyBudget(const fs::path& csv, double restingEnergy,
+                                                          double spentFraction, bool sliding = false) {
   coinroll::testing::CsvTable table = coinroll::testing::readCsvTable(csv);
   std::vector<std::vector<double>>& rows = table.rows;
   EXPECT_EQ(table.headerLine,
-            std::string("t,theta,phi,psi,omega_X,omega_Y,omega_Z,x,y,z,contact_x,contact_z,energy,normal_force,friction_force,"
-                        "power,dissipated") +
+            std::string(
+                "t,theta,phi,psi,omega_X,omega_Y,omega_Z,x,y,z,contact_x,contact_z,energy,normal_force,friction_force,"
+                "power,dissipated") +
                 (sliding ? ",slip_speed,sliding" : ""));
   EXPECT_GT(rows.size(), 100u);
   if (rows.empty()) return rows;
@@ -181,7 +184,9 @@ TEST_F(EffectsCliTest, ScenesWithoutEffectsGiveTheBytesTheyGaveBeforeEffectsExis
     const fs::path csv = dir_ / "run.csv", png = dir_ / "still.png", mp4 = dir_ / "clip.mp4";
     ASSERT_EQ(runCoinroll("simulate " + scene + " --csv " + csv.string()).exitCode, 0) << r.example;
     ASSERT_EQ(runCoinroll("still " + scene + " --time 0.5 -o " + png.string() +
-                          " --set render.width=320 --set render.height=180 --set render.hud=false" + noProvenance).exitCode, 0);
+                          " --set render.width=320 --set render.height=180 --set render.hud=false" + noProvenance)
+                  .exitCode,
+              0);
     ASSERT_EQ(runCoinroll("render " + scene + " -q -o " + mp4.string() +
                           " --set render.width=160 --set render.height=90 --set render.fps=10 --set render.hud=false" +
                           noProvenance)
@@ -192,7 +197,8 @@ TEST_F(EffectsCliTest, ScenesWithoutEffectsGiveTheBytesTheyGaveBeforeEffectsExis
       EXPECT_EQ(fnv1a(mp4), r.mp4) << r.example << " MP4";
     } else {
       const coinroll::image::Image still = coinroll::image::readPng(png);
-      EXPECT_TRUE(still.width == 320 && still.height == 180) << r.example << " still " << still.width << "x" << still.height;
+      EXPECT_TRUE(still.width == 320 && still.height == 180)
+          << r.example << " still " << still.width << "x" << still.height;
     }
   }
   const fs::path defaultCsv = dir_ / "default.csv";
@@ -217,8 +223,9 @@ TEST_F(EffectsCliTest, ASpinDownGivenAHugeDurationRunsToItsEnd) {
   const RunResult r = runCoinroll("simulate " + scene.string() + " --csv " + csv.string());
   EXPECT_EQ(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("coin-flat at t = 1.55"), std::string::npos) << r.output;
-  const RunResult video = runCoinroll("render " + scene.string() + " -q --set render.width=32 --set render.height=18 -o " +
-                                      (dir_ / "long.mp4").string());
+  const RunResult video =
+      runCoinroll("render " + scene.string() + " -q --set render.width=32 --set render.height=18 -o " +
+                  (dir_ / "long.mp4").string());
   EXPECT_EQ(video.exitCode, 0) << video.output;
 }
 

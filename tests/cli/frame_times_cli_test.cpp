@@ -131,14 +131,15 @@ TEST_F(FrameTimesCliTest, TheSidecarIsRefusedAsAFrameOrTheVideoUnderAnySpelling)
   std::ofstream(dir_ / "v.mp4") << earlier;
   fs::create_symlink("v.mp4", dir_ / "link.csv");
   const std::string render = "render " + scene_.string() + " -q ";
-  for (const std::string& arguments :
+  for (const char* arguments :
        {"-o f_%03d.png --frame-times f_002.png", "-o f_%03d.png --frame-times f_007.png",
         "-o v.mp4 --frame-times ./v.mp4", "-o v.mp4 --frame-times link.csv"}) {
     const RunResult r = run(render + arguments, "cd " + dir_.string() + " &&");
     EXPECT_EQ(r.exitCode, 2) << arguments << ": " << r.output;
     EXPECT_NE(r.output.find("coinroll: error: --frame-times "), std::string::npos) << r.output;
     EXPECT_FALSE(fs::exists(dir_ / "f_000.png")) << arguments;
-    for (const char* name : {"f_002.png", "f_007.png", "v.mp4"}) EXPECT_EQ(contentOf(dir_ / name), earlier) << arguments;
+    for (const char* name : {"f_002.png", "f_007.png", "v.mp4"})
+      EXPECT_EQ(contentOf(dir_ / name), earlier) << arguments;
   }
   std::ofstream(dir_ / "o.csv") << earlier;
   for (const std::string& provenance : {std::string("./o.csv"), (dir_ / "o.csv").string(), std::string("")}) {
@@ -163,7 +164,8 @@ TEST_F(FrameTimesCliTest, AFailedRunKeepsBothEarlierFiles) {
   EXPECT_EQ(rendered.exitCode, 1) << rendered.output;
   EXPECT_NE(rendered.output.find("/dev/full: writing the MP4 failed"), std::string::npos) << rendered.output;
   EXPECT_EQ(contentOf(sidecar), earlier);
-  const RunResult simulated = run("simulate " + scene_.string() + " --csv /dev/full --provenance " + provenance.string());
+  const RunResult simulated =
+      run("simulate " + scene_.string() + " --csv /dev/full --provenance " + provenance.string());
   EXPECT_EQ(simulated.exitCode, 1) << simulated.output;
   EXPECT_EQ(contentOf(provenance), earlier);
   EXPECT_EQ(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()), 3) << "a temporary was left";
@@ -175,7 +177,8 @@ TEST_F(FrameTimesCliTest, AProvenanceNamesACsvWhoseNameIsNotUtf8) {
   const RunResult r = run("simulate " + scene_.string() + " --csv \"$(printf 'o\\377.csv')\" --provenance p.json",
                           "cd " + dir_.string() + " &&");
   ASSERT_EQ(r.exitCode, 0) << r.output;
-  EXPECT_NE(contentOf(dir_ / "p.json").find("\"csv\": \"o\xef\xbf\xbd.csv\""), std::string::npos) << contentOf(dir_ / "p.json");
+  EXPECT_NE(contentOf(dir_ / "p.json").find("\"csv\": \"o\xef\xbf\xbd.csv\""), std::string::npos)
+      << contentOf(dir_ / "p.json");
 }
 
 }  // namespace

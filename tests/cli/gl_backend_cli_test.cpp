@@ -65,7 +65,8 @@ TEST_F(GlBackendCliTest, EveryExampleStillAndClipIsTheSameBytesOnOsmesaAndEgl) {
         const fs::path out = dir_ / (name + "_" + backend + (std::string(kind) == "still" ? ".png" : ".mp4"));
         const std::string arguments =
             std::string(kind) == "still"
-                ? "still " + scene + " --time 0.5 -o " + out.string() + " --set render.width=320 --set render.height=180"
+                ? "still " + scene + " --time 0.5 -o " + out.string() +
+                      " --set render.width=320 --set render.height=180"
                 : "render " + scene + " -q -o " + out.string() +
                       " --set duration=1 --set render.width=160 --set render.height=90 --set render.fps=10";
         const RunResult r = runCoinroll(arguments, std::string("COINROLL_GL=") + backend);
@@ -83,7 +84,8 @@ TEST_F(GlBackendCliTest, AnUnknownValueIsRefusedWithExitTwoBeforeAnythingIsWritt
                                      "render -q -o " + (dir_ / "clip.mp4").string() + " --set duration=0.2"}) {
     const RunResult r = runCoinroll(command, "COINROLL_GL=bogus");
     EXPECT_EQ(r.exitCode, 2) << command << ": " << r.output;
-    EXPECT_NE(r.output.find("COINROLL_GL=bogus: not an OpenGL back end; accepted values: "), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("COINROLL_GL=bogus: not an OpenGL back end; accepted values: "), std::string::npos)
+        << r.output;
     for (const std::string_view name : coinroll::render::compiledBackends()) {
       EXPECT_NE(r.output.find(name), std::string::npos) << r.output;
     }
@@ -114,11 +116,13 @@ TEST_F(GlBackendCliTest, VersionNamesTheReleaseTheRevisionAndTheBackEndsWithoutA
   ASSERT_NE(listStart, std::string::npos) << r.output;
   const std::string list = r.output.substr(listStart + 18, r.output.find(';', listStart) - listStart - 18) + ",";
   for (const GlBackend backend : {GlBackend::OsMesa, GlBackend::Egl, GlBackend::EglDevice}) {
-    const bool listed = ("," + list).find(std::string(" ") + std::string(glBackendName(backend)) + ",") != std::string::npos ||
-                        list.starts_with(std::string(glBackendName(backend)) + ",");
+    const bool listed =
+        ("," + list).find(std::string(" ") + std::string(glBackendName(backend)) + ",") != std::string::npos ||
+        list.starts_with(std::string(glBackendName(backend)) + ",");
     EXPECT_EQ(listed, isCompiledIn(backend)) << glBackendName(backend) << ": " << r.output;
   }
-  EXPECT_NE(r.output.find("; default " + std::string(glBackendName(defaultGlBackend()))), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("; default " + std::string(glBackendName(defaultGlBackend()))), std::string::npos)
+      << r.output;
 
   if (isCompiledIn(GlBackend::EglDevice)) {
     r = runCoinroll("--version", "COINROLL_GL=egl-device");

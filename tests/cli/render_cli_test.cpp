@@ -92,7 +92,8 @@ TEST_F(RenderCliTest, DefaultOutputIsNamedAfterTheScene) {
 }
 
 TEST_F(RenderCliTest, PngSequenceHasOneFilePerFrame) {
-  const RunResult r = run("render " + scene_.string() + " -o " + (dir_ / "f_%03d.png").string() + " --set duration=0.2");
+  const RunResult r =
+      run("render " + scene_.string() + " -o " + (dir_ / "f_%03d.png").string() + " --set duration=0.2");
   ASSERT_EQ(r.exitCode, 0) << r.output;
   for (int k = 0; k <= 6; ++k) EXPECT_TRUE(fs::exists(dir_ / ("f_00" + std::to_string(k) + ".png"))) << k;
   EXPECT_FALSE(fs::exists(dir_ / "f_007.png"));
@@ -136,7 +137,8 @@ TEST_F(RenderCliTest, BadRequestsExitTwoAndLeaveNothing) {
 // render.audio=null removes the key, so the scene takes its default (no sound track).
 TEST_F(RenderCliTest, TheAudioRefusalsWayOutMakesTheGif) {
   const fs::path gif = dir_ / "quiet.gif";
-  const std::string render = "render " + scene_.string() + " -q --to 0.2 -o " + gif.string() + " --set render.audio=true";
+  const std::string render =
+      "render " + scene_.string() + " -q --to 0.2 -o " + gif.string() + " --set render.audio=true";
   const RunResult refused = run(render);
   ASSERT_EQ(refused.exitCode, 2) << refused.output;
   const std::string fix = "--set render.audio=null";
@@ -172,11 +174,14 @@ TEST_F(RenderCliTest, SizeSetsTheRenderWidthAndHeight) {
 
 TEST_F(RenderCliTest, AWindowWritesTheFullRendersFramesForItsSimulatedTimes) {
   ASSERT_EQ(run("render " + scene_.string() + " -q -o " + (dir_ / "all_%02d.png").string()).exitCode, 0);
-  const RunResult r = run("render " + scene_.string() + " -q --from 0.5 --to 1.0 -o " + (dir_ / "win_%02d.png").string());
+  const RunResult r =
+      run("render " + scene_.string() + " -q --from 0.5 --to 1.0 -o " + (dir_ / "win_%02d.png").string());
   ASSERT_EQ(r.exitCode, 0) << r.output;
   // 0.5 s is frame 15 of 0 .. 30; the window holds 15 .. 30, renumbered from 0.
   for (int k = 0; k <= 15; ++k) {
-    const auto name = [](const char* prefix, int n) { return prefix + std::string(n < 10 ? "0" : "") + std::to_string(n) + ".png"; };
+    const auto name = [](const char* prefix, int n) {
+      return prefix + std::string(n < 10 ? "0" : "") + std::to_string(n) + ".png";
+    };
     const std::string window = name("win_", k), whole = name("all_", k + 15);
     ASSERT_TRUE(fs::exists(dir_ / window)) << window;
     EXPECT_EQ(bytesOf(dir_ / window), bytesOf(dir_ / whole)) << window << " is not " << whole;
@@ -211,7 +216,9 @@ TEST_F(RenderCliTest, ProvenanceNamesTheReleaseAndSceneUnlessTurnedOff) {
   const fs::path tagged = dir_ / "tagged.png", again = dir_ / "again.png", plain = dir_ / "plain.png";
   ASSERT_EQ(run("still " + scene_.string() + " --time 0.5 -o " + tagged.string()).exitCode, 0);
   ASSERT_EQ(run("still " + scene_.string() + " --time 0.5 -o " + again.string()).exitCode, 0);
-  ASSERT_EQ(run("still " + scene_.string() + " --time 0.5 -o " + plain.string() + " --set render.provenance=false").exitCode, 0);
+  ASSERT_EQ(
+      run("still " + scene_.string() + " --time 0.5 -o " + plain.string() + " --set render.provenance=false").exitCode,
+      0);
   const std::string bytes = bytesOf(tagged);
   EXPECT_NE(bytes.find(std::string("tEXtSoftware\0coinroll ", 22)), std::string::npos);
   EXPECT_NE(bytes.find("coinroll-scene-digest"), std::string::npos);
@@ -219,7 +226,8 @@ TEST_F(RenderCliTest, ProvenanceNamesTheReleaseAndSceneUnlessTurnedOff) {
   EXPECT_EQ(bytesOf(plain).find("tEXt"), std::string::npos);
   // Another scene, another digest.
   const fs::path other = dir_ / "other.png";
-  ASSERT_EQ(run("still " + scene_.string() + " --time 0.5 -o " + other.string() + " --set initial.theta=21").exitCode, 0);
+  ASSERT_EQ(run("still " + scene_.string() + " --time 0.5 -o " + other.string() + " --set initial.theta=21").exitCode,
+            0);
   const auto digestOf = [](const std::string& png) { return png.substr(png.find("fnv1a64:"), 24); };
   EXPECT_NE(digestOf(bytes), digestOf(bytesOf(other)));
 
@@ -235,7 +243,10 @@ TEST_F(RenderCliTest, ProvenanceNamesTheReleaseAndSceneUnlessTurnedOff) {
 TEST_F(RenderCliTest, SimulatesProvenanceSidecarNamesTheSceneAsItsPicturesDo) {
   const fs::path png = dir_ / "still.png", csv = dir_ / "run.csv", json = dir_ / "run.json";
   ASSERT_EQ(run("still " + scene_.string() + " --time 0.5 -o " + png.string()).exitCode, 0);
-  ASSERT_EQ(run("simulate " + scene_.string() + " --csv " + csv.string() + " --sample-dt 0.1 --provenance " + json.string()).exitCode, 0);
+  ASSERT_EQ(
+      run("simulate " + scene_.string() + " --csv " + csv.string() + " --sample-dt 0.1 --provenance " + json.string())
+          .exitCode,
+      0);
   const std::string picture = bytesOf(png), sidecar = bytesOf(json);
   const std::string digest = picture.substr(picture.find("fnv1a64:"), 24);
   EXPECT_NE(sidecar.find("\"scene_digest\": \"" + digest + "\""), std::string::npos) << sidecar;
@@ -248,7 +259,9 @@ TEST_F(RenderCliTest, SimulatesProvenanceSidecarNamesTheSceneAsItsPicturesDo) {
 
   // A CSV that cannot be written leaves no sidecar either.
   const fs::path missing = dir_ / "no_such_dir" / "run.csv", orphan = dir_ / "orphan.json";
-  EXPECT_EQ(run("simulate " + scene_.string() + " --csv " + missing.string() + " --provenance " + orphan.string()).exitCode, 1);
+  EXPECT_EQ(
+      run("simulate " + scene_.string() + " --csv " + missing.string() + " --provenance " + orphan.string()).exitCode,
+      1);
   EXPECT_FALSE(fs::exists(orphan));
 }
 
@@ -334,8 +347,9 @@ TEST_F(RenderCliTest, UnderAnAddressSpaceLimitTooSmallRenderingIsRefusedNamingIt
 #endif
   const std::string limit = "ulimit -v 1500000; ";
   const std::string big = " --set render.width=7680 --set render.height=4320";
-  for (const std::string& command : {"still " + scene_.string() + " --time 0.5 -o " + (dir_ / "still.png").string() + big,
-                                     "render " + scene_.string() + " -q -o " + (dir_ / "clip.mp4").string() + big}) {
+  for (const std::string& command :
+       {"still " + scene_.string() + " --time 0.5 -o " + (dir_ / "still.png").string() + big,
+        "render " + scene_.string() + " -q -o " + (dir_ / "clip.mp4").string() + big}) {
     const RunResult r = run(command, limit);
     EXPECT_EQ(r.exitCode, 1) << command << ": " << r.output;
     EXPECT_NE(r.output.find("not enough memory for drawing"), std::string::npos) << r.output;

@@ -62,7 +62,8 @@ TEST_F(RimCliTest, ACorneredRimStopsWhereItWouldSwitchCorners) {
   const fs::path scene = dir_ / "corner.json", csv = dir_ / "corner.csv";
   std::ofstream(scene) << R"({"coin": {"radius": 0.0375, "mass": 0.45, "thickness": 0.013, "edge_radius": 0.0016},
     "initial": {"theta": 2, "omega_X": -1.5, "omega_Z": 20}, "duration": 5})";
-  const coinroll::testing::RunResult r = runCoinroll("simulate " + scene.string() + " --csv " + csv.string() + " --sample-dt 0.001");
+  const coinroll::testing::RunResult r =
+      runCoinroll("simulate " + scene.string() + " --csv " + csv.string() + " --sample-dt 0.001");
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("stopped early: corner-switch at t = "), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("0.0000 deg)"), std::string::npos) << r.output;  // located at upright
@@ -122,7 +123,11 @@ TEST_F(RimCliTest, ASpinDownLandsOnItsFaceAndTheClipHoldsStillInSilence) {
   // With the overlay, the hold says that time stands still ("landed, held 1.5 s") in each of its frames.
   const fs::path hud = dir_ / "hud";
   fs::create_directory(hud);
-  ASSERT_EQ(runCoinroll("render " + scene.string() + " -q --set render.hud=true --set render.width=320 --set render.height=180 -o " + (hud / "f_%05d.png").string()).exitCode, 0);
+  ASSERT_EQ(runCoinroll("render " + scene.string() +
+                        " -q --set render.hud=true --set render.width=320 --set render.height=180 -o " +
+                        (hud / "f_%05d.png").string())
+                .exitCode,
+            0);
   const auto hudFrame = [&](long k) { return hud / frame(k).filename(); };
   EXPECT_TRUE(bytes(hudFrame(simulatedFrames - 1)) != bytes(hudFrame(simulatedFrames)));
   EXPECT_TRUE(bytes(hudFrame(simulatedFrames)) == bytes(hudFrame(simulatedFrames + 44)));
@@ -130,7 +135,8 @@ TEST_F(RimCliTest, ASpinDownLandsOnItsFaceAndTheClipHoldsStillInSilence) {
   const coinroll::video::DecodedAudio audio = coinroll::video::decodeAudio(mp4);
   const auto loudest = [&audio](double from, double to) {
     float peak = 0;
-    for (auto i = static_cast<std::size_t>(from * 48000); i < std::min(audio.samples.size(), static_cast<std::size_t>(to * 48000)); ++i) {
+    for (auto i = static_cast<std::size_t>(from * 48000);
+         i < std::min(audio.samples.size(), static_cast<std::size_t>(to * 48000)); ++i) {
       peak = std::max(peak, std::abs(audio.samples[i]));
     }
     return peak;

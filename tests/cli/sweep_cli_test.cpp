@@ -57,8 +57,9 @@ TEST_F(SweepCliTest, SameBytesForOneAndTwoThreadsAndForShardsRunByGnuParallel) {
 
   // Four shards as four processes, the way a cluster runs them (docs/sweeps.md).
   const std::string binary = std::string(COINROLL_BINARY_DIR) + "/coinroll";
-  const std::string shardRun = "cd " + dir_.string() + " && parallel --will-cite --halt now,fail=1 " + binary + " sweep " +
-                               scene().string() + kGrid + " -q --threads 1 --shard {}/4 -o part{}.csv ::: 1 2 3 4";
+  const std::string shardRun = "cd " + dir_.string() + " && parallel --will-cite --halt now,fail=1 " + binary +
+                               " sweep " + scene().string() + kGrid +
+                               " -q --threads 1 --shard {}/4 -o part{}.csv ::: 1 2 3 4";
   ASSERT_EQ(std::system(shardRun.c_str()), 0) << shardRun;
   const std::string parts = (dir_ / "part1.csv").string() + " " + (dir_ / "part3.csv").string() + " " +
                             (dir_ / "part2.csv").string() + " " + (dir_ / "part4.csv").string();
@@ -87,8 +88,10 @@ TEST_F(SweepCliTest, DashWritesTheSameBytesToStandardOutputAndNoFile) {
     ASSERT_EQ(runCoinroll("sweep " + scene().string() + kGrid + " -q --shard " + shard + "/2 -o " +
                           (dir_ / (std::string("part") + shard + ".csv")).string()).exitCode, 0);
   }
-  ASSERT_EQ(runCoinroll("sweep-merge -o - " + (dir_ / "part1.csv").string() + " " + (dir_ / "part2.csv").string() + " > " +
-                        merged.string()).exitCode, 0);
+  ASSERT_EQ(runCoinroll("sweep-merge -o - " + (dir_ / "part1.csv").string() + " " + (dir_ / "part2.csv").string() +
+                        " > " + merged.string())
+                .exitCode,
+            0);
   EXPECT_EQ(slurp(merged), slurp(file));
   EXPECT_FALSE(fs::exists(dir_ / "-"));
   EXPECT_FALSE(fs::exists(fs::current_path() / "-"));
@@ -194,8 +197,12 @@ TEST_F(SweepCliTest, ShardsKnowTheirSweep) {
 // A listed axis keeps its order; a geometric one is even in log10, so decades read as typed.
 TEST_F(SweepCliTest, ListedAndGeometricAxesGiveTheirValuesInOrder) {
   const fs::path sweep = dir_ / "sweep.csv";
-  ASSERT_EQ(runCoinroll("sweep " + scene().string() + " --grid initial.theta=20,5,10 --grid solver.rtol=1e-3:1e-9:7:log "
-                        "--set duration=0.2 -q -o " + sweep.string()).exitCode, 0);
+  ASSERT_EQ(runCoinroll("sweep " + scene().string() +
+                        " --grid initial.theta=20,5,10 --grid solver.rtol=1e-3:1e-9:7:log "
+                        "--set duration=0.2 -q -o " +
+                        sweep.string())
+                .exitCode,
+            0);
   std::ifstream in(sweep);
   std::string line;
   std::getline(in, line);
@@ -255,12 +262,13 @@ TEST_F(SweepCliTest, AFailingPointKeepsItsRowAndItsReason) {
 
 TEST_F(SweepCliTest, BadGridsAndShardsExitTwoWithoutAFile) {
   const fs::path out = dir_ / "out.csv";
-  for (const std::string& bad : {std::string(" --grid initial.theta=5:40"), std::string(" --grid initial.theta=5:40:0"),
-                                 std::string(" --grid =5:40:3"), std::string(" --grid initial.theta=a:40:3"),
-                                 std::string(" --grid initial.theta=5,10,5"), std::string(" --grid initial.theta=0:10:3:log"),
-                                 std::string(" --grid initial.theta=1:10:3:lin"),
-                                 std::string(kGrid + " --shard 4/3"), std::string(kGrid + " --shard 0/3"),
-                                 std::string(kGrid + " --max-points 10"), std::string(kGrid + " --threads -1")}) {
+  for (const std::string& bad :
+       {std::string(" --grid initial.theta=5:40"), std::string(" --grid initial.theta=5:40:0"),
+        std::string(" --grid =5:40:3"), std::string(" --grid initial.theta=a:40:3"),
+        std::string(" --grid initial.theta=5,10,5"), std::string(" --grid initial.theta=0:10:3:log"),
+        std::string(" --grid initial.theta=1:10:3:lin"), std::string(kGrid + " --shard 4/3"),
+        std::string(kGrid + " --shard 0/3"), std::string(kGrid + " --max-points 10"),
+        std::string(kGrid + " --threads -1")}) {
     const RunResult r = runCoinroll("sweep " + scene().string() + bad + " -o " + out.string());
     EXPECT_EQ(r.exitCode, 2) << bad << ": " << r.output;
     EXPECT_TRUE(r.output.find("--grid") != std::string::npos || r.output.find("--shard") != std::string::npos ||

@@ -79,7 +79,8 @@ void renderClip(const SceneConfig& scene, const fs::path& output) {
 
 int main(int argc, char** argv) {
   const int rounds = argc > 1 ? std::max(4, std::atoi(argv[1])) : 20;
-  const fs::path scratch = argc > 2 ? fs::path(argv[2]) : fs::temp_directory_path() / fmt::format("coinroll_soak_{}", getpid());
+  const fs::path scratch =
+      argc > 2 ? fs::path(argv[2]) : fs::temp_directory_path() / fmt::format("coinroll_soak_{}", getpid());
   fs::create_directories(scratch);
   const SceneConfig scene = smallScene();
 
@@ -93,7 +94,8 @@ int main(int argc, char** argv) {
     renderClip(scene, scratch / "clip.mp4");
     renderClip(scene, scratch / "frames_%04d.png");
     coinroll::pipeline::renderStill(scene, {.time = 0.5, .output = scratch / "still.png"});
-    coinroll::pipeline::renderStill(scene, {.time = 0.9, .ghosts = 4, .ghostsFrom = 0.1, .output = scratch / "strobe.png"});
+    coinroll::pipeline::renderStill(scene,
+                                    {.time = 0.9, .ghosts = 4, .ghostsFrom = 0.1, .output = scratch / "strobe.png"});
     heap.push_back(heapInUseMiB());
     threads.push_back(threadCount());
     descriptors.push_back(openDescriptors());

@@ -43,7 +43,8 @@ TEST_F(CsvTableTest, ReadsTheHeaderAndEveryRowAndColumnsByName) {
 }
 
 TEST_F(CsvTableTest, RefusesARaggedRowOrACellThatIsNoNumberNamingTheLine) {
-  EXPECT_NE(messageOf(write("t,theta\n0,1\n0.01\n")).find("table.csv:3: 1 cells under a header of 2"), std::string::npos);
+  EXPECT_NE(messageOf(write("t,theta\n0,1\n0.01\n")).find("table.csv:3: 1 cells under a header of 2"),
+            std::string::npos);
   EXPECT_NE(messageOf(write("t,theta\n0,1\n0.01,1,\n")).find("table.csv:3: 3 cells"), std::string::npos);
   EXPECT_NE(messageOf(write("t,theta\n0,1x\n")).find("table.csv:2: '1x' is no number"), std::string::npos);
   EXPECT_NE(messageOf(write("t,theta\n0,\n")).find("table.csv:2: '' is no number"), std::string::npos);

@@ -10,7 +10,8 @@ std::vector<double> boxDownsample(const image::Image& large, int scale) {
   std::vector<double> small(std::size_t(w) * h * 3, 0.0);
   for (int y = 0; y < h * scale; ++y) {
     for (int x = 0; x < w * scale; ++x) {
-      for (int c = 0; c < 3; ++c) small[(std::size_t(y / scale) * w + x / scale) * 3 + c] += large.pixel(x, y)[c] / double(scale * scale);
+      for (int c = 0; c < 3; ++c)
+        small[(std::size_t(y / scale) * w + x / scale) * 3 + c] += large.pixel(x, y)[c] / double(scale * scale);
     }
   }
   return small;
@@ -25,8 +26,9 @@ double edgePsnr(const image::Image& picture, const std::vector<double>& referenc
     for (int x = 1; x + 1 < w; ++x) {
       double contrast = 0, error = 0;
       for (int c = 0; c < 3; ++c) {
-        contrast = std::max({contrast, std::abs(ref(x, y, c) - ref(x + 1, y, c)), std::abs(ref(x, y, c) - ref(x - 1, y, c)),
-                             std::abs(ref(x, y, c) - ref(x, y + 1, c)), std::abs(ref(x, y, c) - ref(x, y - 1, c))});
+        contrast =
+            std::max({contrast, std::abs(ref(x, y, c) - ref(x + 1, y, c)), std::abs(ref(x, y, c) - ref(x - 1, y, c)),
+                      std::abs(ref(x, y, c) - ref(x, y + 1, c)), std::abs(ref(x, y, c) - ref(x, y - 1, c))});
         const double d = picture.pixel(x, y)[c] - ref(x, y, c);
         error += d * d / 3;
       }

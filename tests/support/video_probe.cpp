@@ -73,7 +73,9 @@ std::vector<int> gifFrameDelays(const std::filesystem::path& path) {
   };
   if (gif.compare(0, 6, "GIF89a") != 0) throw fail("not a GIF89a stream");
   // A packed byte's colour table: 3 * 2^(n + 1) bytes when its top bit is set (GIF89a section 18).
-  const auto colourTable = [](std::uint8_t packed) -> std::size_t { return (packed & 0x80) != 0 ? 3u << ((packed & 7) + 1) : 0; };
+  const auto colourTable = [](std::uint8_t packed) -> std::size_t {
+    return (packed & 0x80) != 0 ? 3u << ((packed & 7) + 1) : 0;
+  };
   // Data sub-blocks, each a length byte then its bytes, up to a zero length.
   const auto afterSubBlocks = [&](std::size_t at) {
     while (byte(at) != 0) at += 1 + byte(at);

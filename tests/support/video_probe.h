@@ -37,7 +37,8 @@ VideoInfo readVideoInfo(const std::filesystem::path& path);
 
 // Decodes frame `index` (0-based, in presentation order) of the first video stream to RGBA,
 // converting with the matrix and range the stream is tagged with (BT.601 when untagged, as
-// FFmpeg assumes), alpha included (VP9 through libvpx's decoder, which reads the alpha beside it). Throws std::runtime_error naming the path if the file has fewer frames.
+// FFmpeg assumes), alpha included (VP9 through libvpx's decoder, which reads the alpha beside it). Throws
+// std::runtime_error naming the path if the file has fewer frames.
 image::Image decodeFrame(const std::filesystem::path& path, std::int64_t index);
 
 // Each frame's delay in the GIF at `path`, in hundredths of a second, as its Graphic Control

@@ -65,7 +65,8 @@ Image translucentFrame(int index) {
 
 void encode(const fs::path& path, const VideoOptions& options) {
   EncoderSink sink(path, options);
-  for (int i = 0; i < kFrames; ++i) sink.push(options.alpha ? translucentFrame(i) : movingSquareFrame(kWidth, kHeight, i));
+  for (int i = 0; i < kFrames; ++i)
+    sink.push(options.alpha ? translucentFrame(i) : movingSquareFrame(kWidth, kHeight, i));
   sink.finish();
 }
 
@@ -120,7 +121,8 @@ TEST(VideoFormats, EachDecodesBackWithItsCodecFramesSizeAndPixelFormat) {
 TEST(VideoFormats, EachIsByteIdenticalForTheSameFrames) {
   ScratchDirectory directory;
   for (const Kind& kind : kKinds) {
-    const fs::path a = directory.path() / ("a_" + std::string(kind.file)), b = directory.path() / ("b_" + std::string(kind.file));
+    const fs::path a = directory.path() / ("a_" + std::string(kind.file)),
+                   b = directory.path() / ("b_" + std::string(kind.file));
     encode(a, optionsFor(kind.format));
     encode(b, optionsFor(kind.format));
     EXPECT_EQ(bytesOf(a), bytesOf(b)) << kind.file << " differs between two encodings of the same frames";
@@ -130,7 +132,8 @@ TEST(VideoFormats, EachIsByteIdenticalForTheSameFrames) {
 TEST(VideoFormats, WebmAndMovKeepTheFramesAlpha) {
   ScratchDirectory directory;
   for (const auto& [format, file, pixelFormat, maxAlphaError] :
-       {std::tuple{VideoFormat::WebM, "alpha.webm", "yuv420p", 3.0}, std::tuple{VideoFormat::Mov, "alpha.mov", "yuva444p12le", 1.0}}) {
+       {std::tuple{VideoFormat::WebM, "alpha.webm", "yuv420p", 3.0},
+        std::tuple{VideoFormat::Mov, "alpha.mov", "yuva444p12le", 1.0}}) {
     VideoOptions options = optionsFor(format);
     options.alpha = true;
     const fs::path path = directory.path() / file;
@@ -203,7 +206,8 @@ TEST(VideoFormats, GifCarriesTheProvenanceInACommentExtensionAndDecodesTheSame) 
   EXPECT_EQ(bytesOf(tagged).size(), bytesOf(plain).size() + 2 + 1 + options.provenance.comment().size() + 1);
   EXPECT_EQ(coinroll::video::readVideoInfo(tagged).frameCount, kFrames);
   for (const int frame : {0, kFrames - 1}) {
-    EXPECT_EQ(coinroll::video::decodeFrame(tagged, frame).rgba, coinroll::video::decodeFrame(plain, frame).rgba) << frame;
+    EXPECT_EQ(coinroll::video::decodeFrame(tagged, frame).rgba, coinroll::video::decodeFrame(plain, frame).rgba)
+        << frame;
   }
 }
 
@@ -249,7 +253,8 @@ TEST(VideoFormats, GifFramesLastWholeHundredthsOfAtLeastTwoAndEndAtTheirOwnTimes
       EXPECT_GE(delays[k], 2) << fps << " fps, frame " << k;
       end += delays[k];
       // |end - 100 (k + 1) / fps| <= 1/2, in whole numbers
-      EXPECT_LE(std::abs(2 * fps * end - 200 * (k + 1)), fps) << fps << " fps: frame " << k << " ends at " << end << " cs";
+      EXPECT_LE(std::abs(2 * fps * end - 200 * (k + 1)), fps)
+          << fps << " fps: frame " << k << " ends at " << end << " cs";
     }
   }
   EXPECT_EQ(std::distance(fs::directory_iterator(directory.path()), fs::directory_iterator()), 50);

@@ -34,7 +34,8 @@ TEST(MakeSinkForPath, TheExtensionNamesTheVideoKindInAnyCase) {
   EXPECT_EQ(videoFormatOf("a.avi"), std::nullopt);
   ScratchDirectory directory;
   for (const char* name : {"a.gif", "a.WEBM", "a.mov"}) {
-    EXPECT_NE(dynamic_cast<coinroll::video::EncoderSink*>(makeSinkForPath(directory / name, VideoOptions{}).get()), nullptr)
+    EXPECT_NE(dynamic_cast<coinroll::video::EncoderSink*>(makeSinkForPath(directory / name, VideoOptions{}).get()),
+              nullptr)
         << name;
   }
   EXPECT_EQ(directory.fileCount(), 0);  // unfinished sinks leave nothing

@@ -114,7 +114,8 @@ TEST(EncoderSink, AudioTrackHoldsEverySamplePushedUpToTheLastShortBlock) {
   VideoOptions options = smallOptions();
   options.audio = true;
   std::vector<float> tone(kSamples);
-  for (int i = 0; i < kSamples; ++i) tone[i] = static_cast<float>(0.5 * std::sin(2 * std::numbers::pi * 1000.0 * i / 48000));
+  for (int i = 0; i < kSamples; ++i)
+    tone[i] = static_cast<float>(0.5 * std::sin(2 * std::numbers::pi * 1000.0 * i / 48000));
   {
     EncoderSink sink(path, options);
     for (int frame = 0; frame < 10; ++frame) {

@@ -52,9 +52,10 @@ std::string refusal(const VideoOptions& wanted, VideoFormat format) {
 TEST(OutputFormats, ATransparentBackgroundNeedsAKindWithAlpha) {
   VideoOptions transparent;
   transparent.alpha = true;
-  EXPECT_EQ(refusal(transparent, VideoFormat::Mp4),
-            "render.background: \"transparent\" needs an output with alpha, and .mp4 has none; write a .webm, a .mov or "
-            "a PNG sequence (out_%05d.png), or set render.background to \"opaque\"");
+  EXPECT_EQ(
+      refusal(transparent, VideoFormat::Mp4),
+      "render.background: \"transparent\" needs an output with alpha, and .mp4 has none; write a .webm, a .mov or "
+      "a PNG sequence (out_%05d.png), or set render.background to \"opaque\"");
   EXPECT_NE(refusal(transparent, VideoFormat::Gif).find("and .gif has none"), std::string::npos);
   EXPECT_EQ(refusal(transparent, VideoFormat::Mov), "accepted");
   EXPECT_EQ(refusal(transparent, VideoFormat::WebM), "accepted");
@@ -65,9 +66,11 @@ TEST(OutputFormats, ASoundTrackNeedsAKindThatHoldsAudio) {
   VideoOptions withSound;
   withSound.audio = true;
   EXPECT_EQ(refusal(withSound, VideoFormat::WebM),
-            "render.audio: a .webm gets no sound track; write a .mp4 or a .mov, or leave the sound out with --set render.audio=null");
+            "render.audio: a .webm gets no sound track; write a .mp4 or a .mov, or leave the sound out with --set "
+            "render.audio=null");
   EXPECT_EQ(refusal(withSound, VideoFormat::Gif),
-            "render.audio: a .gif gets no sound track; write a .mp4 or a .mov, or leave the sound out with --set render.audio=null");
+            "render.audio: a .gif gets no sound track; write a .mp4 or a .mov, or leave the sound out with --set "
+            "render.audio=null");
   EXPECT_EQ(refusal(withSound, VideoFormat::Mp4), "accepted");
   EXPECT_EQ(refusal(withSound, VideoFormat::Mov), "accepted");
 }

@@ -28,7 +28,8 @@ int main(int argc, char** argv) {
     std::printf("still %dx%d, %ld pixels unlike the first, version %s\n", still.width, still.height, differing,
                 coinroll::version().c_str());
     try {
-      coinroll::Scene::fromJson(R"({"coin": {"shape": "disk", "radius": 0.0375, "mass": 0.4}, "initial": {}, "duration": -1})");
+      coinroll::Scene::fromJson(
+          R"({"coin": {"shape": "disk", "radius": 0.0375, "mass": 0.4}, "initial": {}, "duration": -1})");
       std::puts("a bad scene was accepted");
       return 1;
     } catch (const coinroll::SceneError& e) {

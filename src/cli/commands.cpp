@@ -88,26 +88,6 @@ nlohmann::json csvProvenance(const nlohmann::json& document, const SimulateOptio
           {"scene", document}};
 }
 
-void reportStop(const pipeline::TrajectoryReport& result) {
-  for (const pipeline::ModeSwitch& w : result.switches) {
-    std::cerr << fmt::format("coinroll: {} at t = {:.9f} s\n", w.toSliding ? "slides" : "rolls", w.t);
-  }
-  for (const auto& warning : result.warnings) {
-    std::cerr << "coinroll: warning: the ideal contact fails here (on_invalid: warn, going on): "
-              << pipeline::describeStop(warning) << '\n';
-  }
-  if (result.stoppedBy) {
-    std::cerr << "coinroll: stopped early: " << pipeline::describeStop(*result.stoppedBy) << '\n';
-  }
-  if (result.singularTime) {
-    const pipeline::SingularTimeEstimate& e = *result.singularTime;
-    std::cerr << fmt::format(
-        "coinroll: singular time t0 = {:.6f} s, {:.3g} s after the stop (E ~ (t0 - t)^{:.3f}, fitted "
-        "to E/P over t >= {:.6g} s, {} samples)\n",
-        e.t0, e.t0 - result.stoppedBy->t, e.gamma, e.fitFrom, e.samples);
-  }
-}
-
 void reportSteadyStart(const scene::SceneConfig& scene) {
   if (const std::string note = pipeline::steadyStartNote(scene); !note.empty())
     std::cerr << "coinroll: note: " << note << '\n';
@@ -279,9 +259,7 @@ void runSimulate(const SimulateOptions& options) {
     outputs.commit();
     return r;
   });
-  reportStop(result);
-  std::cerr << fmt::format("coinroll: {} rows, {} steps ({} rejected), {} right-hand-side evaluations\n", result.rows,
-                           result.stats.acceptedSteps, result.stats.rejectedSteps, result.stats.rhsEvaluations);
+  for (const std::string& line : pipeline::reportLines(result)) std::cerr << line << '\n';
 }
 
 void runSteady(const SteadyOptions& options) {

@@ -1,5 +1,7 @@
 #include "pipeline/trajectory_samples.h"
 
+#include <fmt/format.h>
+
 #include <cmath>
 
 #include "pipeline/coin_run.h"
@@ -64,6 +66,27 @@ TrajectoryReport sampleTrajectory(const Simulation& simulation, double sampleDt,
   result.switches = run.switches();
   result.stats = run.stats();
   return result;
+}
+
+std::vector<std::string> reportLines(const TrajectoryReport& report) {
+  std::vector<std::string> lines;
+  for (const ModeSwitch& w : report.switches) {
+    lines.push_back(fmt::format("coinroll: {} at t = {:.9f} s", w.toSliding ? "slides" : "rolls", w.t));
+  }
+  for (const RunEvent& warning : report.warnings) {
+    lines.push_back("coinroll: warning: the ideal contact fails here (on_invalid: warn, going on): " +
+                    describeStop(warning));
+  }
+  if (report.stoppedBy) lines.push_back("coinroll: stopped early: " + describeStop(*report.stoppedBy));
+  if (report.singularTime) {
+    const SingularTimeEstimate& e = *report.singularTime;
+    lines.push_back(fmt::format("coinroll: singular time t0 = {:.6f} s, {:.3g} s after the stop (E ~ (t0 - t)^{:.3f}, "
+                                "fitted to E/P over t >= {:.6g} s, {} samples)",
+                                e.t0, e.t0 - report.stoppedBy->t, e.gamma, e.fitFrom, e.samples));
+  }
+  lines.push_back(fmt::format("coinroll: {} rows, {} steps ({} rejected), {} right-hand-side evaluations", report.rows,
+                              report.stats.acceptedSteps, report.stats.rejectedSteps, report.stats.rhsEvaluations));
+  return lines;
 }
 
 }  // namespace coinroll::pipeline

@@ -7,6 +7,7 @@
 #include <functional>
 #include <optional>
 #include <span>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -50,5 +51,10 @@ struct TrajectoryReport {
 // sample time, until the duration or the event that ends the run.
 using TrajectoryRow = std::function<void(std::span<const double>)>;
 TrajectoryReport sampleTrajectory(const Simulation& simulation, double sampleDt, const TrajectoryRow& row);
+
+// What `coinroll simulate` prints on stderr about a run, a line each, without line breaks: the
+// switches, the warnings, the stop, the singular time and the counts. The WebAssembly core returns
+// the same lines.
+std::vector<std::string> reportLines(const TrajectoryReport& report);
 
 }  // namespace coinroll::pipeline

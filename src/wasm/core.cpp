@@ -121,29 +121,6 @@ val copiedOut(std::span<const T> values) {
   return val(emscripten::typed_memory_view(values.size(), values.data())).call<val>("slice");
 }
 
-// The lines `coinroll simulate` prints on stderr about a run (cli/commands.cpp reportStop and the
-// summary after it), word for word; tests/web/wasm_core_test.js compares them with the command's.
-std::vector<std::string> reportLines(const pipeline::TrajectoryReport& result) {
-  std::vector<std::string> lines;
-  for (const pipeline::ModeSwitch& w : result.switches) {
-    lines.push_back(fmt::format("coinroll: {} at t = {:.9f} s", w.toSliding ? "slides" : "rolls", w.t));
-  }
-  for (const pipeline::RunEvent& warning : result.warnings) {
-    lines.push_back("coinroll: warning: the ideal contact fails here (on_invalid: warn, going on): " +
-                    pipeline::describeStop(warning));
-  }
-  if (result.stoppedBy) lines.push_back("coinroll: stopped early: " + pipeline::describeStop(*result.stoppedBy));
-  if (result.singularTime) {
-    const pipeline::SingularTimeEstimate& e = *result.singularTime;
-    lines.push_back(fmt::format("coinroll: singular time t0 = {:.6f} s, {:.3g} s after the stop (E ~ (t0 - t)^{:.3f}, "
-                                "fitted to E/P over t >= {:.6g} s, {} samples)",
-                                e.t0, e.t0 - result.stoppedBy->t, e.gamma, e.fitFrom, e.samples));
-  }
-  lines.push_back(fmt::format("coinroll: {} rows, {} steps ({} rejected), {} right-hand-side evaluations", result.rows,
-                              result.stats.acceptedSteps, result.stats.rejectedSteps, result.stats.rhsEvaluations));
-  return lines;
-}
-
 val runEvent(std::string_view kind, std::string_view name, double t, const std::string& description) {
   val event = val::object();
   event.set("kind", std::string(kind));
@@ -211,7 +188,7 @@ val runResult(const pipeline::TrajectoryReport& result, double duration, const s
 
   std::vector<std::string> report;
   if (!note.empty()) report.push_back("coinroll: note: " + note);
-  for (std::string& line : reportLines(result)) report.push_back(std::move(line));
+  for (std::string& line : pipeline::reportLines(result)) report.push_back(std::move(line));
   out.set("report", stringArray(report));
   return out;
 }

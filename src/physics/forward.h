@@ -41,6 +41,9 @@ struct Forward {
   Eigen::Vector3d slip = Eigen::Vector3d::Zero();  // m/s, floor components, horizontal
   bool sliding = false;
   double normalEffectiveMass = 1;
+  // In flight (docs/flight.md) there is no contact: the reaction and loads are zero and the contact
+  // point is the rim's lowest point, above the floor.
+  bool flying = false;
 };
 
 // alpha, rad: the coin plane's tilt above the floor, pi/2 - |theta|, from e_Y's rise and e_Z's, so it

@@ -13,9 +13,15 @@ std::string_view eventName(ModelEvent event) {
     case ModelEvent::Slip: return "slip";
     case ModelEvent::Painleve: return "painleve";
     case ModelEvent::StickSlip: return "stick-slip";
+    case ModelEvent::Rest: return "rest";
+    case ModelEvent::ImpactJam: return "impact-jam";
   }
   return "event";
 }
+
+FaceUp faceUp(double theta) { return theta < 0 ? FaceUp::Heads : FaceUp::Tails; }
+
+std::string_view faceName(FaceUp face) { return face == FaceUp::Heads ? "heads" : "tails"; }
 
 FlatStop flatStopFor(const CoinModel& model, Formulation formulation) {
   // Only the quaternion reaches a thick coin's landing; the Euler angles stop where they must.

@@ -22,9 +22,12 @@ enum class ModelEvent {
   Slip,          // friction needed reaches mu N
   Painleve,      // sliding, the held contact has no unique normal force (docs/sliding.md §3)
   StickSlip,     // more rolling/sliding switches than the run allows per simulated second (docs/sliding.md §4)
+  Rest,          // flight: the coin landed flat on a face and lies there (docs/flight.md §5)
+  ImpactJam,     // flight: an impact whose friction stops the normal impulse from ending it (docs/flight.md §3)
 };
 
-// The contract's name: "coin-flat", "face-down", "corner-switch", "lift-off", "slip", "painleve".
+// The contract's name: "coin-flat", "face-down", "corner-switch", "lift-off", "slip", "painleve", "stick-slip",
+// "rest", "impact-jam".
 std::string_view eventName(ModelEvent event);
 
 // rad. The Euler-angle equations carry tan(theta) and 1 / cos(theta); at 89 degrees the coin's
@@ -46,6 +49,11 @@ inline constexpr double kSpinDownFlatTilt = 89.5 * std::numbers::pi / 180.0;
 // milliseconds are the slap the model leaves out.
 inline constexpr double kFaceDownDegrees = 0.05;  // tilt above the floor
 inline constexpr double kFaceDownTilt = (90.0 - kFaceDownDegrees) * std::numbers::pi / 180.0;
+
+// Which face is up once a coin lies on the floor: heads, the face with +e_Z up (theta < 0), or tails.
+enum class FaceUp { Heads, Tails };
+FaceUp faceUp(double theta);
+std::string_view faceName(FaceUp face);
 
 // How a run of `model` in `formulation` ends near flat: the event and the |theta| it fires at.
 struct FlatStop {

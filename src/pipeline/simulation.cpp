@@ -9,6 +9,7 @@
 
 #include "physics/observables.h"
 #include "physics/dynamics.h"
+#include "physics/flight.h"
 #include "physics/quaternion_dynamics.h"
 #include "physics/sliding.h"
 #include "physics/solid_inertia.h"
@@ -108,8 +109,63 @@ physics::Forward startForward(const Simulation& sim) {
   return physics::forward(sim.model, sim.initial);
 }
 
+// m: a given height within this of resting on the rim is on the floor (a height typed from a formula
+// rounds in its last digits).
+double floorTolerance(const physics::CoinModel& model) { return 1e-9 * model.a; }
+
+// The start of a run with flight: its attitude and rates, its centre at the given height or resting on
+// the floor, and its velocity: in the air (v_x, v_y, v_z) with 0 for those not given, on the floor the
+// rolling velocity with the given components in its place.
+physics::FlightState startingMotion(const Simulation& sim, bool inTheAir) {
+  const physics::QuaternionState attitude = physics::fromEulerState(sim.initial);
+  const double resting = physics::lowestPointDepth(sim.model, attitude.q);
+  physics::FlightState start{.q = attitude.q,
+                             .omegaBody = attitude.omegaBody,
+                             .centre = {sim.initial.x, sim.initialHeight.value_or(resting), sim.initial.z}};
+  start.velocity = inTheAir ? Eigen::Vector3d::Zero() : physics::forward(sim.model, attitude).velocity;
+  if (sim.initialVelocity) start.velocity = {sim.initialVelocity->x(), start.velocity.y(), sim.initialVelocity->y()};
+  if (sim.initialVerticalVelocity) start.velocity.y() = *sim.initialVerticalVelocity;
+  return start;
+}
+
+bool startsAboveTheFloor(const Simulation& sim) {
+  if (!sim.initialHeight) return false;
+  const double resting = physics::lowestPointDepth(sim.model, physics::attitude(sim.initial));
+  return *sim.initialHeight - resting > floorTolerance(sim.model);
+}
+
+// The floor's hold on a coin starting on it with flight on: refuses a start moving into the floor
+// or below it. True when the coin leaves the floor at once.
+bool leavesTheFloor(const Simulation& sim) {
+  const double resting = physics::lowestPointDepth(sim.model, physics::attitude(sim.initial));
+  if (sim.initialHeight && *sim.initialHeight - resting < -floorTolerance(sim.model)) {
+    throw scene::SceneError(fmt::format(
+        "initial.y: {:.6g} m puts the rim {:.3g} m below the floor; at this tilt the centre rests {:.6g} m up: give "
+        "initial.y >= {:.6g}, or leave it out to start on the floor",
+        *sim.initialHeight, resting - *sim.initialHeight, resting, resting));
+  }
+  const physics::FlightState start = startingMotion(sim, false);
+  const double rising = physics::pointVelocity(start, physics::lowestPointVector(sim.model, start.q)).y();
+  if (rising < -floorTolerance(sim.model) * physics::naturalRate(sim.model)) {
+    throw scene::SceneError(fmt::format(
+        "initial.v_y: the coin's rim would move into the floor at {:.4g} m/s; a coin on the floor can only rest on "
+        "it or leave it: raise v_y by at least that, or start above the floor (initial.y)", -rising));
+  }
+  if (rising > floorTolerance(sim.model) * physics::naturalRate(sim.model)) return true;
+  const physics::QuaternionState attitude = physics::fromEulerState(sim.initial);
+  const Eigen::Vector2d slip =
+      physics::slipOf(sim.model, attitude, Eigen::Vector2d(start.velocity.x(), start.velocity.z()));
+  const physics::Forward held =
+      slip.norm() > 0 ? physics::slidingForward(sim.model, {.attitude = attitude, .slip = slip}, sim.kineticFriction,
+                                                Eigen::Vector3d(slip.x(), 0, slip.y()).normalized())
+                      : physics::forward(sim.model, attitude);
+  return physics::liftOffMargin(sim.model, held) <= 0;
+}
+
 // Events fire on crossings, so a start already outside the model would go unnoticed: refuse it.
 void requireValidStart(const Simulation& sim) {
+  // A coin starting in the air meets the floor's models only when it lands.
+  if (sim.flight && (startsAboveTheFloor(sim) || leavesTheFloor(sim))) return;
   if (physics::hasCorners(sim.model) && sim.initial.theta == 0) {
     throw scene::SceneError(
         "initial.theta: a coin whose rim has corners (coin.edge_radius < thickness / 2) cannot start upright: it "
@@ -189,11 +245,26 @@ Simulation buildSimulation(const scene::SceneConfig& scene) {
   if (const auto* e = std::get_if<scene::ExplicitInitial>(&scene.initial); e && e->velocity) {
     sim.initialVelocity = Eigen::Vector2d(e->velocity->at(0), e->velocity->at(1));
   }
+  if (scene.flight) {
+    sim.flight = physics::ImpactLaw{.restitution = scene.restitution,
+                                    .friction = scene.impactFriction.value_or(sim.kineticFriction)};
+    if (const auto* e = std::get_if<scene::ExplicitInitial>(&scene.initial)) {
+      sim.initialHeight = e->y;
+      sim.initialVerticalVelocity = e->v_y;
+    }
+  }
   sim.validityIsTerminal = scene.onInvalid == scene::OnInvalid::Stop;
   sim.duration = scene.duration;
   sim.solver.endTime = scene.duration;
   requireValidStart(sim);
   return sim;
+}
+
+std::optional<physics::FlightState> flightStart(const Simulation& simulation) {
+  if (!simulation.flight) return std::nullopt;
+  if (startsAboveTheFloor(simulation)) return startingMotion(simulation, true);
+  if (leavesTheFloor(simulation)) return startingMotion(simulation, false);
+  return std::nullopt;
 }
 
 std::string steadyStartNote(const scene::SceneConfig& scene) {
@@ -231,6 +302,14 @@ std::string describeStop(const RunEvent& hit) {
     case ModelEvent::Painleve:
       meaning = "the sliding contact has no unique normal force (Painleve's paradox: friction too large for this "
                 "attitude; the model would need an impact, docs/sliding.md §3)";
+      break;
+    case ModelEvent::Rest:
+      meaning = fmt::format("the coin landed flat on a face (tilt above the floor below {} deg) and lies there, {} up",
+                            physics::kFaceDownDegrees, physics::faceName(physics::faceUp(hit.state.theta)));
+      break;
+    case ModelEvent::ImpactJam:
+      meaning = "an impact whose friction keeps the normal impulse from stopping the rim (Painleve's paradox in an "
+                "impact, docs/flight.md §3); lower impact_friction";
       break;
   }
   return fmt::format("{} at t = {:.9f} s (theta = {:.4f} deg): {}", physics::eventName(hit.event), hit.t,

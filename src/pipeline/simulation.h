@@ -13,6 +13,7 @@
 #include "physics/coin_model.h"
 #include "physics/coin_state.h"
 #include "physics/formulation.h"
+#include "physics/impact.h"
 #include "pipeline/run_event.h"
 #include "scene/scene_config.h"
 
@@ -30,6 +31,11 @@ struct Simulation {
   bool sliding = false;
   double kineticFriction = 0;
   std::optional<Eigen::Vector2d> initialVelocity;  // m/s, (v_x, v_z); none: the rolling velocity
+  // "flight": lift-off goes on in flight and the rim's impacts follow this law (docs/flight.md); none:
+  // lift-off ends a sliding run.
+  std::optional<physics::ImpactLaw> flight;
+  std::optional<double> initialHeight;  // m, initial.y: the centre's height (flight only); none: on the floor
+  std::optional<double> initialVerticalVelocity;  // m/s, initial.v_y (flight only)
   bool validityIsTerminal = true;  // on_invalid: "stop" ends the run at lift-off or slip
   double duration = 0;             // s
   // When set and true, runs of this simulation stop at their next sample with Cancelled.
@@ -40,6 +46,10 @@ struct Simulation {
 // that model and maps the solver block. Throws scene::SceneError naming the key for combinations
 // only physics can judge (e.g. the f- circle at theta = 0).
 Simulation buildSimulation(const scene::SceneConfig& scene);
+
+// Where a run with flight starts (docs/flight.md): in the air, when its rim is above the floor or
+// moving up from it or the floor cannot hold it (N <= 0); std::nullopt: on the floor.
+std::optional<physics::FlightState> flightStart(const Simulation& simulation);
 
 // A note for scenes whose `initial` names a steady state of the ideal model while effects are on:
 // the state is only where the spin-down starts. Empty otherwise.

@@ -40,6 +40,9 @@ struct ExplicitInitial {
   double x = 0, z = 0;                             // m
   // m/s, initial.v_x and v_z (only with "sliding": true): the centre's velocity; absent, the rolling one.
   std::optional<std::array<double, 2>> velocity;
+  // Only with "flight": true. m, initial.y: the centre's height (absent: resting on the floor);
+  // m/s, initial.v_y: its vertical velocity.
+  std::optional<double> y, v_y;
 };
 
 enum class SteadyKind { Straight, Circle, SpinInPlace };
@@ -154,6 +157,10 @@ struct SceneConfig {
   std::optional<double> friction;   // mu: the slip monitor's cone, and Coulomb's kinetic coefficient when sliding
   std::optional<double> frictionStatic;  // friction_static >= friction: the rolling cone; absent = friction
   bool sliding = false;             // "sliding": true, the coin slides instead of stopping at slip (needs friction)
+  // "flight": true (needs sliding): lift-off goes on in flight, and the rim's impacts bounce (docs/flight.md).
+  bool flight = false;
+  double restitution = 0;                // e in [0, 1], required with flight
+  std::optional<double> impactFriction;  // mu during impacts; absent = friction
   InitialSpec initial;
   double duration = 0;              // s, required
   SolverSpec solver;

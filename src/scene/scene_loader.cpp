@@ -176,6 +176,8 @@ InitialSpec parseInitial(const JsonReader& top) {
   e.z = boundedNumber(r, "z", 0);
   if (r.has("v_x") || r.has("v_z"))
     e.velocity = std::array<double, 2>{boundedNumber(r, "v_x", 0), boundedNumber(r, "v_z", 0)};
+  if (r.has("y")) e.y = boundedNumber(r, "y", 0);
+  if (r.has("v_y")) e.v_y = boundedNumber(r, "v_y", 0);
   return e;
 }
 
@@ -438,7 +440,26 @@ SceneConfig parseScene(const nlohmann::json& document, std::string_view sourceNa
       top.fail("sliding",
                "needs friction (the coefficient of Coulomb friction while the coin slides), e.g. \"friction\": 0.3");
     }
+    scene.flight = top.boolean("flight", false);
+    if (scene.flight && !scene.sliding) {
+      top.fail("flight", "needs \"sliding\": true (a coin that lands rolls or slides again)");
+    }
+    if (top.has("restitution") && !scene.flight) top.fail("restitution", "only with \"flight\": true");
+    if (top.has("impact_friction") && !scene.flight) top.fail("impact_friction", "only with \"flight\": true");
+    if (scene.flight) {
+      if (!top.has("restitution")) {
+        top.fail("restitution", "required with \"flight\": true: the coefficient of restitution e in [0, 1], "
+                                "e.g. \"restitution\": 0.5");
+      }
+      scene.restitution = boundedNumber(top, "restitution", 0);
+      if (top.has("impact_friction")) scene.impactFriction = boundedNumber(top, "impact_friction", 0);
+    }
     scene.initial = parseInitial(top);
+    if (const auto* e = std::get_if<ExplicitInitial>(&scene.initial); e && !scene.flight && (e->y || e->v_y)) {
+      top.fail(e->y ? "initial.y" : "initial.v_y",
+               "only with \"flight\": true (a rolling or sliding coin's height and vertical velocity follow from "
+               "its attitude and rates)");
+    }
     if (const auto* e = std::get_if<ExplicitInitial>(&scene.initial); e && e->velocity && !scene.sliding) {
       top.fail("initial.v_x", "only with \"sliding\": true (a rolling coin's velocity follows from its rates)");
     }

@@ -96,6 +96,17 @@ std::vector<Key> buildTable() {
               "(the slip event and the start-up check use it)"},
       {.path = "sliding", .type = T::Boolean, .unit = "", .defaultText = "false", .onlyWith = {"friction=0.5"},
        .doc = "true: the coin slides with Coulomb friction instead of stopping at slip (needs `friction`)"},
+      {.path = "flight", .type = T::Boolean, .unit = "", .defaultText = "false",
+       .onlyWith = {"friction=0.5", "sliding=true", "restitution=0.5"},
+       .doc = "true: lift-off goes on in flight, the rim's impacts bounce and the coin rolls or slides again "
+              "(docs/flight.md; needs `sliding` and `restitution`)"},
+      {.path = "restitution", .type = T::Number, .unit = "", .defaultText = "", .lower = closed(0),
+       .upper = closed(1), .onlyWith = {"friction=0.5", "sliding=true", "flight=true"},
+       .doc = "e, required with `flight`: an impact gives back e^2 of its compression's work (Stronge's energetic "
+              "coefficient)"},
+      {.path = "impact_friction", .type = T::Number, .unit = "", .defaultText = "", .lower = closed(0),
+       .onlyWith = {"friction=0.5", "sliding=true", "restitution=0.5", "flight=true"},
+       .doc = "mu during impacts; absent, `friction`"},
       {.path = "initial", .type = T::Object, .unit = "", .defaultText = "", .required = true,
        .doc = "the start: angles and rates, or a steady state (`initial[steady]`)"},
       {.path = "duration", .type = T::Number, .unit = "s", .defaultText = "", .required = true, .lower = open(0),
@@ -162,6 +173,13 @@ std::vector<Key> buildTable() {
       {.path = "initial.v_z", .type = T::Number, .unit = "m/s", .defaultText = "", .lower = closed(-kMaxSpeed),
        .upper = closed(kMaxSpeed), .onlyWith = {"friction=0.5", "sliding=true"},
        .doc = "the centre's velocity, a skidding launch; absent, the rolling velocity"},
+
+      {.path = "initial.y", .type = T::Number, .unit = "m", .defaultText = "", .lower = closed(0),
+       .upper = closed(kMaxPosition), .onlyWith = {"friction=0.5", "sliding=true", "restitution=0.5", "flight=true"},
+       .doc = "the centre's height: above resting on the rim, the coin starts in flight; absent, on the floor"},
+      {.path = "initial.v_y", .type = T::Number, .unit = "m/s", .defaultText = "0", .lower = closed(-kMaxSpeed),
+       .upper = closed(kMaxSpeed), .onlyWith = {"friction=0.5", "sliding=true", "restitution=0.5", "flight=true"},
+       .doc = "the centre's vertical velocity (a toss); in flight `v_x` and `v_z` default to 0"},
 
       {.path = "initial[steady].steady", .type = T::Name, .unit = "", .defaultText = "",
        .names = namesOf(kSteadyKindNames),

@@ -53,6 +53,14 @@ struct Stats {
   long rhsEvaluations = 0;
   long acceptedSteps = 0;
   long rejectedSteps = 0;
+
+  // A run made of several integrations (HybridRun's segments) reports their sum.
+  Stats& operator+=(const Stats& other) {
+    rhsEvaluations += other.rhsEvaluations;
+    acceptedSteps += other.acceptedSteps;
+    rejectedSteps += other.rejectedSteps;
+    return *this;
+  }
 };
 
 }  // namespace coinroll::integrate

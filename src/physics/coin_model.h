@@ -3,12 +3,19 @@
 // axisymmetric coin and the dissipation laws switched on. Kept apart from CoinState so every
 // physics function reads (const CoinModel&, state) and nothing is cached behind the caller's back.
 
+#include <optional>
 #include <vector>
 
 #include "physics/effects.h"
 #include "physics/rim.h"
 
 namespace coinroll::physics {
+
+// Coulomb friction at the contact (docs/sliding.md).
+struct Friction {
+  std::optional<double> cone;  // the rolling cone's coefficient (friction_static, else friction); none: no slip monitor
+  double kinetic = 0;          // the sliding contact's coefficient ("sliding": true)
+};
 
 struct CoinModel {
   double M = 0;    // kg, mass
@@ -18,6 +25,7 @@ struct CoinModel {
   double I_Z = 0;  // kg m^2, moment about the symmetry axis
   Rim rim;         // thickness 0 (the default): the seed's thin coin, bit for bit
   std::vector<Effect> effects;  // empty: the seed's ideal rolling, energy conserved
+  Friction friction{};  // the default: no cone (no slip monitor) and no sliding friction
 };
 
 // Thin uniform disk: I_X = M a^2 / 4, I_Z = M a^2 / 2 (seed eq. 12).

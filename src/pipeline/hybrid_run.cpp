@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <utility>
-#include <variant>
 
+#include "physics/contact_mode.h"
+#include "pipeline/formulation_run.h"
+#include "pipeline/trajectory_motion.h"
 #include "pipeline/validity_events.h"
 
 namespace coinroll::pipeline {
@@ -17,52 +19,43 @@ using physics::ModelEvent;
 constexpr int kRollingSize = physics::kQuaternionStateSize + 1;  // with the dissipated energy
 constexpr int kSlidingSize = physics::kSlidingStateSize + 1;
 
-// The switches' event ids, past ModelEvent's values.
-constexpr int kSlideOnset = 1000;  // rolling: the reaction reaches the cone
-constexpr int kSlipStops = 1001;   // sliding: the slip speed falls to stoppedSlip(t)
-constexpr int kSlipFrees = 1002;   // creeping: the slip's direction is slow enough to integrate
-constexpr int kSlipCreeps = 1003;  // sliding: the slip's direction is too fast to integrate
-
-// m/s. Sliding ends when the slip speed falls to this, not to 0, where friction's direction is no
-// longer defined: the last of the slip is closed by friction at once, its kinetic energy booked as
-// dissipated (docs/sliding.md §4.5). A free slip's direction turns at restoring / |s|, so the steps
-// near the stop shrink with |s|; the stop must come while they are still above the integrator's
-// floor of 1e-14 |t|, hence a threshold growing with t (10^-11 m/s up to 1 s: a skid switches about
-// 3e-12 s early at mu g = 3 m/s^2; at 1e-12 m/s a skid at t = 4.8 s stalled).
-double stoppedSlip(double t) { return 1e-11 * std::max(1.0, std::abs(t)); }
+// The switches' event ids, past ModelEvent's values; where each is crossed is physics/contact_mode.h's rule.
+constexpr int kSlideOnset = kFirstSwitchId;      // rolling: the reaction reaches the cone
+constexpr int kSlipStops = kFirstSwitchId + 1;   // sliding: the slip speed falls to stoppedSlip(t)
+constexpr int kSlipFrees = kFirstSwitchId + 2;   // creeping: the slip's direction is slow enough to integrate
+constexpr int kSlipCreeps = kFirstSwitchId + 3;  // sliding: the slip's direction is too fast to integrate
 
 // Stick-slip: more switches than this within one simulated second end the run (docs/sliding.md §4).
 constexpr std::size_t kMaxSwitchesPerSecond = 1000;
 
-// rad: the creeping slip's direction lags its rest by at most this before it is integrated freely
-// (docs/sliding.md §4.6): the lag is (turn rate of the rest) |s| / restoring.
-constexpr double kCreepLag = 1e-3;
-// rad: a free slip is handed back to its rest only within this angle of it (docs/sliding.md §4.6).
-constexpr double kCreepAlignment = 1e-5;
-
+// The sliding segment's right-hand side, with Coulomb friction model.friction.kinetic.
 struct SlidingRhs {
   physics::CoinModel model;
-  double mu = 0;
-  SlipMode mode = SlipMode::Free;
+  // Sliding or Creeping.
+  physics::ContactMode mode = physics::ContactMode::Sliding;
   Eigen::Vector3d direction;  // free: s_hat while the slip is below round-off
 
   // Creeping: along the rest, searched from the segment's direction where rolling leaves every
   // direction neutral (a trial state past zero slip must not flip friction with it, or the slip's
   // stop is never crossed); where a trial state has no rest, along the slip itself, as when free.
   Eigen::Vector3d frictionDirection(const physics::SlidingStateVec& y) const {
-    if (const std::optional<physics::Creep> creep = physics::findCreep(model, y, mu, direction)) return creep->slipHat;
+    if (const std::optional<physics::Creep> creep = physics::findCreep(model, y, model.friction.kinetic, direction)) {
+      return creep->slipHat;
+    }
     const Eigen::Vector2d slip = y.tail<2>();
     return slip.norm() > physics::kSlipRoundOff ? Eigen::Vector3d(slip.x() / slip.norm(), 0, slip.y() / slip.norm())
                                                 : direction;
   }
   physics::Forward forward(const physics::SlidingStateVec& y) const {
     const physics::SlidingState state = physics::toSlidingState(y);
-    return mode == SlipMode::Free ? physics::slidingForward(model, state, mu, direction)
-                                  : physics::slidingForwardAlong(model, state, mu, frictionDirection(y));
+    const double mu = model.friction.kinetic;
+    return mode == physics::ContactMode::Sliding ? physics::slidingForward(model, state, mu, direction)
+                                                 : physics::slidingForwardAlong(model, state, mu, frictionDirection(y));
   }
   integrate::Vec<kSlidingSize> operator()(double /*t*/, const integrate::Vec<kSlidingSize>& y) const {
     const physics::SlidingStateVec& coin = y.head<physics::kSlidingStateSize>();
-    const physics::SlidingRates r = mode == SlipMode::Free
+    const double mu = model.friction.kinetic;
+    const physics::SlidingRates r = mode == physics::ContactMode::Sliding
                                         ? physics::slidingRates(model, coin, mu, direction)
                                         : physics::slidingRatesAlong(model, coin, mu, frictionDirection(coin));
     integrate::Vec<kSlidingSize> dy;
@@ -70,9 +63,6 @@ struct SlidingRhs {
     return dy;
   }
 };
-
-using RollingTrajectory = integrate::Trajectory<kRollingSize, physics::CoinRhs<Formulation::Quaternion>>;
-using SlidingTrajectory = integrate::Trajectory<kSlidingSize, SlidingRhs>;
 
 physics::SlidingState slidingStateOf(const integrate::Vec<kSlidingSize>& y) {
   return physics::toSlidingState(y.head<physics::kSlidingStateSize>());
@@ -82,12 +72,20 @@ physics::QuaternionState rollingStateOf(const integrate::Vec<kRollingSize>& y) {
   return physics::toQuaternionState(y.head<physics::kQuaternionStateSize>());
 }
 
-// m/s: the slip speed above which its direction is integrated (kCreepLag); the rest turns with the
-// fastest of the body's rotation, the contact's precession and the rocking rate sqrt(g/a).
-double freeSlipSpeed(const physics::CoinModel& model, const physics::Forward& f, double restoring) {
-  const double turnRate = std::max({f.omega.norm(), std::abs(f.precessionRate), std::sqrt(model.g / model.a)});
-  return kCreepLag * std::max(restoring, 0.0) / turnRate;
-}
+// A sliding state with the dissipated energy last, read in the seed's variables (TrajectoryMotion's Kind).
+struct SlidingKind {
+  using Rhs = SlidingRhs;
+  static constexpr bool kContinuesAngles = true;
+
+  SlidingRhs sliding;
+
+  const SlidingRhs& rhs() const { return sliding; }
+  RunSample sample(const integrate::Vec<kSlidingSize>& y, const physics::CoinState& continuation) const {
+    return {.state = physics::toEulerState(slidingStateOf(y).attitude, continuation),
+            .forward = sliding.forward(y.head<physics::kSlidingStateSize>()),
+            .dissipated = y[kSlidingSize - 1]};
+  }
+};
 
 template <int N>
 integrate::Event<N> switchEvent(int id, const char* name, std::function<double(double, const integrate::Vec<N>&)> g,
@@ -97,10 +95,57 @@ integrate::Event<N> switchEvent(int id, const char* name, std::function<double(d
 
 }  // namespace
 
-struct HybridRun::Segment {
-  std::variant<RollingTrajectory, SlidingTrajectory> trajectory;
-  SlidingRhs sliding;  // the sliding segment's right-hand side, for its samples
+// What a segment that ended in a switch hands to the next one.
+struct Handover {
+  int id = 0;                   // the switch: kSlideOnset, kSlipStops, kSlipFrees or kSlipCreeps
+  double t = 0;                 // s
+  physics::SlidingState state;  // rolling hands on zero slip
+  physics::Forward forward;     // the ending segment's forward pass at the switch
+  double dissipated = 0;        // J
 };
+
+class ContactSegment : public Motion {
+ public:
+  // The switch that ended this segment; none while it runs or when a model event ended it.
+  virtual std::optional<Handover> handover() const = 0;
+};
+
+namespace {
+
+using RollingKind = FormulationKind<Formulation::Quaternion, kRollingSize>;
+
+class RollingSegment final : public TrajectoryMotion<kRollingSize, RollingKind, ContactSegment> {
+ public:
+  using TrajectoryMotion::TrajectoryMotion;
+
+  std::optional<Handover> handover() const override {
+    const auto& hit = endHit();
+    if (!hit || hit->id != kSlideOnset) return std::nullopt;
+    const physics::QuaternionState state = rollingStateOf(hit->y);
+    return Handover{.id = hit->id,
+                    .t = hit->t,
+                    .state = {.attitude = state},
+                    .forward = physics::forward(kind().model, state),
+                    .dissipated = hit->y[kRollingSize - 1]};
+  }
+};
+
+class SlidingSegment final : public TrajectoryMotion<kSlidingSize, SlidingKind, ContactSegment> {
+ public:
+  using TrajectoryMotion::TrajectoryMotion;
+
+  std::optional<Handover> handover() const override {
+    const auto& hit = endHit();
+    if (!hit || (hit->id != kSlipStops && hit->id != kSlipCreeps && hit->id != kSlipFrees)) return std::nullopt;
+    return Handover{.id = hit->id,
+                    .t = hit->t,
+                    .state = slidingStateOf(hit->y),
+                    .forward = kind().sliding.forward(hit->y.head<physics::kSlidingStateSize>()),
+                    .dissipated = hit->y[kSlidingSize - 1]};
+  }
+};
+
+}  // namespace
 
 HybridRun::HybridRun(const Simulation& simulation) : simulation_(simulation) {
   const physics::QuaternionState start = physics::fromEulerState(simulation.initial);
@@ -110,19 +155,17 @@ HybridRun::HybridRun(const Simulation& simulation) : simulation_(simulation) {
       simulation.initialVelocity.value_or(Eigen::Vector2d(rollingVelocity.x(), rollingVelocity.z()));
   const physics::SlidingState sliding{.attitude = start, .slip = physics::slipOf(simulation_.model, start, velocity)};
   const physics::Forward slipping =
-      physics::slidingForward(simulation_.model, sliding, simulation.kineticFriction, Eigen::Vector3d::UnitX());
-  if (slipping.slip.norm() > stoppedSlip(0)) {
-    startSliding(0, sliding, 0, SlipMode::Free);
-  } else if (physics::slipMargin(simulation_.model, rolling, *simulation.friction) < 0) {
-    startSliding(0, {.attitude = start}, 0, SlipMode::Creeping);
-  } else {
+      physics::slidingForward(simulation_.model, sliding, simulation_.model.friction.kinetic, Eigen::Vector3d::UnitX());
+  const physics::ContactMode mode = physics::startingMode(simulation_.model, rolling, slipping);
+  if (mode == physics::ContactMode::Rolling) {
     startRolling(0, start, 0);
+  } else {
+    const physics::SlidingState fromZeroSlip{.attitude = start};
+    startSliding(0, mode == physics::ContactMode::Sliding ? sliding : fromZeroSlip, 0, mode);
   }
 }
 
 HybridRun::~HybridRun() = default;
-HybridRun::HybridRun(HybridRun&&) noexcept = default;
-HybridRun& HybridRun::operator=(HybridRun&&) noexcept = default;
 
 // N < 0 is never integrated as a contact here, whatever on_invalid says: the sliding law's friction
 // -mu N s_hat would then push the coin along its slip and make energy (issue 40: +46 % in one
@@ -134,26 +177,24 @@ void HybridRun::startRolling(double t, const physics::QuaternionState& state, do
   using Y = integrate::Vec<kRollingSize>;
   std::vector<integrate::Event<kRollingSize>> events =
       validityEvents<Formulation::Quaternion, kRollingSize>(simulation_.model, std::nullopt, kLiftOffEndsTheRun);
-  integrate::Event<kRollingSize> slides = switchEvent<kRollingSize>(
-      kSlideOnset, "slides", [model = simulation_.model, mu = *simulation_.friction](double, const Y& y) {
-        return physics::slipMargin(model, physics::forward(model, rollingStateOf(y)), mu);
+  integrate::Event<kRollingSize> slides =
+      switchEvent<kRollingSize>(kSlideOnset, "slides", [model = simulation_.model](double, const Y& y) {
+        return physics::slideOnsetMargin(model, physics::forward(model, rollingStateOf(y)));
       });
   slides.interiorChecks = kConeGrazeChecks;
   events.push_back(std::move(slides));
   Y y0;
   y0 << physics::toVector(state), dissipated;
-  segment_ = std::make_unique<Segment>(
-      Segment{.trajectory = RollingTrajectory(physics::CoinRhs<Formulation::Quaternion>{simulation_.model}, t, y0,
-                                              simulation_.solver, events),
-              .sliding = {}});
+  segment_ = std::make_unique<RollingSegment>(RollingKind{simulation_.model}, t, y0, simulation_.solver,
+                                              std::move(events), simulation_.duration);
 }
 
-void HybridRun::startSliding(double t, const physics::SlidingState& state, double dissipated, SlipMode mode) {
+void HybridRun::startSliding(double t, const physics::SlidingState& state, double dissipated,
+                             physics::ContactMode mode) {
   using Y = integrate::Vec<kSlidingSize>;
   const physics::CoinModel& model = simulation_.model;
-  const double mu = simulation_.kineticFriction;
   const Eigen::Vector2d along = state.slip.norm() > 0 ? state.slip.normalized() : Eigen::Vector2d::UnitX();
-  const SlidingRhs rhs{.model = model, .mu = mu, .mode = mode, .direction = Eigen::Vector3d(along.x(), 0, along.y())};
+  const SlidingRhs rhs{.model = model, .mode = mode, .direction = Eigen::Vector3d(along.x(), 0, along.y())};
   const auto forwardOf = [rhs](const Y& y) { return rhs.forward(y.head<physics::kSlidingStateSize>()); };
   std::vector<integrate::Event<kSlidingSize>> events = geometryEvents<kSlidingSize>(
       model, Formulation::Quaternion, [](const Y& y) { return physics::thetaOf(slidingStateOf(y).attitude.q); });
@@ -165,110 +206,70 @@ void HybridRun::startSliding(double t, const physics::SlidingState& state, doubl
       ModelEvent::Painleve,
       [forwardOf](double, const Y& y) { return forwardOf(y).normalEffectiveMass - physics::kPainleveMargin; }, -1,
       true));
-  if (mode == SlipMode::Free) {
-    events.push_back(switchEvent<kSlidingSize>(
-        kSlipStops, "rolls", [](double at, const Y& y) { return slidingStateOf(y).slip.norm() - stoppedSlip(at); }));
-    // A slip that falls back to half the creep's threshold hands its direction to its rest, once it
-    // has come to the rest: the threshold fades to zero as the slip's angle from the rest grows to
-    // kCreepLag, so a slide that ends across the rest's pull (a skid) is integrated to its end.
-    events.push_back(switchEvent<kSlidingSize>(kSlipCreeps, "creeps", [model, mu, forwardOf](double, const Y& y) {
-      const physics::SlidingStateVec coin = y.head<physics::kSlidingStateSize>();
-      const Eigen::Vector2d slip = physics::toSlidingState(coin).slip;
-      const std::optional<physics::Creep> creep = physics::findCreep(model, coin, mu);
-      if (!creep) return slip.norm();
-      const Eigen::Vector2d rest(creep->slipHat.x(), creep->slipHat.z());
-      const double angleFromRest = std::acos(std::clamp(rest.dot(slip.normalized()), -1.0, 1.0));
-      const double nearness = std::max(0.0, 1 - angleFromRest / kCreepAlignment);
-      return slip.norm() - 0.5 * nearness * freeSlipSpeed(model, forwardOf(y), creep->restoring);
+  if (mode == physics::ContactMode::Sliding) {
+    events.push_back(switchEvent<kSlidingSize>(kSlipStops, "rolls", [](double at, const Y& y) {
+      return physics::slipStopMargin(at, slidingStateOf(y).slip);
+    }));
+    events.push_back(switchEvent<kSlidingSize>(kSlipCreeps, "creeps", [model, forwardOf](double, const Y& y) {
+      return physics::slipCreepMargin(model, y.head<physics::kSlidingStateSize>(), forwardOf(y));
     }));
   } else {
     // Friction keeps to the rest while the slip passes zero, so the slip crosses it smoothly and its
     // length has a kink there that a step can jump: the stop is found on the slip along the rest.
     events.push_back(switchEvent<kSlidingSize>(kSlipStops, "rolls", [rhs](double at, const Y& y) {
       const physics::SlidingStateVec coin = y.head<physics::kSlidingStateSize>();
-      const Eigen::Vector3d rest = rhs.frictionDirection(coin);
-      const Eigen::Vector2d slip = physics::toSlidingState(coin).slip;
-      return slip.x() * rest.x() + slip.y() * rest.z() - stoppedSlip(at);
+      return physics::creepStopMargin(at, physics::toSlidingState(coin).slip, rhs.frictionDirection(coin));
     }));
     events.push_back(switchEvent<kSlidingSize>(
         kSlipFrees, "slips freely",
         [rhs](double, const Y& y) {
           const physics::SlidingStateVec coin = y.head<physics::kSlidingStateSize>();
-          return physics::toSlidingState(coin).slip.norm() -
-                 freeSlipSpeed(rhs.model, rhs.forward(coin),
-                               physics::findCreep(rhs.model, coin, rhs.mu).value_or(physics::Creep{}).restoring);
+          return physics::slipFreeMargin(rhs.model, coin, rhs.forward(coin));
         },
         +1));
   }
   Y y0;
   y0 << physics::toVector(state), dissipated;
-  segment_ = std::make_unique<Segment>(
-      Segment{.trajectory = SlidingTrajectory(rhs, t, y0, simulation_.solver, events), .sliding = rhs});
-}
-
-// The seed's variables, the forward pass of the segment's mode and the dissipated energy of an
-// integrated state of either kind.
-HybridSample sampleOf(const physics::CoinModel& model, const SlidingRhs& /*sliding*/,
-                      const integrate::Vec<kRollingSize>& y, const physics::CoinState& continuation) {
-  const physics::QuaternionState state = rollingStateOf(y);
-  return {physics::toEulerState(state, continuation), physics::forward(model, state), y[kRollingSize - 1]};
-}
-
-HybridSample sampleOf(const physics::CoinModel& /*model*/, const SlidingRhs& sliding,
-                      const integrate::Vec<kSlidingSize>& y, const physics::CoinState& continuation) {
-  return {physics::toEulerState(slidingStateOf(y).attitude, continuation),
-          sliding.forward(y.head<physics::kSlidingStateSize>()), y[kSlidingSize - 1]};
+  segment_ = std::make_unique<SlidingSegment>(SlidingKind{rhs}, t, y0, simulation_.solver, std::move(events),
+                                              simulation_.duration);
 }
 
 bool HybridRun::switchIfDue() {
-  const SlidingRhs sliding = segment_->sliding;
+  const std::optional<Handover> handover = segment_->handover();
+  if (!handover) return false;
   // The finished segment's crossings gone past and its work, kept before it is replaced.
-  const auto retire = [&](const auto& trajectory) {
-    for (const auto& crossing : trajectory.nonTerminalHits()) {
-      const HybridSample at = sampleOf(simulation_.model, sliding, crossing.y, physics::CoinState{});
-      warnings_.push_back({static_cast<ModelEvent>(crossing.id), crossing.t, at.state, at.forward, at.dissipated});
-    }
-    const integrate::Stats work = trajectory.stats();
-    finishedStats_.rhsEvaluations += work.rhsEvaluations;
-    finishedStats_.acceptedSteps += work.acceptedSteps;
-    finishedStats_.rejectedSteps += work.rejectedSteps;
+  const auto retire = [this] {
+    const std::vector<RunEvent> crossings = segment_->warnings();
+    warnings_.insert(warnings_.end(), crossings.begin(), crossings.end());
+    finishedStats_ += segment_->stats();
   };
   const auto tooManySwitches = [this](double t) {
     std::size_t recent = 0;
     for (const ModeSwitch& w : switches_) recent += w.t > t - 1 ? 1 : 0;
     return recent >= kMaxSwitchesPerSecond;
   };
-  if (auto* rolling = std::get_if<RollingTrajectory>(&segment_->trajectory)) {
-    const auto& hit = rolling->stoppedBy();
-    if (!hit || hit->id != kSlideOnset) return false;
-    if (tooManySwitches(hit->t)) return false;
-    const physics::QuaternionState state = rollingStateOf(hit->y);
-    const double t = hit->t, dissipated = hit->y[kRollingSize - 1];
-    retire(*rolling);
+  const double t = handover->t, dissipated = handover->dissipated;
+  const physics::SlidingState& state = handover->state;
+  if (handover->id == kSlideOnset) {
+    if (tooManySwitches(t)) return false;
+    retire();
     switches_.push_back({t, true});
-    startSliding(t, {.attitude = state}, dissipated, SlipMode::Creeping);
+    startSliding(t, {.attitude = state.attitude}, dissipated, physics::ContactMode::Creeping);
     return true;
   }
-  auto& trajectory = std::get<SlidingTrajectory>(segment_->trajectory);
-  const auto& hit = trajectory.stoppedBy();
-  if (!hit || (hit->id != kSlipStops && hit->id != kSlipCreeps && hit->id != kSlipFrees)) return false;
-  const physics::SlidingState state = slidingStateOf(hit->y);
-  const double t = hit->t, dissipated = hit->y[kSlidingSize - 1];
-  if (hit->id != kSlipStops) {
-    retire(trajectory);
-    startSliding(t, state, dissipated, hit->id == kSlipCreeps ? SlipMode::Creeping : SlipMode::Free);
+  if (handover->id != kSlipStops) {
+    retire();
+    startSliding(t, state, dissipated,
+                 handover->id == kSlipCreeps ? physics::ContactMode::Creeping : physics::ContactMode::Sliding);
     return true;
   }
   if (tooManySwitches(t)) return false;
-  const physics::Forward slipping = sliding.forward(hit->y.head<physics::kSlidingStateSize>());
-  retire(trajectory);
+  retire();
   const physics::Forward rolling = physics::forward(simulation_.model, state.attitude);
   // Friction takes the last stoppedSlip(t) of slip at once: the kinetic energy it removes is dissipated.
-  const double afterStop = dissipated + (slipping.energy - rolling.energy);
-  if (physics::slipMargin(simulation_.model, rolling, *simulation_.friction) < 0) {
-    // At zero slip the rolling reaction does not fit the cone: the coin slides on from zero slip,
-    // its direction at its rest.
-    startSliding(t, {.attitude = state.attitude}, afterStop, SlipMode::Creeping);
+  const double afterStop = dissipated + (handover->forward.energy - rolling.energy);
+  if (physics::modeAfterSlipStops(simulation_.model, rolling) == physics::ContactMode::Creeping) {
+    startSliding(t, {.attitude = state.attitude}, afterStop, physics::ContactMode::Creeping);
     return true;
   }
   switches_.push_back({t, false});
@@ -276,58 +277,27 @@ bool HybridRun::switchIfDue() {
   return true;
 }
 
-std::optional<HybridSample> HybridRun::sampleAt(double t, const physics::CoinState& continuation) {
+std::optional<RunSample> HybridRun::sampleAt(double t, const physics::CoinState& continuation) {
   for (;;) {
-    const std::optional<HybridSample> sample = std::visit(
-        [&](auto& trajectory) -> std::optional<HybridSample> {
-          const auto y = trajectory.stateAt(t);
-          if (!y) return std::nullopt;
-          return sampleOf(simulation_.model, segment_->sliding, *y, continuation);
-        },
-        segment_->trajectory);
-    if (sample) return sample;
+    if (std::optional<RunSample> sample = segment_->sampleAt(t, continuation)) return sample;
     if (!switchIfDue()) return std::nullopt;
   }
 }
 
 std::optional<RunEvent> HybridRun::stoppedBy(const physics::CoinState& continuation) const {
-  return std::visit(
-      [&](const auto& trajectory) -> std::optional<RunEvent> {
-        const auto& hit = trajectory.stoppedBy();
-        if (!hit || hit->t > simulation_.duration) return std::nullopt;
-        const HybridSample at = sampleOf(simulation_.model, segment_->sliding, hit->y, continuation);
-        // A switch the run could not make (stick-slip past its bound) ends it as stick-slip.
-        const bool modelEvent = hit->id < kSlideOnset;
-        return RunEvent{modelEvent ? static_cast<ModelEvent>(hit->id) : ModelEvent::StickSlip, hit->t, at.state,
-                        at.forward, at.dissipated};
-      },
-      segment_->trajectory);
+  return segment_->stoppedBy(continuation);
 }
 
 std::vector<RunEvent> HybridRun::warnings() const {
   std::vector<RunEvent> all = warnings_;
-  std::visit(
-      [&](const auto& trajectory) {
-        for (const auto& crossing : trajectory.nonTerminalHits()) {
-          if (crossing.t > simulation_.duration) break;
-          const HybridSample at = sampleOf(simulation_.model, segment_->sliding, crossing.y, physics::CoinState{});
-          all.push_back({static_cast<ModelEvent>(crossing.id), crossing.t, at.state, at.forward, at.dissipated});
-        }
-      },
-      segment_->trajectory);
+  const std::vector<RunEvent> current = segment_->warnings();
+  all.insert(all.end(), current.begin(), current.end());
   return all;
 }
 
 integrate::Stats HybridRun::stats() const {
   integrate::Stats total = finishedStats_;
-  std::visit(
-      [&total](const auto& trajectory) {
-        const integrate::Stats work = trajectory.stats();
-        total.rhsEvaluations += work.rhsEvaluations;
-        total.acceptedSteps += work.acceptedSteps;
-        total.rejectedSteps += work.rejectedSteps;
-      },
-      segment_->trajectory);
+  total += segment_->stats();
   return total;
 }
 

@@ -5,66 +5,47 @@
 // physics/sliding.h and leaves it when the slip speed reaches zero and the rolling reaction fits the
 // cone. Every switch is kept, with its time, for the command's stderr.
 
-#include <atomic>
 #include <memory>
 #include <optional>
 #include <vector>
 
 #include "integrate/solver_config.h"
-#include "integrate/trajectory.h"
-#include "physics/coin_rhs.h"
+#include "physics/coin_state.h"
+#include "physics/contact_mode.h"
 #include "physics/sliding.h"
+#include "pipeline/motion.h"
 #include "pipeline/run_event.h"
 #include "pipeline/simulation.h"
 
 namespace coinroll::pipeline {
 
-struct ModeSwitch {
-  double t = 0;          // s
-  bool toSliding = false;  // true: rolling -> sliding; false: sliding -> rolling
-};
+// One contact mode's stretch of the chain (hybrid_run.cpp): a Motion that may end in a switch.
+class ContactSegment;
 
-// A sample of the hybrid run: the integrated state's seed variables, the forward pass of the mode it
-// is in, the energy dissipated so far (friction included).
-struct HybridSample {
-  physics::CoinState state;
-  physics::Forward forward;
-  double dissipated = 0;
-};
-
-// How a sliding segment takes friction's direction: along the slip (free), or along the slip's rest
-// while the slip is too small for its own direction to be integrated (creeping, physics::Creep).
-enum class SlipMode { Free, Creeping };
-
-class HybridRun {
+class HybridRun final : public Motion {
  public:
   explicit HybridRun(const Simulation& simulation);
-  ~HybridRun();
-  HybridRun(HybridRun&&) noexcept;
-  HybridRun& operator=(HybridRun&&) noexcept;
+  ~HybridRun() override;
 
-  // The sample at t >= every earlier query (phi and psi continued from `continuation`); std::nullopt
-  // once a model event has ended the run before t.
-  std::optional<HybridSample> sampleAt(double t, const physics::CoinState& continuation);
-
-  std::optional<RunEvent> stoppedBy(const physics::CoinState& continuation) const;
-  std::vector<RunEvent> warnings() const;
-  const std::vector<ModeSwitch>& switches() const { return switches_; }
-  integrate::Stats stats() const;
+  bool continuesAngles() const override { return true; }
+  std::optional<RunSample> sampleAt(double t, const physics::CoinState& continuation) override;
+  std::optional<RunEvent> stoppedBy(const physics::CoinState& continuation) const override;
+  std::vector<RunEvent> warnings() const override;
+  std::vector<ModeSwitch> switches() const override { return switches_; }
+  integrate::Stats stats() const override;
 
  private:
-  struct Segment;
   void startRolling(double t, const physics::QuaternionState& state, double dissipated);
-  // `mode`: friction along the slip (free) or along its rest (creeping, physics::Creep: from zero
+  // `mode`: Sliding (friction along the slip) or Creeping (along its rest, physics::Creep: from zero
   // slip, or a slip too small for its direction to be integrated).
-  void startSliding(double t, const physics::SlidingState& state, double dissipated, SlipMode mode);
+  void startSliding(double t, const physics::SlidingState& state, double dissipated, physics::ContactMode mode);
   // Moves to the next segment when the current one ended in a switch; false when a model event ended it.
   bool switchIfDue();
 
   Simulation simulation_;
-  std::unique_ptr<Segment> segment_;
+  std::unique_ptr<ContactSegment> segment_;
   std::vector<ModeSwitch> switches_;
-  std::vector<RunEvent> warnings_;
+  std::vector<RunEvent> warnings_;  // of the segments before the current one
   integrate::Stats finishedStats_;  // of the segments before the current one
 };
 

@@ -156,7 +156,7 @@ bool leavesTheFloor(const Simulation& sim) {
   const Eigen::Vector2d slip =
       physics::slipOf(sim.model, attitude, Eigen::Vector2d(start.velocity.x(), start.velocity.z()));
   const physics::Forward held =
-      slip.norm() > 0 ? physics::slidingForward(sim.model, {.attitude = attitude, .slip = slip}, sim.kineticFriction,
+      slip.norm() > 0 ? physics::slidingForward(sim.model, {.attitude = attitude, .slip = slip}, sim.model.friction.kinetic,
                                                 Eigen::Vector3d(slip.x(), 0, slip.y()).normalized())
                       : physics::forward(sim.model, attitude);
   return physics::liftOffMargin(sim.model, held) <= 0;
@@ -209,21 +209,22 @@ void requireValidStart(const Simulation& sim) {
     if (slip.norm() > 0) {
       const Eigen::Vector3d direction = Eigen::Vector3d(slip.x(), 0, slip.y()).normalized();
       const physics::Forward sliding =
-          physics::slidingForward(sim.model, {.attitude = start, .slip = slip}, sim.kineticFriction, direction);
+          physics::slidingForward(sim.model, {.attitude = start, .slip = slip}, sim.model.friction.kinetic, direction);
       if (!(sliding.normalEffectiveMass > physics::kPainleveMargin)) {
         throw scene::SceneError(
             fmt::format("initial: the coin starts sliding with no unique normal force (Painleve: normal effective mass "
                         "{:.3g} <= {:g} "
                         "with friction {}; docs/sliding.md §3); lower friction, the tilt, or slide the other way",
-                        sliding.normalEffectiveMass, physics::kPainleveMargin, sim.kineticFriction));
+                        sliding.normalEffectiveMass, physics::kPainleveMargin, sim.model.friction.kinetic));
       }
     }
     return;
   }
-  if (sim.friction && physics::slipMargin(sim.model, f, *sim.friction) < 0) {
+  const std::optional<double> mu = sim.model.friction.cone;
+  if (mu && physics::slipMargin(sim.model, f, *mu) < 0) {
     throw scene::SceneError(fmt::format(
         "initial: the contact needs friction F = {:.4g} N > mu N = {:.4g} N: the coin slips at once; raise friction or "
-        "lower the rates", r.F, *sim.friction * r.N));
+        "lower the rates", r.F, *mu * r.N));
   }
 }
 
@@ -239,15 +240,15 @@ Simulation buildSimulation(const scene::SceneConfig& scene) {
   sim.solver.dt = scene.solver.dt;
   sim.formulation = formulationFor(scene);
   sim.model.effects = scene.effects;
-  sim.friction = scene.frictionStatic ? scene.frictionStatic : scene.friction;
+  sim.model.friction = {.cone = scene.frictionStatic ? scene.frictionStatic : scene.friction,
+                        .kinetic = scene.friction.value_or(0)};
   sim.sliding = scene.sliding;
-  sim.kineticFriction = scene.friction.value_or(0);
   if (const auto* e = std::get_if<scene::ExplicitInitial>(&scene.initial); e && e->velocity) {
     sim.initialVelocity = Eigen::Vector2d(e->velocity->at(0), e->velocity->at(1));
   }
   if (scene.flight) {
     sim.flight = physics::ImpactLaw{.restitution = scene.restitution,
-                                    .friction = scene.impactFriction.value_or(sim.kineticFriction)};
+                                    .friction = scene.impactFriction.value_or(sim.model.friction.kinetic)};
     if (const auto* e = std::get_if<scene::ExplicitInitial>(&scene.initial)) {
       sim.initialHeight = e->y;
       sim.initialVerticalVelocity = e->v_y;

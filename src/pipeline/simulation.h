@@ -20,16 +20,13 @@
 namespace coinroll::pipeline {
 
 struct Simulation {
-  physics::CoinModel model;  // with the scene's effects
+  physics::CoinModel model;  // with the scene's effects and friction
   physics::CoinState initial;
   integrate::SolverConfig solver;
   physics::Formulation formulation = physics::Formulation::EulerAngles;  // which equations CoinRun integrates
-  std::optional<double>
-      friction;  // the rolling cone's coefficient (friction_static, else friction); none: no slip monitor
-  // "sliding": the coin slides with Coulomb friction `kineticFriction` instead of stopping at slip
-  // (pipeline/hybrid_run.h); the quaternion formulation carries it.
+  // "sliding": the coin slides with Coulomb friction model.friction.kinetic instead of stopping at
+  // slip (pipeline/hybrid_run.h); the quaternion formulation carries it.
   bool sliding = false;
-  double kineticFriction = 0;
   std::optional<Eigen::Vector2d> initialVelocity;  // m/s, (v_x, v_z); none: the rolling velocity
   // "flight": lift-off goes on in flight and the rim's impacts follow this law (docs/flight.md); none:
   // lift-off ends a sliding run.

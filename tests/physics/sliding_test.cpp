@@ -1,5 +1,6 @@
 // The sliding coin's forward pass (docs/sliding.md) against closed forms: Painleve's normal
-// effective mass (3.2) and the normal force of a coin sliding without rotating.
+// effective mass (3.2) and the normal force of a coin sliding without rotating; and the rules of
+// the switches between rolling and sliding (physics/contact_mode.h).
 
 #include "physics/sliding.h"
 
@@ -9,7 +10,9 @@
 #include <numbers>
 
 #include "physics/coin_model.h"
+#include "physics/contact_mode.h"
 #include "physics/observables.h"
+#include "physics/quaternion_dynamics.h"
 #include "reference_solver.h"
 #include "tolerance.h"
 
@@ -50,6 +53,33 @@ TEST(Sliding, AnUprightCoinSlidingWithoutRotationPressesWithItsWeightAndIsBraked
   EXPECT_TRUE(isNear(f.loads.power, 0.3 * m.M * m.g * 1.0, 1e-13));  // mu N |s|
   // The friction torque about G spins the disk up: I_Z omega-dot = mu M g a about the axis.
   EXPECT_TRUE(isNear(std::abs(f.dOmega.z()), 0.3 * m.M * m.g * m.a / m.I_Z, 1e-10));
+}
+
+TEST(ContactMode, AStartWithASlipSlidesAndOtherwiseRollsWhereTheRollingReactionFitsTheStaticCone) {
+  CoinModel m = diskModel(0.4, 0.0375, 9.81);
+  m.friction = {.cone = 0.4, .kinetic = 0.3};
+  // Tilted and at rest the coin falls, and rolling needs friction to hold its contact point.
+  const QuaternionState q = fromEulerState(CoinState{.theta = 25 * kDeg});
+  const Forward rolling = forward(m, q);
+  const Forward noSlip = slidingForward(m, {.attitude = q}, m.friction.kinetic, Eigen::Vector3d::UnitX());
+  const Forward slipping =
+      slidingForward(m, {.attitude = q, .slip = Eigen::Vector2d(0.1, 0)}, m.friction.kinetic, Eigen::Vector3d::UnitX());
+  EXPECT_EQ(startingMode(m, rolling, slipping), ContactMode::Sliding);
+  ASSERT_GT(rolling.reaction.F, 0);
+  ASSERT_GT(rolling.reaction.N, 0);
+  const double needed = rolling.reaction.F / rolling.reaction.N;
+  m.friction.cone = 0.5 * needed;
+  EXPECT_LT(slideOnsetMargin(m, rolling), 0);
+  EXPECT_EQ(startingMode(m, rolling, noSlip), ContactMode::Creeping);
+  EXPECT_EQ(modeAfterSlipStops(m, rolling), ContactMode::Creeping);
+  m.friction.cone = 2 * needed;
+  EXPECT_GT(slideOnsetMargin(m, rolling), 0);
+  EXPECT_EQ(startingMode(m, rolling, noSlip), ContactMode::Rolling);
+  EXPECT_EQ(modeAfterSlipStops(m, rolling), ContactMode::Rolling);
+  // A slip stops at 1e-11 m/s up to t = 1 s, a threshold growing with t after.
+  EXPECT_LT(slipStopMargin(0.5, Eigen::Vector2d(0.5e-11, 0)), 0);
+  EXPECT_GT(slipStopMargin(0.5, Eigen::Vector2d(0, 2e-11)), 0);
+  EXPECT_LT(slipStopMargin(10, Eigen::Vector2d(0, 2e-11)), 0);
 }
 
 }  // namespace

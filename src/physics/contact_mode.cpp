@@ -1,0 +1,74 @@
+#include "physics/contact_mode.h"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include "physics/validity.h"
+
+namespace coinroll::physics {
+
+namespace {
+
+// rad: the creeping slip's direction lags its rest by at most this before it is integrated freely
+// (docs/sliding.md §4.6): the lag is (turn rate of the rest) |s| / restoring.
+constexpr double kCreepLag = 1e-3;
+// rad: a free slip is handed back to its rest only within this angle of it (docs/sliding.md §4.6).
+constexpr double kCreepAlignment = 1e-5;
+
+}  // namespace
+
+// m/s. Sliding ends when the slip speed falls to this, not to 0, where friction's direction is no
+// longer defined: the last of the slip is closed by friction at once, its kinetic energy booked as
+// dissipated (docs/sliding.md §4.5). A free slip's direction turns at restoring / |s|, so the steps
+// near the stop shrink with |s|; the stop must come while they are still above the integrator's
+// floor of 1e-14 |t|, hence a threshold growing with t (10^-11 m/s up to 1 s: a skid switches about
+// 3e-12 s early at mu g = 3 m/s^2; at 1e-12 m/s a skid at t = 4.8 s stalled).
+double stoppedSlip(double t) { return 1e-11 * std::max(1.0, std::abs(t)); }
+
+ContactMode startingMode(const CoinModel& model, const Forward& rolling, const Forward& slipping) {
+  if (slipping.slip.norm() > stoppedSlip(0)) return ContactMode::Sliding;
+  return modeAfterSlipStops(model, rolling);
+}
+
+double slideOnsetMargin(const CoinModel& model, const Forward& rolling) {
+  return slipMargin(model, rolling, *model.friction.cone);
+}
+
+ContactMode modeAfterSlipStops(const CoinModel& model, const Forward& rolling) {
+  return slideOnsetMargin(model, rolling) < 0 ? ContactMode::Creeping : ContactMode::Rolling;
+}
+
+double slipStopMargin(double t, const Eigen::Vector2d& slip) { return slip.norm() - stoppedSlip(t); }
+
+double creepStopMargin(double t, const Eigen::Vector2d& slip, const Eigen::Vector3d& rest) {
+  return slip.x() * rest.x() + slip.y() * rest.z() - stoppedSlip(t);
+}
+
+// The rest turns with the fastest of the body's rotation, the contact's precession and the rocking
+// rate sqrt(g/a) (kCreepLag).
+double freeSlipSpeed(const CoinModel& model, const Forward& sliding, double restoring) {
+  const double turnRate =
+      std::max({sliding.omega.norm(), std::abs(sliding.precessionRate), std::sqrt(model.g / model.a)});
+  return kCreepLag * std::max(restoring, 0.0) / turnRate;
+}
+
+// A slip that falls back to half the creep's threshold hands its direction to its rest, once it has
+// come to the rest: the threshold fades to zero as the slip's angle from the rest grows to
+// kCreepAlignment, so a slide that ends across the rest's pull (a skid) is integrated to its end.
+double slipCreepMargin(const CoinModel& model, const SlidingStateVec& y, const Forward& sliding) {
+  const Eigen::Vector2d slip = toSlidingState(y).slip;
+  const std::optional<Creep> creep = findCreep(model, y, model.friction.kinetic);
+  if (!creep) return slip.norm();
+  const Eigen::Vector2d rest(creep->slipHat.x(), creep->slipHat.z());
+  const double angleFromRest = std::acos(std::clamp(rest.dot(slip.normalized()), -1.0, 1.0));
+  const double nearness = std::max(0.0, 1 - angleFromRest / kCreepAlignment);
+  return slip.norm() - 0.5 * nearness * freeSlipSpeed(model, sliding, creep->restoring);
+}
+
+double slipFreeMargin(const CoinModel& model, const SlidingStateVec& y, const Forward& sliding) {
+  const double restoring = findCreep(model, y, model.friction.kinetic).value_or(Creep{}).restoring;
+  return toSlidingState(y).slip.norm() - freeSlipSpeed(model, sliding, restoring);
+}
+
+}  // namespace coinroll::physics

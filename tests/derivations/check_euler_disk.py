@@ -286,13 +286,19 @@ require("(3.13) crossover time t0 - t_x = (pi mu a^4 / (4 delta^2 M g)) (1 - ln 
 
 # ---------------------------------------------------------------------------------------------
 # Section 4: t0 from the motion.
+require("(4.1)-(4.2) quasi-steady alpha ~ (t0 - t)^n, n = 1/(1 - p): d ln alpha / d ln(t0 - t) = 1/q",
+        sp.simplify(T * sp.diff(sp.log(alpha_p), T) - 1 / q))
 gam, Kc = sp.symbols("gamma K", nonzero=True)
 Et = Kc * (tau0 - t)**gam
 u = Et / (-sp.diff(Et, t))
-require("(4.1) E = K (t0-t)^gamma: u = E / P = (t0 - t)/gamma, slope -1/gamma", sp.simplify(u - (tau0 - t) / gam))
+require("(4.3) the energy fit's u = E / P = (t0 - t)/gamma for E = K (t0 - t)^gamma", sp.simplify(u - (tau0 - t) / gam))
 u_qs = (sp.Rational(3, 2) * Mga * al**q / k).subs(al, alpha_p)
-require("(4.2) quasi-steady: u = (3/2) M g a alpha / (k alpha^p) = (1 - p)(t0 - t)",
+require("(4.3) thin coin, E = (3/2) M g a alpha: u = (1 - p)(t0 - t), gamma = n",
         sp.simplify(sp.powsimp(sp.expand_power_base(u_qs - q * T, force=True), force=True)))
+hh, rr = sp.symbols("h rho_r", positive=True)   # thickness, rim radius (rim.md 1.4 with theta -> pi/2 - alpha)
+H_rim = (a - rr) * sp.sin(al) + (hh / 2 - rr) * sp.cos(al) + rr
+require("(4.3) thick coin: H -> h/2 at alpha = 0, H - h/2 = (a - rho) alpha + O(alpha^2)",
+        H_rim.subs(al, 0) - hh / 2, sp.diff(H_rim, al).subs(al, 0) - (a - rr))
 
 # ---------------------------------------------------------------------------------------------
 # Toy numbers quoted in the page (section 3 table).

@@ -162,6 +162,25 @@ P_lub = -sp.integrate(sp.integrate(pressure * wall * r, (chi, 0, 2 * sp.pi)), (r
 require("(2.5) lubrication estimate P = pi mu a^3 Omega^2 / (8 alpha) = P_Moffatt / 2",
         P_lub - sp.pi * mu * a**3 * Om**2 / (8 * al), P_lub - P_M / 2)
 
+# (2.5a) An annulus b <= r <= a (a ring's face; the hole open to the room, p = 0 on both edges). Any gap
+# conductance K uniform over the face (Moffatt's h0^3 / (12 mu); the boundary layer's, h0 / delta_s times
+# smaller, (2.6)) gives p = (W0 / K) f(r) cos(chi) with the same f, so the face's shape enters P only as
+# the integral of f r^2, and P_annulus / P_disk is the same for both laws.
+b, Kc = sp.symbols("b K", positive=True)
+fann = sp.dsolve(f(r).diff(r, 2) + f(r).diff(r) / r - f(r) / r**2 - r, f(r)).rhs
+unknowns = sorted(fann.free_symbols - {r}, key=str)
+fann = fann.subs(sp.solve([fann.subs(r, a), fann.subs(r, b)], unknowns))
+require_true("(2.5a) annulus: f = (r^3 - (a^2 + b^2) r + a^2 b^2 / r) / 8 solves (2.5) with f(a) = f(b) = 0",
+             sp.simplify(fann - (r**3 - (a**2 + b**2) * r + a**2 * b**2 / r) / 8) == 0, f"got {fann}")
+P_ann = -sp.integrate(sp.integrate(Om * al / Kc * fann * sp.cos(chi) * wall * r, (chi, 0, 2 * sp.pi)), (r, b, a))
+P_disk_K = -sp.integrate(sp.integrate(Om * al / Kc * fsol * sp.cos(chi) * wall * r, (chi, 0, 2 * sp.pi)), (r, 0, a))
+require("(2.5a) P_annulus = P_disk (1 - b^2/a^2)^3 for any uniform conductance K",
+        sp.simplify(P_ann - P_disk_K * (1 - b**2 / a**2) ** 3))
+require("(2.5a) b -> 0 gives the disk", sp.limit(P_ann, b, 0) - P_disk_K)
+require("(2.5a) b -> a (a hoop) gives no face drag", sp.limit(P_ann, b, a))
+require("(2.5a) K = h0^3 / (12 mu) gives back the disk's lubrication estimate at b = 0",
+        P_disk_K.subs(Kc, h0**3 / (12 * mu)) - P_lub)
+
 nu = mu / rho
 dl = sp.sqrt(nu / Om)
 P_BL = P_M * (a * al / dl)

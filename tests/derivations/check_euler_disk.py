@@ -348,4 +348,49 @@ for name, value in values.items():
     require_true(f"(3.14) toy {name} = {value:.4g} (page: {quoted[name]})",
                  abs(value / quoted[name] - 1) < 2e-3, f"computed {value}")
 
+
+# (2.11c) The rolling-resistance couple's lever delta / sin(alpha) against the Hertz patch's half-length along
+# the rim, for the example (0.449 kg, rim rho = 1.6 mm, face a - rho = 35.9 mm, delta = 3.75 um) of chromed
+# steel (E 200 GPa, nu 0.3) on glass (70 GPa, 0.22). Curvature radii at the contact: rho across the rim,
+# A / sin(alpha) along it (the torus' outer circle, normal curvature cos(theta) / A, rim.md 1.1). Hertz's
+# elliptic contact (Johnson, Contact Mechanics §4.2): e^2 = 1 - (b/a)^2 solves
+# R_x / R_y = (E(e) / (1 - e^2) - K(e)) / (K(e) - E(e)), and a^3 = 3 N R_x (K - E) / (pi E* e^2).
+def hertz_half_axes(load, r_x, r_y, e_star):
+    def ratio(m):
+        return (mpmath.ellipe(m) / (1 - m) - mpmath.ellipk(m)) / (mpmath.ellipk(m) - mpmath.ellipe(m))
+    lo, hi = mpmath.mpf(-60), mpmath.mpf(-1e-12)  # x = ln(1 - e^2); the ratio falls as x grows: bisect
+    for _ in range(200):
+        lo, hi = ((lo + hi) / 2, hi) if ratio(1 - mpmath.exp((lo + hi) / 2)) > r_x / r_y else (lo, (lo + hi) / 2)
+    m = 1 - mpmath.exp((lo + hi) / 2)
+    major = (3 * load * r_x * (mpmath.ellipk(m) - mpmath.ellipe(m)) / (mpmath.pi * e_star * m)) ** (mpmath.mpf(1) / 3)
+    return float(major), float(major * mpmath.sqrt(1 - m))
+
+
+E_star = 1 / ((1 - 0.3**2) / 200e9 + (1 - 0.22**2) / 70e9)
+N_toy, rim_rho, face, delta_toy = 0.449 * 9.81, 1.6e-3, 0.0375 - 1.6e-3, 3.75e-6
+near_circle = hertz_half_axes(N_toy, rim_rho * 1.0001, rim_rho, E_star)[0]
+require_true("(2.11c) the elliptic solution tends to the circle's (3 N R / (4 E*))^(1/3) as R_x -> R_y",
+             abs(near_circle / (3 * N_toy * rim_rho / (4 * E_star)) ** (1 / 3) - 1) < 1e-4, f"got {near_circle}")
+
+
+def lever_over_patch(alpha_deg):
+    alpha = math.radians(alpha_deg)
+    return delta_toy / math.sin(alpha) / hertz_half_axes(N_toy, (face + rim_rho * math.sin(alpha))
+                                                         / math.sin(alpha), rim_rho, E_star)[0]
+
+
+low, high = 0.05, 0.5  # the lever exceeds the patch at the landing's 0.05 deg and not at 0.5: bisect
+for _ in range(60):
+    low, high = (low, (low + high) / 2) if lever_over_patch((low + high) / 2) < 1 else ((low + high) / 2, high)
+crossing = (low + high) / 2
+page = {"E* [GPa]": (E_star / 1e9, 55.1), "lever / patch at 2.8 deg": (lever_over_patch(2.8), 0.125),
+        "lever / patch at 0.5 deg": (lever_over_patch(0.5), 0.367),
+        "lever / patch at 0.05 deg": (lever_over_patch(0.05), 1.58), "crossing [deg]": (crossing, 0.1026),
+        "patch half-length at 0.05 deg [mm]": (hertz_half_axes(N_toy, (face + rim_rho * math.sin(math.radians(0.05)))
+                                                               / math.sin(math.radians(0.05)), rim_rho, E_star)[0]
+                                              * 1e3, 2.72)}
+for name, (value, quoted_value) in page.items():
+    require_true(f"(2.11c) toy {name} = {value:.4g} (page: {quoted_value})",
+                 abs(value / quoted_value - 1) < 5e-3, f"computed {value}")
+
 claims.finish()

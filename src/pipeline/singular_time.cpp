@@ -72,8 +72,7 @@ std::optional<SingularTimeEstimate> SingularTimeFit::estimate() const {
   const double t0 = last + std::exp(x);
   const PowerLaw law = fitAt(t, logAlpha, t0);
   if (!(law.exponent > 0)) return std::nullopt;  // the tilt must fall towards t0
-  return SingularTimeEstimate{
-      .t0 = t0, .gamma = law.exponent, .fitFrom = t.front(), .fitTo = last, .samples = count};
+  return SingularTimeEstimate{.t0 = t0, .gamma = law.exponent, .fitFrom = t.front(), .fitTo = last, .samples = count};
 }
 
 }  // namespace coinroll::pipeline

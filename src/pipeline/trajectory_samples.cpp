@@ -80,9 +80,10 @@ std::vector<std::string> reportLines(const TrajectoryReport& report) {
   if (report.stoppedBy) lines.push_back("coinroll: stopped early: " + describeStop(*report.stoppedBy));
   if (report.singularTime) {
     const SingularTimeEstimate& e = *report.singularTime;
-    lines.push_back(fmt::format("coinroll: singular time t0 = {:.6f} s, {:.3g} s after the stop "
-                                "(tilt ~ (t0 - t)^{:.3f}, fitted over {:.6g} s <= t <= {:.6g} s, {} samples)",
-                                e.t0, e.t0 - report.stoppedBy->t, e.gamma, e.fitFrom, e.fitTo, e.samples));
+    lines.push_back(
+        fmt::format("coinroll: singular time t0 = {:.6f} s, {:.3g} s after the stop "
+                    "(tilt ~ (t0 - t)^{:.3f}, fitted over {:.6g} s <= t <= {:.6g} s, {} samples)",
+                    e.t0, e.t0 - report.stoppedBy->t, e.gamma, e.fitFrom, e.fitTo, e.samples));
   }
   lines.push_back(fmt::format("coinroll: {} rows, {} steps ({} rejected), {} right-hand-side evaluations", report.rows,
                               report.stats.acceptedSteps, report.stats.rejectedSteps, report.stats.rhsEvaluations));

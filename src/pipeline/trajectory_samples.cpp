@@ -45,7 +45,7 @@ TrajectoryReport sampleTrajectory(const Simulation& simulation, double sampleDt,
     if (dissipative) {
       values.push_back(f.loads.power);
       values.push_back(sample->dissipated);
-      singularTime.add(t, f.energy, f.loads.power);
+      singularTime.add(t, physics::tiltAboveFloor(f));
     }
     if (simulation.sliding) {
       values.push_back(f.slip.norm());
@@ -59,7 +59,7 @@ TrajectoryReport sampleTrajectory(const Simulation& simulation, double sampleDt,
                                          result.stoppedBy->event == physics::ModelEvent::FaceDown);
   if (!simulation.model.effects.empty() && flat) {
     // The stop itself is the sample nearest the singularity; the fit needs it most.
-    singularTime.add(result.stoppedBy->t, result.stoppedBy->forward.energy, result.stoppedBy->forward.loads.power);
+    singularTime.add(result.stoppedBy->t, physics::tiltAboveFloor(result.stoppedBy->forward));
     result.singularTime = singularTime.estimate();
   }
   result.warnings = run.warnings();
@@ -80,9 +80,10 @@ std::vector<std::string> reportLines(const TrajectoryReport& report) {
   if (report.stoppedBy) lines.push_back("coinroll: stopped early: " + describeStop(*report.stoppedBy));
   if (report.singularTime) {
     const SingularTimeEstimate& e = *report.singularTime;
-    lines.push_back(fmt::format("coinroll: singular time t0 = {:.6f} s, {:.3g} s after the stop (E ~ (t0 - t)^{:.3f}, "
-                                "fitted to E/P over t >= {:.6g} s, {} samples)",
-                                e.t0, e.t0 - report.stoppedBy->t, e.gamma, e.fitFrom, e.samples));
+    lines.push_back(
+        fmt::format("coinroll: singular time t0 = {:.6f} s, {:.3g} s after the stop "
+                    "(tilt ~ (t0 - t)^{:.3f}, fitted over {:.6g} s <= t <= {:.6g} s, {} samples)",
+                    e.t0, e.t0 - report.stoppedBy->t, e.gamma, e.fitFrom, e.fitTo, e.samples));
   }
   lines.push_back(fmt::format("coinroll: {} rows, {} steps ({} rejected), {} right-hand-side evaluations", report.rows,
                               report.stats.acceptedSteps, report.stats.rejectedSteps, report.stats.rhsEvaluations));

@@ -162,6 +162,25 @@ P_lub = -sp.integrate(sp.integrate(pressure * wall * r, (chi, 0, 2 * sp.pi)), (r
 require("(2.5) lubrication estimate P = pi mu a^3 Omega^2 / (8 alpha) = P_Moffatt / 2",
         P_lub - sp.pi * mu * a**3 * Om**2 / (8 * al), P_lub - P_M / 2)
 
+# (2.5a) An annulus b <= r <= a (a ring's face; the hole open to the room, p = 0 on both edges). Any gap
+# conductance K uniform over the face (Moffatt's h0^3 / (12 mu); the boundary layer's, h0 / delta_s times
+# smaller, (2.6)) gives p = (W0 / K) f(r) cos(chi) with the same f, so the face's shape enters P only as
+# the integral of f r^2, and P_annulus / P_disk is the same for both laws.
+b, Kc = sp.symbols("b K", positive=True)
+fann = sp.dsolve(f(r).diff(r, 2) + f(r).diff(r) / r - f(r) / r**2 - r, f(r)).rhs
+unknowns = sorted(fann.free_symbols - {r}, key=str)
+fann = fann.subs(sp.solve([fann.subs(r, a), fann.subs(r, b)], unknowns))
+require_true("(2.5a) annulus: f = (r^3 - (a^2 + b^2) r + a^2 b^2 / r) / 8 solves (2.5) with f(a) = f(b) = 0",
+             sp.simplify(fann - (r**3 - (a**2 + b**2) * r + a**2 * b**2 / r) / 8) == 0, f"got {fann}")
+P_ann = -sp.integrate(sp.integrate(Om * al / Kc * fann * sp.cos(chi) * wall * r, (chi, 0, 2 * sp.pi)), (r, b, a))
+P_disk_K = -sp.integrate(sp.integrate(Om * al / Kc * fsol * sp.cos(chi) * wall * r, (chi, 0, 2 * sp.pi)), (r, 0, a))
+require("(2.5a) P_annulus = P_disk (1 - b^2/a^2)^3 for any uniform conductance K",
+        sp.simplify(P_ann - P_disk_K * (1 - b**2 / a**2) ** 3))
+require("(2.5a) b -> 0 gives the disk", sp.limit(P_ann, b, 0) - P_disk_K)
+require("(2.5a) b -> a (a hoop) gives no face drag", sp.limit(P_ann, b, a))
+require("(2.5a) K = h0^3 / (12 mu) gives back the disk's lubrication estimate at b = 0",
+        P_disk_K.subs(Kc, h0**3 / (12 * mu)) - P_lub)
+
 nu = mu / rho
 dl = sp.sqrt(nu / Om)
 P_BL = P_M * (a * al / dl)
@@ -286,13 +305,19 @@ require("(3.13) crossover time t0 - t_x = (pi mu a^4 / (4 delta^2 M g)) (1 - ln 
 
 # ---------------------------------------------------------------------------------------------
 # Section 4: t0 from the motion.
+require("(4.1)-(4.2) quasi-steady alpha ~ (t0 - t)^n, n = 1/(1 - p): d ln alpha / d ln(t0 - t) = 1/q",
+        sp.simplify(T * sp.diff(sp.log(alpha_p), T) - 1 / q))
 gam, Kc = sp.symbols("gamma K", nonzero=True)
 Et = Kc * (tau0 - t)**gam
 u = Et / (-sp.diff(Et, t))
-require("(4.1) E = K (t0-t)^gamma: u = E / P = (t0 - t)/gamma, slope -1/gamma", sp.simplify(u - (tau0 - t) / gam))
+require("(4.3) the energy fit's u = E / P = (t0 - t)/gamma for E = K (t0 - t)^gamma", sp.simplify(u - (tau0 - t) / gam))
 u_qs = (sp.Rational(3, 2) * Mga * al**q / k).subs(al, alpha_p)
-require("(4.2) quasi-steady: u = (3/2) M g a alpha / (k alpha^p) = (1 - p)(t0 - t)",
+require("(4.3) thin coin, E = (3/2) M g a alpha: u = (1 - p)(t0 - t), gamma = n",
         sp.simplify(sp.powsimp(sp.expand_power_base(u_qs - q * T, force=True), force=True)))
+hh, rr = sp.symbols("h rho_r", positive=True)   # thickness, rim radius (rim.md 1.4 with theta -> pi/2 - alpha)
+H_rim = (a - rr) * sp.sin(al) + (hh / 2 - rr) * sp.cos(al) + rr
+require("(4.3) thick coin: H -> h/2 at alpha = 0, H - h/2 = (a - rho) alpha + O(alpha^2)",
+        H_rim.subs(al, 0) - hh / 2, sp.diff(H_rim, al).subs(al, 0) - (a - rr))
 
 # ---------------------------------------------------------------------------------------------
 # Toy numbers quoted in the page (section 3 table).
@@ -322,5 +347,50 @@ quoted = {"alpha_x [deg]": 0.796, "alpha_BL [deg]": 0.273, "t0 Moffatt [s]": 501
 for name, value in values.items():
     require_true(f"(3.14) toy {name} = {value:.4g} (page: {quoted[name]})",
                  abs(value / quoted[name] - 1) < 2e-3, f"computed {value}")
+
+
+# (2.11c) The rolling-resistance couple's lever delta / sin(alpha) against the Hertz patch's half-length along
+# the rim, for the example (0.449 kg, rim rho = 1.6 mm, face a - rho = 35.9 mm, delta = 3.75 um) of chromed
+# steel (E 200 GPa, nu 0.3) on glass (70 GPa, 0.22). Curvature radii at the contact: rho across the rim,
+# A / sin(alpha) along it (the torus' outer circle, normal curvature cos(theta) / A, rim.md 1.1). Hertz's
+# elliptic contact (Johnson, Contact Mechanics §4.2): e^2 = 1 - (b/a)^2 solves
+# R_x / R_y = (E(e) / (1 - e^2) - K(e)) / (K(e) - E(e)), and a^3 = 3 N R_x (K - E) / (pi E* e^2).
+def hertz_half_axes(load, r_x, r_y, e_star):
+    def ratio(m):
+        return (mpmath.ellipe(m) / (1 - m) - mpmath.ellipk(m)) / (mpmath.ellipk(m) - mpmath.ellipe(m))
+    lo, hi = mpmath.mpf(-60), mpmath.mpf(-1e-12)  # x = ln(1 - e^2); the ratio falls as x grows: bisect
+    for _ in range(200):
+        lo, hi = ((lo + hi) / 2, hi) if ratio(1 - mpmath.exp((lo + hi) / 2)) > r_x / r_y else (lo, (lo + hi) / 2)
+    m = 1 - mpmath.exp((lo + hi) / 2)
+    major = (3 * load * r_x * (mpmath.ellipk(m) - mpmath.ellipe(m)) / (mpmath.pi * e_star * m)) ** (mpmath.mpf(1) / 3)
+    return float(major), float(major * mpmath.sqrt(1 - m))
+
+
+E_star = 1 / ((1 - 0.3**2) / 200e9 + (1 - 0.22**2) / 70e9)
+N_toy, rim_rho, face, delta_toy = 0.449 * 9.81, 1.6e-3, 0.0375 - 1.6e-3, 3.75e-6
+near_circle = hertz_half_axes(N_toy, rim_rho * 1.0001, rim_rho, E_star)[0]
+require_true("(2.11c) the elliptic solution tends to the circle's (3 N R / (4 E*))^(1/3) as R_x -> R_y",
+             abs(near_circle / (3 * N_toy * rim_rho / (4 * E_star)) ** (1 / 3) - 1) < 1e-4, f"got {near_circle}")
+
+
+def lever_over_patch(alpha_deg):
+    alpha = math.radians(alpha_deg)
+    return delta_toy / math.sin(alpha) / hertz_half_axes(N_toy, (face + rim_rho * math.sin(alpha))
+                                                         / math.sin(alpha), rim_rho, E_star)[0]
+
+
+low, high = 0.05, 0.5  # the lever exceeds the patch at the landing's 0.05 deg and not at 0.5: bisect
+for _ in range(60):
+    low, high = (low, (low + high) / 2) if lever_over_patch((low + high) / 2) < 1 else ((low + high) / 2, high)
+crossing = (low + high) / 2
+page = {"E* [GPa]": (E_star / 1e9, 55.1), "lever / patch at 2.8 deg": (lever_over_patch(2.8), 0.125),
+        "lever / patch at 0.5 deg": (lever_over_patch(0.5), 0.367),
+        "lever / patch at 0.05 deg": (lever_over_patch(0.05), 1.58), "crossing [deg]": (crossing, 0.1026),
+        "patch half-length at 0.05 deg [mm]": (hertz_half_axes(N_toy, (face + rim_rho * math.sin(math.radians(0.05)))
+                                                               / math.sin(math.radians(0.05)), rim_rho, E_star)[0]
+                                              * 1e3, 2.72)}
+for name, (value, quoted_value) in page.items():
+    require_true(f"(2.11c) toy {name} = {value:.4g} (page: {quoted_value})",
+                 abs(value / quoted_value - 1) < 5e-3, f"computed {value}")
 
 claims.finish()

@@ -10,7 +10,8 @@ sides sigma = sign(theta) = +-1, in the seed's turning frame XYZ (docs/derivatio
   (b)  §2  dE/dt = -mu N |s| + tau . omega along them (2.1), the horizontal velocity's equations from
            Newton's law in the turning frame;
   (c)  §3  Painleve: Sherman-Morrison (3.1)-(3.2), the closed form (3.3) of D, D / M = y . W (y - mu s)
-           (3.4), the thresholds (3.5)-(3.6) (thin disk sqrt(5)/2 at 24.09 deg, Painleve's rod 4/3),
+           (3.4), the thresholds (3.5)-(3.6) (thin disk sqrt(5)/2 at 24.09 deg, Painleve's rod 4/3), and
+           numerically the thick coins' (the toy's 1.1225 and 1.1349) with the solid's own I_X,
            N sees a couple only through tau_X (6.2);
   (d)  §4  the switch: the rolling solution satisfies the sliding equations with mu s_hat = -F_roll / N_roll
            (4.4), N's sensitivity (4.2), the condensed compliance W_c is diagonal in (e_X, h) with (4.3),
@@ -20,6 +21,7 @@ Exits non-zero if any identity fails (each failure is printed).
 """
 import time
 
+import mpmath
 import sympy as sp
 
 from sympy_checks import Claims, numerator_on_circles
@@ -241,6 +243,53 @@ require_true("(3.6) thin disk (k = 1/4): sqrt(5)/2 at 24.09 deg",
              and abs(float(sp.atan(sp.sqrt(sp.Rational(1, 5)))) * 180 / float(sp.pi) - 24.0948) < 1e-4)
 require_true("(3.6) Painleve's rod (k = 1/3): 4/3", 2 * sp.sqrt(sp.Rational(1, 3) * sp.Rational(4, 3)) == sp.Rational(4, 3))
 require_true("(3.6) thin hoop (k = 1/2): sqrt(3) at 30 deg", 2 * sp.sqrt(sp.Rational(1, 2) * sp.Rational(3, 2)) == sp.sqrt(3))
+
+
+# (3.5) for thick coins: mu_P(theta) = (I_X/M + Lambda^2) / (Lambda H) with the rim's Lambda, H (rim.md 1.4, 1.7)
+# and the inertia of the solid the program simulates (rim_inertia.md: a cylinder whose outer edges are rounded
+# with rho), integrated here directly over z-slices (disc of radius a, or a - rho + sqrt(rho^2 - (|z| - d)^2) on
+# the fillets), not from the page's closed forms. The sharp cylinder's I_X/M = a^2/4 + h^2/12 (the value the page
+# used to quote, 1.171 and 1.138 for the toy) is not the program's once the edge is rounded.
+def solid_IX_over_M(a_, h_, rho_):
+    d_ = h_ / 2 - rho_
+
+    def radius(z):
+        return a_ if abs(z) <= d_ else a_ - rho_ + mpmath.sqrt(max(rho_**2 - (abs(z) - d_) ** 2, 0))
+
+    cuts = sorted({-h_ / 2, -d_, d_, h_ / 2})
+    V = mpmath.quad(lambda z: radius(z) ** 2, cuts)
+    Jr = mpmath.quad(lambda z: radius(z) ** 4 / 2, cuts)  # integral r^2 dV / pi
+    Jz = mpmath.quad(lambda z: z * z * radius(z) ** 2, cuts)
+    return (Jr / 2 + Jz) / V
+
+
+def least_mu_P(a_, h_, rho_):
+    """(min mu_P, its theta in degrees) by golden-section search over theta in (0.2, 1.3) rad."""
+    numbers = {a: a_, h: h_, rho: rho_}
+    kX = solid_IX_over_M(a_, h_, rho_)
+    Lam_n, H_n = (sp.lambdify((S, C), expr.subs(numbers), "mpmath") for expr in (Lam, H))
+
+    def mu_P(th):
+        s_, c_ = mpmath.sin(th), mpmath.cos(th)
+        return (kX + Lam_n(s_, c_) ** 2) / (Lam_n(s_, c_) * H_n(s_, c_))
+
+    lo, hi, ratio = mpmath.mpf("0.2"), mpmath.mpf("1.3"), (mpmath.sqrt(5) - 1) / 2
+    for _ in range(120):
+        x1, x2 = hi - ratio * (hi - lo), lo + ratio * (hi - lo)
+        lo, hi = (lo, x2) if mu_P(x1) < mu_P(x2) else (x1, hi)
+    return float(mu_P((lo + hi) / 2)), float(mpmath.degrees((lo + hi) / 2))
+
+
+mpmath.mp.dps = 30
+for name, dims, stated in (("the toy, rho = h/2", (0.0375, 0.013, 0.0065), (1.1225, 28.12)),
+                           ("the toy, rho = 1.6 mm", (0.0375, 0.013, 0.0016), (1.1349, 32.94)),
+                           ("1-euro-like, rho = h/2", (0.011625, 0.00233, 0.001165), (1.1122, 26.15))):
+    value, angle = least_mu_P(*dims)
+    require_true(f"(3.6) thick coin, {name}: min mu_P {value:.5f} at {angle:.2f} deg as stated",
+                 abs(value - stated[0]) < 5e-5 and abs(angle - stated[1]) < 5e-3)
+a_t, h_t, rho_t = 0.0375, 0.013, 0.0065
+require_true("(3.6) the rounded toy's I_X / M is below the sharp cylinder's a^2/4 + h^2/12",
+             solid_IX_over_M(a_t, h_t, rho_t) < a_t**2 / 4 + h_t**2 / 12)
 print(f"       ({time.monotonic() - started:.1f} s)")
 
 # ================================================================================ (d) §4

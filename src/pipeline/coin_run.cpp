@@ -47,8 +47,12 @@ std::optional<RunSample> CoinRun::sampleAt(double t) {
   }
   while (!sampled_ || lastTime_ < t) {
     throwIfCancelled(cancel_);
+    // In flight phi-dot and psi-dot are unbounded where the tumbling coin passes flat, which they
+    // cannot be unwrapped through anyway; the body's own turn keeps the samples finite there.
     const double turnRate =
-        std::max(std::abs(physics::precessionRate(last_.state)), std::abs(physics::spinRate(last_.state)));
+        last_.forward.flying
+            ? last_.forward.omega.norm()
+            : std::max(std::abs(physics::precessionRate(last_.state)), std::abs(physics::spinRate(last_.state)));
     const double next = turnRate > 0 ? std::min(t, lastTime_ + kUnwrapTurn / turnRate) : t;
     std::optional<RunSample> sample = motion_->sampleAt(next, last_.state);
     if (!sample) return std::nullopt;
@@ -75,6 +79,8 @@ std::optional<RunEvent> CoinRun::stoppedBy() const { return motion_->stoppedBy(l
 std::vector<RunEvent> CoinRun::warnings() const { return motion_->warnings(); }
 
 std::vector<ModeSwitch> CoinRun::switches() const { return motion_->switches(); }
+
+std::vector<ImpactRecord> CoinRun::impacts() const { return motion_->impacts(); }
 
 integrate::Stats CoinRun::stats() const { return motion_->stats(); }
 

@@ -36,6 +36,9 @@ class CoinRun {
   // The switches between rolling and sliding so far (none unless the scene has "sliding": true).
   std::vector<ModeSwitch> switches() const;
 
+  // The rim's impacts so far (none unless the scene has "flight": true).
+  std::vector<ImpactRecord> impacts() const;
+
   integrate::Stats stats() const;
 
  private:

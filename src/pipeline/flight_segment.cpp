@@ -1,6 +1,9 @@
 #include "pipeline/flight_segment.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
+#include <numbers>
 
 #include "physics/impact.h"
 #include "physics/validity.h"
@@ -10,109 +13,118 @@ namespace coinroll::pipeline {
 namespace {
 
 // m, per m of radius: the rim touches when it is this far into the floor. A flight starts with the
-// rim on the floor (a bounce, a lift-off), where the gap is zero to round-off and, after a lift-off,
-// grows only as t^3; a crossing of zero itself could be read in that round-off.
+// rim exactly on the floor (a bounce, a lift-off: onTheFloor), so the touchdown's g starts at this
+// depth, above zero, however slowly the gap then grows (as t^3 after a lift-off).
 constexpr double kTouchDepth = 1e-12;
+
+// The shortest hop a flight's steps resolve, in the natural time sqrt(a / g): a rebound below the
+// bounce-end's speed (eq. 4.1) lasts 2 sqrt(2e-6) ~ 3e-3 of it.
+constexpr double kShortestHop = 1e-3;
+// rad: the tumbling coin turns at most this per step.
+constexpr double kStepTurn = std::numbers::pi / 8;
 
 // docs/flight.md eq. (4.1): bounces end at a rebound that would lift the rim 1e-6 a.
 constexpr double kRestHeight = 1e-6;
 
-enum FlightEventId : int { kTouchdown = 2000 };
-
 }  // namespace
 
-integrate::Vec<FlightSegment::kSize> FlightSegment::Rhs::operator()(double /*t*/,
-                                                                    const integrate::Vec<kSize>& y) const {
-  integrate::Vec<kSize> dy;
+integrate::Vec<kFlightSize> FlightRhs::operator()(double /*t*/, const integrate::Vec<kFlightSize>& y) const {
+  integrate::Vec<kFlightSize> dy;
   dy << physics::flightRhs(model, y.head<physics::kFlightStateSize>()), 0;
   return dy;
 }
 
-FlightSegment::FlightSegment(const Simulation& simulation, double t0, const physics::FlightState& start,
-                             double dissipated)
-    : model_(simulation.model),
-      trajectory_(
-          Rhs{simulation.model}, t0,
-          (integrate::Vec<kSize>() << physics::toVector(start), dissipated).finished(), simulation.solver,
-          {integrate::Event<kSize>{.name = "touchdown",
-                                   .id = kTouchdown,
-                                   .g = [model = simulation.model](double, const integrate::Vec<kSize>& y) {
-                                     const physics::FlightState s =
-                                         physics::toFlightState(y.head<physics::kFlightStateSize>());
-                                     return physics::rimGap(model, s) + kTouchDepth * model.a;
-                                   },
-                                   .direction = -1,
-                                   .terminal = true}}) {}
-
-FlightSample FlightSegment::sampleOf(const integrate::Vec<kSize>& y) const {
-  const physics::FlightState s = physics::toFlightState(y.head<physics::kFlightStateSize>());
-  return {s, physics::flightForward(model_, s), y[kSize - 1]};
+physics::FlightState flightStateOf(const integrate::Vec<kFlightSize>& y) {
+  return physics::toFlightState(y.head<physics::kFlightStateSize>());
 }
 
-std::optional<FlightSample> FlightSegment::sampleAt(double t) {
-  const std::optional<integrate::Vec<kSize>> y = trajectory_.stateAt(t);
-  if (!y) return std::nullopt;
-  return sampleOf(*y);
+RunSample FlightKind::sample(const integrate::Vec<kFlightSize>& y, const physics::CoinState& continuation) const {
+  const physics::FlightState s = flightStateOf(y);
+  const physics::QuaternionState attitude{.q = s.q, .omegaBody = s.omegaBody, .x = s.centre.x(), .z = s.centre.z()};
+  return {.state = physics::toEulerState(attitude, continuation),
+          .forward = physics::flightForward(model, s),
+          .dissipated = y[kFlightSize - 1]};
 }
 
-std::optional<FlightSample> FlightSegment::touchdown() const {
-  const auto& hit = trajectory_.stoppedBy();
-  if (!hit) return std::nullopt;
-  return sampleOf(hit->y);
+integrate::Event<kFlightSize> touchdownEvent(const physics::CoinModel& model, int id) {
+  return {.name = "touchdown",
+          .id = id,
+          .g = [model](double, const integrate::Vec<kFlightSize>& y) {
+            return physics::rimGap(model, flightStateOf(y)) + kTouchDepth * model.a;
+          },
+          .direction = -1,
+          .terminal = true};
 }
 
-Landing land(const Simulation& simulation, const FlightSample& touchdown, double t) {
+physics::FlightState onTheFloor(const physics::CoinModel& model, physics::FlightState state) {
+  state.centre.y() = physics::lowestPointDepth(model, state.q);
+  return state;
+}
+
+integrate::SolverConfig flightSolver(const Simulation& simulation, const physics::FlightState& start) {
   const physics::CoinModel& model = simulation.model;
-  Landing landing{.state = touchdown.state, .dissipated = touchdown.dissipated, .impact = {.t = t}};
-  const physics::FlatStop flat = physics::flatStopFor(model, physics::Formulation::Quaternion);
-  // A touchdown located where the rim has just stopped closing (a graze) has nothing to absorb.
-  if (physics::pointVelocity(touchdown.state, physics::lowestPointVector(model, touchdown.state.q)).y() >= 0) {
-    landing.next = Landing::Next::Contact;
-    return landing;
-  }
-  const physics::ImpactOutcome bounce = physics::resolveImpact(model, touchdown.state, *simulation.flight);
-  landing.impact.normalSpeed = bounce.approachSpeed;
-  if (std::abs(physics::thetaOf(touchdown.state.q)) >= flat.tilt) {
+  const double rising =
+      std::max(physics::pointVelocity(start, physics::lowestPointVector(model, start.q)).y(), 0.0);
+  const double turn = start.omegaBody.norm();
+  integrate::SolverConfig solver = simulation.solver;
+  // No step may span a whole hop of the rim, where the gap would rise and fall back unseen: at most
+  // a quarter of the rebound's flight 2 u / g, and an eighth of a turn of the tumbling coin, whose
+  // rim dips towards the floor twice a turn.
+  // A flight that starts in the air (a toss, a drop) crosses the floor before it can come back.
+  const bool fromTheFloor = physics::rimGap(model, start) <= kTouchDepth * model.a;
+  const double hop = fromTheFloor ? std::max(0.5 * rising / model.g, kShortestHop * physics::naturalTime(model))
+                                  : std::numeric_limits<double>::infinity();
+  solver.maxStep = std::min({solver.maxStep, hop, turn > 0 ? kStepTurn / turn : hop});
+  return solver;
+}
+
+Landing land(const Simulation& simulation, double t, const physics::FlightState& atTouch, double dissipated,
+             bool plastic) {
+  const physics::CoinModel& model = simulation.model;
+  Landing landing{.state = atTouch, .dissipated = dissipated, .impact = {.t = t}};
+  const Eigen::Vector3d rim = physics::lowestPointVector(model, atTouch.q);
+  const double closing = -physics::pointVelocity(atTouch, rim).y();
+  landing.impact.normalSpeed = std::max(closing, 0.0);
+  if (std::abs(physics::thetaOf(atTouch.q)) >= physics::flatStopFor(model, physics::Formulation::Quaternion).tilt) {
     landing.next = Landing::Next::Rest;
     return landing;
   }
-  if (bounce.jammed) {
-    landing.next = Landing::Next::Jam;
+  // A touchdown located where the rim has just stopped closing (a graze) has nothing to absorb.
+  if (closing <= 0) {
+    landing.next = Landing::Next::Contact;
+    landing.impact.bouncesEnd = true;
     return landing;
   }
+  physics::ImpactLaw law = *simulation.flight;
   const double restSpeed = std::sqrt(2 * model.g * kRestHeight * model.a);
-  if (bounce.reboundSpeed >= restSpeed) {
-    landing.next = Landing::Next::Flight;
-    landing.state = bounce.after;
-    landing.dissipated += bounce.energyLost;
-    landing.impact.reboundSpeed = bounce.reboundSpeed;
-    landing.impact.energyLost = bounce.energyLost;
-    return landing;
+  physics::ImpactOutcome outcome = physics::resolveImpact(model, atTouch, law);
+  // The last of a bounce sequence is made plastic, so the rim stays on the floor (docs/flight.md §4).
+  const bool bouncesEnd = plastic || (!outcome.jammed && outcome.reboundSpeed < restSpeed);
+  if (bouncesEnd && law.restitution > 0) {
+    law.restitution = 0;
+    outcome = physics::resolveImpact(model, atTouch, law);
   }
-  // The last of a bounce sequence: made plastic, so the rim stays on the floor (docs/flight.md §4).
-  physics::ImpactLaw plastic = *simulation.flight;
-  plastic.restitution = 0;
-  const physics::ImpactOutcome stay = physics::resolveImpact(model, touchdown.state, plastic);
-  if (stay.jammed) {
+  if (outcome.jammed) {
     landing.next = Landing::Next::Jam;
     return landing;
   }
-  landing.next = Landing::Next::Contact;
-  landing.state = stay.after;
-  landing.dissipated += stay.energyLost;
-  landing.impact.energyLost = stay.energyLost;
+  landing.next = bouncesEnd ? Landing::Next::Contact : Landing::Next::Flight;
+  landing.state = outcome.after;
+  landing.dissipated += outcome.energyLost;
+  landing.impact.reboundSpeed = bouncesEnd ? 0 : outcome.reboundSpeed;
+  landing.impact.energyLost = outcome.energyLost;
+  landing.impact.bouncesEnd = bouncesEnd;
   return landing;
 }
 
 physics::SlidingState contactStateOf(const physics::CoinModel& model, const physics::FlightState& state) {
-  const Eigen::Vector3d r = physics::lowestPointVector(model, state.q);
-  const Eigen::Vector3d u = physics::pointVelocity(state, r);
+  const Eigen::Vector3d u = physics::pointVelocity(state, physics::lowestPointVector(model, state.q));
   return {.attitude = {.q = state.q, .omegaBody = state.omegaBody, .x = state.centre.x(), .z = state.centre.z()},
           .slip = Eigen::Vector2d(u.x(), u.z())};
 }
 
-physics::FlightState flightStateOf(const physics::Forward& forward, const physics::QuaternionState& state) {
-  return {.q = state.q, .omegaBody = state.omegaBody, .centre = forward.centre, .velocity = forward.velocity};
+physics::FlightState flightStateOf(const physics::QuaternionState& attitude, const physics::Forward& contact) {
+  return {.q = attitude.q, .omegaBody = attitude.omegaBody, .centre = contact.centre, .velocity = contact.velocity};
 }
 
 }  // namespace coinroll::pipeline

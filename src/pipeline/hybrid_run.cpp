@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "physics/contact_mode.h"
+#include "pipeline/flight_segment.h"
 #include "pipeline/formulation_run.h"
 #include "pipeline/trajectory_motion.h"
 #include "pipeline/validity_events.h"
@@ -24,9 +25,14 @@ constexpr int kSlideOnset = kFirstSwitchId;      // rolling: the reaction reache
 constexpr int kSlipStops = kFirstSwitchId + 1;   // sliding: the slip speed falls to stoppedSlip(t)
 constexpr int kSlipFrees = kFirstSwitchId + 2;   // creeping: the slip's direction is slow enough to integrate
 constexpr int kSlipCreeps = kFirstSwitchId + 3;  // sliding: the slip's direction is too fast to integrate
+constexpr int kLiftsOff = kFirstSwitchId + 4;    // rolling or sliding with flight: N falls through zero
+constexpr int kTouchdown = kFirstSwitchId + 5;   // flight: the rim reaches the floor
 
 // Stick-slip: more switches than this within one simulated second end the run (docs/sliding.md §4).
 constexpr std::size_t kMaxSwitchesPerSecond = 1000;
+// A rim chattering on the floor: the impact past this many within one simulated second ends the
+// bounces (docs/flight.md §4).
+constexpr std::size_t kMaxImpactsPerSecond = 1000;
 
 // The sliding segment's right-hand side, with Coulomb friction model.friction.kinetic.
 struct SlidingRhs {
@@ -100,6 +106,7 @@ struct Handover {
   int id = 0;                   // the switch: kSlideOnset, kSlipStops, kSlipFrees or kSlipCreeps
   double t = 0;                 // s
   physics::SlidingState state;  // rolling hands on zero slip
+  physics::FlightState flight;  // kLiftsOff, kTouchdown: the free coin's state
   physics::Forward forward;     // the ending segment's forward pass at the switch
   double dissipated = 0;        // J
 };
@@ -120,12 +127,14 @@ class RollingSegment final : public TrajectoryMotion<kRollingSize, RollingKind, 
 
   std::optional<Handover> handover() const override {
     const auto& hit = endHit();
-    if (!hit || hit->id != kSlideOnset) return std::nullopt;
+    if (!hit || (hit->id != kSlideOnset && hit->id != kLiftsOff)) return std::nullopt;
     const physics::QuaternionState state = rollingStateOf(hit->y);
+    const physics::Forward forward = physics::forward(kind().model, state);
     return Handover{.id = hit->id,
                     .t = hit->t,
                     .state = {.attitude = state},
-                    .forward = physics::forward(kind().model, state),
+                    .flight = flightStateOf(state, forward),
+                    .forward = forward,
                     .dissipated = hit->y[kRollingSize - 1]};
   }
 };
@@ -136,18 +145,57 @@ class SlidingSegment final : public TrajectoryMotion<kSlidingSize, SlidingKind, 
 
   std::optional<Handover> handover() const override {
     const auto& hit = endHit();
-    if (!hit || (hit->id != kSlipStops && hit->id != kSlipCreeps && hit->id != kSlipFrees)) return std::nullopt;
+    if (!hit || (hit->id != kSlipStops && hit->id != kSlipCreeps && hit->id != kSlipFrees && hit->id != kLiftsOff)) {
+      return std::nullopt;
+    }
+    const physics::SlidingState state = slidingStateOf(hit->y);
+    const physics::Forward forward = kind().sliding.forward(hit->y.head<physics::kSlidingStateSize>());
     return Handover{.id = hit->id,
                     .t = hit->t,
-                    .state = slidingStateOf(hit->y),
-                    .forward = kind().sliding.forward(hit->y.head<physics::kSlidingStateSize>()),
+                    .state = state,
+                    .flight = flightStateOf(state.attitude, forward),
+                    .forward = forward,
                     .dissipated = hit->y[kSlidingSize - 1]};
   }
 };
 
+class FlightSegment final : public TrajectoryMotion<kFlightSize, FlightKind, ContactSegment> {
+ public:
+  using TrajectoryMotion::TrajectoryMotion;
+
+  std::optional<Handover> handover() const override {
+    const auto& hit = endHit();
+    if (!hit || hit->id != kTouchdown) return std::nullopt;
+    const physics::FlightState state = flightStateOf(hit->y);
+    return Handover{.id = hit->id,
+                    .t = hit->t,
+                    .state = contactStateOf(kind().model, state),
+                    .flight = state,
+                    .forward = physics::flightForward(kind().model, state),
+                    .dissipated = hit->y[kFlightSize - 1]};
+  }
+};
+
+// With flight the coin leaves the floor where N falls through zero: lift-off becomes a switch to a
+// flight, read inside each step as the cone is (a hop shorter than a step shows no sign change).
+template <int N>
+void liftOffSwitches(std::vector<integrate::Event<N>>& events) {
+  for (integrate::Event<N>& e : events) {
+    if (e.id != static_cast<int>(ModelEvent::LiftOff)) continue;
+    e.id = kLiftsOff;
+    e.name = "lifts off";
+    e.terminal = true;
+    e.interiorChecks = kConeGrazeChecks;
+  }
+}
+
 }  // namespace
 
 HybridRun::HybridRun(const Simulation& simulation) : simulation_(simulation) {
+  if (const std::optional<physics::FlightState> flying = flightStart(simulation)) {
+    startFlight(0, *flying, 0);
+    return;
+  }
   const physics::QuaternionState start = physics::fromEulerState(simulation.initial);
   const physics::Forward rolling = physics::forward(simulation_.model, start);
   const Eigen::Vector3d rollingVelocity = rolling.velocity;
@@ -183,6 +231,7 @@ void HybridRun::startRolling(double t, const physics::QuaternionState& state, do
       });
   slides.interiorChecks = kConeGrazeChecks;
   events.push_back(std::move(slides));
+  if (simulation_.flight) liftOffSwitches(events);
   Y y0;
   y0 << physics::toVector(state), dissipated;
   segment_ = std::make_unique<RollingSegment>(RollingKind{simulation_.model}, t, y0, simulation_.solver,
@@ -228,10 +277,62 @@ void HybridRun::startSliding(double t, const physics::SlidingState& state, doubl
         },
         +1));
   }
+  if (simulation_.flight) liftOffSwitches(events);
   Y y0;
   y0 << physics::toVector(state), dissipated;
   segment_ = std::make_unique<SlidingSegment>(SlidingKind{rhs}, t, y0, simulation_.solver, std::move(events),
                                               simulation_.duration);
+}
+
+void HybridRun::startFlight(double t, const physics::FlightState& state, double dissipated) {
+  integrate::Vec<kFlightSize> y0;
+  y0 << physics::toVector(state), dissipated;
+  segment_ = std::make_unique<FlightSegment>(FlightKind{simulation_.model}, t, y0, flightSolver(simulation_, state),
+                                             std::vector{touchdownEvent(simulation_.model, kTouchdown)},
+                                             simulation_.duration);
+}
+
+void HybridRun::startContact(double t, const physics::SlidingState& state, double dissipated) {
+  const physics::CoinModel& model = simulation_.model;
+  const physics::Forward rolling = physics::forward(model, state.attitude);
+  const Eigen::Vector3d along =
+      state.slip.norm() > 0 ? Eigen::Vector3d(state.slip.x(), 0, state.slip.y()).normalized() : Eigen::Vector3d::UnitX();
+  const physics::Forward slipping = physics::slidingForward(model, state, model.friction.kinetic, along);
+  const physics::ContactMode mode = physics::startingMode(model, rolling, slipping);
+  const physics::Forward& held = mode == physics::ContactMode::Rolling ? rolling : slipping;
+  if (physics::liftOffMargin(model, held) <= 0) {
+    startFlight(t, onTheFloor(model, flightStateOf(state.attitude, held)), dissipated);
+    return;
+  }
+  if (mode == physics::ContactMode::Rolling) {
+    startRolling(t, state.attitude, dissipated);
+  } else {
+    startSliding(t, mode == physics::ContactMode::Sliding ? state : physics::SlidingState{.attitude = state.attitude},
+                 dissipated, mode);
+  }
+}
+
+bool HybridRun::land(double t, const physics::FlightState& atTouch, double dissipated) {
+  std::size_t recent = 0;
+  for (const ImpactRecord& impact : impacts_) recent += impact.t > t - 1 ? 1 : 0;
+  const Landing landing = pipeline::land(simulation_, t, atTouch, dissipated, recent >= kMaxImpactsPerSecond);
+  impacts_.push_back(landing.impact);
+  switch (landing.next) {
+    case Landing::Next::Flight:
+      startFlight(t, onTheFloor(simulation_.model, landing.state), landing.dissipated);
+      return true;
+    case Landing::Next::Contact:
+      startContact(t, contactStateOf(simulation_.model, landing.state), landing.dissipated);
+      return true;
+    case Landing::Next::Rest:
+    case Landing::Next::Jam:
+      ending_ = Ending{.event = landing.next == Landing::Next::Rest ? ModelEvent::Rest : ModelEvent::ImpactJam,
+                       .t = t,
+                       .state = landing.state,
+                       .dissipated = landing.dissipated};
+      return false;
+  }
+  return false;
 }
 
 bool HybridRun::switchIfDue() {
@@ -250,6 +351,15 @@ bool HybridRun::switchIfDue() {
   };
   const double t = handover->t, dissipated = handover->dissipated;
   const physics::SlidingState& state = handover->state;
+  if (handover->id == kLiftsOff) {
+    retire();
+    startFlight(t, onTheFloor(simulation_.model, handover->flight), dissipated);
+    return true;
+  }
+  if (handover->id == kTouchdown) {
+    retire();
+    return land(t, handover->flight, dissipated);
+  }
   if (handover->id == kSlideOnset) {
     if (tooManySwitches(t)) return false;
     retire();
@@ -285,6 +395,12 @@ std::optional<RunSample> HybridRun::sampleAt(double t, const physics::CoinState&
 }
 
 std::optional<RunEvent> HybridRun::stoppedBy(const physics::CoinState& continuation) const {
+  if (ending_) {
+    if (ending_->t > simulation_.duration) return std::nullopt;
+    integrate::Vec<kFlightSize> y;
+    y << physics::toVector(ending_->state), ending_->dissipated;
+    return runEventOf(static_cast<int>(ending_->event), ending_->t, FlightKind{simulation_.model}.sample(y, continuation));
+  }
   return segment_->stoppedBy(continuation);
 }
 

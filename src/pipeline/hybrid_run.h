@@ -11,6 +11,7 @@
 
 #include "integrate/solver_config.h"
 #include "physics/coin_state.h"
+#include "physics/flight.h"
 #include "physics/contact_mode.h"
 #include "physics/sliding.h"
 #include "pipeline/motion.h"
@@ -32,6 +33,7 @@ class HybridRun final : public Motion {
   std::optional<RunEvent> stoppedBy(const physics::CoinState& continuation) const override;
   std::vector<RunEvent> warnings() const override;
   std::vector<ModeSwitch> switches() const override { return switches_; }
+  std::vector<ImpactRecord> impacts() const override { return impacts_; }
   integrate::Stats stats() const override;
 
  private:
@@ -39,6 +41,12 @@ class HybridRun final : public Motion {
   // `mode`: Sliding (friction along the slip) or Creeping (along its rest, physics::Creep: from zero
   // slip, or a slip too small for its direction to be integrated).
   void startSliding(double t, const physics::SlidingState& state, double dissipated, physics::ContactMode mode);
+  void startFlight(double t, const physics::FlightState& state, double dissipated);
+  // The rim held on the floor after a landing (docs/flight.md §4): sliding, creeping or rolling as
+  // at a start, or flying on where the floor cannot hold it (N <= 0).
+  void startContact(double t, const physics::SlidingState& state, double dissipated);
+  // The touchdown at t: the impact, and what follows it; false when the run ends there.
+  bool land(double t, const physics::FlightState& atTouch, double dissipated);
   // Moves to the next segment when the current one ended in a switch; false when a model event ended it.
   bool switchIfDue();
 
@@ -46,6 +54,15 @@ class HybridRun final : public Motion {
   std::unique_ptr<ContactSegment> segment_;
   std::vector<ModeSwitch> switches_;
   std::vector<RunEvent> warnings_;  // of the segments before the current one
+  std::vector<ImpactRecord> impacts_;
+  // A landing that ended the run (rest on a face, an impact jam): the event and the state at touch.
+  struct Ending {
+    physics::ModelEvent event;
+    double t = 0;
+    physics::FlightState state;
+    double dissipated = 0;
+  };
+  std::optional<Ending> ending_;
   integrate::Stats finishedStats_;  // of the segments before the current one
 };
 

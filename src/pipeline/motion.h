@@ -26,6 +26,15 @@ struct ModeSwitch {
   bool toSliding = false;  // true: rolling -> sliding; false: sliding -> rolling
 };
 
+// An impact of the rim on the floor ("flight": true; docs/flight.md §3).
+struct ImpactRecord {
+  double t = 0;             // s
+  double normalSpeed = 0;   // m/s, how fast the rim closed on the floor
+  double reboundSpeed = 0;  // m/s, how fast it left; 0 at the bounce-end, where the rim stays down
+  double energyLost = 0;    // J
+  bool bouncesEnd = false;  // the last impact of a bounce sequence (the event bounce-end)
+};
+
 class Motion {
  public:
   Motion() = default;
@@ -49,6 +58,9 @@ class Motion {
 
   // The switches between rolling and sliding so far (none unless the scene has "sliding": true).
   virtual std::vector<ModeSwitch> switches() const { return {}; }
+
+  // The rim's impacts so far, in time order (none unless the scene has "flight": true).
+  virtual std::vector<ImpactRecord> impacts() const { return {}; }
 
   virtual integrate::Stats stats() const = 0;
 };

@@ -22,6 +22,7 @@ std::vector<std::string_view> trajectoryColumns(const Simulation& simulation) {
   std::vector<std::string_view> names(kTrajectoryColumns.begin(), kTrajectoryColumns.end());
   if (isDissipative(simulation)) names.insert(names.end(), kDissipationColumns.begin(), kDissipationColumns.end());
   if (simulation.sliding) names.insert(names.end(), kSlidingColumns.begin(), kSlidingColumns.end());
+  if (simulation.flight) names.insert(names.end(), kFlightColumns.begin(), kFlightColumns.end());
   return names;
 }
 
@@ -31,7 +32,8 @@ TrajectoryReport sampleTrajectory(const Simulation& simulation, double sampleDt,
   TrajectoryReport result;
   const long rows = sampleCount(simulation.duration, sampleDt);
   std::vector<double> values;
-  values.reserve(kTrajectoryColumns.size() + kDissipationColumns.size() + kSlidingColumns.size());
+  values.reserve(kTrajectoryColumns.size() + kDissipationColumns.size() + kSlidingColumns.size() +
+                 kFlightColumns.size());
   SingularTimeFit singularTime;
   for (long k = 0; k < rows; ++k) {
     const double t = static_cast<double>(k) * sampleDt;
@@ -45,11 +47,16 @@ TrajectoryReport sampleTrajectory(const Simulation& simulation, double sampleDt,
     if (dissipative) {
       values.push_back(f.loads.power);
       values.push_back(sample->dissipated);
-      singularTime.add(t, physics::tiltAboveFloor(f));
+      // A flying coin's tilt is its tumbling, not a spin-down's approach to the floor.
+      if (!f.flying) singularTime.add(t, physics::tiltAboveFloor(f));
     }
     if (simulation.sliding) {
       values.push_back(f.slip.norm());
       values.push_back(f.sliding ? 1 : 0);
+    }
+    if (simulation.flight) {
+      values.push_back(f.flying ? 2 : f.sliding ? 1 : 0);
+      values.push_back(static_cast<double>(run.impacts().size()));
     }
     row(values);
     ++result.rows;
@@ -64,6 +71,8 @@ TrajectoryReport sampleTrajectory(const Simulation& simulation, double sampleDt,
   }
   result.warnings = run.warnings();
   result.switches = run.switches();
+  result.impacts = run.impacts();
+  result.flight = simulation.flight.has_value();
   result.stats = run.stats();
   return result;
 }
@@ -73,11 +82,27 @@ std::vector<std::string> reportLines(const TrajectoryReport& report) {
   for (const ModeSwitch& w : report.switches) {
     lines.push_back(fmt::format("coinroll: {} at t = {:.9f} s", w.toSliding ? "slides" : "rolls", w.t));
   }
+  for (const ImpactRecord& impact : report.impacts) {
+    lines.push_back(fmt::format("coinroll: impact at t = {:.9f}, normal speed {:.6g} m/s ({})", impact.t,
+                                impact.normalSpeed,
+                                impact.bouncesEnd ? fmt::format("bounce-end: the rim stays on the floor, {:.3g} J lost",
+                                                                impact.energyLost)
+                                                  : fmt::format("rebound {:.6g} m/s, {:.3g} J lost",
+                                                                impact.reboundSpeed, impact.energyLost)));
+  }
   for (const RunEvent& warning : report.warnings) {
     lines.push_back("coinroll: warning: the ideal contact fails here (on_invalid: warn, going on): " +
                     describeStop(warning));
   }
   if (report.stoppedBy) lines.push_back("coinroll: stopped early: " + describeStop(*report.stoppedBy));
+  using physics::ModelEvent;
+  if (report.flight && report.stoppedBy &&
+      (report.stoppedBy->event == ModelEvent::Rest || report.stoppedBy->event == ModelEvent::FaceDown ||
+       report.stoppedBy->event == ModelEvent::CoinFlat)) {
+    const physics::FaceUp face = physics::faceUp(report.stoppedBy->state.theta);
+    lines.push_back(fmt::format("coinroll: {} (the {} face up)", physics::faceName(face),
+                                face == physics::FaceUp::Heads ? "+e_Z" : "-e_Z"));
+  }
   if (report.singularTime) {
     const SingularTimeEstimate& e = *report.singularTime;
     lines.push_back(

@@ -28,6 +28,9 @@ inline constexpr std::array<std::string_view, 2> kDissipationColumns = {"power",
 // With "sliding": true, after those: the contact point's slip speed and 1 while sliding, else 0.
 inline constexpr std::array<std::string_view, 2> kSlidingColumns = {"slip_speed", "sliding"};
 
+// With "flight": true, after those: 0 rolling, 1 sliding, 2 in flight; and the impacts so far.
+inline constexpr std::array<std::string_view, 2> kFlightColumns = {"phase", "impacts"};
+
 // The columns a run of `simulation` has, in order.
 std::vector<std::string_view> trajectoryColumns(const Simulation& simulation);
 
@@ -43,6 +46,8 @@ struct TrajectoryReport {
   std::optional<RunEvent> stoppedBy;
   std::vector<RunEvent> warnings;  // on_invalid "warn": crossings gone past
   std::vector<ModeSwitch> switches;  // "sliding": true: each switch between rolling and sliding
+  std::vector<ImpactRecord> impacts;  // "flight": true: each impact of the rim
+  bool flight = false;                // "flight": true: a run that ends lying on a face says which
   std::optional<SingularTimeEstimate> singularTime;  // a spin-down that reached coin-flat or face-down
   integrate::Stats stats;
 };
@@ -53,7 +58,7 @@ using TrajectoryRow = std::function<void(std::span<const double>)>;
 TrajectoryReport sampleTrajectory(const Simulation& simulation, double sampleDt, const TrajectoryRow& row);
 
 // What `coinroll simulate` prints on stderr about a run, a line each, without line breaks: the
-// switches, the warnings, the stop, the singular time and the counts. The WebAssembly core returns
+// switches, the impacts, the warnings, the stop, the face it lies on, the singular time and the counts. The WebAssembly core returns
 // the same lines.
 std::vector<std::string> reportLines(const TrajectoryReport& report);
 

@@ -3,7 +3,11 @@
 // Montgomery's formula (2007) for a coin caught in the hand, and against the 0.508 that Bartos et
 // al. (2023) measured over 350,757 human flips.
 //
-// Run: build/bench/toss_study [OUT_DIR]   (default docs/; writes toss_caught.csv)
+// The same natural flips landing on a table (flight, impacts, sliding and rolling: docs/flight.md)
+// show how much the bounces change the fraction, and time a toss from the hand to rest.
+//
+// Run: build/bench/toss_study [OUT_DIR [LANDED_TOSSES]]   (default docs/ and 2000; writes toss_caught.csv,
+// toss_landed.csv)
 
 #include <fmt/format.h>
 
@@ -16,10 +20,17 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+
 #include "integrate/trajectory.h"
 #include "physics/coin_model.h"
 #include "physics/flight.h"
 #include "physics/solid_inertia.h"
+#include "pipeline/coin_run.h"
+#include "pipeline/simulation.h"
+#include "scene/scene_loader.h"
 
 namespace {
 
@@ -50,7 +61,8 @@ physics::FlightState launch(const physics::CoinModel& m, double psi, double spin
 
 struct FlightRhs {
   physics::CoinModel model;
-  integrate::Vec<physics::kFlightStateSize> operator()(double, const integrate::Vec<physics::kFlightStateSize>& y) const {
+  integrate::Vec<physics::kFlightStateSize> operator()(double,
+                                                       const integrate::Vec<physics::kFlightStateSize>& y) const {
     return physics::flightRhs(model, y);
   }
 };
@@ -69,6 +81,47 @@ bool caughtSameSide(const physics::CoinModel& m, const physics::FlightState& sta
 double diaconisSameSide(double psi) {
   const double cot2 = std::pow(1 / std::tan(psi), 2);
   return cot2 >= 1 ? 1.0 : 0.5 + std::asin(cot2) / std::numbers::pi;
+}
+
+// The scene of a flip from the hand, heads up, landing on a hard table 0.3 m below the launch.
+nlohmann::json landedFlip(double psi, double turns, double upSpeed, double restitution) {
+  const physics::CoinModel m = quarter();
+  const double L = m.I_X * turns * 2 * std::numbers::pi;
+  return {{"coin", {{"radius", m.a}, {"mass", m.M}, {"thickness", 1.75e-3}, {"edge_radius", 0.3e-3}}},
+          {"initial",
+           {{"theta", -89.999}, {"omega_X", L * std::sin(psi) / m.I_X}, {"omega_Z", L * std::cos(psi) / m.I_Z},
+            {"y", 0.3}, {"v_y", upSpeed}}},
+          {"friction", 0.3},
+          {"sliding", true},
+          {"flight", true},
+          {"restitution", restitution},
+          {"effects", {{{"type", "rolling_resistance"}, {"length", 2e-5}}}},
+          {"duration", 60}};
+}
+
+// Which face a landed flip ends up showing, read once it is decided: the coin is back on the floor
+// for good and has less energy than standing upright on its rim takes, so theta can no longer change
+// sign (docs/toss.md). Returns the heads-up answer and the simulated time it took.
+struct LandedOutcome {
+  bool headsUp = false;
+  double decidedAt = 0;  // s
+  long evaluations = 0;
+};
+LandedOutcome landedFace(const nlohmann::json& flip) {
+  const pipeline::Simulation sim = pipeline::buildSimulation(scene::parseScene(flip, "toss"));
+  const double upright = sim.model.M * sim.model.g *
+                         physics::lowestPointDepth(sim.model, Eigen::Quaterniond::Identity());
+  pipeline::CoinRun run(sim);
+  LandedOutcome outcome;
+  for (double t = 0;; t += 1e-3) {
+    const std::optional<pipeline::RunSample> s = run.sampleAt(t);
+    const bool landed = run.impacts().size() > 0 && run.impacts().back().bouncesEnd;
+    if (!s || (landed && !s->forward.flying && s->forward.energy < upright)) {
+      const double theta = s ? s->state.theta : run.stoppedBy().value().state.theta;
+      outcome = {.headsUp = theta < 0, .decidedAt = t, .evaluations = run.stats().rhsEvaluations};
+      return outcome;
+    }
+  }
 }
 
 }  // namespace
@@ -94,7 +147,8 @@ int main(int argc, char** argv) {
       same += caughtSameSide(m, launch(m, psiDeg * kDeg, spin, 0.5 * m.g * flightTime)) ? 1 : 0;
     }
     const double simulated = static_cast<double>(same) / kTosses, formula = diaconisSameSide(psiDeg * kDeg);
-    fmt::print("| {:.1f} | {} | {:.4f} | {:.4f} | {:+.4f} |\n", psiDeg, kTosses, simulated, formula, simulated - formula);
+    fmt::print("| {:.1f} | {} | {:.4f} | {:.4f} | {:+.4f} |\n", psiDeg, kTosses, simulated, formula,
+               simulated - formula);
     csv << fmt::format("{},{},{},{}\n", psiDeg, kTosses, simulated, formula);
   }
   if (!csv) throw std::runtime_error("could not write toss_caught.csv");
@@ -118,4 +172,34 @@ int main(int argc, char** argv) {
     }
     fmt::print("| {:.0f} | {} | {:.4f} | {:.4f} |\n", spread, kNatural, static_cast<double>(same) / kNatural, formula);
   }
+
+  // The same flips landing on the table (spread 15 degrees): the bounces and the roll decide again.
+  std::ofstream landedCsv(out / "toss_landed.csv");
+  landedCsv << "restitution,tosses,same_side,caught_same_side,ms_per_toss,decided_at_s\n";
+  fmt::print("\nNatural flips (spread 15 deg) landing on a table 0.3 m below the hand, friction 0.3\n");
+  fmt::print("| restitution | tosses | same side, landed | same side, caught | ms per toss | decided after (s) |\n"
+             "|---|---|---|---|---|---|\n");
+  const int kLanded = argc > 2 ? std::stoi(argv[2]) : 2000;
+  for (const double restitution : {0.2, 0.5, 0.8}) {
+    std::mt19937 flips(2023);
+    int same = 0, caught = 0;
+    double decided = 0;
+    const auto begin = std::chrono::steady_clock::now();
+    for (int k = 0; k < kLanded; ++k) {
+      const double psi = (90 - 15 * unit(flips)) * kDeg;
+      const double turns = 30 + 15 * unit(flips), up = 2 + unit(flips);
+      const LandedOutcome landed = landedFace(landedFlip(psi, turns, up, restitution));
+      same += landed.headsUp ? 1 : 0;
+      decided += landed.decidedAt / kLanded;
+      caught += caughtSameSide(m, launch(m, psi, turns * 2 * std::numbers::pi, up)) ? 1 : 0;
+    }
+    const double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count() / kLanded;
+    const double landedFraction = static_cast<double>(same) / kLanded,
+                 caughtFraction = static_cast<double>(caught) / kLanded;
+    fmt::print("| {} | {} | {:.4f} | {:.4f} | {:.2f} | {:.2f} |\n", restitution, kLanded, landedFraction, caughtFraction,
+               ms, decided);
+    landedCsv << fmt::format("{},{},{},{},{},{}\n", restitution, kLanded, landedFraction, caughtFraction, ms, decided);
+  }
+  if (!landedCsv) throw std::runtime_error("could not write toss_landed.csv");
 }

@@ -120,7 +120,8 @@ std::optional<Mode> modeFromRest(const Eigen::Matrix3d& K, double mu) {
 
 Eigen::Matrix3d contactCompliance(const CoinModel& m, const Eigen::Quaterniond& unitQ, const Eigen::Vector3d& r) {
   const Eigen::Matrix3d R = unitQ.toRotationMatrix();
-  const Eigen::Matrix3d inverseInertia = R * Eigen::Vector3d(1 / m.I_X, 1 / m.I_X, 1 / m.I_Z).asDiagonal() * R.transpose();
+  const Eigen::Matrix3d inverseInertia =
+      R * Eigen::Vector3d(1 / m.I_X, 1 / m.I_X, 1 / m.I_Z).asDiagonal() * R.transpose();
   return Eigen::Matrix3d::Identity() / m.M - skew(r) * inverseInertia * skew(r);  // (3.2)
 }
 

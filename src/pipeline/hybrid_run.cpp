@@ -295,8 +295,8 @@ void HybridRun::startFlight(double t, const physics::FlightState& state, double 
 void HybridRun::startContact(double t, const physics::SlidingState& state, double dissipated) {
   const physics::CoinModel& model = simulation_.model;
   const physics::Forward rolling = physics::forward(model, state.attitude);
-  const Eigen::Vector3d along =
-      state.slip.norm() > 0 ? Eigen::Vector3d(state.slip.x(), 0, state.slip.y()).normalized() : Eigen::Vector3d::UnitX();
+  const Eigen::Vector3d along = state.slip.norm() > 0 ? Eigen::Vector3d(state.slip.x(), 0, state.slip.y()).normalized()
+                                                      : Eigen::Vector3d::UnitX();
   const physics::Forward slipping = physics::slidingForward(model, state, model.friction.kinetic, along);
   const physics::ContactMode mode = physics::startingMode(model, rolling, slipping);
   const physics::Forward& held = mode == physics::ContactMode::Rolling ? rolling : slipping;
@@ -399,7 +399,8 @@ std::optional<RunEvent> HybridRun::stoppedBy(const physics::CoinState& continuat
     if (ending_->t > simulation_.duration) return std::nullopt;
     integrate::Vec<kFlightSize> y;
     y << physics::toVector(ending_->state), ending_->dissipated;
-    return runEventOf(static_cast<int>(ending_->event), ending_->t, FlightKind{simulation_.model}.sample(y, continuation));
+    return runEventOf(static_cast<int>(ending_->event), ending_->t,
+                      FlightKind{simulation_.model}.sample(y, continuation));
   }
   return segment_->stoppedBy(continuation);
 }

@@ -156,9 +156,10 @@ bool leavesTheFloor(const Simulation& sim) {
   const Eigen::Vector2d slip =
       physics::slipOf(sim.model, attitude, Eigen::Vector2d(start.velocity.x(), start.velocity.z()));
   const physics::Forward held =
-      slip.norm() > 0 ? physics::slidingForward(sim.model, {.attitude = attitude, .slip = slip}, sim.model.friction.kinetic,
-                                                Eigen::Vector3d(slip.x(), 0, slip.y()).normalized())
-                      : physics::forward(sim.model, attitude);
+      slip.norm() > 0
+          ? physics::slidingForward(sim.model, {.attitude = attitude, .slip = slip}, sim.model.friction.kinetic,
+                                    Eigen::Vector3d(slip.x(), 0, slip.y()).normalized())
+          : physics::forward(sim.model, attitude);
   return physics::liftOffMargin(sim.model, held) <= 0;
 }
 

@@ -58,8 +58,8 @@ using TrajectoryRow = std::function<void(std::span<const double>)>;
 TrajectoryReport sampleTrajectory(const Simulation& simulation, double sampleDt, const TrajectoryRow& row);
 
 // What `coinroll simulate` prints on stderr about a run, a line each, without line breaks: the
-// switches, the impacts, the warnings, the stop, the face it lies on, the singular time and the counts. The WebAssembly core returns
-// the same lines.
+// switches, the impacts, the warnings, the stop, the face it lies on, the singular time and the
+// counts. The WebAssembly core returns the same lines.
 std::vector<std::string> reportLines(const TrajectoryReport& report);
 
 }  // namespace coinroll::pipeline

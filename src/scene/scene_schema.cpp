@@ -97,7 +97,7 @@ std::vector<Key> buildTable() {
       {.path = "sliding", .type = T::Boolean, .unit = "", .defaultText = "false", .onlyWith = {"friction=0.5"},
        .doc = "true: the coin slides with Coulomb friction instead of stopping at slip (needs `friction`)"},
       {.path = "flight", .type = T::Boolean, .unit = "", .defaultText = "false",
-       .onlyWith = {"friction=0.5", "sliding=true", "restitution=0.5"},
+       .onlyWith = {"friction=0.5", "sliding=true"},
        .doc = "true: lift-off goes on in flight, the rim's impacts bounce and the coin rolls or slides again "
               "(docs/flight.md; needs `sliding` and `restitution`)"},
       {.path = "restitution", .type = T::Number, .unit = "", .defaultText = "", .lower = closed(0),

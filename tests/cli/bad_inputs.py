@@ -449,6 +449,35 @@ case("sliding-painleve-start", C, "a disk at 24 deg sliding sideways away from u
 case("sliding-skid-runs", C, "an upright skid (must work)", SIM, 0, "rolls at t = ", produces=("o.csv",),
      files={"scene.json": scene(sliding=True, friction=0.3, initial={"theta": 0, "v_x": 1.0})}, na_before=NO_SLIDING)
 
+# --- flight and impact: "flight", "restitution", "impact_friction", initial.y / v_y (docs/flight.md)
+C = "flight and impact"
+NO_FLIGHT = "no flight before"
+FLY = {"sliding": True, "friction": 0.3, "flight": True, "restitution": 0.5}
+case("flight-without-sliding", C, "flight true without sliding", SIM, 2,
+     "flight: needs \"sliding\": true", key="flight",
+     files={"scene.json": scene(flight=True, friction=0.3, restitution=0.5)}, na_before=NO_FLIGHT)
+case("flight-without-restitution", C, "flight true without restitution", SIM, 2,
+     "restitution: required with \"flight\": true", key="restitution",
+     files={"scene.json": scene(sliding=True, friction=0.3, flight=True)}, na_before=NO_FLIGHT)
+case("restitution-above-one", C, "restitution 1.5", SIM, 2, "restitution: must be in [0, 1], got 1.5",
+     key="restitution", files={"scene.json": scene(**{**FLY, "restitution": 1.5})}, na_before=NO_FLIGHT)
+case("restitution-without-flight", C, "restitution without flight", SIM, 2,
+     "restitution: only with \"flight\": true", key="restitution",
+     files={"scene.json": scene(sliding=True, friction=0.3, restitution=0.5)}, na_before=NO_FLIGHT)
+case("impact-friction-negative", C, "impact_friction -0.1", SIM, 2, "impact_friction: must be", key="impact_friction",
+     files={"scene.json": scene(**FLY, impact_friction=-0.1)}, na_before=NO_FLIGHT)
+case("height-without-flight", C, "initial.y without flight", SIM, 2, "initial.y: only with \"flight\": true",
+     key="initial.y", files={"scene.json": scene(sliding=True, friction=0.3, initial={"y": 0.1})},
+     na_before=NO_FLIGHT)
+case("height-below-floor", C, "initial.y puts the rim below the floor", SIM, 2,
+     "initial.y: 0.01 m puts the rim", key="initial.y",
+     files={"scene.json": scene(**FLY, initial={"y": 0.01})}, na_before=NO_FLIGHT)
+case("vertical-velocity-into-floor", C, "initial.v_y -1 m/s on the floor", SIM, 2,
+     "initial.v_y: the coin's rim would move into the floor", key="initial.v_y",
+     files={"scene.json": scene(**FLY, initial={"v_y": -1})}, na_before=NO_FLIGHT)
+case("flight-drop-runs", C, "a coin dropped edge-down (must work)", SIM, 0, "impact at t = ", produces=("o.csv",),
+     files={"scene.json": scene(**FLY, initial={"theta": 0, "y": 0.1})}, na_before=NO_FLIGHT)
+
 C = "render block"
 REN = "render scene.json -q -o o.mp4 --set "
 case("fps-zero", C, "render.fps 0", REN + "render.fps=0", 2, "render.fps: must be in [1, 240], got 0", key="render.fps")

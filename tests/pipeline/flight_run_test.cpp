@@ -1,0 +1,159 @@
+// Runs with flight (docs/flight.md) against closed forms and conserved quantities: a disk dropped
+// edge-down bounces in the geometric sequence of its restitution, a coin dropped flat rests at once,
+// and a tilted, spinning drop closes its energy budget across flights, impacts, sliding and rolling.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "physics/flight.h"
+#include "physics/observables.h"
+#include "physics/validity.h"
+#include "pipeline/coin_run.h"
+#include "pipeline/simulation.h"
+#include "pipeline/trajectory_samples.h"
+#include "scene/scene_loader.h"
+#include "tolerance.h"
+
+namespace {
+
+using namespace coinroll;
+using coinroll::testing::isBelow;
+using coinroll::testing::isNear;
+
+pipeline::Simulation simulationOf(const nlohmann::json& doc) {
+  return pipeline::buildSimulation(scene::parseScene(doc, "test"));
+}
+
+const nlohmann::json kTightSolver = {{"rtol", 1e-12}, {"atol", 1e-14}};
+constexpr double kG = 9.81, kRadius = 0.0125, kDropHeight = 0.05, kRestitution = 0.5;
+
+nlohmann::json edgeDownDrop() {
+  return {{"coin", {{"radius", kRadius}, {"mass", 0.0075}}},
+          {"friction", 0.3},
+          {"sliding", true},
+          {"flight", true},
+          {"restitution", kRestitution},
+          {"initial", {{"theta", 0}, {"y", kRadius + kDropHeight}}},
+          {"duration", 0.5},
+          {"solver", kTightSolver}};
+}
+
+TEST(Flight, AnEdgeDownDropReboundsToESquaredOfEachHeight) {
+  const pipeline::Simulation sim = simulationOf(edgeDownDrop());
+  pipeline::CoinRun run(sim);
+  ASSERT_TRUE(run.sampleAt(0.5));
+  const std::vector<pipeline::ImpactRecord> impacts = run.impacts();
+  ASSERT_GE(impacts.size(), 8u);
+  // The rim touches kTouch inside the floor (docs/flight.md §2) and each flight starts on it.
+  const double touch = 1e-12 * kRadius;
+  EXPECT_TRUE(isNear(impacts[0].t, std::sqrt(2 * (kDropHeight + touch) / kG), 1e-12));
+  EXPECT_TRUE(isNear(impacts[0].normalSpeed, std::sqrt(2 * kG * (kDropHeight + touch)), 1e-12));
+  pipeline::CoinRun apexes(sim);
+  for (std::size_t k = 0; k + 1 < impacts.size(); ++k) {
+    const pipeline::ImpactRecord& bounce = impacts[k];
+    ASSERT_FALSE(bounce.bouncesEnd) << k;
+    EXPECT_TRUE(isNear(bounce.reboundSpeed, kRestitution * bounce.normalSpeed, 1e-9 * bounce.normalSpeed)) << k;
+    // Each flight is a parabola from the floor to the touch depth, its apex v^2 / 2 g up: e^2 times the
+    // height the coin fell before the impact.
+    const double v = bounce.reboundSpeed;
+    const double flightTime = (v + std::sqrt(v * v + 2 * kG * touch)) / kG;
+    EXPECT_TRUE(isNear(impacts[k + 1].t - bounce.t, flightTime, 1e-9 * flightTime)) << k;
+    const double apex = apexes.sampleAt(bounce.t + v / kG)->forward.centre.y() - kRadius;
+    const double before = k == 0 ? kDropHeight : impacts[k - 1].reboundSpeed * impacts[k - 1].reboundSpeed / (2 * kG);
+    EXPECT_TRUE(isNear(apex / (before + touch), kRestitution * kRestitution, 1e-9)) << k;
+  }
+  // The sequence ends where the rebound would fall below the stated threshold (eq. 4.1), at the
+  // geometric sum of the flights before it.
+  const pipeline::ImpactRecord& last = impacts.back();
+  EXPECT_TRUE(last.bouncesEnd);
+  EXPECT_LT(kRestitution * last.normalSpeed, std::sqrt(2 * kG * 1e-6 * kRadius));
+  double bounceTimes = impacts[0].t;
+  for (std::size_t k = 0; k + 1 < impacts.size(); ++k) bounceTimes += 2 * impacts[0].normalSpeed *
+                                                                         std::pow(kRestitution, k + 1) / kG;
+  EXPECT_TRUE(isNear(last.t, bounceTimes, 1e-9));
+}
+
+TEST(Flight, ACoinDroppedFlatRestsOnItsFace) {
+  for (const double theta : {-89.97, 89.97}) {
+    nlohmann::json scene = edgeDownDrop();
+    scene["coin"]["thickness"] = 0.002;
+    scene["initial"] = {{"theta", theta}, {"y", 0.05}, {"omega_Z", 4}};
+    const pipeline::Simulation sim = simulationOf(scene);
+    const pipeline::TrajectoryReport report = pipeline::sampleTrajectory(sim, 0.01, [](auto) {});
+    ASSERT_TRUE(report.stoppedBy);
+    EXPECT_EQ(report.stoppedBy->event, physics::ModelEvent::Rest);
+    ASSERT_EQ(report.impacts.size(), 1u);
+    const double fall = 0.05 - physics::lowestPointDepth(sim.model, physics::attitude(sim.initial));
+    EXPECT_TRUE(isNear(report.impacts[0].t, std::sqrt(2 * fall / kG), 1e-9));
+    EXPECT_EQ(physics::faceUp(report.stoppedBy->state.theta),
+              theta < 0 ? physics::FaceUp::Heads : physics::FaceUp::Tails);
+  }
+}
+
+TEST(Flight, ATiltedSpinningDropClosesItsEnergyBudgetToItsRest) {
+  nlohmann::json scene = edgeDownDrop();
+  scene["coin"]["thickness"] = 0.002;
+  scene["initial"] = {{"theta", 30}, {"omega_Z", 5}, {"omega_X", 3}, {"y", 0.05}};
+  scene["effects"] = {{{"type", "rolling_resistance"}, {"length", 2e-5}}};
+  scene["duration"] = 3;
+  const pipeline::Simulation sim = simulationOf(scene);
+  pipeline::CoinRun run(sim);
+  const double start = run.sampleAt(0)->forward.energy;
+  bool flew = false, rolled = false, slid = false;
+  double worst = 0;
+  for (double t = 0; t <= 3; t += 1e-3) {
+    const std::optional<pipeline::RunSample> s = run.sampleAt(t);
+    if (!s) break;
+    worst = std::max(worst, std::abs(s->forward.energy + s->dissipated - start));
+    flew = flew || s->forward.flying;
+    slid = slid || s->forward.sliding;
+    rolled = rolled || (!s->forward.flying && !s->forward.sliding);
+  }
+  EXPECT_TRUE(isBelow(worst, 1e-9 * start));
+  EXPECT_TRUE(flew && rolled && slid);
+  EXPECT_GE(run.impacts().size(), 3u);
+  ASSERT_TRUE(run.stoppedBy());
+  EXPECT_EQ(run.stoppedBy()->event, physics::ModelEvent::FaceDown);
+}
+
+TEST(Flight, TheHopThatEndsASlidingRunFliesWithFlight) {
+  // The spinning, wobbling throw whose sliding run ends at lift-off 11 ms in (hybrid_run_test.cpp):
+  // with flight the coin hops, lands and goes on, every contact sample with N >= 0 and friction
+  // taking energy, the budget closed through the impacts.
+  const nlohmann::json doc = {
+      {"coin", {{"radius", 0.0375}, {"mass", 0.4}, {"thickness", 0.013}, {"edge_radius", 0.0015}}},
+      {"initial", {{"theta", 18.19115672673155}, {"omega_X", 17.323401068130792}, {"omega_Y", -48.73684958709181},
+                   {"omega_Z", -56.59830281735924}}},
+      {"friction", 0.5178825519599348},
+      {"friction_static", 0.6214590623519217},
+      {"sliding", true},
+      {"flight", true},
+      {"restitution", 0.3},
+      {"duration", 0.1},
+      {"solver", kTightSolver}};
+  const pipeline::Simulation sim = simulationOf(doc);
+  pipeline::CoinRun run(sim);
+  const double start = run.sampleAt(0)->forward.energy;
+  double lowestN = INFINITY, lowestPower = INFINITY, worst = 0, firstFlight = INFINITY;
+  for (double t = 0; t <= 0.1; t += 1e-5) {
+    const std::optional<pipeline::RunSample> s = run.sampleAt(t);
+    if (!s) break;
+    worst = std::max(worst, std::abs(s->forward.energy + s->dissipated - start));
+    if (s->forward.flying) {
+      firstFlight = std::min(firstFlight, t);
+      continue;
+    }
+    lowestN = std::min(lowestN, s->forward.reaction.N);
+    lowestPower = std::min(lowestPower, s->forward.loads.power);
+  }
+  EXPECT_TRUE(isNear(firstFlight, 0.01105, 1e-5));
+  ASSERT_GE(run.impacts().size(), 1u);
+  EXPECT_GT(run.impacts()[0].t, firstFlight);
+  EXPECT_GE(lowestN, -1e-6 * sim.model.M * sim.model.g);
+  EXPECT_GE(lowestPower, 0);
+  EXPECT_TRUE(isBelow(worst, 1e-9 * start));
+}
+
+}  // namespace

@@ -240,6 +240,46 @@ TEST(RenderVideo, AWindowFollowsSimulatedTimeUnderATimeRemap) {
   expectWindowIsASliceOfTheFullRender(scene, 0.4, 0.7);
 }
 
+// The plan (render --plan) is the clip renderVideo draws: the same frames at the same simulated times
+// and playback rates, under a time remap too.
+TEST(PlanClip, IsTheClipRenderVideoDraws) {
+  scene::SceneConfig scene = toyScene(1.0, 1.0);
+  scene.render.timeRemap = scene::TimeRemap{.rate = scene::TimeRemap::Rate::Spin, .limit = 5, .growth = 0.5};
+  std::vector<pipeline::FrameTiming> drawn;
+  RecordingSink sink;
+  pipeline::renderVideo(scene, sink, {.onFrameTiming = [&](const pipeline::FrameTiming& f) { drawn.push_back(f); }});
+  const pipeline::ClipPlan plan = pipeline::planClip(scene);
+  ASSERT_EQ(plan.frames(), static_cast<long>(drawn.size()));
+  EXPECT_EQ(plan.videoSeconds(), static_cast<double>(drawn.size()) / scene.render.fps);
+  for (std::size_t k = 0; k < drawn.size(); ++k) {
+    EXPECT_EQ(plan.times[k], drawn[k].simulatedTime) << "frame " << k;
+    EXPECT_EQ(plan.playbackRates[k], drawn[k].playbackRate) << "frame " << k;
+  }
+}
+
+// A window by video time keeps the frames that play in it, k / fps in [from, to]; --last L the
+// frames of the clip's last L s; a render with it draws the frames of the simulated window between them.
+TEST(FramesIn, AVideoWindowKeepsTheFramesThatPlayInIt) {
+  scene::SceneConfig scene = toyScene(1.0, 1.0);
+  scene.render.timeRemap = scene::TimeRemap{.rate = scene::TimeRemap::Rate::Spin, .limit = 5};  // about 3x slower
+  const pipeline::ClipPlan plan = pipeline::planClip(scene);
+  ASSERT_GT(plan.frames(), 25);
+  using Clock = pipeline::TimeWindow::Clock;
+  const pipeline::FrameRange video = pipeline::framesIn(plan, {.from = 0.5, .to = 1.2, .clock = Clock::Video});
+  EXPECT_EQ(video.first, 5);  // 10 fps
+  EXPECT_EQ(video.last, 12);
+  const pipeline::FrameRange last = pipeline::framesIn(plan, {.last = 0.8});
+  EXPECT_EQ(last.first, plan.frames() - 8);
+  EXPECT_EQ(last.last, plan.frames() - 1);
+  RecordingSink byVideo, bySimulated;
+  pipeline::renderVideo(scene, byVideo, {.window = {.from = 0.5, .to = 1.2, .clock = Clock::Video}});
+  pipeline::renderVideo(scene, bySimulated, {.window = {.from = plan.times[5], .to = plan.times[12]}});
+  ASSERT_EQ(byVideo.frames.size(), 8u);
+  ASSERT_EQ(bySimulated.frames.size(), 8u);
+  for (std::size_t i = 0; i < 8; ++i) EXPECT_EQ(byVideo.frames[i].rgba, bySimulated.frames[i].rgba) << "frame " << i;
+  EXPECT_THROW(pipeline::framesIn(plan, {.from = 100, .clock = Clock::Video}), std::invalid_argument);
+}
+
 TEST(RenderVideo, AWindowWithoutFramesIsRefusedNamingTheOptions) {
   const scene::SceneConfig scene = toyScene(1.0, 1.0);
   RecordingSink sink;

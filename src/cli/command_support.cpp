@@ -129,8 +129,12 @@ std::filesystem::path defaultOutputName(bool named, const std::string& sceneName
   return fileNameFrom(stem) + std::string(extension);
 }
 
-void refuseTakingOverDefaultName(const std::filesystem::path& output, const std::string& digest,
-                                 const std::optional<std::string>& existing) {
+void refuseTakingOverDefaultName(
+    const std::filesystem::path& output, const std::string& digest,
+    const std::function<std::optional<std::string>(const std::filesystem::path&)>& readDigest) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(output, error)) return;
+  const std::optional<std::string> existing = readDigest(output);
   if (existing == digest) return;
   const std::string made = existing ? fmt::format("made from another scene (its digest {}, this scene's {})",
                                                   *existing, digest)

@@ -50,11 +50,13 @@ std::filesystem::path defaultOutputName(bool named, const std::string& sceneName
                                         std::string_view extension);
 
 // A name the program chose for an output (the user gave no -o) may already hold a file: it is
-// replaced only when made from the same scene, `existing` (the digest the file carries, none for a
-// file that names no scene) equal to `digest`; otherwise refused, naming -o and --force, so one
-// scene's output never silently takes over another's.
-void refuseTakingOverDefaultName(const std::filesystem::path& output, const std::string& digest,
-                                 const std::optional<std::string>& existing);
+// replaced only when made from the same scene, `readDigest(output)` (the scene digest the file
+// carries, none for a file that names no scene) equal to `digest`; otherwise refused, naming -o and
+// --force, so one scene's output never silently takes over another's. Only a regular file is read:
+// a device or FIFO under the name gets the output as it would under -o (io/output_file.h).
+void refuseTakingOverDefaultName(
+    const std::filesystem::path& output, const std::string& digest,
+    const std::function<std::optional<std::string>(const std::filesystem::path&)>& readDigest);
 
 // Runs `write` into `path`: standard output for "-", otherwise the output layer (a temporary file
 // that takes the name only once `write` and the close have succeeded, or a device, FIFO or

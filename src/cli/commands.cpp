@@ -338,8 +338,7 @@ void runStill(const StillOptions& options) {
       options.output ? std::filesystem::path(*options.output)
                      : defaultOutputName(named, scene.name, options.scene, video::kPngExtension);
   refuseOverwritingInput("-o", output, inputsOf(options.scene));
-  if (!options.output && !options.force && std::filesystem::exists(output))
-    refuseTakingOverDefaultName(output, digest, video::readSceneDigest(output));
+  if (!options.output && !options.force) refuseTakingOverDefaultName(output, digest, video::readSceneDigest);
   io::checkOutputName(output);  // the PNG is written after the rendering: a name that cannot work fails first
   reportSteadyStart(scene, options.quiet);
   pipeline::StillResult result;
@@ -446,8 +445,8 @@ void runRender(const RenderOptions& options) {
     }
   }
   refuseOverwritingInput("-o", output, inputsOf(options.scene));
-  if (!options.output && !options.force && !options.plan && std::filesystem::exists(output))
-    refuseTakingOverDefaultName(output, resolved.digest, video::readSceneDigest(output));
+  if (!options.output && !options.force && !options.plan)
+    refuseTakingOverDefaultName(output, resolved.digest, video::readSceneDigest);
   const long maxFrames = options.maxFrames > 0 ? options.maxFrames : pipeline::kDefaultMaxFrames;
   if (options.plan) {
     try {

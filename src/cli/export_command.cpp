@@ -82,8 +82,7 @@ void runExport(const ExportOptions& options) {
                                          options.scene, ".html")
                            .string();
   refuseOverwritingInput("-o", output, inputsOf(options.scene));
-  if (!options.output && !options.force && std::filesystem::exists(output))
-    refuseTakingOverDefaultName(output, sceneDigestOf(document), pageSceneDigest(output));
+  if (!options.output && !options.force) refuseTakingOverDefaultName(output, sceneDigestOf(document), pageSceneDigest);
 
   const std::filesystem::path page = pageTemplate();
   std::ifstream in(page, std::ios::binary);

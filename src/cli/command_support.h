@@ -40,6 +40,24 @@ std::vector<std::filesystem::path> inputsOf(const SceneSource& source);
 // is after all the work: refused first, naming the option and what to give.
 void refuseEmptyOutputName(const std::string& option, const std::string& name, const std::string& example);
 
+// The scene's digest as its outputs carry it (docs/outputs.md "Provenance"): FNV-1a of the resolved
+// document as compact JSON, keys sorted, "fnv1a64:0123456789abcdef".
+std::string sceneDigestOf(const nlohmann::json& document);
+
+// The name of an output the user did not name (no -o): the scene's name, or its file's when it
+// gives none, made a safe file name (docs/outputs.md), and `extension` (".mp4").
+std::filesystem::path defaultOutputName(bool named, const std::string& sceneName, const SceneSource& source,
+                                        std::string_view extension);
+
+// A name the program chose for an output (the user gave no -o) may already hold a file: it is
+// replaced only when made from the same scene, `readDigest(output)` (the scene digest the file
+// carries, none for a file that names no scene) equal to `digest`; otherwise refused, naming -o and
+// --force, so one scene's output never silently takes over another's. Only a regular file is read:
+// a device or FIFO under the name gets the output as it would under -o (io/output_file.h).
+void refuseTakingOverDefaultName(
+    const std::filesystem::path& output, const std::string& digest,
+    const std::function<std::optional<std::string>(const std::filesystem::path&)>& readDigest);
+
 // Runs `write` into `path`: standard output for "-", otherwise the output layer (a temporary file
 // that takes the name only once `write` and the close have succeeded, or a device, FIFO or
 // descriptor written directly; io/output_file.h). `what` names the content in errors ("CSV").

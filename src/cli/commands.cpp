@@ -4,11 +4,10 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
-#include <cctype>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cerrno>
-#include <cstdint>
 #include <filesystem>
 #include <iostream>
 #include <numbers>
@@ -19,7 +18,6 @@
 #include "cli/frame_times.h"
 #include "cli/interrupts.h"
 #include "io/destination.h"
-#include "io/fnv1a.h"
 #include "io/output_file.h"
 #include "io/output_group.h"
 #include "physics/observables.h"
@@ -31,6 +29,7 @@
 #include "video/async_sink.h"
 #include "video/make_sink.h"
 #include "video/png_sequence_sink.h"
+#include "video/scene_digest.h"
 #include "video/video_kinds.h"
 #include "cli/progress.h"
 #include "pipeline/trajectory_csv.h"
@@ -56,19 +55,19 @@ struct ResolvedScene {
   scene::SceneConfig config;
   video::Provenance provenance;  // empty with render.provenance: false
   bool named = false;            // the document gives a name that is not empty
+  std::string digest;            // of the resolved document, whether or not the outputs carry it
 };
 
 video::Provenance provenanceOf(const nlohmann::json& document) {
-  const std::string canonical = document.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
-  return {.software = fmt::format("coinroll {}", COINROLL_VERSION),
-          .sceneDigest = fmt::format("fnv1a64:{:016x}", io::fnv1a64(canonical))};
+  return {.software = fmt::format("coinroll {}", COINROLL_VERSION), .sceneDigest = sceneDigestOf(document)};
 }
 
 ResolvedScene resolveScene(const SceneSource& source) {
   const auto [document, sourceName] = loadSceneDocument(source);
-  ResolvedScene resolved{scene::parseScene(document, sourceName), {}};
+  ResolvedScene resolved{scene::parseScene(document, sourceName), {}, false, {}};
   if (resolved.config.render.provenance) resolved.provenance = provenanceOf(document);
   resolved.named = document.contains("name") && document.at("name") != "";
+  resolved.digest = sceneDigestOf(document);
   return resolved;
 }
 
@@ -88,32 +87,10 @@ nlohmann::json csvProvenance(const nlohmann::json& document, const SimulateOptio
           {"scene", document}};
 }
 
-void reportSteadyStart(const scene::SceneConfig& scene) {
+void reportSteadyStart(const scene::SceneConfig& scene, bool quiet) {
+  if (quiet) return;
   if (const std::string note = pipeline::steadyStartNote(scene); !note.empty())
     std::cerr << "coinroll: note: " << note << '\n';
-}
-
-// A default output name made from the scene name (docs/outputs.md): a name of letters, digits,
-// '-', '_' and '.' that does not start with a dot is used as it is; any other ("My scene: v2",
-// ".hidden", a Cyrillic name) has each other byte and a leading dot replaced by '_', is cut to
-// kMaxDerivedNameBytes, and gets '+' and 8 hex digits of a hash of the whole original name:
-// "My_scene__v2+1c0e3f52". So different names never share a file ('+' never survives the
-// replacement, so a hashed name cannot equal a kept one; two hashed ones clash only if both the
-// replaced text and 32 bits of hash agree), no default name is a hidden file, and every one fits
-// in a file name with its extension.
-constexpr std::size_t kMaxDerivedNameBytes = 200;
-
-std::string fileNameFrom(const std::string& sceneName) {
-  if (sceneName.empty()) return "coinroll";
-  std::string name = sceneName;
-  for (char& c : name) {
-    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_' && c != '.') c = '_';
-  }
-  if (name[0] == '.') name[0] = '_';
-  if (name == sceneName && name.size() <= kMaxDerivedNameBytes) return name;
-  name.resize(std::min(name.size(), kMaxDerivedNameBytes));
-  const std::uint64_t hash = io::fnv1a64(sceneName);
-  return fmt::format("{}+{:08x}", name, static_cast<std::uint32_t>(hash ^ (hash >> 32)));
 }
 
 // Where a sidecar's name leads, for comparing it with its run's other outputs; nothing for a name
@@ -139,17 +116,6 @@ SceneSource withPictureSize(const SceneSource& scene, const std::optional<std::s
   source.overrides.push_back(fmt::format("render.width={}", size->width));
   source.overrides.push_back(fmt::format("render.height={}", size->height));
   return source;
-}
-
-// What render names its video after without -o: the scene's name, or, for a scene file that gives
-// none, the file's own name (two unnamed scenes rendered in one directory no longer both write
-// coinroll.mp4, the second replacing the first); the built-in scene's name is "coinroll". A scene
-// read from a stream (standard input, a pipe) has no name of its own to lend.
-std::string defaultOutputStem(const ResolvedScene& resolved, const SceneSource& source) {
-  std::error_code error;
-  if (resolved.named || !source.file || !std::filesystem::is_regular_file(*source.file, error))
-    return resolved.config.name;
-  return std::filesystem::path(*source.file).stem().string();
 }
 
 // render --frame-times: a file of its own, neither the video, nor a frame of its sequence (which
@@ -228,7 +194,7 @@ void runSimulate(const SimulateOptions& options) {
   }
   pipeline::Simulation simulation = pipeline::buildSimulation(scene);
   simulation.cancel = &interruptRequested();
-  reportSteadyStart(scene);
+  reportSteadyStart(scene, options.quiet);
 
   ProgressLine noProgress(ProgressLine::Style::Off, "", "");
   const pipeline::TrajectoryReport result = withProgress(noProgress, options.csvPath, [&] {
@@ -259,7 +225,12 @@ void runSimulate(const SimulateOptions& options) {
     outputs.commit();
     return r;
   });
-  for (const std::string& line : pipeline::reportLines(result)) std::cerr << line << '\n';
+  for (const std::string& line : pipeline::reportLines(result)) {
+    // Quiet keeps what changes the meaning of the CSV: a warning, and a run that ended early.
+    if (options.quiet && !line.starts_with("coinroll: warning:") && !line.starts_with("coinroll: stopped early:"))
+      continue;
+    std::cerr << line << '\n';
+  }
 }
 
 void runSteady(const SteadyOptions& options) {
@@ -284,7 +255,7 @@ void runSteady(const SteadyOptions& options) {
         "steady: give --kind straight|circle|spin-in-place, or a scene whose initial names a steady state");
   }
   const pipeline::Simulation sim = pipeline::buildSimulation(scene);
-  if (!scene.effects.empty()) {
+  if (!scene.effects.empty() && !options.quiet) {
     std::cerr << "coinroll: note: the steady state and its stability below are those of the ideal model; the scene's "
                  "effects dissipate energy, so with them this state is only where a slowing motion starts\n";
   }
@@ -349,66 +320,123 @@ void runSteady(const SteadyOptions& options) {
 }
 
 void runStill(const StillOptions& options) {
-  const std::filesystem::path output(options.output);
-  refuseEmptyOutputName("-o", options.output, "still.png");
+  if (options.output) refuseEmptyOutputName("-o", *options.output, "still.png");
   // A device, FIFO or descriptor has no name to check: it gets the PNG.
-  if (!video::namesExtension(output, video::kPngExtension) && !io::namesStream(output)) {
+  if (options.output && !video::namesExtension(*options.output, video::kPngExtension) &&
+      !io::namesStream(*options.output)) {
     throw UsageError(
-        fmt::format("-o: a still is written as PNG; give a name ending in .png, got \"{}\"", options.output));
+        fmt::format("-o: a still is written as PNG; give a name ending in .png, got \"{}\"", *options.output));
   }
   if (options.strobeFrom && options.strobe == 0) {
     throw UsageError("--strobe-from: places the first of the --strobe copies, and there are none; give --strobe N too");
   }
+  if (options.panels && options.strobe == 0) {
+    throw UsageError("--panels: lays out the --strobe copies side by side, and there are none; give --strobe N too");
+  }
+  const auto [scene, provenance, named, digest] = resolveScene(withPictureSize(options.scene, options.size));
+  const std::filesystem::path output =
+      options.output ? std::filesystem::path(*options.output)
+                     : defaultOutputName(named, scene.name, options.scene, video::kPngExtension);
   refuseOverwritingInput("-o", output, inputsOf(options.scene));
+  if (!options.output && !options.force) refuseTakingOverDefaultName(output, digest, video::readSceneDigest);
   io::checkOutputName(output);  // the PNG is written after the rendering: a name that cannot work fails first
-  const auto [scene, provenance, named] = resolveScene(withPictureSize(options.scene, options.size));
-  reportSteadyStart(scene);
+  reportSteadyStart(scene, options.quiet);
   pipeline::StillResult result;
   try {
     result = pipeline::renderStill(scene, {.time = options.time,
                                            .ghosts = options.strobe,
                                            .ghostsFrom = options.strobeFrom.value_or(0),
+                                           .panels = options.panels,
                                            .output = output,
                                            .text = provenance.pngText(),
                                            .cancel = &interruptRequested()});
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   } catch (const pipeline::Cancelled&) {
-    throw std::runtime_error(interruptionMessage(options.output));
+    throw std::runtime_error(interruptionMessage(output.string()));
   }
   if (result.stopDescription) {
     std::cerr << fmt::format("coinroll: the run stopped early, so the still shows t = {:.6f} s: {}\n", result.shownTime,
                              *result.stopDescription);
   }
-  std::cerr << fmt::format("coinroll: wrote {} ({}x{}, t = {:.6g} s)\n", scene::printable(options.output),
-                           scene.render.picture.width, scene.render.picture.height, result.shownTime);
+  if (!options.quiet) {
+    std::cerr << fmt::format("coinroll: wrote {} ({}x{}, t = {:.6g} s)\n", scene::printable(output.string()),
+                             scene.render.picture.width, scene.render.picture.height, result.shownTime);
+  }
+}
+
+// The window of frames to write, on one clock: simulated seconds (--from/--to) or seconds of video
+// (--from-video/--to-video, or --last). Options of both clocks, or both ways of giving the video
+// window, are refused naming the two: which one was meant cannot be guessed.
+pipeline::TimeWindow windowOf(const RenderOptions& options) {
+  const std::array<std::pair<const char*, std::optional<double>>, 5> given = {
+      std::pair{"--from", options.from}, std::pair{"--to", options.to}, std::pair{"--from-video", options.fromVideo},
+      std::pair{"--to-video", options.toVideo}, std::pair{"--last", options.last}};
+  for (std::size_t i = 0; i < given.size(); ++i) {
+    if (const auto& [name, value] = given[i]; value && !(std::isfinite(*value) && *value >= 0)) {
+      throw UsageError(
+          fmt::format("{} {}: must be a {} >= 0 s", name, *value, i < 2 ? "simulated time" : "video time"));
+    }
+  }
+  if (options.last && !(*options.last > 0)) {
+    throw UsageError(fmt::format("--last {}: give the seconds of video to keep, > 0", *options.last));
+  }
+  const auto firstGiven = [&](std::size_t begin, std::size_t end) -> const char* {
+    for (std::size_t i = begin; i < end; ++i) {
+      if (given[i].second) return given[i].first;
+    }
+    return nullptr;
+  };
+  const char* simulated = firstGiven(0, 2);
+  const char* video = firstGiven(2, 5);
+  if (simulated && video) {
+    throw UsageError(fmt::format("{} and {} cannot be combined: {} counts simulated seconds, {} seconds of video "
+                                 "(frame k plays at k / fps); give the window on one clock (render --plan prints both)",
+                                 simulated, video, simulated, video));
+  }
+  if (options.last && (options.fromVideo || options.toVideo)) {
+    throw UsageError(fmt::format("--last and {} cannot be combined: --last L is the window from L s of video before "
+                                 "the clip's end to its end; give --last, or --from-video and --to-video",
+                                 options.fromVideo ? "--from-video" : "--to-video"));
+  }
+  pipeline::TimeWindow window;
+  if (options.last) {
+    window.last = options.last;
+    window.clock = pipeline::TimeWindow::Clock::Video;
+    return window;
+  }
+  const std::optional<double> from = video ? options.fromVideo : options.from;
+  const std::optional<double> to = video ? options.toVideo : options.to;
+  if (video) window.clock = pipeline::TimeWindow::Clock::Video;
+  if (from) window.from = *from;
+  if (to) window.to = *to;
+  if (window.from > window.to) {
+    const char* fromName = video ? "--from-video" : "--from";
+    const char* toName = video ? "--to-video" : "--to";
+    throw UsageError(fmt::format("{} {} {} {}: the window ends before it starts; give {} <= {}", fromName, window.from,
+                                 toName, window.to, fromName, toName));
+  }
+  return window;
 }
 
 void runRender(const RenderOptions& options) {
   if (options.output) refuseEmptyOutputName("-o", *options.output, "clip.mp4");
   const SceneSource source = withPictureSize(options.scene, options.size);
-  pipeline::TimeWindow window;
-  for (const auto& [name, value] : {std::pair{"--from", options.from}, std::pair{"--to", options.to}}) {
-    if (value && !(std::isfinite(*value) && *value >= 0)) {
-      throw UsageError(fmt::format("{} {}: must be a simulated time >= 0 s", name, *value));
-    }
-  }
-  if (options.from) window.from = *options.from;
-  if (options.to) window.to = *options.to;
-  if (window.from > window.to) {
-    throw UsageError(fmt::format("--from {} --to {}: the window ends before it starts; give --from <= --to",
-                                 window.from, window.to));
+  const pipeline::TimeWindow window = windowOf(options);
+  if (options.plan && options.frameTimesPath) {
+    throw UsageError("--plan and --frame-times cannot be combined: a plan draws and writes nothing; drop --frame-times "
+                     "(the plan's table shows the playback rate; --frame-times lists it per frame of a render)");
   }
   const ResolvedScene resolved = resolveScene(source);  // named: clang 14 cannot capture a structured binding
   const scene::SceneConfig& scene = resolved.config;
   const video::Provenance& provenance = resolved.provenance;
-  reportSteadyStart(scene);
+  reportSteadyStart(scene, options.quiet);
   video::VideoOptions encoding = scene.render.mp4Options();
   encoding.provenance = provenance;
   const std::filesystem::path output =
       options.output ? std::filesystem::path(*options.output)
-                     : std::filesystem::path(fileNameFrom(defaultOutputStem(resolved, options.scene)) +
-                                             std::string(video::videoKind(encoding.format).extension));
+                     : defaultOutputName(resolved.named, scene.name, options.scene,
+                                         video::videoKind(encoding.format).extension);
   if (const std::optional<video::VideoFormat> format = video::videoFormatOf(output)) {
     try {
       video::refuseOutputThatCannotCarry(encoding, *format);
@@ -417,6 +445,22 @@ void runRender(const RenderOptions& options) {
     }
   }
   refuseOverwritingInput("-o", output, inputsOf(options.scene));
+  if (!options.output && !options.force && !options.plan)
+    refuseTakingOverDefaultName(output, resolved.digest, video::readSceneDigest);
+  const long maxFrames = options.maxFrames > 0 ? options.maxFrames : pipeline::kDefaultMaxFrames;
+  if (options.plan) {
+    try {
+      const pipeline::ClipPlan plan = pipeline::planClip(scene, maxFrames, &interruptRequested());
+      fmt::print("plan of {} (nothing drawn, nothing written; frame k plays at video time k / fps)\n",
+                 scene::printable(output.string()));
+      for (const std::string& line : pipeline::planLines(plan, window)) fmt::print("{}\n", line);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(e.what());
+    } catch (const pipeline::Cancelled&) {
+      throw std::runtime_error(interruptionMessage(output.string()));
+    }
+    return;
+  }
   if (options.frameTimesPath) refuseFrameTimesName(*options.frameTimesPath, output, inputsOf(options.scene));
   // Every file of the run (the video or its frames, the sidecar) is staged here and published by
   // one commit, all or none; declared first, it outlives their writers and removes what they staged
@@ -445,8 +489,9 @@ void runRender(const RenderOptions& options) {
              .onFrameTiming = frameTimes ? [&](const pipeline::FrameTiming& timing) { frameTimes->add(timing); }
                                          : std::function<void(const pipeline::FrameTiming&)>(),
              .cancel = &interruptRequested(),
-             .maxFrames = options.maxFrames > 0 ? options.maxFrames : pipeline::kDefaultMaxFrames,
-             .window = window});
+             .maxFrames = maxFrames,
+             .window = window,
+             .inset = options.inset});
         if (frameTimes) frameTimes->finish();
         outputs.commit();
         return ran;

@@ -22,6 +22,7 @@ struct SimulateOptions {
   // goes beside it): program, release, scene digest, the resolved scene, the sampling and how the
   // run ended. Unset: none.
   std::optional<std::string> provenancePath;
+  bool quiet = false;  // only warnings and an early stop on stderr: no notes, mode switches or summary
 };
 
 // Rows above this need --max-rows: 10^9 rows is about 300 GB of CSV. Counted from the duration,
@@ -36,16 +37,20 @@ struct SteadyOptions {
   std::optional<double> thetaDegrees;
   std::optional<double> omega_Z;    // rad/s
   std::optional<std::string> branch;  // "+" | "-"
+  bool quiet = false;                 // no note on stderr (the report on stdout stays)
 };
 void runSteady(const SteadyOptions& options);
 
 struct StillOptions {
   SceneSource scene;
   double time = 0;       // s of simulated time
-  std::string output;    // PNG path
+  std::optional<std::string> output;  // PNG path; default <scene name>.png
   int strobe = 0;        // earlier copies of the coin overlaid, evenly spaced over [strobeFrom, time)
   std::optional<double> strobeFrom;  // s; 0 when absent, and only with strobe >= 1
+  bool panels = false;               // the strobe's times as panels side by side; only with strobe >= 1
   std::optional<std::string> size;   // "480p" .. "2160p": render.width and render.height
+  bool quiet = false;                // no notes and no summary on stderr
+  bool force = false;                // replace a default-named output made from another scene
 };
 void runStill(const StillOptions& options);
 
@@ -54,7 +59,12 @@ struct RenderOptions {
   std::optional<std::string> output;  // a video kind's extension or a %d pattern of .png; default <scene name>.mp4
   std::optional<std::string> size;    // "480p" .. "2160p": render.width and render.height
   std::optional<double> from, to;     // s of simulated time: the frames to write
-  bool quiet = false;                 // no progress line, no summary
+  std::optional<double> fromVideo, toVideo;  // s of video (frame k plays at k / fps): the frames to write
+  std::optional<double> last;                // s of video: write the clip's last seconds
+  bool plan = false;                  // print the clip's plan (pipeline::planLines); draw and write nothing
+  bool inset = false;                 // a plot of the contact rate and the tilt in each frame's corner
+  bool quiet = false;                 // no progress line, no notes, no summary
+  bool force = false;                 // replace a default-named output made from another scene
   long maxFrames = 0;                 // 0: pipeline::kDefaultMaxFrames
   std::optional<std::string> frameTimesPath;  // --frame-times: the sidecar CSV of frame times (cli/frame_times.h)
 };
@@ -95,7 +105,9 @@ int runCompare(const CompareOptions& options);
 // `coinroll export [SCENE] -o page.html`: the web page with the scene in it (docs/web.md).
 struct ExportOptions {
   SceneSource scene;
-  std::string output;
+  std::optional<std::string> output;  // HTML path; default <scene name>.html
+  bool quiet = false;                 // no summary on stderr
+  bool force = false;                 // replace a default-named page made from another scene
 };
 void runExport(const ExportOptions& options);
 

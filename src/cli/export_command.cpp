@@ -9,6 +9,7 @@
 #include <fstream>
 #include <iostream>
 #include <sstream>
+#include <optional>
 #include <string>
 
 #include "cli/command_support.h"
@@ -51,13 +52,37 @@ std::string scriptSafe(const std::string& json) {
   return safe;
 }
 
+// The digest of the scene a page at `path` holds (its placeholder filled by runExport), or none for a
+// file that is no coinroll page with a scene in it.
+std::optional<std::string> pageSceneDigest(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string html = text.str();
+  const std::string_view open = kScenePlaceholder.substr(0, kScenePlaceholder.find("null"));
+  const std::size_t from = html.find(open);
+  const std::size_t to = from == std::string::npos ? from : html.find("</script>", from);
+  if (to == std::string::npos) return std::nullopt;
+  const nlohmann::json scene =
+      nlohmann::json::parse(html.substr(from + open.size(), to - from - open.size()), nullptr, false);
+  if (scene.is_discarded() || scene.is_null()) return std::nullopt;
+  return sceneDigestOf(scene);
+}
+
 }  // namespace
 
 void runExport(const ExportOptions& options) {
-  refuseEmptyOutputName("-o", options.output, "page.html");
-  refuseOverwritingInput("-o", options.output, inputsOf(options.scene));
+  if (options.output) refuseEmptyOutputName("-o", *options.output, "page.html");
   const auto [document, sourceName] = loadSceneDocument(options.scene);
-  scene::parseScene(document, sourceName);  // a scene the page would refuse is refused here, with the same message
+  // A scene the page would refuse is refused here, with the same message.
+  const scene::SceneConfig scene = scene::parseScene(document, sourceName);
+  const std::string output =
+      options.output ? *options.output
+                     : defaultOutputName(document.contains("name") && document.at("name") != "", scene.name,
+                                         options.scene, ".html")
+                           .string();
+  refuseOverwritingInput("-o", output, inputsOf(options.scene));
+  if (!options.output && !options.force) refuseTakingOverDefaultName(output, sceneDigestOf(document), pageSceneDigest);
 
   const std::filesystem::path page = pageTemplate();
   std::ifstream in(page, std::ios::binary);
@@ -73,10 +98,10 @@ void runExport(const ExportOptions& options) {
   const std::string filled = std::string(kScenePlaceholder).replace(kScenePlaceholder.find("null"), 4,
                                                                     scriptSafe(document.dump()));
   html.replace(slot, kScenePlaceholder.size(), filled);
-  writeTextOutput(options.output, "page", [&html](std::ostream& out) { out << html; });
-  if (options.output != "-") {
+  writeTextOutput(output, "page", [&html](std::ostream& out) { out << html; });
+  if (output != "-" && !options.quiet) {
     std::cerr << fmt::format("coinroll: wrote {} ({:.2f} MB: the scene, the WebAssembly core and three.js; opens from "
-                             "file:// with no network)\n", scene::printable(options.output), html.size() / 1e6);
+                             "file:// with no network)\n", scene::printable(output), html.size() / 1e6);
   }
 }
 

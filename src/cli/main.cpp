@@ -49,6 +49,22 @@ void addSceneOptions(CLI::App& command, SceneSource& scene, bool fileRequired) {
       ->type_name("KEY=VALUE");
 }
 
+// -q, the same on every command that prints notes, progress or a summary on stderr.
+void addQuietFlag(CLI::App& command, bool& quiet, const std::string& what) {
+  command.add_flag("-q,--quiet", quiet, what + "; warnings, an early stop and errors are still printed");
+}
+
+// -o for the commands that write one picture, video or page: optional, the output then named after
+// the scene (a default name that holds another scene's output is refused, --force replaces it).
+void addOutputOptions(CLI::App& command, std::optional<std::string>& output, bool& force, const std::string& what) {
+  command.add_option("-o,--output", output,
+                     what + "; default: the scene's name (or its file's, for a scene without one) + the extension, "
+                            "coinroll + it for the built-in scene");
+  command.add_flag("--force", force,
+                   "Without -o: replace the file under the default name even when another scene made it (or it "
+                   "names none); an -o name is always replaced");
+}
+
 // Limits a user raises: whole numbers from 1 (0 and negatives used to mean "the default" silently).
 const CLI::Validator kAtLeastOne(
     [](std::string& text) -> std::string {
@@ -108,6 +124,7 @@ CLI::App* addSimulateCommand(CLI::App& app, SimulateOptions& options) {
   command->add_option("--provenance", options.provenancePath,
                       "Also write FILE.json naming what made the CSV: coinroll's version, the scene's digest and the "
                       "resolved scene, the sample step and how the run ended (the CSV's header stays the contract's)");
+  addQuietFlag(*command, options.quiet, "No notes, mode switches or summary on stderr");
   return command;
 }
 
@@ -121,6 +138,7 @@ CLI::App* addSteadyCommand(CLI::App& app, SteadyOptions& options) {
   command->add_option("--omega-Z", options.omega_Z, "Spin about the coin normal, rad/s (straight, circle)");
   command->add_option("--branch", options.branch, "Circle root: + (f+, default) or - (f-)")
       ->check(CLI::IsMember({"+", "-"}));
+  addQuietFlag(*command, options.quiet, "No note on stderr (the report on stdout stays)");
   command->footer(
       "Without a scene file the built-in default coin is used. With coin.thickness (and coin.edge_radius) the coin\n"
       "is a solid with a rounded rim (docs/rim.md §5): its steady states and K follow the rim, e.g.\n"
@@ -162,12 +180,10 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& options) {
       "render",
       fmt::format("Render a scene to {}; without a scene, the built-in default", coinroll::video::joinedWithOr(kinds)));
   addSceneOptions(*command, options.scene, false);
-  command->add_option(
-      "-o,--output", options.output,
-      fmt::format("Output, its kind by the extension (any case): {}or a PNG sequence pattern like "
-                  "frames_%05d.png (frames numbered from 0); default: the scene's name + {} (coinroll{} "
-                  "for the built-in scene)",
-                  names, defaultExtension, defaultExtension));
+  addOutputOptions(*command, options.output, options.force,
+                   fmt::format("Output, its kind by the extension (any case): {}or a PNG sequence pattern like "
+                               "frames_%05d.png (frames numbered from 0); the default extension is {}",
+                               names, defaultExtension));
   addSizeOption(*command, options.size);
   command
       ->add_option("--from", options.from,
@@ -177,7 +193,26 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& options) {
   command
       ->add_option("--to", options.to, "Write only the frames whose simulated time is at most T1 s (default: the end)")
       ->type_name("T1");
-  command->add_flag("-q,--quiet", options.quiet, "No progress line and no summary on stderr");
+  command
+      ->add_option("--from-video", options.fromVideo,
+                   "Write only the frames that play at video time V0 s or later in the full clip (frame k plays "
+                   "at k / fps; render --plan lists both clocks); not with --from/--to")
+      ->type_name("V0");
+  command->add_option("--to-video", options.toVideo, "Write only the frames that play at video time V1 s or earlier")
+      ->type_name("V1");
+  command
+      ->add_option("--last", options.last,
+                   "Write only the frames that play in the full clip's last L s of video (e.g. the finale); not with "
+                   "--from/--to or --from-video/--to-video")
+      ->type_name("L");
+  command->add_flag("--plan", options.plan,
+                    "Print the clip's plan on stdout and stop, drawing and writing nothing: video length, frames, the "
+                    "frames the window keeps on both clocks, the playback rate over the clip");
+  command->add_flag("--inset", options.inset,
+                    "Draw a plot of the contact point's rate (log scale when it spans a factor 4) and the tilt above "
+                    "the floor over the frames written in each frame's lower right corner, a marker at the frame: the "
+                    "speed-up a time remap slows down, and a tilt of a degree, read off it");
+  addQuietFlag(*command, options.quiet, "No progress line, notes or summary on stderr");
   command->add_option("--frame-times", options.frameTimesPath,
                       "Also write the CSV FILE, one row per frame written: frame (index in the video), video_time_s "
                       "(frame / fps), clip_frame (index in the full render), sim_time_s (simulated time shown) and "
@@ -191,13 +226,17 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& options) {
                                coinroll::pipeline::kDefaultMaxFrames, coinroll::pipeline::kUpFrontFrameFactor))
       ->check(kAtLeastOne);
   command->footer(
-      "Frame k shows simulated time k * render.time_scale / render.fps, from the integrator's dense output.\n"
+      "Frame k plays at video time k / fps and shows simulated time k * render.time_scale / render.fps (under\n"
+      "render.time_remap, less as the coin speeds up: render --plan prints where), from the dense output.\n"
       "Size, fps, anti-aliasing, camera, trace, overlay and encoder come from the scene's render block, e.g.\n"
       "  coinroll render                                    (built-in scene -> coinroll.mp4)\n"
       "  coinroll render examples/steady_circle.json -o circle.mp4\n"
       "  coinroll render examples/ring.json -o ring_%04d.png --set render.fps=10\n"
       "  coinroll render scene.json --set render.time_scale=0.25 --set render.camera.mode=follow\n"
       "  coinroll render scene.json -o loop.gif --size 480p --from 1 --to 3\n"
+      "  coinroll render examples/euler_disk.json --last 20 --plan       (the finale's plan: frames, both clocks)\n"
+      "  coinroll render examples/euler_disk.json --last 20 -o finale.mp4  (the last 20 s of the video)\n"
+      "  coinroll render examples/euler_disk.json --last 20 --inset -o finale.mp4   (with the rate and tilt plotted)\n"
       "  coinroll render scene.json -o coin.mov --set render.background=\\\"transparent\\\"   (alpha for an editor)\n"
       "Outputs appear only when complete (written under a temporary name, then renamed); Ctrl-C leaves nothing.");
   return command;
@@ -208,19 +247,25 @@ CLI::App* addStillCommand(CLI::App& app, StillOptions& options) {
       "still", "Render one PNG of a scene at a simulated time (optionally a stroboscopic figure)");
   addSceneOptions(*command, options.scene, false);  // no file: the built-in default scene
   command->add_option("--time", options.time, "Simulated time to show, s (0 to the scene's duration)")->required();
-  command->add_option("-o,--output", options.output, "Output PNG path (written atomically)")->required();
+  addOutputOptions(*command, options.output, options.force, "Output PNG path (written atomically)");
   command->add_option("--strobe", options.strobe,
                            "Overlay N semi-transparent copies of the coin at evenly spaced earlier times (a figure)")
       ->capture_default_str();
   command->add_option("--strobe-from", options.strobeFrom,
                            "Simulated time of the first copy, s (default 0): e.g. the last second of a spin-down");
+  command->add_flag("--panels", options.panels,
+                    "With --strobe N: N + 1 panels side by side (the copies' times and --time, each the whole picture "
+                    "labelled with its time, tilt and contact rate) instead of copies over one picture, which pile up "
+                    "where the coin stays in place");
   addSizeOption(*command, options.size);
+  addQuietFlag(*command, options.quiet, "No notes and no summary on stderr");
   command->footer(
       "Size, anti-aliasing, camera, trace and overlay come from the scene's render block, e.g.\n"
       "  coinroll still examples/steady_circle.json --time 1.5 -o circle.png --set render.width=640 --set "
       "render.height=360\n"
       "  coinroll still examples/perturbed_circle.json --time 2 --strobe 12 -o strobe.png --set render.hud=false\n"
-      "  coinroll still examples/euler_disk.json --time 98.77 --strobe 16 --strobe-from 97.77 -o last_second.png");
+      "  coinroll still examples/euler_disk.json --time 117.18 --strobe 5 --strobe-from 116.18 --panels \\\n"
+      "      --set render.width=640 --set render.height=360 -o last_second.png   (the finale: 6 panels, 0.2 s apart)");
   return command;
 }
 
@@ -320,7 +365,8 @@ CLI::App* addExportCommand(CLI::App& app, ExportOptions& options) {
       "export",
       "Write the scene as a web page: coinroll's own physics in WebAssembly, drawn with three.js, with sliders");
   addSceneOptions(*command, options.scene, false);
-  command->add_option("-o,--output", options.output, "The page to write (one HTML file, about 1.5 MB)")->required();
+  addOutputOptions(*command, options.output, options.force, "The page to write (one HTML file, about 1.5 MB)");
+  addQuietFlag(*command, options.quiet, "No summary on stderr");
   command->footer(
       "The page opens from file:// with no network: the scene plays at once, and its sliders (from coinroll schema)\n"
       "re-run it in the browser. \"Download scene\" gives back a scene file that coinroll simulate runs exactly.\n"
@@ -391,13 +437,16 @@ std::optional<std::string> unknownCommandMessage(const CLI::App& app, int argc, 
 // CLI11 reads an empty value of a number as 0 (--time '' drew t = 0; --min-psnr '' dropped the
 // limit): every numeric option refuses it, naming itself.
 void refuseEmptyNumbers(CLI::App& app) {
-  constexpr std::array<std::string_view, 16> kNumericOptions = {"--sample-dt",
+  constexpr std::array<std::string_view, 19> kNumericOptions = {"--sample-dt",
                                                                 "--max-rows",
                                                                 "--theta",
                                                                 "--omega-Z",
                                                                 "--max-frames",
                                                                 "--from",
                                                                 "--to",
+                                                                "--from-video",
+                                                                "--to-video",
+                                                                "--last",
                                                                 "--time",
                                                                 "--strobe",
                                                                 "--strobe-from",

@@ -87,6 +87,12 @@ void SnapshotMaker::extendTraceTo(double time) {
   }
 }
 
+void SnapshotMaker::markInset(float now, const std::vector<std::string>& labels) {
+  snapshot_.inset->now = now;
+  for (std::size_t i = 0; i < labels.size() && i < snapshot_.inset->curves.size(); ++i)
+    snapshot_.inset->curves[i].label = labels[i];
+}
+
 void SnapshotMaker::addGhost(const FrameState& frame) { snapshot_.ghosts.push_back(coinPose(frame)); }
 
 const render::FrameSnapshot& SnapshotMaker::makeSnapshot(const FrameState& frame,

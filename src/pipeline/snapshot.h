@@ -3,6 +3,7 @@
 // the FrameSnapshots of one recorded run, built in one place for `still` and `render` alike.
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "physics/coin_model.h"
@@ -23,6 +24,11 @@ class SnapshotMaker {
 
   // Adds a semi-transparent copy of the coin as it is at `frame` to every later snapshot.
   void addGhost(const FrameState& frame);
+
+  // Draws `plot` (render --inset) in every later snapshot, its marker at `now` in [0, 1] and its
+  // curves' labels as given; a later call moves the marker and changes the labels only.
+  void setInset(render::InsetPlot plot) { snapshot_.inset = std::move(plot); }
+  void markInset(float now, const std::vector<std::string>& labels);
 
   // The picture of `frame`, at or after the previous one's time; `extraHudLines` follow the
   // overlay's own lines (e.g. the slow-motion factor). Valid until the next call.

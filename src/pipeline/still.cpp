@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -34,6 +35,43 @@ std::vector<double> ghostAndStillTimes(const StillRequest& request, double shown
   for (int i = 0; i < request.ghosts; ++i) times.push_back(from + (shown - from) * i / request.ghosts);
   times.push_back(shown);
   return times;
+}
+
+// Panels per row of a strobe's grid: at most kMaxPanelColumns, rows as even as they can be (7
+// panels: 4 + 3; 6: 3 + 3), so a figure of 16:9 panels stays about as wide as a page allows.
+constexpr int kMaxPanelColumns = 4;
+
+// `frames` (the ghosts' times, then the still's) drawn one by one and laid out in a grid, left to
+// right, top to bottom, with a gutter of the background between them. Each panel's overlay is a
+// short label (time, tilt above the floor, the contact point's rate) instead of the full HUD, which
+// would cover a third of a small panel; render.hud: false leaves it out.
+image::Image drawPanels(const scene::SceneConfig& scene, render::Renderer& renderer, SnapshotMaker& snapshots,
+                        const std::vector<FrameState>& frames) {
+  const int count = static_cast<int>(frames.size());
+  const int rows = (count + kMaxPanelColumns - 1) / kMaxPanelColumns;
+  const int columns = (count + rows - 1) / rows;
+  const int width = scene.render.picture.width, height = scene.render.picture.height;
+  const int gutter = std::max(2, width / 100);  // pixels
+  image::Image figure(columns * width + (columns - 1) * gutter, rows * height + (rows - 1) * gutter);
+  // The gutter and empty cells: white paper, or nothing on a transparent background.
+  if (!scene.render.picture.transparentBackground) std::fill(figure.rgba.begin(), figure.rgba.end(), 255);
+  image::Image panel;
+  for (int i = 0; i < count; ++i) {
+    const FrameState& frame = frames[static_cast<std::size_t>(i)];
+    render::FrameSnapshot snapshot = snapshots.makeSnapshot(frame);
+    if (scene.render.hud) {
+      snapshot.hudLines = {fmt::format("t = {:.3f} s", frame.time),
+                           fmt::format("{:.2f}° above the floor", 90 - frame.theta * 180 / std::numbers::pi),
+                           fmt::format("contact {:.1f} Hz", std::abs(frame.precessionRate) / (2 * std::numbers::pi))};
+      if (i == 0) snapshot.hudLines.push_back(fmt::format("grid {:g} mm", 1e3 * render::kFloorGridMetres));
+    }
+    renderer.draw(snapshot, panel);
+    const int left = (i % columns) * (width + gutter), top = (i / columns) * (height + gutter);
+    for (int y = 0; y < height; ++y) {
+      std::copy_n(panel.pixel(0, y), 4 * width, figure.pixel(left, top + y));
+    }
+  }
+  return figure;
 }
 
 }  // namespace
@@ -72,6 +110,7 @@ StillPicture drawStill(const scene::SceneConfig& scene, const StillRequest& requ
   }
   const double from = std::min(request.ghostsFrom, result.shownTime);
   SnapshotMaker snapshots(scene, simulation.model, record);
+  if (request.panels) return {.image = drawPanels(scene, renderer, snapshots, record.frames), .result = result};
   for (int i = 0; i < request.ghosts; ++i) snapshots.addGhost(record.frames[static_cast<std::size_t>(i)]);
   // A strobe still is a figure: its overlay says how to read the copies and gives the scale.
   std::vector<std::string> legend;

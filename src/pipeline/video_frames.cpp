@@ -2,7 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <cstdint>
 #include <numbers>
 #include <optional>
@@ -53,9 +55,9 @@ namespace {
 
 // The clip's frames, chosen inside the pass: k time_scale / fps, or with a time remap
 // t_(k+1) = t_k + playbackRate(rate(t_k)) / fps, up to the run's end.
-class ClipPlan final : public FramePlan {
+class ClipFrameTimes final : public FramePlan {
  public:
-  ClipPlan(const scene::SceneConfig& scene, long maxFrames)
+  ClipFrameTimes(const scene::SceneConfig& scene, long maxFrames)
       : scene_(scene), maxFrames_(maxFrames), perFrame_(scene.render.timeScale / scene.render.fps),
         ofDuration_(frameCount(scene.duration, scene.render.timeScale, scene.render.fps)) {}
 
@@ -94,7 +96,7 @@ class ClipPlan final : public FramePlan {
 }  // namespace
 
 RunRecord recordFrames(const scene::SceneConfig& scene, const Simulation& simulation, long maxFrames) {
-  ClipPlan plan(scene, maxFrames);
+  ClipFrameTimes plan(scene, maxFrames);
   RunRecord record = recordRun(simulation, plan);
   if (!scene.render.timeRemap) {
     if (const long total = frameCount(record.survey.endTime, scene.render.timeScale, scene.render.fps);
@@ -162,13 +164,244 @@ class SoundTrack {
 
 }  // namespace
 
-VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& sink, const VideoRunOptions& options) {
-  // The duration's frames bound what a run that goes the distance shows (a remap only adds):
-  // absurd ones are refused before the pass over the run (video_frames.h, kUpFrontFrameFactor).
+namespace {
+
+// The up-front refusal: the duration's frames bound what a run that goes the distance shows (a remap
+// only adds), so absurd ones are refused before the pass over the run (kUpFrontFrameFactor).
+void refuseAbsurdDuration(const scene::SceneConfig& scene, long maxFrames) {
   if (const double atMost = static_cast<double>(scene.duration) / scene.render.timeScale * scene.render.fps;
-      atMost > kUpFrontFrameFactor * static_cast<double>(options.maxFrames)) {
-    refuseFrames(scene, options.maxFrames, fmt::format("{:.4g}", atMost));
+      atMost > kUpFrontFrameFactor * static_cast<double>(maxFrames)) {
+    refuseFrames(scene, maxFrames, fmt::format("{:.4g}", atMost));
   }
+}
+
+// The plan of the frames `record` holds; a coin that landed on its face gets its landing's frame
+// (appended to record.frames) and then lies still for kLandingHoldSeconds, so the end is seen.
+ClipPlan planOf(const scene::SceneConfig& scene, RunRecord& record) {
+  const MotionSurvey& survey = record.survey;
+  std::vector<FrameState>& frames = record.frames;
+  ClipPlan plan;
+  plan.fps = scene.render.fps;
+  plan.timeScale = scene.render.timeScale;
+  plan.remapped = scene.render.timeRemap.has_value();
+  plan.endTime = survey.endTime;
+  if (survey.stoppedBy) plan.stopDescription = describeStop(*survey.stoppedBy);
+  plan.landed = survey.stoppedBy && survey.stoppedBy->event == physics::ModelEvent::FaceDown;
+  const bool landingFrameAdded = plan.landed && frames.back().time < survey.endTime;
+  if (landingFrameAdded) frames.push_back(record.end);
+  plan.simulatedFrames = static_cast<long>(frames.size());
+  const long holdFrames = plan.landed ? std::lround(kLandingHoldSeconds * scene.render.fps) : 0;
+  // The playback rate is the step to the next frame times fps. The clip's last planned frame and an
+  // added landing frame keep the pace of the frame before (a remapped clip's end is still in slow
+  // motion), not that of the short step to the landing; simulated time stands still in the hold.
+  const std::size_t lastPlanned = frames.size() - (landingFrameAdded ? 2 : 1);
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    const double step = k < lastPlanned  ? frames[k + 1].time - frames[k].time
+                        : lastPlanned > 0 ? frames[lastPlanned].time - frames[lastPlanned - 1].time
+                                          : scene.render.timeScale / scene.render.fps;
+    plan.times.push_back(frames[k].time);
+    plan.playbackRates.push_back(step * scene.render.fps);
+    plan.contactRates.push_back(std::abs(frames[k].precessionRate));
+  }
+  plan.times.insert(plan.times.end(), holdFrames, survey.endTime);
+  plan.playbackRates.insert(plan.playbackRates.end(), holdFrames, 0.0);
+  plan.contactRates.insert(plan.contactRates.end(), holdFrames, plan.contactRates.back());
+  return plan;
+}
+
+}  // namespace
+
+ClipPlan planClip(const scene::SceneConfig& scene, long maxFrames, const std::atomic<bool>* cancel) {
+  refuseAbsurdDuration(scene, maxFrames);
+  Simulation simulation = buildSimulation(scene);
+  simulation.cancel = cancel;
+  RunRecord record = recordFrames(scene, simulation, maxFrames);
+  return planOf(scene, record);
+}
+
+FrameRange framesIn(const ClipPlan& plan, const TimeWindow& window) {
+  const double length = plan.videoSeconds();
+  // A frame's place on the window's clock: simulated time, or video time k / fps.
+  const bool byVideo = window.clock == TimeWindow::Clock::Video || window.last;
+  const auto clockOf = [&](long k) {
+    return byVideo ? static_cast<double>(k) / plan.fps : plan.times[static_cast<std::size_t>(k)];
+  };
+  if (window.last && *window.last > length + kWindowTolerance) {
+    throw std::invalid_argument(fmt::format("--last {}: longer than the clip, which lasts {:.9g} s of video; give at "
+                                            "most that, or no window for the whole clip",
+                                            *window.last, length));
+  }
+  const double from = window.last ? length - *window.last : window.from;
+  const double to = window.last ? length : window.to;
+  FrameRange range{plan.frames(), plan.frames() - 1};
+  for (long k = 0; k < plan.frames(); ++k) {
+    const double t = clockOf(k);
+    if (t < from - kWindowTolerance || t > to + kWindowTolerance) continue;
+    range.first = std::min(range.first, k);
+    range.last = k;
+  }
+  if (range.first <= range.last) return range;
+  const double lastFrameAt = static_cast<double>(plan.frames() - 1) / plan.fps;  // s of video
+  if (window.last) {
+    throw std::invalid_argument(fmt::format("--last {}: no frame plays in the last {} s of the {:.6g} s clip; give "
+                                            "at least one frame's length, 1 / fps = {:.6g} s",
+                                            *window.last, *window.last, length, 1.0 / plan.fps));
+  }
+  if (byVideo && from > lastFrameAt + kWindowTolerance) {
+    throw std::invalid_argument(fmt::format("--from-video {}: beyond the clip's last frame at {:.9g} s of video (the "
+                                            "clip lasts {:.9g} s); give a time in [0, {:.9g}]",
+                                            from, lastFrameAt, length, lastFrameAt));
+  }
+  if (byVideo) {
+    throw std::invalid_argument(fmt::format(
+        "--from-video {} --to-video {}: no frame plays in this window (frames are 1 / {} s of video apart); widen it",
+        window.from, window.to, plan.fps));
+  }
+  if (window.from > plan.endTime + kWindowTolerance) {
+    throw std::invalid_argument(fmt::format("--from {}: beyond the run's end at {:.9g} s{}; give a time in [0, {:.9g}]",
+                                            window.from, plan.endTime,
+                                            plan.stopDescription ? " (" + *plan.stopDescription + ")" : "",
+                                            plan.endTime));
+  }
+  throw std::invalid_argument(fmt::format("--from {} --to {}: no frame's simulated time lies in this window (frames "
+                                          "are {:.6g} s of simulated time apart{}); widen it",
+                                          window.from, window.to, plan.timeScale / plan.fps,
+                                          plan.remapped ? ", less where render.time_remap slows them" : ""));
+}
+
+namespace {
+
+// A playback rate as the overlay says it: slow motion or fast forward by how much.
+std::string speedOf(double rate) {
+  if (rate == 0) return "landing held";
+  if (rate < 1 - 1e-9) return fmt::format("slow x{:.3g}", 1 / rate);
+  if (rate > 1 + 1e-9) return fmt::format("fast x{:.3g}", rate);
+  return "real time";
+}
+
+}  // namespace
+
+std::vector<std::string> planLines(const ClipPlan& plan, const TimeWindow& window) {
+  const long holdFrames = plan.frames() - plan.simulatedFrames;
+  std::vector<std::string> lines;
+  lines.push_back(fmt::format("video: {} frames at {} fps, {:.3f} s{}", plan.frames(), plan.fps, plan.videoSeconds(),
+                              holdFrames > 0 ? fmt::format(" (the last {} hold the landing, {:g} s)", holdFrames,
+                                                           kLandingHoldSeconds)
+                                             : ""));
+  lines.push_back(fmt::format("simulated: 0 to {:.6f} s{}", plan.endTime,
+                              plan.stopDescription ? "; the run stops early: " + *plan.stopDescription : ""));
+  const FrameRange range = framesIn(plan, window);
+  const auto first = static_cast<std::size_t>(range.first), last = static_cast<std::size_t>(range.last);
+  const long written = range.last - range.first + 1;
+  lines.push_back(fmt::format("written: {} frames {} to {}, {:.3f} s of video from {:.3f} s; simulated {:.6f} to "
+                              "{:.6f} s",
+                              written == plan.frames() ? "all" : std::to_string(written), range.first, range.last,
+                              static_cast<double>(written) / plan.fps, static_cast<double>(range.first) / plan.fps,
+                              plan.times[first], plan.times[last]));
+  // A row where the playback rate or the contact point's rate has changed by kRowChange since the
+  // last row; a wobbling run whose rates swing by more would list most of its frames, so the step
+  // grows until the table is small.
+  constexpr double kRowChange = 1.25;
+  constexpr std::size_t kMaxRows = 24;
+  const auto changed = [](double now, double before, double factor) {
+    return now > 0 && before > 0 ? std::max(now / before, before / now) >= factor : (now > 0) != (before > 0);
+  };
+  std::vector<std::size_t> rows;
+  for (double factor = kRowChange; rows.empty() || rows.size() > kMaxRows; factor *= kRowChange) {
+    rows = {0};
+    for (std::size_t k = 1; k < plan.times.size(); ++k) {
+      const std::size_t row = rows.back();
+      if (changed(plan.playbackRates[k], plan.playbackRates[row], factor) ||
+          changed(plan.contactRates[k], plan.contactRates[row], factor) || k + 1 == plan.times.size()) {
+        rows.push_back(k);
+      }
+    }
+  }
+  lines.emplace_back("playback over the clip (a row where a rate changed by 25 % or more; rate: simulated s per "
+                     "video s; contact: the contact point round the floor, turns per s):");
+  lines.emplace_back(
+      "    frame    video_s        sim_s       rate        speed  contact_Hz  contact_turns_per_video_s");
+  for (const std::size_t k : rows) {
+    const double rate = plan.playbackRates[k], turns = plan.contactRates[k] / (2 * std::numbers::pi);
+    lines.push_back(fmt::format("{:9d} {:10.3f} {:12.6f} {:10.6f} {:>12} {:11.3f} {:26.3f}", k,
+                                static_cast<double>(k) / plan.fps, plan.times[k], rate,
+                                speedOf(rate), turns, turns * rate));
+  }
+  return lines;
+}
+
+namespace {
+
+// Points per inset curve: a few per pixel of a 1080p plot, which a clip of a million frames would
+// otherwise carry into every frame's overlay.
+constexpr std::size_t kInsetPoints = 600;
+// A contact rate spanning this factor or more is plotted on a log scale, where an Euler's disk's
+// finite-time speed-up is a curve that steepens instead of a flat line and a wall.
+constexpr double kLogScaleSpan = 4;
+
+// The inset (render --inset) of the frames `range` of `plan`, the video written: the contact point's
+// rate (Hz) and the tilt above the floor (degrees, from 0) against video time, each over its range
+// within those frames (the last 20 s of the Euler's disk fill the plot), and each frame's labels.
+class ClipInset {
+ public:
+  ClipInset(const ClipPlan& plan, const std::vector<FrameState>& frames, FrameRange range)
+      : plan_(plan), frames_(frames), range_(range) {
+    for (long k = range.first; k <= range.last; ++k) {
+      rateMin_ = std::min(rateMin_, hertz(k));
+      rateMax_ = std::max(rateMax_, hertz(k));
+      tiltMax_ = std::max(tiltMax_, tiltDegrees(k));
+    }
+    logRate_ = rateMin_ > 0 && rateMax_ >= kLogScaleSpan * rateMin_;
+  }
+
+  render::InsetPlot plot() const {
+    render::InsetPlot plot{.curves = {{}, {}}};
+    const long count = range_.last - range_.first + 1;
+    const long stride = std::max(1L, (count + static_cast<long>(kInsetPoints) - 1) / static_cast<long>(kInsetPoints));
+    // Every stride-th frame, and the last.
+    for (long k = range_.first;; k = std::min(k + stride, range_.last)) {
+      const float x = progress(k);
+      plot.curves[0].points.emplace_back(x, static_cast<float>(rateScaled(hertz(k))));
+      plot.curves[1].points.emplace_back(x, static_cast<float>(tiltMax_ > 0 ? tiltDegrees(k) / tiltMax_ : 0));
+      if (k == range_.last) break;
+    }
+    return plot;
+  }
+
+  float progress(long k) const {
+    return range_.last > range_.first
+               ? static_cast<float>(k - range_.first) / static_cast<float>(range_.last - range_.first)
+               : 0.0f;
+  }
+
+  std::vector<std::string> labels(long k) const {
+    return {fmt::format("contact {:6.1f} Hz  ({}{:.3g} to {:.3g} Hz)", hertz(k), logRate_ ? "log, " : "", rateMin_,
+                        rateMax_),
+            fmt::format("tilt    {:6.2f}°   (0 to {:.3g}° above the floor)", tiltDegrees(k), tiltMax_)};
+  }
+
+ private:
+  double hertz(long k) const { return plan_.contactRates[static_cast<std::size_t>(k)] / (2 * std::numbers::pi); }
+  double tiltDegrees(long k) const {
+    const std::size_t shown = std::min(static_cast<std::size_t>(k), frames_.size() - 1);  // the hold: the landing
+    return 90 - frames_[shown].theta * 180 / std::numbers::pi;
+  }
+  double rateScaled(double value) const {
+    if (logRate_) return std::log(value / rateMin_) / std::log(rateMax_ / rateMin_);
+    return rateMax_ > 0 ? value / rateMax_ : 0;
+  }
+
+  const ClipPlan& plan_;
+  const std::vector<FrameState>& frames_;
+  FrameRange range_;
+  double rateMin_ = std::numeric_limits<double>::infinity(), rateMax_ = 0, tiltMax_ = 0;  // Hz, Hz, degrees
+  bool logRate_ = false;
+};
+
+}  // namespace
+
+VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& sink, const VideoRunOptions& options) {
+  refuseAbsurdDuration(scene, options.maxFrames);
   Simulation simulation = buildSimulation(scene);
   simulation.cancel = options.cancel;
   render::RenderSettings settings = scene.render.picture;
@@ -180,46 +413,24 @@ VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& si
   requireRendererAddressSpace(settings, sink.workingMemory(frameBytes));
   render::Renderer renderer(settings);
   RunRecord record = recordFrames(scene, simulation, options.maxFrames);
-  const MotionSurvey& survey = record.survey;
-  std::vector<FrameState>& frames = record.frames;
+  const ClipPlan plan = planOf(scene, record);
+  const std::vector<FrameState>& frames = record.frames;
+  const long simulatedFrames = plan.simulatedFrames;
+  const long total = plan.frames();
 
   VideoRunResult result;
-  result.simulatedSeconds = survey.endTime;
-  if (survey.stoppedBy) result.stopDescription = describeStop(*survey.stoppedBy);
-  // A coin that landed on its face is shown at its landing, then lies still for a while before the
-  // clip ends, so the end is seen.
-  const bool landed = survey.stoppedBy && survey.stoppedBy->event == physics::ModelEvent::FaceDown;
-  const bool landingFrameAdded = landed && frames.back().time < survey.endTime;
-  if (landingFrameAdded) frames.push_back(record.end);
-  const long simulatedFrames = static_cast<long>(frames.size());
-  const long holdFrames = landed ? std::lround(kLandingHoldSeconds * scene.render.fps) : 0;
-  const long total = simulatedFrames + holdFrames;
-
-  // Frame k's simulated time: the hold repeats the landing, at the run's end.
-  const auto timeOf = [&](long k) {
-    return k < simulatedFrames ? frames[static_cast<std::size_t>(k)].time : survey.endTime;
-  };
-  const TimeWindow& window = options.window;
-  const auto written = [&](long k) {
-    const double t = timeOf(k);
-    return t >= window.from - kWindowTolerance && t <= window.to + kWindowTolerance;
-  };
-  long toWrite = 0;
-  for (long k = 0; k < total; ++k) toWrite += written(k) ? 1 : 0;
-  if (toWrite == 0) {
-    if (window.from > survey.endTime + kWindowTolerance) {
-      throw std::invalid_argument(fmt::format(
-          "--from {}: beyond the run's end at {:.9g} s{}; give a time in [0, {:.9g}]", window.from, survey.endTime,
-          survey.stoppedBy ? " (" + describeStop(*survey.stoppedBy) + ")" : "", survey.endTime));
-    }
-    throw std::invalid_argument(
-        fmt::format("--from {} --to {}: no frame's simulated time lies in this window (frames are "
-                    "{:.6g} s of simulated time apart{}); widen it",
-                    window.from, window.to, scene.render.timeScale / scene.render.fps,
-                    scene.render.timeRemap ? ", less where render.time_remap slows them" : ""));
-  }
+  result.simulatedSeconds = plan.endTime;
+  result.stopDescription = plan.stopDescription;
+  const FrameRange range = framesIn(plan, options.window);
+  const auto written = [&](long k) { return k >= range.first && k <= range.last; };
+  const long toWrite = range.last - range.first + 1;
 
   SnapshotMaker snapshots(scene, simulation.model, record);
+  std::optional<ClipInset> inset;
+  if (options.inset) {
+    inset.emplace(plan, frames, range);
+    snapshots.setInset(inset->plot());
+  }
   image::Image frame;
   std::optional<SoundTrack> sound;
   if (scene.render.audio) sound.emplace(*scene.render.audio, scene.render.fps);
@@ -235,25 +446,18 @@ VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& si
     if (options.cancel != nullptr && options.cancel->load()) throw Cancelled();
     if (k >= simulatedFrames) {  // the hold: the landing's picture again, in silence
       if (sound) sound->rest(k, soundSink(k));
-      // Simulated time stands still here, so the overlay says so instead of the landing's playback rate.
-      if (k == simulatedFrames && scene.render.hud && written(k)) {
+      // Simulated time stands still here, so the overlay says so instead of the landing's playback rate;
+      // a window by video time may start inside the hold, with no picture drawn yet.
+      if (written(k) && ((k == simulatedFrames && scene.render.hud) || k == range.first || inset)) {
+        if (inset) snapshots.markInset(inset->progress(k), inset->labels(k));
         renderer.draw(snapshots.makeSnapshot(frames.back(), {fmt::format("landed, held {:g} s", kLandingHoldSeconds)}),
                       frame);
       }
-      if (written(k)) push(k, survey.endTime, 0.0);
+      if (written(k)) push(k, plan.endTime, 0.0);
       continue;
     }
     const FrameState& state = frames[static_cast<std::size_t>(k)];
-    const double t = state.time;
-    // Simulated seconds per video second at this frame, from the frame times. The clip's last planned
-    // frame and an added landing frame keep the pace of the frame before (a remapped clip's end is
-    // still in slow motion), not that of the short step to the landing.
-    const auto index = static_cast<std::size_t>(k);
-    const std::size_t lastPlanned = frames.size() - (landingFrameAdded ? 2 : 1);
-    const double step = index < lastPlanned ? frames[index + 1].time - t
-                        : lastPlanned > 0   ? frames[lastPlanned].time - frames[lastPlanned - 1].time
-                                            : scene.render.timeScale / scene.render.fps;
-    const double playbackRate = step * scene.render.fps;
+    const double playbackRate = plan.playbackRates[static_cast<std::size_t>(k)];
     std::vector<std::string> speed;
     if (scene.render.hud) {
       const double slowdown = 1 / playbackRate;
@@ -261,13 +465,16 @@ VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& si
       if (slowdown < 1 - 1e-9) speed.push_back(fmt::format("fast forward ×{:.3g}", 1 / slowdown));
     }
     // Synthesised for every frame, so the sound is the full render's; the trace catches up at the next snapshot.
-    if (sound)
-      sound->reachFrame(k, state.precessionRate, playbackRate, soundSink(k), landed && k + 1 == simulatedFrames);
+    if (sound) {
+      sound->reachFrame(k, state.precessionRate, playbackRate, soundSink(k),
+                        plan.landed && k + 1 == simulatedFrames);
+    }
     if (!written(k)) continue;
+    if (inset) snapshots.markInset(inset->progress(k), inset->labels(k));
     renderer.draw(snapshots.makeSnapshot(state, speed), frame);
-    push(k, t, playbackRate);
+    push(k, state.time, playbackRate);
   }
-  if (sound) sound->finish(total, soundSink(total), landed);
+  if (sound) sound->finish(total, soundSink(total), plan.landed);
   sink.finish();
   return result;
 }

@@ -68,13 +68,57 @@ struct FrameTiming {
   double playbackRate = 0;
 };
 
-// The frames a render writes: those whose simulated time lies in [from, to] (within
-// kWindowTolerance), exactly as the full render draws them. `to` past the run's end means the end.
+// The frames a render writes: those whose simulated time lies in [from, to] (render --from/--to), or
+// whose video time k / fps does (--from-video/--to-video), or the last `last` s of video (--last),
+// each within kWindowTolerance, exactly as the full render draws them. `to` past the end means the end.
 struct TimeWindow {
-  double from = 0;                                      // s of simulated time
-  double to = std::numeric_limits<double>::infinity();  // s of simulated time
+  enum class Clock { Simulated, Video };
+  double from = 0;                                      // s on `clock`
+  double to = std::numeric_limits<double>::infinity();  // s on `clock`
+  Clock clock = Clock::Simulated;
+  // s of video: instead of from and to, the frames that play in the clip's last `last` seconds
+  // (frame k plays from k / fps to (k + 1) / fps, so the window lasts exactly `last` s of video).
+  std::optional<double> last = std::nullopt;
 };
 inline constexpr double kWindowTolerance = 1e-9;  // s: a frame time computed as a sum may miss a bound by round-off
+
+// The clip a render draws, as the one pass over the run chose it, before anything is drawn: what
+// `render --plan` prints and the frame loop then draws. Frame k plays at video time k / fps.
+struct ClipPlan {
+  int fps = 0;
+  double timeScale = 1;   // render.time_scale: simulated s per video s without a remap
+  bool remapped = false;  // render.time_remap is set: the playback rate follows the motion
+  std::vector<double> times;  // s of simulated time shown by each frame; the landing's hold repeats endTime
+  // Simulated s per video s at each frame, as the overlay and the sound's pitch use it (FrameTiming).
+  std::vector<double> playbackRates;
+  std::vector<double> contactRates;  // rad/s, |phi-dot| at each frame (the hold keeps the landing's)
+  long simulatedFrames = 0;          // frames before the landing's hold
+  bool landed = false;               // the coin landed on its face: kLandingHoldSeconds of hold follow
+  double endTime = 0;                // s of simulated time where the run ends (its duration, or an event)
+  std::optional<std::string> stopDescription;
+
+  long frames() const { return static_cast<long>(times.size()); }
+  // s: each frame lasts 1 / fps, so N frames play N / fps.
+  double videoSeconds() const { return static_cast<double>(frames()) / fps; }
+};
+
+// The clip `renderVideo(scene, ...)` would draw, by the same pass over the run (nothing is drawn).
+// Throws std::invalid_argument for more than `maxFrames` frames, Cancelled when `cancel` turns true.
+ClipPlan planClip(const scene::SceneConfig& scene, long maxFrames = kDefaultMaxFrames,
+                  const std::atomic<bool>* cancel = nullptr);
+
+// The frames [first, last] of `plan` that `window` keeps (frame times only grow, so they are a run of
+// frames). Throws std::invalid_argument naming the window's options when it keeps none.
+struct FrameRange {
+  long first = 0;
+  long last = -1;
+};
+FrameRange framesIn(const ClipPlan& plan, const TimeWindow& window);
+
+// `render --plan`'s report: the video's length and frames, the simulated span, the frames `window`
+// keeps on both clocks, and a small table of the playback rate (and the contact point's rate, as
+// measured and as seen on screen) over the clip, a row wherever either has changed by a quarter.
+std::vector<std::string> planLines(const ClipPlan& plan, const TimeWindow& window);
 
 struct VideoRunOptions {
   std::function<void(const FrameProgress&)> onFrame = {};  // called after each frame; may be empty
@@ -83,8 +127,11 @@ struct VideoRunOptions {
   long maxFrames = kDefaultMaxFrames;                 // more frames: std::invalid_argument, before any work
   bool reuseStaticBackground = true;  // render::RenderSettings; off only to measure what it saves
   // Frames outside it are neither drawn nor pushed (the simulation and the trace still run from 0),
-  // nor is their sound. std::invalid_argument naming --from and --to when no frame lies in it.
+  // nor is their sound. std::invalid_argument naming its options when no frame lies in it (framesIn).
   TimeWindow window = {};
+  // render --inset: a plot of the contact point's rate and the tilt over the whole clip in each
+  // frame's corner, with a marker at the frame (a speed-up the slow motion hides reads off it).
+  bool inset = false;
 };
 
 struct VideoRunResult {

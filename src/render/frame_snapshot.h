@@ -4,6 +4,7 @@
 
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,20 @@ struct CameraView {
   bool operator==(const CameraView&) const = default;
 };
 
+// One curve of an inset plot: the whole clip, each value scaled into its own range.
+struct InsetCurve {
+  std::vector<glm::vec2> points;  // (x, y) in [0, 1]^2: x the clip's progress, y the value within its range
+  std::string label;              // its value now and its range, drawn above the plot in the curve's colour
+};
+
+// A small plot in the picture's lower right corner (render --inset): quantities the picture cannot
+// show well (a rate that outruns the slow motion, a tilt of a degree) against the clip's progress,
+// the part already shown drawn solid, the rest faint, and a marker at this frame.
+struct InsetPlot {
+  std::vector<InsetCurve> curves;  // at most kInsetCurveColours.size(), coloured in that order
+  float now = 0;                   // x of this frame, in [0, 1]
+};
+
 struct FrameSnapshot {
   CameraView camera;
   CoinPose coin;
@@ -40,6 +55,7 @@ struct FrameSnapshot {
   bool showContact = true;     // a marker at the newest trace point
   // Text for the corner overlay, one entry per line; empty for no overlay.
   std::vector<std::string> hudLines;
+  std::optional<InsetPlot> inset;  // none: no inset plot
 };
 
 }  // namespace coinroll::render

@@ -13,6 +13,7 @@
 
 #include "render/camera.h"
 #include "render/floor_tile.h"
+#include "render/inset_plot.h"
 #include "render/overlay_text.h"
 #include "render/renderer.h"
 #include "render/renderer_state.h"
@@ -257,7 +258,10 @@ ScaleBarPlacement Renderer::drawScaleBar(const FrameSnapshot& snapshot, const gl
   return bar;
 }
 
-// The current coin opaque, then the ghosts from far to near so nearer ones blend last.
+// The current coin opaque, then the ghosts from far to near so nearer ones blend last. The ghosts
+// test depth against the opaque scene but write none: copies that nearly coincide (a coin spinning
+// in place) would otherwise hide each other ridge by ridge of the knurled rim, in saw teeth, where
+// they should blend; back faces are culled, so each copy still shows only its near side.
 void Renderer::drawCoins(const FrameSnapshot& snapshot, const glm::mat4& viewProjection) {
   GlState& state = *state_;
   const GlFunctions& gl = state.gl;
@@ -291,10 +295,12 @@ void Renderer::drawCoins(const FrameSnapshot& snapshot, const glm::mat4& viewPro
     return glm::length(a->centre - snapshot.camera.eye) > glm::length(b->centre - snapshot.camera.eye);
   });
   gl.Enable(GL_BLEND);
+  gl.DepthMask(GL_FALSE);
   for (const CoinPose* ghost : farToNear) {
     const auto age = static_cast<std::size_t>(ghost - snapshot.ghosts.data());
     drawCoin(*ghost, 0.5f, glm::vec4(ghostColour(age, snapshot.ghosts.size()), 0.85f));
   }
+  gl.DepthMask(GL_TRUE);
 }
 
 // Filters the scene texture into the resolve target, which the overlay and the readback then use.
@@ -332,6 +338,7 @@ void Renderer::drawOverlay(const FrameSnapshot& snapshot, const std::optional<Sc
     appendTextPanel(atlas, {scaleBar->label}, middle + glm::vec2(-0.5f * size.x, 0.4f * atlas.lineHeight()),
                     colours.overlay, text);
   }
+  if (snapshot.inset) appendInsetPlot(atlas, *snapshot.inset, w, h, colours.overlay, text);
   if (!text.empty()) {
     gl.Disable(GL_DEPTH_TEST);
     gl.Disable(GL_CULL_FACE);

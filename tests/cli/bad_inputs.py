@@ -742,6 +742,32 @@ case("from-empty", C, "render --from ''", RW + "--from ''", 2, "--from: the valu
 case("window-without-frames", C, "render --from 0.21 --to 0.22: no frame at 30 fps in between",
      RW + "--from 0.21 --to 0.22", 2, "--from 0.21 --to 0.22: no frame's simulated time lies in this window",
      key="--from", gtest=(G_RENDER,), na_before=FORMATS)
+# Windows by video time and the dry run (issue 39.2): one clock at a time, each refusal naming both options.
+VIDEO_TIME = "no video-time windows and no --plan before (issue 39.2)"
+case("from-and-from-video", C, "render --from 1 --from-video 2: two clocks", RW + "--from 1 --from-video 2", 2,
+     "--from and --from-video cannot be combined: --from counts simulated seconds, --from-video seconds of video",
+     key="--from-video", na_before=VIDEO_TIME)
+case("to-and-last", C, "render --to 0.4 --last 0.2: two clocks", RW + "--to 0.4 --last 0.2", 2,
+     "--to and --last cannot be combined", key="--last", na_before=VIDEO_TIME)
+case("last-and-from-video", C, "render --last 0.2 --from-video 0.1: two ways to start", RW + "--last 0.2 --from-video 0.1",
+     2, "--last and --from-video cannot be combined: --last L is the window from L s of video before the clip's end",
+     key="--last", na_before=VIDEO_TIME)
+case("from-video-after-to-video", C, "render --from-video 0.4 --to-video 0.1", RW + "--from-video 0.4 --to-video 0.1", 2,
+     "--from-video 0.4 --to-video 0.1: the window ends before it starts; give --from-video <= --to-video",
+     key="--from-video", na_before=VIDEO_TIME)
+case("from-video-beyond-end", C, "render --from-video 5 past a 0.5 s clip", RW + "--from-video 5", 2,
+     "--from-video 5: beyond the clip's last frame at 0.5 s of video", key="--from-video", na_before=VIDEO_TIME)
+case("last-zero", C, "render --last 0", RW + "--last 0", 2, "--last 0: give the seconds of video to keep, > 0",
+     key="--last", na_before=VIDEO_TIME)
+case("last-shorter-than-a-frame", C, "render --last 0.01: less than a frame at 30 fps", RW + "--last 0.01", 2,
+     "--last 0.01: no frame plays in the last 0.01 s", key="--last", na_before=VIDEO_TIME)
+case("last-longer-than-clip", C, "render --last 5 of a 0.53 s clip", RW + "--last 5", 2,
+     "--last 5: longer than the clip, which lasts 0.533333333 s of video", key="--last", na_before=VIDEO_TIME)
+case("to-video-negative", C, "render --to-video -1", RW + "--to-video -1", 2,
+     "--to-video -1: must be a video time >= 0 s", key="--to-video", na_before=VIDEO_TIME)
+case("plan-and-frame-times", C, "render --plan --frame-times f.csv: a plan writes nothing",
+     RW + "--plan --frame-times f.csv", 2, "--plan and --frame-times cannot be combined", key="--plan",
+     na_before=VIDEO_TIME)
 for ext in ("mp4", "GIF"):
     case(f"transparent-{ext.lower()}", C, f"render.background transparent with .{ext}",
          f"render scene.json -q -o o.{ext} --set 'render.background=\"transparent\"'", 2,
@@ -786,6 +812,9 @@ case("still-upper-png", C, "still -o UP.PNG (.png in any case)", f"still scene.j
      produces=("UP.PNG",))
 case("render-seq-upper-png", C, "render -o F_%03d.PNG (.png in any case)",
      f"render scene.json -q {SMALL} --set duration=0.1 -o F_%03d.PNG", 0, None, produces=("F_00[0-3].PNG",))
+case("panels-without-strobe", C, "still --panels without --strobe", "still scene.json --time 0.1 -o o.png --panels", 2,
+     "--panels: lays out the --strobe copies side by side, and there are none; give --strobe N too", key="--panels",
+     na_before="no --panels before (issue 39.2)")
 case("strobe-negative", C, "still --strobe -3", "still scene.json --time 0.1 -o o.png --strobe -3", 2,
      "--strobe: must be 0 to 500 copies, got -3", key="--strobe")
 case("strobe-from-late", C, "--strobe-from after --time",
@@ -957,6 +986,32 @@ case("merge-stdin-twice", C, "- (standard input) given twice", MERGE + "- -", 2,
 
 # --- output paths
 C = "output paths"
+# A default output name (no -o) is never taken over from another scene's output (issue 39.4): the scene
+# digest its provenance carries tells; a file that names no scene is not replaced either.
+DEFAULT_NAMES = "replaced silently before (issue 39.4)"
+
+
+def png_of_scene(digest):
+    """A PNG header and the tEXt chunk a coinroll still carries, naming the scene digest `digest`."""
+    import struct
+    import zlib
+
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", 1, 1, 8, 6, 0, 0, 0))
+            + chunk(b"tEXt", b"coinroll-scene-digest\0" + digest.encode()) + chunk(b"IEND", b""))
+
+
+case("default-name-other-scene", C, "still without -o where scene.png came from another scene",
+     f"still scene.json --time 0.1 {SMALL} -q", 2,
+     "scene.png: exists, made from another scene (its digest fnv1a64:0123456789abcdef, this scene's fnv1a64:",
+     key="--force", files={"scene.json": VALID, "scene.png": png_of_scene("fnv1a64:0123456789abcdef")},
+     na_before=DEFAULT_NAMES)
+case("default-name-foreign", C, "render without -o where scene.mp4 names no scene", f"render scene.json -q {SMALL}", 2,
+     "scene.mp4: exists, does not say which scene made it (no coinroll provenance), and is only this scene's default "
+     "output name; give -o NAME to write elsewhere, or --force to replace it", key="--force",
+     files={"scene.json": VALID, "scene.mp4": "the user's own notes"}, na_before=DEFAULT_NAMES)
 case("out-no-dir-csv", C, "--csv into a directory that does not exist", "simulate scene.json --csv nodir/o.csv", 1,
      "nodir/o.csv: cannot write: directory 'nodir' does not exist", key="nodir",
      gtest=("CliTest.UnwritableOutputFailsWithoutLeavingFiles",))

@@ -5,6 +5,7 @@
 
 #include "cli/run_command.h"
 #include "csv_table.h"
+#include "image/image.h"
 #include "scratch_dir.h"
 
 #include <algorithm>
@@ -15,6 +16,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <thread>
 
@@ -434,6 +436,133 @@ TEST_F(CliTest, ADegenerateCameraIsRefused) {
     EXPECT_NE(r.output.find("render.camera.target"), std::string::npos) << r.output;
     EXPECT_FALSE(fs::exists(dir_ / "o.png"));
   }
+}
+
+std::string contentOf(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+
+// A small scene of a coin tilted by `theta` degrees, quick to draw.
+std::string smallScene(int theta) {
+  return "{" + kCoin + R"(, "initial": {"theta": )" + std::to_string(theta) +
+         R"(, "omega_Z": 12}, "duration": 0.3, "render": {"width": 64, "height": 48, "fps": 10, "msaa": 1}})";
+}
+
+// A page template with the scene's placeholder, as tools/build_page.sh leaves it (export fills it).
+fs::path fakePage(const fs::path& dir) {
+  const fs::path page = dir / "template.html";
+  std::ofstream(page) << R"(<html><script type="application/json" id="coinroll-scene">null</script></html>)";
+  return page;
+}
+
+// The default output name (no -o) of render, still and export is the scene file's name; a file
+// there made from another scene (its provenance names another digest) or by something else is
+// never replaced silently: exit 2 naming -o and --force, the file kept. The same scene replaces its
+// own output, and -o and --force replace as asked.
+TEST_F(CliTest, ADefaultOutputNameIsNeverTakenOverByAnotherScenesOutput) {
+  fs::create_directories(dir_ / "other");
+  std::ofstream(dir_ / "a.json") << smallScene(10);
+  std::ofstream(dir_ / "other" / "a.json") << smallScene(15);  // another scene whose default names are a.*
+  const std::string in = "cd " + dir_.string() + " && COINROLL_PAGE=" + fakePage(dir_).string();
+  struct Command {
+    const char* arguments;  // after the scene
+    const char* output;     // its default output name
+  };
+  for (const Command& command : {Command{"render -q", "a.mp4"}, Command{"still --time 0.1 -q", "a.png"},
+                                 Command{"export -q", "a.html"}}) {
+    const std::string verb = command.arguments;
+    const std::string name = verb.substr(0, verb.find(' '));
+    const std::string options = verb.substr(name.size());
+    const auto runOn = [&](const std::string& scene, const std::string& extra = "") {
+      return run(name + " " + scene + options + extra, in);
+    };
+    ASSERT_EQ(runOn("a.json").exitCode, 0) << command.arguments;
+    const std::string first = contentOf(dir_ / command.output);
+    ASSERT_FALSE(first.empty()) << command.output;
+    EXPECT_EQ(runOn("a.json").exitCode, 0) << command.arguments << ": the same scene replaces its own output";
+    const RunResult other = runOn("other/a.json");
+    EXPECT_EQ(other.exitCode, 2) << other.output;
+    EXPECT_NE(other.output.find(std::string(command.output) + ": exists, made from another scene"), std::string::npos)
+        << other.output;
+    EXPECT_NE(other.output.find("give -o NAME to write elsewhere, or --force to replace it"), std::string::npos)
+        << other.output;
+    EXPECT_EQ(contentOf(dir_ / command.output), first) << command.arguments;
+    EXPECT_EQ(runOn("other/a.json", " -o " + std::string(command.output)).exitCode, 0) << "an -o name is replaced";
+    EXPECT_NE(contentOf(dir_ / command.output), first) << command.arguments;
+    EXPECT_EQ(runOn("a.json", " --force").exitCode, 0) << command.arguments;
+    EXPECT_EQ(contentOf(dir_ / command.output), first) << command.arguments << ": --force replaces it";
+    // A file coinroll did not make under the default name.
+    std::ofstream(dir_ / command.output) << "the user's own file";
+    const RunResult foreign = runOn("a.json");
+    EXPECT_EQ(foreign.exitCode, 2) << foreign.output;
+    EXPECT_NE(foreign.output.find("does not say which scene made it"), std::string::npos) << foreign.output;
+    EXPECT_EQ(contentOf(dir_ / command.output), "the user's own file");
+  }
+}
+
+// -q on every command that prints notes, progress or a summary on stderr: silent where nothing went
+// wrong, while a warning and an early stop (which change what the output means) still show.
+TEST_F(CliTest, QuietSilencesNotesAndSummariesOnEveryCommand) {
+  // A steady start with effects: every command that loads it notes that the state is only a start.
+  std::ofstream(dir_ / "s.json") << "{" + kCoin + R"(, "initial": {"steady": "spin-in-place", "theta": 30},
+      "effects": [{"type": "rolling_resistance", "length": 1e-4}], "duration": 0.2,
+      "render": {"width": 64, "height": 48, "fps": 10, "msaa": 1}})";
+  const std::string in = "cd " + dir_.string() + " && COINROLL_PAGE=" + fakePage(dir_).string();
+  for (const std::string& command : {std::string("simulate s.json --csv o.csv"), std::string("steady s.json"),
+                                     std::string("still s.json --time 0.1"), std::string("render s.json"),
+                                     std::string("export s.json --force"), std::string("sweep s.json --grid "
+                                                                                        "duration=0.1,0.2 -o w.csv")}) {
+    // Standard output holds only steady's report, whose lines never start "coinroll:".
+    const RunResult loud = run(command, in);
+    ASSERT_EQ(loud.exitCode, 0) << command << ": " << loud.output;
+    EXPECT_NE(loud.output.find("coinroll: "), std::string::npos) << command << " says nothing without -q";
+    const RunResult quiet = run(command + " -q", in);
+    ASSERT_EQ(quiet.exitCode, 0) << command << ": " << quiet.output;
+    EXPECT_EQ(quiet.output.find("coinroll: "), std::string::npos) << command << " -q: " << quiet.output;
+  }
+  // What -q keeps: the early stop of a coin that falls flat (at 89 degrees in Euler angles).
+  const fs::path falling = std::string(COINROLL_SOURCE_DIR) + "/examples/falling_flat.json";
+  const RunResult stopped =
+      run("simulate " + falling.string() + " --csv o.csv -q --set solver.formulation=euler-angles", in);
+  EXPECT_EQ(stopped.exitCode, 0) << stopped.output;
+  EXPECT_NE(stopped.output.find("coinroll: stopped early: coin-flat"), std::string::npos) << stopped.output;
+}
+
+// still --strobe N --panels: the N + 1 times side by side instead of copies piled over one picture,
+// each panel the still at its time (compared here without the overlay, whose labels differ), with a
+// gutter of white paper between them; two rows, 4 + 3 panels, for seven.
+TEST_F(CliTest, AStrobesPanelsAreTheStillsAtItsTimesSideBySide) {
+  constexpr int kWidth = 200, kHeight = 100, kGutter = 2;  // pixels; the gutter is max(2, width / 100)
+  std::ofstream(dir_ / "s.json") << "{" + kCoin + R"(, "initial": {"theta": 20, "omega_Y": 3, "omega_Z": 14},
+      "duration": 1, "render": {"width": 200, "height": 100, "msaa": 1, "hud": false,
+                                "camera": {"eye": [0, 0.15, 0.3], "target": [0, 0, 0]}}})";
+  const std::string in = "cd " + dir_.string() + " &&";
+  const RunResult r = run("still s.json --time 0.6 --strobe 6 --strobe-from 0.3 --panels -q -o panels.png", in);
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const coinroll::image::Image figure = coinroll::image::readPng(dir_ / "panels.png");
+  ASSERT_EQ(figure.width, 4 * kWidth + 3 * kGutter);
+  ASSERT_EQ(figure.height, 2 * kHeight + kGutter);
+  for (int i = 0; i < 7; ++i) {
+    const double t = 0.3 + 0.05 * i;  // six copies over [0.3, 0.6), then 0.6
+    const std::string name = "at" + std::to_string(i) + ".png";
+    ASSERT_EQ(run("still s.json --time " + std::to_string(t) + " -q -o " + name, in).exitCode, 0);
+    const coinroll::image::Image still = coinroll::image::readPng(dir_ / name);
+    const int left = (i % 4) * (kWidth + kGutter), top = (i / 4) * (kHeight + kGutter);
+    int differing = 0;
+    for (int y = 0; y < kHeight; ++y) {
+      differing += std::equal(still.pixel(0, y), still.pixel(0, y) + 4 * kWidth, figure.pixel(left, top + y)) ? 0 : 1;
+    }
+    EXPECT_EQ(differing, 0) << "panel " << i << " (t = " << t << " s): rows differing from the still";
+  }
+  EXPECT_EQ(figure.pixel(kWidth, 0)[0], 255) << "the gutter is white";
+  EXPECT_EQ(figure.pixel(figure.width - 1, figure.height - 1)[0], 255) << "the empty eighth cell is white";
+  // Panels lay out the copies: without --strobe there are none.
+  const RunResult alone = run("still s.json --time 0.6 --panels -q -o p.png", in);
+  EXPECT_EQ(alone.exitCode, 2) << alone.output;
+  EXPECT_NE(alone.output.find("--panels: lays out the --strobe copies side by side, and there are none"),
+            std::string::npos)
+      << alone.output;
 }
 
 }  // namespace

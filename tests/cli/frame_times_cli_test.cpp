@@ -1,14 +1,20 @@
 // `coinroll render --frame-times`: the sidecar lists the frames of the video actually written, at
-// the times the program chose, so tools read them instead of repeating the time-remap rule.
+// the times the program chose, so tools read them instead of repeating the time-remap rule. And the
+// windows by video time (--from-video, --to-video, --last) and the dry run (--plan) that spare the
+// user that arithmetic.
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <numbers>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -179,6 +185,123 @@ TEST_F(FrameTimesCliTest, AProvenanceNamesACsvWhoseNameIsNotUtf8) {
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_NE(contentOf(dir_ / "p.json").find("\"csv\": \"o\xef\xbf\xbd.csv\""), std::string::npos)
       << contentOf(dir_ / "p.json");
+}
+
+// The PNG files of a sequence rendered with `window`, in frame order, as bytes.
+std::vector<std::string> pngSequence(const fs::path& scene, const fs::path& dir, const std::string& stem,
+                                     const std::string& window) {
+  const RunResult r =
+      run("render " + scene.string() + " -q -o " + (dir / (stem + "_%03d.png")).string() + " " + window);
+  EXPECT_EQ(r.exitCode, 0) << window << ": " << r.output;
+  std::vector<std::string> frames;
+  for (int k = 0; fs::exists(dir / fmt::format("{}_{:03d}.png", stem, k)); ++k)
+    frames.push_back(contentOf(dir / fmt::format("{}_{:03d}.png", stem, k)));
+  return frames;
+}
+
+// A window by video time is the window of simulated time between the same frames: the same PNG
+// files byte for byte, under the time remap whose uneven steps make the one hard to find from the other.
+TEST_F(FrameTimesCliTest, AWindowByVideoTimeWritesTheSameFramesAsTheSimulatedTimeWindowBetweenThem) {
+  const std::vector<double> t = render("whole").column("sim_time_s");
+  ASSERT_GT(t.size(), 40u);
+  // Frame k plays at k / 30 s: 0.5 .. 1.0 s of video are frames 15 .. 30.
+  const std::vector<std::string> byVideo = pngSequence(scene_, dir_, "v", "--from-video 0.5 --to-video 1.0");
+  const std::vector<std::string> bySimulated =
+      pngSequence(scene_, dir_, "s", fmt::format("--from {:.17g} --to {:.17g}", t[15], t[30]));
+  ASSERT_EQ(byVideo.size(), 16u);
+  EXPECT_TRUE(byVideo == bySimulated) << "the windows' frames differ";
+  // The last 0.4 s of video are its last 12 frames, from the frame that plays 0.4 s before the end.
+  const std::vector<std::string> last = pngSequence(scene_, dir_, "l", "--last 0.4");
+  const std::vector<std::string> fromThere =
+      pngSequence(scene_, dir_, "f", fmt::format("--from {:.17g}", t[t.size() - 12]));
+  ASSERT_EQ(last.size(), 12u);
+  EXPECT_TRUE(last == fromThere) << "the last 0.4 s differ from the simulated window";
+}
+
+// One row of the plan's playback table.
+struct PlanRow {
+  long frame = 0;
+  double videoTime = 0, simulatedTime = 0, rate = 0, contactHz = 0, turnsPerVideoSecond = 0;
+};
+
+// The lines of `render --plan`'s output, and its table's rows.
+struct Plan {
+  std::string text;
+  long frames = 0;
+  double videoSeconds = 0;
+  std::vector<PlanRow> rows;
+};
+
+Plan parsePlan(const std::string& text) {
+  Plan plan;
+  plan.text = text;
+  std::istringstream in(text);
+  bool inTable = false;
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("video: ", 0) == 0) {
+      std::istringstream words(line.substr(7));
+      std::string framesWord, at, fps, fpsWord;
+      words >> plan.frames >> framesWord >> at >> fps >> fpsWord >> plan.videoSeconds;
+    } else if (line.find("frame    video_s") != std::string::npos) {
+      inTable = true;
+    } else if (inTable) {
+      PlanRow row;
+      std::string speed, factor;  // "slow x1.08"
+      std::istringstream(line) >> row.frame >> row.videoTime >> row.simulatedTime >> row.rate >> speed >> factor >>
+          row.contactHz >> row.turnsPerVideoSecond;
+      plan.rows.push_back(row);
+    }
+  }
+  return plan;
+}
+
+// The plan against the time remap's rule computed here, on a steady circle whose contact rate Omega
+// (phi-dot, printed by coinroll steady) is constant: the picture shows it at
+// v = max(S, min(S (Omega / S)^g, pi fps / 2)) rad per video s (time_scale 1), so each frame advances
+// v / Omega / fps simulated s, and a run of D s gives floor(D fps Omega / v) + 1 frames.
+TEST_F(FrameTimesCliTest, ThePlanGivesTheFramesAndRatesOfTheTimeRemapRule) {
+  constexpr double kLimit = 1.5, kGrowth = 0.5, kDuration = 2.0;  // rad/s, -, s
+  const fs::path circle = dir_ / "circle.json";
+  std::ofstream(circle) << fmt::format(
+      R"({{"coin": {{"radius": 0.0375, "mass": 0.4}}, "initial": {{"steady": "circle", "theta": 20, "omega_Z": 10}},
+      "duration": {}, "render": {{"width": 64, "height": 36, "fps": {}, "msaa": 1,
+                                 "time_remap": {{"precession_rate": {}, "growth": {}}}}}}})",
+      kDuration, kFps, kLimit, kGrowth);
+  const RunResult steady = run("steady " + circle.string());
+  ASSERT_EQ(steady.exitCode, 0) << steady.output;
+  const std::size_t at = steady.output.find("phi-dot = ");
+  ASSERT_NE(at, std::string::npos) << steady.output;
+  const double omega = std::abs(std::stod(steady.output.substr(at + 10)));
+  ASSERT_GT(omega, kLimit);
+  const double visible =
+      std::max(kLimit, std::min(kLimit * std::pow(omega / kLimit, kGrowth), std::numbers::pi * kFps / 2));
+  const double rate = visible / omega;  // simulated s per video s, below time_scale 1
+  const double intervals = kDuration * kFps / rate;
+  ASSERT_GT(intervals - std::floor(intervals), 0.01) << "too near a whole frame to check the count";
+  const long frames = static_cast<long>(std::floor(intervals)) + 1;
+  const RunResult r = run("render " + circle.string() + " --plan", "cd " + dir_.string() + " &&");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const Plan plan = parsePlan(r.output);
+  EXPECT_EQ(plan.frames, frames) << r.output;
+  EXPECT_NEAR(plan.videoSeconds, static_cast<double>(frames) / kFps, 5e-4) << r.output;
+  ASSERT_GE(plan.rows.size(), 2u) << r.output;
+  for (const PlanRow& row : plan.rows) {
+    EXPECT_NEAR(row.videoTime, static_cast<double>(row.frame) / kFps, 5e-4) << r.output;
+    EXPECT_NEAR(row.simulatedTime, static_cast<double>(row.frame) * rate / kFps, 2e-6) << r.output;
+    EXPECT_NEAR(row.rate, rate, 1e-6) << r.output;
+    EXPECT_NEAR(row.contactHz, omega / (2 * std::numbers::pi), 1e-3) << r.output;
+    EXPECT_NEAR(row.turnsPerVideoSecond, visible / (2 * std::numbers::pi), 1e-3) << r.output;
+  }
+  EXPECT_EQ(plan.rows.back().frame, frames - 1);
+  // A dry run: nothing drawn, nothing written (not even circle.mp4, the default name it reports).
+  EXPECT_NE(r.output.find("plan of circle.mp4"), std::string::npos) << r.output;
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()), 2) << "the plan wrote a file";
+  // The window's line counts the frames a render with it writes, on both clocks.
+  const RunResult last = run("render " + circle.string() + " --plan --last 0.5");
+  ASSERT_EQ(last.exitCode, 0) << last.output;
+  EXPECT_NE(last.output.find(fmt::format("written: 15 frames {} to {}, 0.500 s of video", frames - 15, frames - 1)),
+            std::string::npos)
+      << last.output;
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <numbers>
@@ -238,6 +239,88 @@ TEST(RenderVideo, AWindowFollowsSimulatedTimeUnderATimeRemap) {
   scene::SceneConfig scene = toyScene(1.0, 1.0);
   scene.render.timeRemap = scene::TimeRemap{.rate = scene::TimeRemap::Rate::Spin, .limit = 5};  // about 3x slower
   expectWindowIsASliceOfTheFullRender(scene, 0.4, 0.7);
+}
+
+// The plan (render --plan) is the clip renderVideo draws: the same frames at the same simulated times
+// and playback rates, under a time remap too.
+TEST(PlanClip, IsTheClipRenderVideoDraws) {
+  scene::SceneConfig scene = toyScene(1.0, 1.0);
+  scene.render.timeRemap = scene::TimeRemap{.rate = scene::TimeRemap::Rate::Spin, .limit = 5, .growth = 0.5};
+  std::vector<pipeline::FrameTiming> drawn;
+  RecordingSink sink;
+  pipeline::renderVideo(scene, sink, {.onFrameTiming = [&](const pipeline::FrameTiming& f) { drawn.push_back(f); }});
+  const pipeline::ClipPlan plan = pipeline::planClip(scene);
+  ASSERT_EQ(plan.frames(), static_cast<long>(drawn.size()));
+  EXPECT_EQ(plan.videoSeconds(), static_cast<double>(drawn.size()) / scene.render.fps);
+  for (std::size_t k = 0; k < drawn.size(); ++k) {
+    EXPECT_EQ(plan.times[k], drawn[k].simulatedTime) << "frame " << k;
+    EXPECT_EQ(plan.playbackRates[k], drawn[k].playbackRate) << "frame " << k;
+  }
+}
+
+// A window by video time keeps the frames that play in it, k / fps in [from, to]; --last L the
+// frames of the clip's last L s; a render with it draws the frames of the simulated window between them.
+TEST(FramesIn, AVideoWindowKeepsTheFramesThatPlayInIt) {
+  scene::SceneConfig scene = toyScene(1.0, 1.0);
+  scene.render.timeRemap = scene::TimeRemap{.rate = scene::TimeRemap::Rate::Spin, .limit = 5};  // about 3x slower
+  const pipeline::ClipPlan plan = pipeline::planClip(scene);
+  ASSERT_GT(plan.frames(), 25);
+  using Clock = pipeline::TimeWindow::Clock;
+  const pipeline::FrameRange video = pipeline::framesIn(plan, {.from = 0.5, .to = 1.2, .clock = Clock::Video});
+  EXPECT_EQ(video.first, 5);  // 10 fps
+  EXPECT_EQ(video.last, 12);
+  const pipeline::FrameRange last = pipeline::framesIn(plan, {.last = 0.8});
+  EXPECT_EQ(last.first, plan.frames() - 8);
+  EXPECT_EQ(last.last, plan.frames() - 1);
+  RecordingSink byVideo, bySimulated;
+  pipeline::renderVideo(scene, byVideo, {.window = {.from = 0.5, .to = 1.2, .clock = Clock::Video}});
+  pipeline::renderVideo(scene, bySimulated, {.window = {.from = plan.times[5], .to = plan.times[12]}});
+  ASSERT_EQ(byVideo.frames.size(), 8u);
+  ASSERT_EQ(bySimulated.frames.size(), 8u);
+  for (std::size_t i = 0; i < 8; ++i) EXPECT_EQ(byVideo.frames[i].rgba, bySimulated.frames[i].rgba) << "frame " << i;
+  EXPECT_THROW(pipeline::framesIn(plan, {.from = 100, .clock = Clock::Video}), std::invalid_argument);
+}
+
+// render --inset: every frame gains the plot in its lower half and nothing above, and the plot's
+// marker moves with the frame.
+TEST(RenderVideo, AnInsetChangesOnlyTheLowerHalfAndFollowsTheFrame) {
+  scene::SceneConfig scene = toyScene(1.0, 1.0);
+  scene.render.picture.width = 320;  // the inset's labels need the room of a real picture
+  scene.render.picture.height = 180;
+  RecordingSink plain, inset;
+  pipeline::renderVideo(scene, plain);
+  pipeline::renderVideo(scene, inset, {.inset = true});
+  ASSERT_EQ(plain.frames.size(), inset.frames.size());
+  ASSERT_GT(inset.frames.size(), 2u);
+  // Which pixels the inset changed in frame k.
+  const auto insetPixels = [&](std::size_t k) {
+    std::vector<bool> changed;
+    const image::Image &a = plain.frames[k], &b = inset.frames[k];
+    for (int y = 0; y < a.height; ++y) {
+      for (int x = 0; x < a.width; ++x) changed.push_back(!std::equal(a.pixel(x, y), a.pixel(x, y) + 4, b.pixel(x, y)));
+    }
+    return changed;
+  };
+  const std::size_t upperHalf = 320 * 90;  // pixels
+  for (std::size_t k = 0; k < inset.frames.size(); ++k) {
+    const std::vector<bool> changed = insetPixels(k);
+    EXPECT_NE(std::count(changed.begin(), changed.end(), true), 0) << "frame " << k << " has no inset";
+    EXPECT_EQ(std::count(changed.begin(), changed.begin() + upperHalf, true), 0) << "frame " << k;
+  }
+  // Where the first and last plain pictures agree (the coin moved elsewhere), the insets over them
+  // differ: the marker moved and the labels changed.
+  const std::size_t last = inset.frames.size() - 1;
+  int moved = 0;
+  for (int y = 90; y < 180; ++y) {
+    for (int x = 0; x < 320; ++x) {
+      const bool same = std::equal(plain.frames[0].pixel(x, y), plain.frames[0].pixel(x, y) + 4,
+                                   plain.frames[last].pixel(x, y));
+      if (same && !std::equal(inset.frames[0].pixel(x, y), inset.frames[0].pixel(x, y) + 4,
+                              inset.frames[last].pixel(x, y)))
+        ++moved;
+    }
+  }
+  EXPECT_GT(moved, 90) << "the marker (90 rows high at most) and the labels did not change";
 }
 
 TEST(RenderVideo, AWindowWithoutFramesIsRefusedNamingTheOptions) {

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "render/inset_plot.h"
 #include "render/overlay_text.h"
 #include "render/renderer.h"
 #include "render/scale_bar.h"
@@ -216,6 +217,43 @@ TEST(ScaleBar, AutomaticLengthIsARoundNumberUnderTheRadius) {
   EXPECT_EQ(scaleBarLabel(0.005f), "5 mm");
   EXPECT_EQ(scaleBarLabel(0.025f), "2.5 cm");
   EXPECT_EQ(scaleBarLabel(2.0f), "2 m");
+}
+
+// render --inset: the plot lies in the lower right corner, changes nothing else in the picture, and
+// draws each curve where its values put it, the part still to come fainter than the part shown.
+TEST(InsetPlot, DrawsItsCurvesInTheLowerRightCornerOnly) {
+  constexpr int kWidth = 320, kHeight = 180;
+  Renderer renderer(settings(kWidth, kHeight));
+  FrameSnapshot plain = uprightCoin();
+  FrameSnapshot withInset = plain;
+  // A rising line and a flat one at three quarters; the marker at the middle.
+  withInset.inset = InsetPlot{.curves = {{.points = {{0, 0}, {1, 1}}, .label = "contact 1 Hz"},
+                                         {.points = {{0, 0.75f}, {1, 0.75f}}, .label = "tilt 1°"}},
+                              .now = 0.5f};
+  const Image without = renderer.draw(plain), with = renderer.draw(withInset);
+  const std::optional<PixelBox> changed = differingBox(without, with);
+  ASSERT_TRUE(changed);
+  EXPECT_GT(changed->left, kWidth / 2) << "the inset reaches into the left half";
+  EXPECT_GT(changed->top, kHeight / 2) << "the inset reaches into the upper half";
+  EXPECT_LT(changed->right, kWidth) << "no margin on the right";
+
+  // Where the flat curve runs, a quarter of the way in (already shown) and three quarters in (to come).
+  const GlyphAtlas atlas(overlayTextPixels(kHeight));
+  std::vector<TextVertex> ignored;
+  const InsetBox box = appendInsetPlot(atlas, *withInset.inset, kWidth, kHeight, TextStyle{}, ignored);
+  EXPECT_GE(box.min.x, changed->left);
+  EXPECT_LE(box.max.y, changed->bottom + 1);
+  const auto pixelAt = [&](float x, float y) {
+    return with.pixel(static_cast<int>(box.min.x + x * (box.max.x - box.min.x)),
+                      static_cast<int>(std::round(box.max.y - y * (box.max.y - box.min.y))));
+  };
+  const glm::vec4 blue = kInsetCurveColours[1];
+  const std::uint8_t* shown = pixelAt(0.25f, 0.75f);
+  const std::uint8_t* toCome = pixelAt(0.75f, 0.75f);
+  EXPECT_GT(shown[2], shown[0] + 60) << "the shown part is blue";
+  EXPECT_GT(shown[2], toCome[2]) << "the part to come is fainter";
+  EXPECT_GT(toCome[2], toCome[0]) << "the part to come is still there";
+  EXPECT_GT(blue.b, blue.r);
 }
 
 }  // namespace

@@ -61,6 +61,7 @@ std::optional<RunSample> CoinRun::sampleAt(double t) {
     if (next > lastTime_) last_.state = sample->state;
     last_.forward = sample->forward;
     last_.dissipated = sample->dissipated;
+    last_.impacts = sample->impacts;
     lastTime_ = next;
     sampled_ = true;
   }

@@ -389,7 +389,10 @@ bool HybridRun::switchIfDue() {
 
 std::optional<RunSample> HybridRun::sampleAt(double t, const physics::CoinState& continuation) {
   for (;;) {
-    if (std::optional<RunSample> sample = segment_->sampleAt(t, continuation)) return sample;
+    if (std::optional<RunSample> sample = segment_->sampleAt(t, continuation)) {
+      sample->impacts = static_cast<int>(impacts_.size());
+      return sample;
+    }
     if (!switchIfDue()) return std::nullopt;
   }
 }

@@ -19,6 +19,7 @@ struct RunSample {
   physics::CoinState state;  // the seed's variables
   physics::Forward forward;  // the integrating formulation's forward pass at this state
   double dissipated = 0;     // J, energy the effects have dissipated since t = 0
+  int impacts = 0;           // the rim's impacts so far ("flight": true)
 };
 
 struct ModeSwitch {

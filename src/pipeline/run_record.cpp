@@ -23,6 +23,8 @@ FrameState frameStateOf(double time, const RunSample& sample) {
           .power = f.loads.power,
           .slipSpeed = f.slip.norm(),
           .sliding = f.sliding,
+          .flying = f.flying,
+          .impacts = sample.impacts,
           .axisGoesRound = physics::axisGoesRound(f)};
 }
 

@@ -33,6 +33,8 @@ struct FrameState {
   double power = 0;                                       // W dissipated by the effects
   double slipSpeed = 0;                                   // m/s, of the contact while sliding
   bool sliding = false;
+  bool flying = false;   // "flight": true, between the floor's contacts
+  int impacts = 0;       // the rim's impacts so far ("flight": true)
   bool axisGoesRound = false;                             // physics::axisGoesRound
 };
 

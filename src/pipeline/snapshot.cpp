@@ -36,14 +36,21 @@ std::vector<std::string> hudLines(const physics::CoinModel& model, const FrameSt
       fmt::format("θ        {:9.2f}° from vertical, {:.2f}° above the floor",
                   shownToTwoDecimals(frame.theta * 180 / std::numbers::pi),
                   90 - std::abs(frame.theta) * 180 / std::numbers::pi),
-      frame.axisGoesRound ? fmt::format("contact  {:9.2f} Hz round the floor", std::abs(frame.precessionRate) / kTurn)
-                          : std::string("contact         -- rocking, not going round"),
+      frame.flying          ? std::string("contact         -- in the air")
+      : frame.axisGoesRound ? fmt::format("contact  {:9.2f} Hz round the floor", std::abs(frame.precessionRate) / kTurn)
+                            : std::string("contact         -- rocking, not going round"),
       fmt::format("face     {:9.2f} Hz about its axis", shownToTwoDecimals(frame.omega_Z / kTurn)),
       fmt::format("E        {:9.5f} J", frame.energy),
   };
   if (!model.effects.empty()) lines.push_back(fmt::format("P        {:9.3f} mW dissipated", 1e3 * frame.power));
   // What is drawn is what is simulated: a sliding coin says so, with the slip of its contact.
   if (frame.sliding) lines.push_back(fmt::format("sliding  {:9.2f} mm/s slip", 1e3 * frame.slipSpeed));
+  // With flight, the phase and the bounces so far (the trace under a flying coin is its rim's lowest
+  // point seen from above).
+  if (frame.flying || frame.impacts > 0) {
+    lines.push_back(fmt::format("{:<8} {:9d} impact{}", frame.flying ? "flight" : "landed", frame.impacts,
+                                frame.impacts == 1 ? "" : "s"));
+  }
   lines.insert(lines.end(), extra.begin(), extra.end());
   return lines;
 }

@@ -56,7 +56,7 @@ TrajectoryReport sampleTrajectory(const Simulation& simulation, double sampleDt,
     }
     if (simulation.flight) {
       values.push_back(f.flying ? 2 : f.sliding ? 1 : 0);
-      values.push_back(static_cast<double>(run.impacts().size()));
+      values.push_back(sample->impacts);
     }
     row(values);
     ++result.rows;

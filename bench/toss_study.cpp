@@ -195,10 +195,10 @@ int main(int argc, char** argv) {
     }
     const double ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count() / kLanded;
-    const double landedFraction = static_cast<double>(same) / kLanded,
-                 caughtFraction = static_cast<double>(caught) / kLanded;
-    fmt::print("| {} | {} | {:.4f} | {:.4f} | {:.2f} | {:.2f} |\n", restitution, kLanded, landedFraction, caughtFraction,
-               ms, decided);
+    const double landedFraction = static_cast<double>(same) / kLanded;
+    const double caughtFraction = static_cast<double>(caught) / kLanded;
+    fmt::print("| {} | {} | {:.4f} | {:.4f} | {:.2f} | {:.2f} |\n", restitution, kLanded, landedFraction,
+               caughtFraction, ms, decided);
     landedCsv << fmt::format("{},{},{},{},{},{}\n", restitution, kLanded, landedFraction, caughtFraction, ms, decided);
   }
   if (!landedCsv) throw std::runtime_error("could not write toss_landed.csv");

@@ -23,7 +23,7 @@ ROOT = pathlib.Path(__file__).resolve().parent.parent
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--time", type=float, default=3.0, help="simulated time of each still, s (clamped to the scene)")
-    parser.add_argument("--columns", type=int, default=5)
+    parser.add_argument("--columns", type=int, default=6)
     parser.add_argument("--output", default=str(ROOT / "docs" / "gallery.png"))
     parser.add_argument("--coinroll", default=str(ROOT / "build" / "coinroll"), help="the program (default: build/coinroll)")
     parser.add_argument("scenes", nargs="*", type=pathlib.Path, help="scene files (default: the built-in one and examples/)")

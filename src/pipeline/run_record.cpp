@@ -24,8 +24,8 @@ FrameState frameStateOf(double time, const RunSample& sample) {
           .slipSpeed = f.slip.norm(),
           .sliding = f.sliding,
           .flying = f.flying,
-          .impacts = sample.impacts,
-          .axisGoesRound = physics::axisGoesRound(f)};
+          .axisGoesRound = physics::axisGoesRound(f),
+          .impacts = sample.impacts};
 }
 
 std::optional<double> FixedFrameTimes::timeOf(long k, const RunSample*) {

@@ -33,9 +33,9 @@ struct FrameState {
   double power = 0;                                       // W dissipated by the effects
   double slipSpeed = 0;                                   // m/s, of the contact while sliding
   bool sliding = false;
-  bool flying = false;   // "flight": true, between the floor's contacts
-  int impacts = 0;       // the rim's impacts so far ("flight": true)
+  bool flying = false;                                    // "flight": true, between the floor's contacts
   bool axisGoesRound = false;                             // physics::axisGoesRound
+  int impacts = 0;                                        // the rim's impacts so far ("flight": true)
 };
 
 FrameState frameStateOf(double time, const RunSample& sample);

@@ -14,6 +14,8 @@ uniform vec2 opacity;  // newest, oldest
 out vec4 fragColour;
 
 void main() {
+  // Where the coin was in the air (render/meshes.h kTraceInTheAir) there is no contact to trace.
+  if (vertexSliding > 1.5) discard;
   vec3 recent = mix(recentRolling, recentSliding, vertexSliding);
   vec3 old = mix(oldRolling, oldSliding, vertexSliding);
   fragColour = vec4(mix(recent, old, vertexAge), mix(opacity.x, opacity.y, vertexAge));

@@ -98,6 +98,7 @@ class Pass {
       record_.trace.emplace_back(static_cast<float>(sample->forward.contactPoint.x()),
                                  static_cast<float>(sample->forward.contactPoint.z()));
       record_.traceSlides.push_back(sample->forward.sliding);
+      record_.traceFlies.push_back(sample->forward.flying);
     }
     if (t == duration_) atDuration_ = sample;
     if (++gridIndex_ > lastGrid_) gridDone_ = true;

@@ -69,6 +69,7 @@ struct RunRecord {
   // The contact point every traceInterval from t = 0 while the run lasts (point j at j * interval).
   std::vector<glm::vec2> trace;
   std::vector<bool> traceSlides;
+  std::vector<bool> traceFlies;    // "flight": true: the points the coin was in the air at
   std::vector<FrameState> frames;  // the plan's frames, in time order
   FrameState end;                  // the coin at survey.endTime
   integrate::Stats stats;          // of the pass's one CoinRun

@@ -82,6 +82,7 @@ void SnapshotMaker::extendTraceTo(double time) {
   if (traceEndsWithNow_) {
     snapshot_.trace.pop_back();
     snapshot_.traceSlides.pop_back();
+    snapshot_.traceFlies.pop_back();
   }
   traceEndsWithNow_ = false;
   for (; static_cast<double>(nextTracePoint_) * traceDt_ < time; ++nextTracePoint_) {
@@ -91,6 +92,7 @@ void SnapshotMaker::extendTraceTo(double time) {
     }
     snapshot_.trace.push_back(record_.trace[nextTracePoint_]);
     snapshot_.traceSlides.push_back(record_.traceSlides[nextTracePoint_]);
+    snapshot_.traceFlies.push_back(record_.traceFlies[nextTracePoint_]);
   }
 }
 
@@ -108,6 +110,7 @@ const render::FrameSnapshot& SnapshotMaker::makeSnapshot(const FrameState& frame
   if (showTrace_) {
     snapshot_.trace.push_back(frame.contact);
     snapshot_.traceSlides.push_back(frame.sliding);
+    snapshot_.traceFlies.push_back(frame.flying);
     traceEndsWithNow_ = true;
   }
   snapshot_.coin = coinPose(frame);

@@ -51,6 +51,8 @@ struct FrameSnapshot {
   // Which trace points the coin slid at (the contact slipping): drawn in another colour. Empty, or
   // one entry per trace point.
   std::vector<bool> traceSlides;
+  // Which trace points the coin was in the air at (flight): not drawn. Empty, or one per point.
+  std::vector<bool> traceFlies;
   float traceWidth = 0.0015f;  // m
   bool showContact = true;     // a marker at the newest trace point
   // Text for the corner overlay, one entry per line; empty for no overlay.

@@ -114,7 +114,7 @@ std::vector<CoinVertex> coinTriangles(const CoinShape& shape, int segments) {
 }
 
 std::vector<RibbonVertex> ribbonStrip(const std::vector<glm::vec2>& points, float width,
-                                      const std::vector<bool>& slides) {
+                                      const std::vector<bool>& slides, const std::vector<bool>& flies) {
   std::vector<glm::vec2> distinct;
   std::vector<std::size_t> index;
   distinct.reserve(points.size());
@@ -134,7 +134,8 @@ std::vector<RibbonVertex> ribbonStrip(const std::vector<glm::vec2>& points, floa
     const glm::vec2 tangent = glm::normalize(after - before);
     const glm::vec2 side = 0.5f * width * glm::vec2(-tangent.y, tangent.x);
     const float age = 1.0f - static_cast<float>(index[i]) / last;
-    const float sliding = index[i] < slides.size() && slides[index[i]] ? 1.0f : 0.0f;
+    const bool flying = index[i] < flies.size() && flies[index[i]];
+    const float sliding = flying ? kTraceInTheAir : index[i] < slides.size() && slides[index[i]] ? 1.0f : 0.0f;
     strip.push_back({distinct[i] + side, age, sliding});
     strip.push_back({distinct[i] - side, age, sliding});
   }

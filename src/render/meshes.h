@@ -25,13 +25,18 @@ std::vector<CoinVertex> coinTriangles(const CoinShape& shape, int segments);
 struct RibbonVertex {
   glm::vec2 position;  // m, on the floor (x, z)
   float age;           // 0 at the newest point, 1 at the oldest
-  float sliding;       // 1 where the coin slid, else 0
+  float sliding;       // 1 where the coin slid, else 0; kTraceInTheAir where it flew
 };
+
+// RibbonVertex::sliding of a point the coin was in the air at: the trace shader draws nothing there,
+// so the trace stops where the coin leaves the floor and starts again where it lands (within half a
+// trace point).
+inline constexpr float kTraceInTheAir = 2.0f;
 
 // A triangle strip of the given width along `points` (oldest first). Consecutive duplicates
 // are skipped; fewer than two distinct points give an empty strip.
-// `slides`: empty, or which points the coin slid at.
+// `slides`, `flies`: empty, or which points the coin slid at, and was in the air at.
 std::vector<RibbonVertex> ribbonStrip(const std::vector<glm::vec2>& points, float width,
-                                      const std::vector<bool>& slides = {});
+                                      const std::vector<bool>& slides = {}, const std::vector<bool>& flies = {});
 
 }  // namespace coinroll::render

@@ -183,7 +183,8 @@ std::optional<ScaleBarPlacement> Renderer::drawFloorDecals(const FrameSnapshot& 
   gl.Enable(GL_BLEND);
   if (settings_.showShadow) drawShadows(snapshot, viewProjection);
   drawTrace(snapshot, viewProjection);
-  if (snapshot.showContact && !snapshot.trace.empty()) drawContactMarker(snapshot, viewProjection);
+  const bool inTheAir = !snapshot.traceFlies.empty() && snapshot.traceFlies.back();
+  if (snapshot.showContact && !snapshot.trace.empty() && !inTheAir) drawContactMarker(snapshot, viewProjection);
   if (!settings_.scaleBar.shown) return std::nullopt;
   return drawScaleBar(snapshot, viewProjection);
 }
@@ -211,7 +212,8 @@ void Renderer::drawShadows(const FrameSnapshot& snapshot, const glm::mat4& viewP
 }
 
 void Renderer::drawTrace(const FrameSnapshot& snapshot, const glm::mat4& viewProjection) {
-  const std::vector<RibbonVertex> ribbon = ribbonStrip(snapshot.trace, snapshot.traceWidth, snapshot.traceSlides);
+  const std::vector<RibbonVertex> ribbon =
+      ribbonStrip(snapshot.trace, snapshot.traceWidth, snapshot.traceSlides, snapshot.traceFlies);
   if (ribbon.empty()) return;
   GlState& state = *state_;
   const TraceColours& colours = palette(settings_.theme).trace;

@@ -650,4 +650,13 @@ TEST(TraceRibbon, CarriesWhereTheCoinSlidToBothSidesOfItsPoint) {
   for (const RibbonVertex& v : ribbonStrip(points, 0.1f)) EXPECT_EQ(v.sliding, 0.0f);  // no flags: all rolling
 }
 
+TEST(TraceRibbon, PointsInTheAirCarryTheMarkTheShaderDrops) {
+  const std::vector<glm::vec2> points = {{0, 0}, {1, 0}, {2, 0}, {3, 0}};
+  const std::vector<RibbonVertex> strip =
+      ribbonStrip(points, 0.1f, {true, true, false, false}, {false, true, true, false});
+  ASSERT_EQ(strip.size(), 8u);
+  const float expected[] = {1.0f, kTraceInTheAir, kTraceInTheAir, 0.0f};
+  for (std::size_t i = 0; i < strip.size(); ++i) EXPECT_EQ(strip[i].sliding, expected[i / 2]) << i;
+}
+
 }  // namespace

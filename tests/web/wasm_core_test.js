@@ -37,6 +37,10 @@ const kToleranceOf = { 'examples/skid_and_spin.json': 1e-4 };
 // The stderr report's step counts measure the adaptive step control's work, which follows the
 // trajectory: in skid_and_spin they differ by 22 of 164164 right-hand-side evaluations.
 const kWorkCountTolerance = 0.01;
+// coin_toss ends in 27,000 steps crawling through its last 0.07 s of stick-slip on the face: the
+// program's own counts move by up to 1.5 % (40089 -> 39470 steps) and 5.6 % (359 -> 379 rejected)
+// when initial.omega_X moves by one ulp, while every column stays within 1e-6.
+const kWorkCountToleranceOf = { 'examples/coin_toss.json': 0.06 };
 // Columns no library function computes: byte for byte.
 const kExactColumns = ['t', 'sliding'];
 
@@ -117,7 +121,7 @@ function numbersOf(line) {
 // The module's report against the program's stderr: the same lines in the same words; printed
 // times and fits to the tolerance (plus one unit of the last printed digit, where two roundings
 // may part); counts exact, but the step counts of the last line to kWorkCountTolerance.
-function compareReports(program, wasm, tolerance) {
+function compareReports(program, wasm, tolerance, workTolerance = kWorkCountTolerance) {
   const problems = [];
   if (program.length !== wasm.length) {
     return [`stderr has ${program.length} lines, the module's report ${wasm.length}: ${JSON.stringify(wasm)}`];
@@ -133,7 +137,7 @@ function compareReports(program, wasm, tolerance) {
     p.numbers.forEach((a, k) => {
       const b = w.numbers[k];
       let allowed;
-      if (workCounts && k > 0) allowed = kWorkCountTolerance * Math.abs(a.value);
+      if (workCounts && k > 0) allowed = workTolerance * Math.abs(a.value);
       else if (a.decimals === 0 && !/e/.test(a.text)) allowed = 0;
       else allowed = tolerance * Math.max(1, Math.abs(a.value)) + 10 ** -a.decimals;
       if (!(Math.abs(a.value - b.value) <= allowed)) {
@@ -213,7 +217,8 @@ function compareExample(core, binary, scene, checks, table) {
   });
 
   const report = program.stderr.trimEnd().split('\n');
-  problems.push(...compareReports(report, wasm.report, tolerance));
+  const workTolerance = kWorkCountToleranceOf[scene] ?? kWorkCountTolerance;
+  problems.push(...compareReports(report, wasm.report, tolerance, workTolerance));
   // The events as data say what the report says.
   const printedEvents = report.filter((l) => /^coinroll: (slides|rolls) at|^coinroll: warning: the ideal|^coinroll: stopped early/.test(l));
   problems.push(...compareReports(printedEvents, eventLines(structured), tolerance).map((p) => 'events: ' + p));

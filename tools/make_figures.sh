@@ -37,6 +37,11 @@ step "euler_disk_last_second.png (the README's strobe command)"
   --set 'render.camera.eye=[0.16,0.003,0]' --set render.camera.fov=18 \
   --set render.width=960 --set render.height=540 -o "$out/euler_disk_last_second.png"
 
+step "toss_arc.png (docs/toss.md: the toss's arc, 21 copies 25 ms apart, seen from the side)"
+"$coinroll" still examples/coin_toss.json --time 0.5 --strobe 20 --strobe-from 0 --set render.hud=false \
+  --set render.camera.mode=fixed --set 'render.camera.eye=[0.03,0.17,0.75]' --set 'render.camera.target=[0.03,0.17,0]' \
+  --set render.camera.fov=40 --set render.width=720 --set render.height=720 -o "$out/toss_arc.png"
+
 step "spin_down.png, energy_budget.png"
 $python tools/plot_spin_down.py "$coinroll" --out-dir "$out" >/dev/null
 

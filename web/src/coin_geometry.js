@@ -84,11 +84,16 @@ export function coinTriangles(shape, segments = kCoinSegments) {
   return { position: new Float32Array(position), normal: new Float32Array(normal), part: new Float32Array(part) };
 }
 
+// The CSV's phase of a coin in the air (docs/contract.md §6a), and the mark its trace points carry
+// (src/render/meshes.h kTraceInTheAir): the trace shader draws nothing there.
+export const kPhaseFlight = 2;
+export const kTraceInTheAir = 2;
+
 // The trace as a triangle strip along the contact points (meshes.cpp ribbonStrip), with the width
 // left to the shader: per vertex the point, its unit side (+ or -), its index in the trace (the
 // shader turns it into an age) and whether the coin slid there. Consecutive points closer than
 // 0.1 µm are one point.
-export function ribbonStrip(xs, zs, slides, count) {
+export function ribbonStrip(xs, zs, slides, count, phases) {
   const kept = [];
   for (let i = 0; i < count; ++i) {
     if (kept.length === 0) { kept.push(i); continue; }
@@ -107,7 +112,7 @@ export function ribbonStrip(xs, zs, slides, count) {
       point[2 * v] = xs[i]; point[2 * v + 1] = zs[i];
       side[2 * v] = -tz * sign; side[2 * v + 1] = tx * sign;
       index[v] = i;
-      sliding[v] = slides && slides[i] ? 1 : 0;
+      sliding[v] = phases && phases[i] === kPhaseFlight ? kTraceInTheAir : slides && slides[i] ? 1 : 0;
     }
   }
   return { point, side, index, sliding, vertices: 2 * n };

@@ -15,6 +15,9 @@ const kTurn = 2 * Math.PI;
 // trace and its automatic camera are the program's.
 export const traceInterval = (duration) => Math.max(1 / 240, duration / 20000);
 
+// Columns that hold their row's value between rows rather than being interpolated: flags and counts.
+const kHeldColumns = ['t', 'sliding', 'phase', 'impacts'];
+
 export function rates(theta, omegaX, omegaY, omegaZ) {
   const phiDot = omegaY / Math.cos(theta);
   return { thetaDot: omegaX, phiDot, psiDot: omegaZ + phiDot * Math.sin(theta),
@@ -70,7 +73,7 @@ export class Trajectory {
       const b = rates(next.theta, next.omega_X, next.omega_Y, next.omega_Z);
       const h = this.sampleDt;
       for (const name of this.names) {
-        if (name !== 't' && name !== 'sliding') state[name] += (next[name] - state[name]) * f;
+        if (!kHeldColumns.includes(name)) state[name] += (next[name] - state[name]) * f;
       }
       state.theta = hermite(this.columns.theta[i], next.theta, a.thetaDot, b.thetaDot, h, f);
       state.phi = hermite(this.columns.phi[i], next.phi, a.phiDot, b.phiDot, h, f);
@@ -88,12 +91,16 @@ export class Trajectory {
     const lines = [
       `t        ${fixed(s.t, 3, 9)} s`,
       `θ        ${fixed(shownToTwoDecimals(s.theta * degrees), 2, 9)}° from vertical, ${(90 - Math.abs(s.theta) * degrees).toFixed(2)}° above the floor`,
-      s.axisGoesRound ? `contact  ${fixed(Math.abs(s.phiDot) / kTurn, 2, 9)} Hz round the floor` : 'contact         -- rocking, not going round',
+      s.phase === 2 ? 'contact         -- in the air'
+        : s.axisGoesRound ? `contact  ${fixed(Math.abs(s.phiDot) / kTurn, 2, 9)} Hz round the floor` : 'contact         -- rocking, not going round',
       `face     ${fixed(shownToTwoDecimals(s.omega_Z / kTurn), 2, 9)} Hz about its axis`,
       `E        ${fixed(s.energy, 5, 9)} J`,
     ];
     if (this.hasEffects) lines.push(`P        ${fixed(1e3 * s.power, 3, 9)} mW dissipated`);
     if (s.sliding === 1) lines.push(`sliding  ${fixed(1e3 * s.slip_speed, 2, 9)} mm/s slip`);
+    if (s.phase === 2 || s.impacts > 0) {
+      lines.push(`${(s.phase === 2 ? 'flight' : 'landed').padEnd(8)} ${String(s.impacts).padStart(9)} impact${s.impacts === 1 ? '' : 's'}`);
+    }
     return lines;
   }
 

@@ -11,7 +11,7 @@ import {
 } from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import faceDataUri from 'inline:face';
-import { coinTriangles, ribbonStrip } from './coin_geometry.js';
+import { coinTriangles, kPhaseFlight, kTraceInTheAir, ribbonStrip } from './coin_geometry.js';
 import { clipPlanes, upFor } from './camera_rig.js';
 import { floorTile, kClassic, kFloorTileMetres } from './floor.js';
 
@@ -140,6 +140,7 @@ uniform vec3 recentSliding;
 uniform vec3 oldSliding;
 uniform vec2 opacity;
 void main() {
+  if (vertexSliding > 1.5) discard;  // in the air: no contact to trace
   vec3 recent = mix(recentRolling, recentSliding, vertexSliding);
   vec3 old = mix(oldRolling, oldSliding, vertexSliding);
   fragColour = vec4(mix(recent, old, vertexAge), mix(opacity.x, opacity.y, vertexAge));
@@ -257,7 +258,7 @@ export class View {
     this.shadow.matrixAutoUpdate = false;
     this.radius = shape.radius;
     const c = trajectory.columns;
-    const ribbon = ribbonStrip(c.contact_x, c.contact_z, c.sliding, trajectory.rows);
+    const ribbon = ribbonStrip(c.contact_x, c.contact_z, c.sliding, trajectory.rows, c.phase);
     this.ribbonIndex = ribbon.index;
     this.trace = mesh(geometry({ point: [ribbon.point, 2], side: [ribbon.side, 2], index: [ribbon.index, 1], sliding: [ribbon.sliding, 1] }), this.traceMaterial, 2);
     this.trace.geometry.setIndex(new BufferAttribute(stripTriangles(ribbon.vertices / 2), 1));
@@ -321,6 +322,7 @@ export class View {
     const markerRadius = Math.max(0.08 * this.radius, 1.6 * traceWidth);
     this.marker.position.set(state.contact_x, 0, state.contact_z);
     this.marker.scale.setScalar(markerRadius);
+    this.marker.visible = this.showTrace && state.phase !== kPhaseFlight;
     const [centreMark, contactMark] = this.testMarks;
     centreMark.position.set(state.x, state.y, state.z);
     contactMark.position.set(state.contact_x, 0, state.contact_z);
@@ -344,8 +346,9 @@ export class View {
     const length = Math.hypot(tx, tz);
     this.traceTail.visible = this.showTrace && from >= 0 && length > 1e-7;
     if (!this.traceTail.visible) return;
-    const ends = [[c.contact_x[from], c.contact_z[from], from, c.sliding ? c.sliding[from] : 0],
-                  [state.contact_x, state.contact_z, before, state.sliding || 0]];
+    const mark = (phase, sliding) => (phase === kPhaseFlight ? kTraceInTheAir : sliding || 0);
+    const ends = [[c.contact_x[from], c.contact_z[from], from, mark(c.phase && c.phase[from], c.sliding && c.sliding[from])],
+                  [state.contact_x, state.contact_z, before, mark(state.phase, state.sliding)]];
     const point = g.attributes.point.array, side = g.attributes.side.array, index = g.attributes.index.array, sliding = g.attributes.sliding.array;
     ends.forEach(([x, z, i, s], k) => {
       for (let n = 0; n < 2; ++n) {

@@ -37,6 +37,39 @@ void CoinSound::synthesize(double f0, double f1, std::size_t count, std::vector<
 
 namespace {
 
+// The knock of an impact: a sine at kKnockFrequency dying away with time constant kKnockDecay,
+// starting from zero so it adds no step. Below kClickBandLimit like the clicks, and long enough to
+// be heard as a knock, short enough that a bounce sequence's impacts stay apart.
+constexpr double kKnockFrequency = 2500;  // Hz
+constexpr double kKnockDecay = 0.004;     // s
+constexpr double kKnockLength = 8 * kKnockDecay;
+
+}  // namespace
+
+void CoinSound::addImpact(std::vector<float>& samples, std::size_t at, double strength) {
+  const auto length = static_cast<std::size_t>(kKnockLength * sampleRate_);
+  if (ringing_.size() < at + length - std::min(at + length, samples.size())) {
+    ringing_.resize(at + length - std::min(at + length, samples.size()), 0.0f);
+  }
+  const double amplitude = spec_.volume * std::clamp(strength, 0.0, 1.0);
+  for (std::size_t n = 0; n < length; ++n) {
+    const double time = static_cast<double>(n) / sampleRate_;
+    const auto value = static_cast<float>(amplitude * std::sin(2 * std::numbers::pi * kKnockFrequency * time) *
+                                          std::exp(-time / kKnockDecay));
+    const std::size_t i = at + n;
+    if (i < samples.size()) samples[i] += value;
+    else ringing_[i - samples.size()] += value;
+  }
+}
+
+void CoinSound::ringOn(std::vector<float>& samples) {
+  const std::size_t carried = std::min(ringing_.size(), samples.size());
+  for (std::size_t i = 0; i < carried; ++i) samples[i] += ringing_[i];
+  ringing_.erase(ringing_.begin(), ringing_.begin() + static_cast<std::ptrdiff_t>(carried));
+}
+
+namespace {
+
 void fade(std::vector<float>& samples, int sampleRate, bool in) {
   const auto length = std::min(samples.size(), static_cast<std::size_t>(kFadeSeconds * sampleRate));
   for (std::size_t i = 0; i < length; ++i) {

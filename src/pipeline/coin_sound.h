@@ -25,6 +25,12 @@ class CoinSound {
   // Appends `count` samples to `out` while the fundamental moves linearly from f0 to f1 (Hz, >= 0).
   void synthesize(double f0, double f1, std::size_t count, std::vector<float>& out);
 
+  // Mixes into `samples` from index `at` the knock of an impact of relative strength `strength` in
+  // [0, 1] (docs/sound.md §4): a band-limited ring that dies away in a few milliseconds. What runs past
+  // the end of `samples` is kept and mixed into the next call's samples from their start.
+  void addImpact(std::vector<float>& samples, std::size_t at, double strength);
+  void ringOn(std::vector<float>& samples);
+
   // Multiplies the first or the last kFadeSeconds of `samples` by a raised-cosine ramp.
   void fadeIn(std::vector<float>& samples) const;
   void fadeOut(std::vector<float>& samples) const;
@@ -35,6 +41,7 @@ class CoinSound {
   scene::AudioSpec spec_;
   int sampleRate_;
   double phase_ = 0;  // cycles, in [0, 1)
+  std::vector<float> ringing_;  // the impacts' sound still to come, from the next sample on
 };
 
 }  // namespace coinroll::pipeline

@@ -63,6 +63,7 @@ class Pass {
     }
     record_.end = frameStateOf(record_.survey.endTime, endSample_ ? *endSample_ : *atDuration_);
     record_.stats = run_.stats();
+    record_.impacts = run_.impacts();
     return std::move(record_);
   }
 

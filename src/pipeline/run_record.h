@@ -71,6 +71,7 @@ struct RunRecord {
   std::vector<bool> traceSlides;
   std::vector<bool> traceFlies;    // "flight": true: the points the coin was in the air at
   std::vector<FrameState> frames;  // the plan's frames, in time order
+  std::vector<ImpactRecord> impacts;  // "flight": true: the rim's impacts, for the sound track
   FrameState end;                  // the coin at survey.endTime
   integrate::Stats stats;          // of the pass's one CoinRun
 };

@@ -114,7 +114,13 @@ namespace {
 // between the two frames' (docs/sound.md §2).
 class SoundTrack {
  public:
-  SoundTrack(const scene::AudioSpec& spec, int fps) : spec_(spec), fps_(fps), synth_(spec, video::kAudioSampleRate) {}
+  // `impactScale`: the energy an impact must take to knock at full volume, J.
+  SoundTrack(const scene::AudioSpec& spec, int fps, double impactScale)
+      : spec_(spec), fps_(fps), synth_(spec, video::kAudioSampleRate), impactScale_(impactScale) {}
+
+  // An impact between the previous frame and the next one, at `fraction` of the way: it knocks in
+  // the next block, its loudness the square root of its energy over impactScale, capped at 1.
+  void knock(double fraction, double energyLost) { knocks_.push_back({fraction, energyLost}); }
 
   // Each call's block of sound ends at frame k; it goes to `sink`, or nowhere when that is null (a
   // frame outside the window), still synthesised so the sound is the full render's.
@@ -150,6 +156,12 @@ class SoundTrack {
   void emit(long k, double f, video::FrameSink* sink, bool last) {
     block_.clear();
     synth_.synthesize(frequency_, f, static_cast<std::size_t>(sampleAt(k) - sampleAt(k - 1)), block_);
+    synth_.ringOn(block_);
+    for (const auto& [fraction, energy] : knocks_) {
+      const auto at = static_cast<std::size_t>(fraction * static_cast<double>(block_.size()));
+      synth_.addImpact(block_, std::min(at, block_.size()), std::sqrt(energy / impactScale_));
+    }
+    knocks_.clear();
     if (k == 1) synth_.fadeIn(block_);
     if (last) synth_.fadeOut(block_);
     if (sink != nullptr) sink->pushAudio(block_);
@@ -160,6 +172,8 @@ class SoundTrack {
   CoinSound synth_;
   double frequency_ = 0;  // Hz, at the previous frame
   std::vector<float> block_;
+  double impactScale_;
+  std::vector<std::pair<double, double>> knocks_;  // the next block's impacts: fraction of it, J
 };
 
 }  // namespace
@@ -433,7 +447,10 @@ VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& si
   }
   image::Image frame;
   std::optional<SoundTrack> sound;
-  if (scene.render.audio) sound.emplace(*scene.render.audio, scene.render.fps);
+  // An impact that takes the energy of dropping the coin by its own radius knocks at full volume.
+  const double impactScale = simulation.model.M * simulation.model.g * simulation.model.a;
+  if (scene.render.audio) sound.emplace(*scene.render.audio, scene.render.fps, impactScale);
+  auto nextImpact = record.impacts.begin();
   // The sound between frames k - 1 and k plays with frame k - 1: it is kept when that frame is.
   const auto soundSink = [&](long k) { return k > 0 && written(k - 1) ? &sink : nullptr; };
   const auto push = [&](long k, double simulatedTime, double playbackRate) {
@@ -466,6 +483,12 @@ VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& si
     }
     // Synthesised for every frame, so the sound is the full render's; the trace catches up at the next snapshot.
     if (sound) {
+      // The impacts since the previous frame knock in the block that ends at this one.
+      for (; nextImpact != record.impacts.end() && nextImpact->t <= state.time; ++nextImpact) {
+        const double previous = k > 0 ? frames[static_cast<std::size_t>(k - 1)].time : 0.0;
+        const double span = state.time - previous;
+        sound->knock(span > 0 ? (nextImpact->t - previous) / span : 1.0, nextImpact->energyLost);
+      }
       sound->reachFrame(k, state.precessionRate, playbackRate, soundSink(k),
                         plan.landed && k + 1 == simulatedFrames);
     }

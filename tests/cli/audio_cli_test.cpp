@@ -124,6 +124,39 @@ TEST_F(AudioCliTest, SpinDownChirpFollowsOmegaToTheEnd) {
   EXPECT_GT(highest, 1.5 * lowest);  // it is a chirp
 }
 
+TEST_F(AudioCliTest, EachImpactKnocksAtItsTimeAsLoudAsTheSquareRootOfItsLoss) {
+  // A disk dropped edge-down from 1 cm without spin (docs/flight.md): no contact rate, so the track
+  // is silent but for the knocks, played in real time. Each rebound takes e^2 = 1/4 of the energy the
+  // impact before took, so each knock is e = 1/2 as loud; the times come from `simulate`'s stderr.
+  const fs::path scene = dir_ / "drop.json", mp4 = dir_ / "drop.mp4";
+  std::ofstream(scene) << R"({"coin": {"radius": 0.0125, "mass": 0.0075}, "friction": 0.3, "sliding": true,
+    "flight": true, "restitution": 0.5, "initial": {"theta": 0, "y": 0.0225}, "duration": 0.4,
+    "render": {"width": 64, "height": 36, "fps": 30, "audio": {"timbre": "tone", "pitch": "real"}}})";
+  const auto simulated = runCoinroll("simulate " + scene.string() + " --csv " + (dir_ / "drop.csv").string());
+  ASSERT_EQ(simulated.exitCode, 0);
+  std::vector<double> impacts;
+  for (std::size_t at = 0; (at = simulated.output.find("impact at t = ", at)) != std::string::npos; ++at) {
+    impacts.push_back(std::stod(simulated.output.substr(at + 14)));
+  }
+  ASSERT_GE(impacts.size(), 4u);
+  ASSERT_EQ(runCoinroll("render " + scene.string() + " -q -o " + mp4.string()).exitCode, 0);
+  const std::vector<float>& x = coinroll::video::decodeAudio(mp4).samples;
+  // The loudest sample within 3 ms after each impact, and nothing before the first.
+  const auto peakAfter = [&](double t, double window) {
+    float peak = 0;
+    const auto end = std::min(static_cast<std::size_t>((t + window) * kRate), x.size());
+    for (auto i = static_cast<std::size_t>(t * kRate); i < end; ++i) {
+      peak = std::max(peak, std::abs(x[i]));
+    }
+    return peak;
+  };
+  EXPECT_LT(peakAfter(0, impacts[0] - 0.002), 0.01);
+  for (std::size_t k = 0; k + 1 < 3; ++k) {
+    const double ratio = peakAfter(impacts[k + 1], 0.003) / peakAfter(impacts[k], 0.003);
+    EXPECT_TRUE(isNear(ratio, 0.5, 0.05)) << "knock " << k + 1 << " to " << k + 2 << ": " << ratio;
+  }
+}
+
 TEST_F(AudioCliTest, ARerunWritesTheSameBytes) {
   const std::string scene = std::string(COINROLL_SOURCE_DIR) + "/examples/euler_disk.json";
   const std::string options = " -q --set render.width=64 --set render.height=36 --set render.fps=10 --set duration=3 "

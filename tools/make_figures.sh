@@ -32,10 +32,10 @@ step() { echo "make_figures: $*" >&2; }
 step "gallery.png"
 $python tools/make_gallery.py --coinroll "$coinroll" --output "$out/gallery.png"
 
-step "euler_disk_last_second.png (the README's strobe command)"
-"$coinroll" still examples/euler_disk.json --time 117.18 --strobe 6 --strobe-from 116.18 \
+step "euler_disk_last_second.png (docs/physics.md's strobe command: six panels)"
+"$coinroll" still examples/euler_disk.json --time 117.18 --strobe 5 --strobe-from 116.18 --panels \
   --set 'render.camera.eye=[0.16,0.003,0]' --set render.camera.fov=18 \
-  --set render.width=960 --set render.height=540 -o "$out/euler_disk_last_second.png"
+  --set render.width=480 --set render.height=270 -o "$out/euler_disk_last_second.png"
 
 step "toss_arc.png (docs/toss.md: the toss's arc, 21 copies 25 ms apart, seen from the side)"
 "$coinroll" still examples/coin_toss.json --time 0.5 --strobe 20 --strobe-from 0 --set render.hud=false \

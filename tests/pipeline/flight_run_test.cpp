@@ -14,6 +14,7 @@
 #include "pipeline/simulation.h"
 #include "pipeline/trajectory_samples.h"
 #include "scene/scene_loader.h"
+#include "scene_simulation.h"
 #include "tolerance.h"
 
 namespace {
@@ -22,11 +23,8 @@ using namespace coinroll;
 using coinroll::testing::isBelow;
 using coinroll::testing::isNear;
 
-pipeline::Simulation simulationOf(const nlohmann::json& doc) {
-  return pipeline::buildSimulation(scene::parseScene(doc, "test"));
-}
-
-const nlohmann::json kTightSolver = {{"rtol", 1e-12}, {"atol", 1e-14}};
+using coinroll::testing::kTightSolver;
+using coinroll::testing::simulationOf;
 constexpr double kG = 9.81, kRadius = 0.0125, kDropHeight = 0.05, kRestitution = 0.5;
 
 nlohmann::json edgeDownDrop() {

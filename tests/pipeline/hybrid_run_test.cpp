@@ -20,6 +20,7 @@
 #include "pipeline/simulation.h"
 #include "pipeline/trajectory_csv.h"
 #include "scene/scene_loader.h"
+#include "scene_simulation.h"
 #include "tolerance.h"
 
 namespace {
@@ -28,11 +29,8 @@ using namespace coinroll;
 using coinroll::testing::isBelow;
 using coinroll::testing::isNear;
 
-pipeline::Simulation simulationOf(const nlohmann::json& doc) {
-  return pipeline::buildSimulation(scene::parseScene(doc, "test"));
-}
-
-const nlohmann::json kTightSolver = {{"rtol", 1e-12}, {"atol", 1e-14}};
+using coinroll::testing::kTightSolver;
+using coinroll::testing::simulationOf;
 
 nlohmann::json skid(const nlohmann::json& coin, double v0, double mu, const nlohmann::json& solver = kTightSolver) {
   return {{"coin", coin},  {"friction", mu},  {"sliding", true}, {"initial", {{"theta", 0}, {"v_x", v0}}},

@@ -60,6 +60,23 @@ FlightStateVec flightRhs(const CoinModel& m, const FlightStateVec& y) {
   return dy;
 }
 
+FlightState flightAfter(const CoinModel& m, const FlightState& start, double elapsed) {
+  const Eigen::Vector3d L = angularMomentum(m, start);
+  const double bodyRate = start.omegaBody.z() * (m.I_X - m.I_Z) / m.I_X;  // lambda in (1.4)
+  const Eigen::AngleAxisd aboutL(L.norm() * elapsed / m.I_X,
+                                 L.norm() > 0 ? Eigen::Vector3d(L.normalized()) : Eigen::Vector3d::UnitY());
+  const Eigen::AngleAxisd aboutAxis(bodyRate * elapsed, Eigen::Vector3d::UnitZ());
+  FlightState s;
+  s.q = (Eigen::Quaterniond(aboutL) * start.q * Eigen::Quaterniond(aboutAxis)).normalized();
+  // R^T L is I omega_b; with R(t) from (1.4) it is Rot(b3, -lambda t) R(0)^T L.
+  s.omegaBody = aboutAxis.inverse() * start.omegaBody;
+  s.centre = start.centre + start.velocity * elapsed - 0.5 * m.g * elapsed * elapsed * Eigen::Vector3d::UnitY();
+  s.velocity = start.velocity - m.g * elapsed * Eigen::Vector3d::UnitY();
+  return s;
+}
+
+double reachBelowCentre(const CoinModel& m) { return std::hypot(m.a, 0.5 * m.rim.thickness); }
+
 double lowestPointDepth(const CoinModel& m, const Eigen::Quaterniond& unitQ) {
   const Eigen::Vector3d up = unitQ.toRotationMatrix().row(1).transpose();
   const double cosTheta = std::hypot(up.x(), up.y());

@@ -31,6 +31,14 @@ FlightState toFlightState(const FlightStateVec& y);
 // dy/dt: eqs. (1.1)-(1.3), with the quaternion formulation's pull back to |q| = 1.
 FlightStateVec flightRhs(const CoinModel& model, const FlightStateVec& y);
 
+// The free flight in closed form (eq. 1.4 and G's parabola): the state `elapsed` seconds after
+// `start`, exact to round-off however long the flight, at the cost of a few rotations.
+FlightState flightAfter(const CoinModel& model, const FlightState& start, double elapsed);
+
+// m, the radius of the sphere about G that holds the whole coin: no attitude puts the rim's lowest
+// point deeper below G than this, so a centre higher above the floor cannot touch it.
+double reachBelowCentre(const CoinModel& model);
+
 // m, the height of the rim's lowest point below the centre of mass (eq. 2.1), at every attitude,
 // flat included (where it is h/2).
 double lowestPointDepth(const CoinModel& model, const Eigen::Quaterniond& unitQ);

@@ -5,6 +5,7 @@
 #include <limits>
 #include <numbers>
 
+#include "integrate/event_location.h"
 #include "physics/impact.h"
 #include "physics/validity.h"
 
@@ -17,65 +18,64 @@ namespace {
 // depth, above zero, however slowly the gap then grows (as t^3 after a lift-off).
 constexpr double kTouchDepth = 1e-12;
 
-// The shortest hop a flight's steps resolve, in the natural time sqrt(a / g): a rebound below the
+// The shortest hop the touchdown's search resolves, in the natural time sqrt(a / g): a rebound below the
 // bounce-end's speed (eq. 4.1) lasts 2 sqrt(2e-6) ~ 3e-3 of it.
 constexpr double kShortestHop = 1e-3;
-// rad: the tumbling coin turns at most this per step.
+// rad: the tumbling coin turns at most this between two readings of its gap.
 constexpr double kStepTurn = std::numbers::pi / 8;
 
 // docs/flight.md eq. (4.1): bounces end at a rebound that would lift the rim 1e-6 a.
 constexpr double kRestHeight = 1e-6;
 
+// s: the first time the closed form's g = gap + kTouchDepth a falls through zero after t0, up to
+// `until`. Before the centre comes down to reachBelowCentre no attitude can touch: the search starts
+// there. From then on g is read every eighth of a turn of the coin (its rim dips towards the floor
+// twice a turn) and every quarter of a rebound's hop, so no dip falls between two readings, and the
+// crossing is located between the last two.
+std::optional<double> touchdownAfter(const physics::CoinModel& model, double t0, const physics::FlightState& start,
+                                     double until) {
+  const auto g = [&](double elapsed) {
+    return physics::rimGap(model, physics::flightAfter(model, start, elapsed)) + kTouchDepth * model.a;
+  };
+  const double high = start.centre.y() - physics::reachBelowCentre(model), up = start.velocity.y();
+  double elapsed = high > 0 ? (up + std::sqrt(up * up + 2 * model.g * high)) / model.g : 0.0;
+  const double rising =
+      std::max(physics::pointVelocity(start, physics::lowestPointVector(model, start.q)).y(), 0.0);
+  const double turn = start.omegaBody.norm();
+  const bool fromTheFloor = physics::rimGap(model, start) <= kTouchDepth * model.a;
+  const double hop = fromTheFloor ? std::max(0.5 * rising / model.g, kShortestHop * physics::naturalTime(model))
+                                  : std::numeric_limits<double>::infinity();
+  const double reading = std::min(hop, turn > 0 ? kStepTurn / turn : hop);
+  // A coin dropped without spin from above falls straight: its gap, the centre's parabola less a
+  // constant, falls monotonically, read every natural time.
+  const double step = std::isfinite(reading) ? reading : physics::naturalTime(model);
+  double before = g(elapsed);
+  while (t0 + elapsed < until) {
+    const double next = elapsed + step, after = g(next);
+    if (before > 0 && after <= 0) return t0 + integrate::locateRoot(g, elapsed, before, next, after);
+    elapsed = next, before = after;
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
-integrate::Vec<kFlightSize> FlightRhs::operator()(double /*t*/, const integrate::Vec<kFlightSize>& y) const {
-  integrate::Vec<kFlightSize> dy;
-  dy << physics::flightRhs(model, y.head<physics::kFlightStateSize>()), 0;
-  return dy;
-}
+FreeFlight::FreeFlight(const physics::CoinModel& model, double t0, const physics::FlightState& start,
+                       double dissipated, double until)
+    : model_(model), t0_(t0), start_(start), dissipated_(dissipated),
+      touchdown_(touchdownAfter(model, t0, start, until)) {}
 
-physics::FlightState flightStateOf(const integrate::Vec<kFlightSize>& y) {
-  return physics::toFlightState(y.head<physics::kFlightStateSize>());
-}
-
-RunSample FlightKind::sample(const integrate::Vec<kFlightSize>& y, const physics::CoinState& continuation) const {
-  const physics::FlightState s = flightStateOf(y);
+RunSample flightSample(const physics::CoinModel& model, const physics::FlightState& s, double dissipated,
+                       const physics::CoinState& continuation) {
   const physics::QuaternionState attitude{.q = s.q, .omegaBody = s.omegaBody, .x = s.centre.x(), .z = s.centre.z()};
   return {.state = physics::toEulerState(attitude, continuation),
           .forward = physics::flightForward(model, s),
-          .dissipated = y[kFlightSize - 1]};
-}
-
-integrate::Event<kFlightSize> touchdownEvent(const physics::CoinModel& model, int id) {
-  return {.name = "touchdown",
-          .id = id,
-          .g = [model](double, const integrate::Vec<kFlightSize>& y) {
-            return physics::rimGap(model, flightStateOf(y)) + kTouchDepth * model.a;
-          },
-          .direction = -1,
-          .terminal = true};
+          .dissipated = dissipated};
 }
 
 physics::FlightState onTheFloor(const physics::CoinModel& model, physics::FlightState state) {
   state.centre.y() = physics::lowestPointDepth(model, state.q);
   return state;
-}
-
-integrate::SolverConfig flightSolver(const Simulation& simulation, const physics::FlightState& start) {
-  const physics::CoinModel& model = simulation.model;
-  const double rising =
-      std::max(physics::pointVelocity(start, physics::lowestPointVector(model, start.q)).y(), 0.0);
-  const double turn = start.omegaBody.norm();
-  integrate::SolverConfig solver = simulation.solver;
-  // No step may span a whole hop of the rim, where the gap would rise and fall back unseen: at most
-  // a quarter of the rebound's flight 2 u / g, and an eighth of a turn of the tumbling coin, whose
-  // rim dips towards the floor twice a turn.
-  // A flight that starts in the air (a toss, a drop) crosses the floor before it can come back.
-  const bool fromTheFloor = physics::rimGap(model, start) <= kTouchDepth * model.a;
-  const double hop = fromTheFloor ? std::max(0.5 * rising / model.g, kShortestHop * physics::naturalTime(model))
-                                  : std::numeric_limits<double>::infinity();
-  solver.maxStep = std::min({solver.maxStep, hop, turn > 0 ? kStepTurn / turn : hop});
-  return solver;
 }
 
 Landing land(const Simulation& simulation, double t, const physics::FlightState& atTouch, double dissipated,

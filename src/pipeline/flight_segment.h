@@ -3,10 +3,9 @@
 // the seed's variables, the touchdown of its rim that ends a flight, and what the touchdown's impact
 // leads to: another flight, the held contact once the bounces have died away, or rest on a face.
 
+#include <optional>
 #include <vector>
 
-#include "integrate/events.h"
-#include "integrate/solver_config.h"
 #include "physics/coin_model.h"
 #include "physics/coin_state.h"
 #include "physics/flight.h"
@@ -17,36 +16,40 @@
 
 namespace coinroll::pipeline {
 
-inline constexpr int kFlightSize = physics::kFlightStateSize + 1;  // with the dissipated energy, constant in flight
+// A free coin's state read in the seed's variables, phi and psi within pi of `continuation`'s.
+RunSample flightSample(const physics::CoinModel& model, const physics::FlightState& state, double dissipated,
+                       const physics::CoinState& continuation);
 
-struct FlightRhs {
-  physics::CoinModel model;
-  integrate::Vec<kFlightSize> operator()(double t, const integrate::Vec<kFlightSize>& y) const;
+// One flight in closed form (physics::flightAfter, docs/flight.md §1): no steps, exact to round-off
+// however many turns the coin makes, and its touchdown found on the closed form (§2).
+class FreeFlight {
+ public:
+  // The flight that starts at t0 in `start` with `dissipated` J already lost; its touchdown is
+  // searched for up to `until` s.
+  FreeFlight(const physics::CoinModel& model, double t0, const physics::FlightState& start, double dissipated,
+             double until);
+
+  physics::FlightState at(double t) const { return physics::flightAfter(model_, start_, t - t0_); }
+  RunSample sample(const physics::FlightState& state, const physics::CoinState& continuation) const {
+    return flightSample(model_, state, dissipated_, continuation);
+  }
+  // s: where the rim reaches the floor (the gap falling through -1e-12 a), or none up to `until`.
+  std::optional<double> touchdown() const { return touchdown_; }
+  const physics::CoinModel& model() const { return model_; }
+  double dissipated() const { return dissipated_; }
+
+ private:
+  physics::CoinModel model_;
+  double t0_;
+  physics::FlightState start_;
+  double dissipated_;
+  std::optional<double> touchdown_;
 };
-
-// A flight's integrated state read in the seed's variables (TrajectoryMotion's Kind).
-struct FlightKind {
-  using Rhs = FlightRhs;
-  static constexpr bool kContinuesAngles = true;
-
-  physics::CoinModel model;
-
-  Rhs rhs() const { return Rhs{model}; }
-  RunSample sample(const integrate::Vec<kFlightSize>& y, const physics::CoinState& continuation) const;
-};
-
-physics::FlightState flightStateOf(const integrate::Vec<kFlightSize>& y);
-
-// The rim reaching the floor, falling through zero (docs/flight.md §2), with event id `id`.
-integrate::Event<kFlightSize> touchdownEvent(const physics::CoinModel& model, int id);
 
 // `state` with its centre at the height where the rim's lowest point touches the floor: where a
 // bounce or a lift-off starts a flight (the touchdown was located a root tolerance either side of it,
 // the contact's height carries round-off), moved by at most 1e-12 a.
 physics::FlightState onTheFloor(const physics::CoinModel& model, physics::FlightState state);
-
-// The scene's solver with its steps capped so that none spans a hop of the rim or a turn of the coin.
-integrate::SolverConfig flightSolver(const Simulation& simulation, const physics::FlightState& start);
 
 // What a touchdown leads to (docs/flight.md §3-§5).
 struct Landing {

@@ -159,21 +159,43 @@ class SlidingSegment final : public TrajectoryMotion<kSlidingSize, SlidingKind, 
   }
 };
 
-class FlightSegment final : public TrajectoryMotion<kFlightSize, FlightKind, ContactSegment> {
+class FlightSegment final : public ContactSegment {
  public:
-  using TrajectoryMotion::TrajectoryMotion;
+  FlightSegment(const physics::CoinModel& model, double t0, const physics::FlightState& start, double dissipated,
+                double duration)
+      : flight_(model, t0, start, dissipated, duration), duration_(duration) {}
+
+  bool continuesAngles() const override { return true; }
+
+  std::optional<RunSample> sampleAt(double t, const physics::CoinState& continuation) override {
+    if (flight_.touchdown() && t > *flight_.touchdown()) return std::nullopt;
+    return flight_.sample(flight_.at(t), continuation);
+  }
+
+  std::optional<RunEvent> stoppedBy(const physics::CoinState& continuation) const override {
+    if (!flight_.touchdown() || *flight_.touchdown() > duration_) return std::nullopt;
+    const double t = *flight_.touchdown();
+    return runEventOf(kTouchdown, t, flight_.sample(flight_.at(t), continuation));
+  }
+
+  std::vector<RunEvent> warnings() const override { return {}; }
+  integrate::Stats stats() const override { return {}; }
 
   std::optional<Handover> handover() const override {
-    const auto& hit = endHit();
-    if (!hit || hit->id != kTouchdown) return std::nullopt;
-    const physics::FlightState state = flightStateOf(hit->y);
-    return Handover{.id = hit->id,
-                    .t = hit->t,
-                    .state = contactStateOf(kind().model, state),
+    if (!flight_.touchdown()) return std::nullopt;
+    const double t = *flight_.touchdown();
+    const physics::FlightState state = flight_.at(t);
+    return Handover{.id = kTouchdown,
+                    .t = t,
+                    .state = contactStateOf(flight_.model(), state),
                     .flight = state,
-                    .forward = physics::flightForward(kind().model, state),
-                    .dissipated = hit->y[kFlightSize - 1]};
+                    .forward = physics::flightForward(flight_.model(), state),
+                    .dissipated = flight_.dissipated()};
   }
+
+ private:
+  FreeFlight flight_;
+  double duration_;  // s; a touchdown after it is not this run's
 };
 
 // With flight the coin leaves the floor where N falls through zero: lift-off becomes a switch to a
@@ -285,11 +307,7 @@ void HybridRun::startSliding(double t, const physics::SlidingState& state, doubl
 }
 
 void HybridRun::startFlight(double t, const physics::FlightState& state, double dissipated) {
-  integrate::Vec<kFlightSize> y0;
-  y0 << physics::toVector(state), dissipated;
-  segment_ = std::make_unique<FlightSegment>(FlightKind{simulation_.model}, t, y0, flightSolver(simulation_, state),
-                                             std::vector{touchdownEvent(simulation_.model, kTouchdown)},
-                                             simulation_.duration);
+  segment_ = std::make_unique<FlightSegment>(simulation_.model, t, state, dissipated, simulation_.duration);
 }
 
 void HybridRun::startContact(double t, const physics::SlidingState& state, double dissipated) {
@@ -400,10 +418,8 @@ std::optional<RunSample> HybridRun::sampleAt(double t, const physics::CoinState&
 std::optional<RunEvent> HybridRun::stoppedBy(const physics::CoinState& continuation) const {
   if (ending_) {
     if (ending_->t > simulation_.duration) return std::nullopt;
-    integrate::Vec<kFlightSize> y;
-    y << physics::toVector(ending_->state), ending_->dissipated;
     return runEventOf(static_cast<int>(ending_->event), ending_->t,
-                      FlightKind{simulation_.model}.sample(y, continuation));
+                      flightSample(simulation_.model, ending_->state, ending_->dissipated, continuation));
   }
   return segment_->stoppedBy(continuation);
 }

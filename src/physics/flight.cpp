@@ -75,6 +75,10 @@ FlightState flightAfter(const CoinModel& m, const FlightState& start, double ela
   return s;
 }
 
+double uprightEnergy(const CoinModel& m) {
+  return m.M * m.g * lowestPointDepth(m, Eigen::Quaterniond::Identity());
+}
+
 double reachBelowCentre(const CoinModel& m) { return std::hypot(m.a, 0.5 * m.rim.thickness); }
 
 double lowestPointDepth(const CoinModel& m, const Eigen::Quaterniond& unitQ) {

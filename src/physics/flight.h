@@ -39,6 +39,10 @@ FlightState flightAfter(const CoinModel& model, const FlightState& start, double
 // point deeper below G than this, so a centre higher above the floor cannot touch it.
 double reachBelowCentre(const CoinModel& model);
 
+// J, the energy of the coin standing still upright on its rim, M g h(0) with h from (2.1): every
+// attitude with theta = 0, touching the floor or above it, has at least this much (docs/flight.md §5a).
+double uprightEnergy(const CoinModel& model);
+
 // m, the height of the rim's lowest point below the centre of mass (eq. 2.1), at every attitude,
 // flat included (where it is h/2).
 double lowestPointDepth(const CoinModel& model, const Eigen::Quaterniond& unitQ);

@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <string>
 
+#include <Eigen/Eigenvalues>
+
 namespace coinroll::physics {
 
 namespace {
@@ -150,6 +152,9 @@ ImpactOutcome resolveImpact(const CoinModel& m, const FlightState& state, const 
     mode = *rest;
   }
   const double dp = outcome.approachSpeed / K(1, 1) / kStepsPerCompression;
+  Eigen::Matrix2d Ktt;
+  Ktt << K(0, 0), K(0, 2), K(2, 0), K(2, 2);
+  const double directionStiffness = mu * Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(Ktt).eigenvalues().maxCoeff();
   bool compressing = true;
   double target = 0;  // W_n at which restitution ends, eq. (3.5)
   for (int steps = 0;; ++steps) {
@@ -160,11 +165,16 @@ ImpactOutcome resolveImpact(const CoinModel& m, const FlightState& state, const 
     }
     // While slipping the step is at most half the slip's distance from zero at its rate of change,
     // so no step crosses zero, where friction's direction jumps: near a stop the steps shrink
-    // geometrically and the slip is located at its zero to kStoppedSlip.
+    // geometrically and the slip is located at its zero to kStoppedSlip. The slip's direction turns
+    // towards the one it stops along at a rate up to mu |K_tt| / |s|, stiff as |s| shrinks: a step of
+    // more than |s| / (mu |K_tt|) leaves the direction oscillating about it, stuck at the bound of the
+    // method's stability, and the slip shrinking by 0.3 % a step instead of converging (docs/flight.md §3).
     double stepSize = dp;
     if (mode.contact == ContactMode::Slipping) {
+      const double slip = horizontal(s.u).norm();
       const double slipRate = horizontal(K * impulseRate(mode, s.u, mu)).norm();
-      if (slipRate > 0) stepSize = std::min(dp, 0.5 * horizontal(s.u).norm() / slipRate);
+      if (slipRate > 0) stepSize = std::min(dp, 0.5 * slip / slipRate);
+      if (directionStiffness > 0) stepSize = std::min(stepSize, slip / directionStiffness);
     }
     const auto ended = [&](const ImpulsePath& x) {
       return compressing ? x.u.y() >= 0 : x.work >= target || x.u.y() < 0;

@@ -15,6 +15,7 @@ std::string_view eventName(ModelEvent event) {
     case ModelEvent::StickSlip: return "stick-slip";
     case ModelEvent::Rest: return "rest";
     case ModelEvent::ImpactJam: return "impact-jam";
+    case ModelEvent::Decided: return "decided";
   }
   return "event";
 }

@@ -24,10 +24,11 @@ enum class ModelEvent {
   StickSlip,     // more rolling/sliding switches than the run allows per simulated second (docs/sliding.md §4)
   Rest,          // flight: the coin landed flat on a face and lies there (docs/flight.md §5)
   ImpactJam,     // flight: an impact whose friction stops the normal impulse from ending it (docs/flight.md §3)
+  Decided,       // flight, stop_when_decided: too little energy left to pass upright, the face up is final (§5a)
 };
 
 // The contract's name: "coin-flat", "face-down", "corner-switch", "lift-off", "slip", "painleve", "stick-slip",
-// "rest", "impact-jam".
+// "rest", "impact-jam", "decided".
 std::string_view eventName(ModelEvent event);
 
 // rad. The Euler-angle equations carry tan(theta) and 1 / cos(theta); at 89 degrees the coin's

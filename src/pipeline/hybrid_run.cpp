@@ -211,15 +211,35 @@ void liftOffSwitches(std::vector<integrate::Event<N>>& events) {
   }
 }
 
+// decided (stop_when_decided, docs/flight.md §5a): the energy falls below standing upright's.
+// `energy` reads an integrated state's.
+template <int N>
+integrate::Event<N> decidedEvent(const physics::CoinModel& model, std::function<double(const integrate::Vec<N>&)> energy) {
+  return modelEvent<N>(
+      ModelEvent::Decided,
+      [energy, upright = physics::uprightEnergy(model)](double, const integrate::Vec<N>& y) { return energy(y) - upright; },
+      -1, true);
+}
+
+bool belowUpright(const physics::CoinModel& model, const physics::FlightState& state) {
+  return physics::kineticEnergy(model, state) + model.M * model.g * state.centre.y() < physics::uprightEnergy(model);
+}
+
 }  // namespace
 
 HybridRun::HybridRun(const Simulation& simulation) : simulation_(simulation) {
-  if (const std::optional<physics::FlightState> flying = flightStart(simulation)) {
+  const physics::QuaternionState start = physics::fromEulerState(simulation.initial);
+  const physics::Forward rolling = physics::forward(simulation_.model, start);
+  const std::optional<physics::FlightState> flying = flightStart(simulation);
+  // A coin that starts with too little energy to pass upright has its face decided before it moves.
+  if (const physics::FlightState at = flying.value_or(flightStateOf(start, rolling));
+      simulation.stopWhenDecided && belowUpright(simulation.model, at)) {
+    ending_ = Ending{.event = ModelEvent::Decided, .t = 0, .state = at, .dissipated = 0};
+  }
+  if (flying) {
     startFlight(0, *flying, 0);
     return;
   }
-  const physics::QuaternionState start = physics::fromEulerState(simulation.initial);
-  const physics::Forward rolling = physics::forward(simulation_.model, start);
   const Eigen::Vector3d rollingVelocity = rolling.velocity;
   const Eigen::Vector2d velocity =
       simulation.initialVelocity.value_or(Eigen::Vector2d(rollingVelocity.x(), rollingVelocity.z()));
@@ -254,6 +274,11 @@ void HybridRun::startRolling(double t, const physics::QuaternionState& state, do
   slides.interiorChecks = kConeGrazeChecks;
   events.push_back(std::move(slides));
   if (simulation_.flight) liftOffSwitches(events);
+  if (simulation_.stopWhenDecided) {
+    events.push_back(decidedEvent<kRollingSize>(simulation_.model, [model = simulation_.model](const Y& y) {
+      return physics::forward(model, rollingStateOf(y)).energy;
+    }));
+  }
   Y y0;
   y0 << physics::toVector(state), dissipated;
   segment_ = std::make_unique<RollingSegment>(RollingKind{simulation_.model}, t, y0, simulation_.solver,
@@ -300,6 +325,9 @@ void HybridRun::startSliding(double t, const physics::SlidingState& state, doubl
         +1));
   }
   if (simulation_.flight) liftOffSwitches(events);
+  if (simulation_.stopWhenDecided) {
+    events.push_back(decidedEvent<kSlidingSize>(model, [forwardOf](const Y& y) { return forwardOf(y).energy; }));
+  }
   Y y0;
   y0 << physics::toVector(state), dissipated;
   segment_ = std::make_unique<SlidingSegment>(SlidingKind{rhs}, t, y0, simulation_.solver, std::move(events),
@@ -335,6 +363,13 @@ bool HybridRun::land(double t, const physics::FlightState& atTouch, double dissi
   for (const ImpactRecord& impact : impacts_) recent += impact.t > t - 1 ? 1 : 0;
   const Landing landing = pipeline::land(simulation_, t, atTouch, dissipated, recent >= kMaxImpactsPerSecond);
   impacts_.push_back(landing.impact);
+  // An impact takes energy at once, so the fall below standing upright's is read here, not located.
+  const bool decided = (landing.next == Landing::Next::Flight || landing.next == Landing::Next::Contact) &&
+                       simulation_.stopWhenDecided && belowUpright(simulation_.model, landing.state);
+  if (decided) {
+    ending_ = Ending{.event = ModelEvent::Decided, .t = t, .state = landing.state, .dissipated = landing.dissipated};
+    return false;
+  }
   switch (landing.next) {
     case Landing::Next::Flight:
       startFlight(t, onTheFloor(simulation_.model, landing.state), landing.dissipated);
@@ -406,6 +441,7 @@ bool HybridRun::switchIfDue() {
 }
 
 std::optional<RunSample> HybridRun::sampleAt(double t, const physics::CoinState& continuation) {
+  if (ending_ && t > ending_->t) return std::nullopt;
   for (;;) {
     if (std::optional<RunSample> sample = segment_->sampleAt(t, continuation)) {
       sample->impacts = static_cast<int>(impacts_.size());

@@ -254,6 +254,7 @@ Simulation buildSimulation(const scene::SceneConfig& scene) {
       sim.initialHeight = e->y;
       sim.initialVerticalVelocity = e->v_y;
     }
+    sim.stopWhenDecided = scene.stopWhenDecided;
   }
   sim.validityIsTerminal = scene.onInvalid == scene::OnInvalid::Stop;
   sim.duration = scene.duration;
@@ -312,6 +313,11 @@ std::string describeStop(const RunEvent& hit) {
     case ModelEvent::ImpactJam:
       meaning = "an impact whose friction keeps the normal impulse from stopping the rim (Painleve's paradox in an "
                 "impact, docs/flight.md §3); lower impact_friction";
+      break;
+    case ModelEvent::Decided:
+      meaning = fmt::format("the coin has less energy than standing upright on its rim takes, so it can no longer "
+                            "turn over: {} up from here on (stop_when_decided)",
+                            physics::faceName(physics::faceUp(hit.state.theta)));
       break;
   }
   return fmt::format("{} at t = {:.9f} s (theta = {:.4f} deg): {}", physics::eventName(hit.event), hit.t,

@@ -31,6 +31,7 @@ struct Simulation {
   // "flight": lift-off goes on in flight and the rim's impacts follow this law (docs/flight.md); none:
   // lift-off ends a sliding run.
   std::optional<physics::ImpactLaw> flight;
+  bool stopWhenDecided = false;  // flight: end at the event decided (docs/flight.md §5a)
   std::optional<double> initialHeight;  // m, initial.y: the centre's height (flight only); none: on the floor
   std::optional<double> initialVerticalVelocity;  // m/s, initial.v_y (flight only)
   bool validityIsTerminal = true;  // on_invalid: "stop" ends the run at lift-off or slip

@@ -98,7 +98,7 @@ std::vector<std::string> reportLines(const TrajectoryReport& report) {
   using physics::ModelEvent;
   if (report.flight && report.stoppedBy &&
       (report.stoppedBy->event == ModelEvent::Rest || report.stoppedBy->event == ModelEvent::FaceDown ||
-       report.stoppedBy->event == ModelEvent::CoinFlat)) {
+       report.stoppedBy->event == ModelEvent::CoinFlat || report.stoppedBy->event == ModelEvent::Decided)) {
     const physics::FaceUp face = physics::faceUp(report.stoppedBy->state.theta);
     lines.push_back(fmt::format("coinroll: {} (the {} face up)", physics::faceName(face),
                                 face == physics::FaceUp::Heads ? "+e_Z" : "-e_Z"));

@@ -161,6 +161,7 @@ struct SceneConfig {
   bool flight = false;
   double restitution = 0;                // e in [0, 1], required with flight
   std::optional<double> impactFriction;  // mu during impacts; absent = friction
+  bool stopWhenDecided = false;          // flight: end once the face up can no longer change (docs/flight.md §5a)
   InitialSpec initial;
   double duration = 0;              // s, required
   SolverSpec solver;

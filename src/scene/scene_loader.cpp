@@ -446,6 +446,9 @@ SceneConfig parseScene(const nlohmann::json& document, std::string_view sourceNa
     }
     if (top.has("restitution") && !scene.flight) top.fail("restitution", "only with \"flight\": true");
     if (top.has("impact_friction") && !scene.flight) top.fail("impact_friction", "only with \"flight\": true");
+    if (top.has("stop_when_decided") && !scene.flight) {
+      top.fail("stop_when_decided", "only with \"flight\": true (it ends a toss once its face up is final)");
+    }
     if (scene.flight) {
       if (!top.has("restitution")) {
         top.fail("restitution", "required with \"flight\": true: the coefficient of restitution e in [0, 1], "
@@ -453,6 +456,7 @@ SceneConfig parseScene(const nlohmann::json& document, std::string_view sourceNa
       }
       scene.restitution = boundedNumber(top, "restitution", 0);
       if (top.has("impact_friction")) scene.impactFriction = boundedNumber(top, "impact_friction", 0);
+      scene.stopWhenDecided = top.boolean("stop_when_decided", false);
     }
     scene.initial = parseInitial(top);
     if (const auto* e = std::get_if<ExplicitInitial>(&scene.initial); e && !scene.flight && (e->y || e->v_y)) {

@@ -107,6 +107,10 @@ std::vector<Key> buildTable() {
       {.path = "impact_friction", .type = T::Number, .unit = "", .defaultText = "", .lower = closed(0),
        .onlyWith = {"friction=0.5", "sliding=true", "restitution=0.5", "flight=true"},
        .doc = "mu during impacts; absent, `friction`"},
+      {.path = "stop_when_decided", .type = T::Boolean, .unit = "", .defaultText = "false",
+       .onlyWith = {"friction=0.5", "sliding=true", "restitution=0.5", "flight=true"},
+       .doc = "true: end the run (event `decided`) once the coin has less energy than standing upright on its rim "
+              "takes, so its face up can no longer change; a sweep of tosses needs no more"},
       {.path = "initial", .type = T::Object, .unit = "", .defaultText = "", .required = true,
        .doc = "the start: angles and rates, or a steady state (`initial[steady]`)"},
       {.path = "duration", .type = T::Number, .unit = "s", .defaultText = "", .required = true, .lower = open(0),

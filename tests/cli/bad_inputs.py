@@ -475,6 +475,11 @@ case("height-below-floor", C, "initial.y puts the rim below the floor", SIM, 2,
 case("vertical-velocity-into-floor", C, "initial.v_y -1 m/s on the floor", SIM, 2,
      "initial.v_y: the coin's rim would move into the floor", key="initial.v_y",
      files={"scene.json": scene(**FLY, initial={"v_y": -1})}, na_before=NO_FLIGHT)
+case("decided-without-flight", C, "stop_when_decided without flight", SIM, 2,
+     "stop_when_decided: only with \"flight\": true", key="stop_when_decided",
+     files={"scene.json": scene(sliding=True, friction=0.3, stop_when_decided=True)}, na_before=NO_FLIGHT)
+case("decided-not-boolean", C, "stop_when_decided \"yes\"", SIM, 2, "stop_when_decided: must be", key="stop_when_decided",
+     files={"scene.json": scene(**FLY, stop_when_decided="yes")}, na_before=NO_FLIGHT)
 case("flight-drop-runs", C, "a coin dropped edge-down (must work)", SIM, 0, "impact at t = ", produces=("o.csv",),
      files={"scene.json": scene(**FLY, initial={"theta": 0, "y": 0.1})}, na_before=NO_FLIGHT)
 

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <tuple>
 #include <vector>
 
 #include "physics/flight.h"
@@ -155,3 +156,48 @@ TEST(Flight, TheHopThatEndsASlidingRunFliesWithFlight) {
 }
 
 }  // namespace
+
+// stop_when_decided (docs/flight.md §5a) against the same tosses run to rest: the run ends as soon as
+// the energy is below standing upright's, with the face the full run ends on, and in the full run
+// theta never changes sign after that time.
+nlohmann::json flipOfAQuarter(double omegaX, double omegaZ, double upSpeed) {
+  return {{"coin", {{"radius", 0.01213}, {"mass", 0.00567}, {"thickness", 0.00175}, {"edge_radius", 0.000875}}},
+          {"initial", {{"theta", -89.999}, {"omega_X", omegaX}, {"omega_Z", omegaZ}, {"y", 0.3}, {"v_y", upSpeed}}},
+          {"friction", 0.3},
+          {"sliding", true},
+          {"flight", true},
+          {"restitution", 0.5},
+          {"effects", {{{"type", "rolling_resistance"}, {"length", 2e-5}}}},
+          {"duration", 20}};
+}
+
+TEST(Flight, ATossDecidedEarlyShowsTheFaceItComesToRestOn) {
+  int decidedBeforeRest = 0;
+  for (const auto& [omegaX, omegaZ, up] : {std::tuple{235.1, 20.7, 2.5}, std::tuple{201.0, 8.8, 2.2},
+                                           std::tuple{270.0, 30.5, 2.9}, std::tuple{219.8, 3.8, 2.0}}) {
+    nlohmann::json scene = flipOfAQuarter(omegaX, omegaZ, up);
+    scene["stop_when_decided"] = true;
+    const pipeline::Simulation decidedSim = simulationOf(scene);
+    pipeline::CoinRun decided(decidedSim);
+    for (double t = 0; decided.sampleAt(t); t += 1e-3) {
+    }
+    ASSERT_TRUE(decided.stoppedBy()) << omegaX;
+    ASSERT_EQ(decided.stoppedBy()->event, physics::ModelEvent::Decided) << omegaX;
+    const double tDecided = decided.stoppedBy()->t;
+    EXPECT_LT(decided.stoppedBy()->forward.energy, physics::uprightEnergy(decidedSim.model)) << omegaX;
+    const bool headsWhenDecided = decided.stoppedBy()->state.theta < 0;
+
+    pipeline::CoinRun full(simulationOf(flipOfAQuarter(omegaX, omegaZ, up)));
+    for (double t = 0;; t += 1e-3) {
+      const std::optional<pipeline::RunSample> s = full.sampleAt(t);
+      if (!s) break;
+      if (t > tDecided) {
+        EXPECT_EQ(s->state.theta < 0, headsWhenDecided) << omegaX << " at " << t;
+      }
+    }
+    ASSERT_TRUE(full.stoppedBy()) << omegaX;
+    EXPECT_EQ(full.stoppedBy()->state.theta < 0, headsWhenDecided) << omegaX;
+    decidedBeforeRest += full.stoppedBy()->t > tDecided + 0.1 ? 1 : 0;
+  }
+  EXPECT_GE(decidedBeforeRest, 3);
+}

@@ -4,6 +4,7 @@
 // (docs/euler_disk.md §1). Floor frame xyz with y up.
 
 #include <cmath>
+#include <limits>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -16,6 +17,8 @@ struct ContactKinematics {
   Eigen::Vector3d e_Z;    // coin axis: the face normal
   Eigen::Vector3d omega;  // rad/s, angular velocity
   double faceRadius = 0;  // m, radius of the flat face the air gap lies under: a - rho (docs/rim.md §6)
+  // m, a: the floor's pressure on the coin centres no farther than this from P; infinite, no bound.
+  double outerRadius = std::numeric_limits<double>::infinity();
   double N = 0;           // N, normal force of the floor (the model needs N > 0)
 };
 

@@ -27,7 +27,8 @@ struct RollingResistance {
 
 // P = delta N |psi-dot| (the contact moves at a |psi-dot|, resisted by (delta / a) N), done by
 // the couple tau = -(delta N / cos theta) sign(omega . h) h, h = rollingAxis() (eq. 2.10), with
-// delta N generalised by the load and rate exponents (eqs. 2.11, 2.11a).
+// delta N generalised by the load and rate exponents (eqs. 2.11, 2.11a), and its size at most N a
+// (eq. 2.11d: the normal force's centre inside the coin).
 Loads loads(const RollingResistance& law, const ContactKinematics& k);
 
 }  // namespace coinroll::physics

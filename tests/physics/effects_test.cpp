@@ -129,6 +129,26 @@ TEST(RollingResistance, QuasiSteadyPowerIsDeltaMgOmega) {
   EXPECT_TRUE(isNear(ratio, std::pow(2, 0.7), 1e-12));
 }
 
+// (2.11d): the couple delta N / cos(theta) puts the normal force's centre delta / cos(theta) from the
+// contact; it stops growing where that reaches the coin's radius, and the power is still the couple's work.
+TEST(RollingResistance, TheLeverStopsAtTheCoinsRadius) {
+  const RollingResistance law{.length = 1e-4};  // the toss example's: the lever is a at alpha = 0.15 deg
+  const double N = 3.0;
+  for (const double alphaDeg : {5.0, 0.5, 0.16, 0.14, 0.05, 0.01}) {
+    const double alpha = alphaDeg * kDeg;
+    CoinState s = spinInPlaceAt(kToy, alpha);
+    s.omega_Y = 0.4;  // a rate along the rim, so that the couple is not in its ramp
+    const ContactKinematics k = contactKinematics(kToy, s, N);
+    const Loads loads = physics::loads(law, k);
+    const double rate = k.omega.dot(rollingAxis(k));
+    const double ramp = smoothSign(rate, kRollingRegularisationRate);
+    const double lever = std::min(law.length / std::sin(alpha), kToy.a);
+    EXPECT_TRUE(isNear(loads.torque.norm(), N * lever * std::abs(ramp), 1e-12 * N * kToy.a)) << alphaDeg;
+    EXPECT_TRUE(isBelow(loads.torque.norm(), N * kToy.a * (1 + 1e-15))) << alphaDeg;
+    EXPECT_TRUE(isNear(loads.power, -loads.torque.dot(k.omega), 1e-15)) << alphaDeg;
+  }
+}
+
 TEST(SpinFriction, QuasiSteadyPowerIsLMgOmegaSinSquaredAlpha) {
   const SpinFriction law{.length = 5e-6};
   const double alpha = 2 * kDeg;

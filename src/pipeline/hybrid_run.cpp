@@ -214,10 +214,13 @@ void liftOffSwitches(std::vector<integrate::Event<N>>& events) {
 // decided (stop_when_decided, docs/flight.md §5a): the energy falls below standing upright's.
 // `energy` reads an integrated state's.
 template <int N>
-integrate::Event<N> decidedEvent(const physics::CoinModel& model, std::function<double(const integrate::Vec<N>&)> energy) {
+integrate::Event<N> decidedEvent(const physics::CoinModel& model,
+                                 std::function<double(const integrate::Vec<N>&)> energy) {
   return modelEvent<N>(
       ModelEvent::Decided,
-      [energy, upright = physics::uprightEnergy(model)](double, const integrate::Vec<N>& y) { return energy(y) - upright; },
+      [energy, upright = physics::uprightEnergy(model)](double, const integrate::Vec<N>& y) {
+        return energy(y) - upright;
+      },
       -1, true);
 }
 

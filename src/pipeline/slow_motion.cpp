@@ -44,7 +44,7 @@ double easedMultiplier(const scene::EventSlowDown& slowDown, double distance) {
   if (distance <= 0) return slowDown.slow;
   if (distance >= slowDown.window) return 1;
   const double x = distance / slowDown.window;
-  return std::pow(slowDown.slow, 1 - x * x * (3 - 2 * x));
+  return slowDown.slow + (1 - slowDown.slow) * x * x * (3 - 2 * x);
 }
 
 namespace {

@@ -36,9 +36,13 @@ SlowMotionSchedule scheduleOf(const RunRecord& record, double gridInterval);
 SlowMotionSchedule planSlowMotion(const scene::SceneConfig& scene, const Simulation& simulation);
 
 // time_scale's multiplier `distance` s of simulated time from what `slowDown` follows (0 inside it):
-//   slow^(1 - e(distance / window)),   e(x) = 3 x^2 - 2 x^3 on [0, 1], 1 beyond
-// The ease is geometric, the rate changing by equal factors in equal times at the middle, and smooth:
-// neither the rate nor its slope jumps. A window of 0 switches at once.
+//   slow + (1 - slow) e(distance / window),   e(x) = 3 x^2 - 2 x^3 on [0, 1], 1 beyond
+// Smooth in simulated time (neither the rate nor its slope jumps), and in video time too: frames
+// advance simulated time by the rate itself, so where the multiplier m rises by dm/dd the rate's
+// logarithm rises by time_scale dm/dd per video second, at most 1.5 (1 - slow) time_scale / window,
+// whatever slow is. A window of 0 switches at once. (An ease geometric in simulated time, the rate's
+// logarithm smoothstepped, lingers at the slow end and rushes the fast one: at the toss's 60 fps it
+// jumped x2.8 to x1.1 between two frames.)
 double easedMultiplier(const scene::EventSlowDown& slowDown, double distance);
 
 // Which rule set a frame's playback rate (render --plan).

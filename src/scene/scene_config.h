@@ -100,9 +100,10 @@ struct TimeRemap {
 // around each impact of its rim ("flight": true), eased in and out (pipeline/video_frames.h eventSlowDown).
 struct EventSlowDown {
   double slow = 1;    // in (0, 1]: time_scale's multiplier in the air, or at the impact's instant
-  // s of simulated time over which the multiplier eases back to 1 on either side: 0.02 s spans a few
-  // frames at 60 fps even at 10x slow motion, and is shorter than the toss's gaps between bounces.
-  double window = 0.02;
+  // s of simulated time over which the multiplier eases back to 1 on either side. The rate then changes
+  // by at most a factor exp(1.5 (1 - slow) time_scale / (window fps)) from one frame to the next
+  // (slow_motion.h): 1.27 at time_scale 1 and 60 fps for 0.1 s, which plays a toss's ease in 0.4 s.
+  double window = 0.1;
 };
 
 // render.audio: a sound track synthesised from the motion (docs/sound.md).

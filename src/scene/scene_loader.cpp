@@ -313,7 +313,8 @@ RenderSpec parseRender(const JsonReader& top) {
     const bool byEvents = m.has("flight") || m.has("impact");
     if (m.has("spin_rate") && m.has("precession_rate")) r.fail("time_remap", std::string(kByRate));
     if (!byRate && !byEvents) {
-      r.fail("time_remap", fmt::format("{}, or flight or impact (slow motion in the air, around each impact)", kByRate));
+      r.fail("time_remap",
+             fmt::format("{}, or flight or impact (slow motion in the air, around each impact)", kByRate));
     }
     if (byRate) {
       const std::string_view key = m.has("spin_rate") ? "spin_rate" : "precession_rate";
@@ -326,8 +327,9 @@ RenderSpec parseRender(const JsonReader& top) {
                                    .limit = limit,
                                    .growth = growth};
     } else if (m.has("growth")) {
-      m.fail("growth", "shapes the slow-down of spin_rate or precession_rate, and neither is given: add one of them, or "
-                       "remove growth");
+      m.fail("growth",
+             "shapes the slow-down of spin_rate or precession_rate, and neither is given: add one of them, or remove "
+             "growth");
     }
     render.flightSlowDown = parseSlowDown(m, "flight");
     render.impactSlowDown = parseSlowDown(m, "impact");

@@ -351,17 +351,19 @@ std::vector<Key> buildTable() {
       {.path = "render.time_remap.flight.slow", .type = T::Number, .unit = "", .defaultText = "", .required = true,
        .lower = open(0), .upper = closed(1),
        .doc = "the playback rate in the air, times time_scale (0.25 plays a flight 4x slower)"},
-      {.path = "render.time_remap.flight.window", .type = T::Number, .unit = "s", .defaultText = number(slowDown.window),
+      {.path = "render.time_remap.flight.window", .type = T::Number, .unit = "s",
+       .defaultText = number(slowDown.window),
        .lower = closed(0), .onlyWith = {"render.time_remap.flight.slow=0.25"},
        .doc = "simulated time over which the slow-down eases in before a lift-off and out after a landing "
               "(0: at once)"},
       {.path = "render.time_remap.impact.slow", .type = T::Number, .unit = "", .defaultText = "", .required = true,
        .lower = open(0), .upper = closed(1),
        .doc = "the playback rate at an impact's instant, times time_scale (0.05 plays it 20x slower)"},
-      {.path = "render.time_remap.impact.window", .type = T::Number, .unit = "s", .defaultText = number(slowDown.window),
+      {.path = "render.time_remap.impact.window", .type = T::Number, .unit = "s",
+       .defaultText = number(slowDown.window),
        .lower = open(0), .onlyWith = {"render.time_remap.impact.slow=0.05"},
-       .doc = "simulated time before and after each impact over which the slow-down eases in and out; give a few "
-              "frames' time_scale / fps"},
+       .doc = "simulated time before and after each impact over which the slow-down eases in and out; from one "
+              "frame to the next the rate changes by at most exp(1.5 (1 - slow) time_scale / (window fps))"},
 
       {.path = "render.camera.mode", .type = T::Name, .unit = "", .defaultText = nameOf(camera.mode, kCameraModeNames),
        .names = namesOf(kCameraModeNames),

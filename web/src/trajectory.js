@@ -157,7 +157,7 @@ export class Trajectory {
     return Math.min(timeScale, visible / rate);
   }
 
-  // time_scale's multiplier at simulated time t: slow^(1 - e(d / window)), e(x) = 3x^2 - 2x^3, d the
+  // time_scale's multiplier at simulated time t: slow + (1 - slow) e(d / window), e(x) = 3x^2 - 2x^3, d the
   // distance to the nearest stretch in the air (0 inside) or impact, the slower of the two
   // (src/pipeline/slow_motion.h easedMultiplier).
   slowDownAt(t, remap) {
@@ -165,7 +165,7 @@ export class Trajectory {
       if (distance <= 0) return slow;
       if (distance >= window) return 1;
       const x = distance / window;
-      return Math.pow(slow, 1 - x * x * (3 - 2 * x));
+      return slow + (1 - slow) * x * x * (3 - 2 * x);
     };
     let multiplier = 1;
     if (remap.flight) {

@@ -362,6 +362,7 @@ std::vector<Key> buildTable() {
       {.path = "render.time_remap.impact.window", .type = T::Number, .unit = "s",
        .defaultText = number(slowDown.window),
        .lower = open(0), .onlyWith = {"render.time_remap.impact.slow=0.05"},
+       .why = "the slow-down eases in and out over it; 0.1 s changes the rate by at most 1.27x a frame at 60 fps",
        .doc = "simulated time before and after each impact over which the slow-down eases in and out; from one "
               "frame to the next the rate changes by at most exp(1.5 (1 - slow) time_scale / (window fps))"},
 

@@ -536,7 +536,7 @@ case("remap-impact-slow-zero", C, "time_remap.impact.slow 0 (would never move on
      "render.time_remap.impact.slow: must be in (0, 1], got 0", key="render.time_remap.impact.slow")
 case("remap-impact-window-zero", C, "time_remap.impact.window 0 (an instant no frame falls on)",
      REN + "render.time_remap.impact.slow=0.1 --set render.time_remap.impact.window=0", 2,
-     "render.time_remap.impact.window: must be > 0 s, got 0", key="render.time_remap.impact.window")
+     "render.time_remap.impact.window: must be > 0 (the slow-down eases in and out over it", key="render.time_remap.impact.window")
 case("remap-growth-alone", C, "time_remap growth with only a flight slow-down",
      REN + "render.time_remap.flight.slow=0.25 --set render.time_remap.growth=0.5", 2,
      "render.time_remap.growth: shapes the slow-down of spin_rate or precession_rate, and neither is given",

@@ -227,7 +227,8 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& options) {
       ->check(kAtLeastOne);
   command->footer(
       "Frame k plays at video time k / fps and shows simulated time k * render.time_scale / render.fps (under\n"
-      "render.time_remap, less as the coin speeds up: render --plan prints where), from the dense output.\n"
+      "render.time_remap, less as the coin speeds up, in the air and at each impact: render --plan prints where),\n"
+      "from the dense output.\n"
       "Size, fps, anti-aliasing, camera, trace, overlay and encoder come from the scene's render block, e.g.\n"
       "  coinroll render                                    (built-in scene -> coinroll.mp4)\n"
       "  coinroll render examples/steady_circle.json -o circle.mp4\n"

@@ -17,6 +17,7 @@
 #include "pipeline/run_record.h"
 #include "pipeline/resources.h"
 #include "pipeline/simulation.h"
+#include "pipeline/slow_motion.h"
 #include "pipeline/snapshot.h"
 #include "render/renderer.h"
 
@@ -31,11 +32,16 @@ long frameCount(double simulatedSeconds, double timeScale, int fps) {
 
 namespace {
 
+// Whether a rule of render.time_remap may slow the clip: frame times are then summed step by step.
+bool isRemapped(const scene::RenderSpec& render) {
+  return render.timeRemap || render.flightSlowDown || render.impactSlowDown;
+}
+
 [[noreturn]] void refuseFrames(const scene::SceneConfig& scene, long maxFrames, const std::string& count) {
   throw std::invalid_argument(fmt::format(
       "render: duration {} s at time_scale {}, fps {}{} gives {} frames, more than the limit {}; shorten the duration, "
       "raise time_scale or lower fps, or raise the limit with --max-frames",
-      scene.duration, scene.render.timeScale, scene.render.fps, scene.render.timeRemap ? " and the time remap" : "",
+      scene.duration, scene.render.timeScale, scene.render.fps, isRemapped(scene.render) ? " and the time remap" : "",
       count, maxFrames));
 }
 
@@ -54,28 +60,44 @@ double playbackRate(const scene::RenderSpec& render, double rate) {
 namespace {
 
 // The clip's frames, chosen inside the pass: k time_scale / fps, or with a time remap
-// t_(k+1) = t_k + playbackRate(rate(t_k)) / fps, up to the run's end.
+// t_(k+1) = t_k + rate_k / fps up to the run's end, rate_k the slowest of the rate rule's at frame k's
+// sample and the flight and impact slow-downs' at t_k (from `schedule`, known ahead).
 class ClipFrameTimes final : public FramePlan {
  public:
-  ClipFrameTimes(const scene::SceneConfig& scene, long maxFrames)
-      : scene_(scene), maxFrames_(maxFrames), perFrame_(scene.render.timeScale / scene.render.fps),
+  ClipFrameTimes(const scene::SceneConfig& scene, long maxFrames, const SlowMotionSchedule& schedule)
+      : scene_(scene), schedule_(schedule), maxFrames_(maxFrames), perFrame_(scene.render.timeScale / scene.render.fps),
         ofDuration_(frameCount(scene.duration, scene.render.timeScale, scene.render.fps)) {}
 
   std::optional<double> timeOf(long k, const RunSample* previous) override {
-    if (!scene_.render.timeRemap) {
+    const scene::RenderSpec& render = scene_.render;
+    if (!isRemapped(render)) {
       // Past the limit frames are not recorded: the refusal needs the count to the run's end (recordFrames).
       if (k >= ofDuration_ || k >= maxFrames_) return std::nullopt;
       return static_cast<double>(k) * perFrame_;
     }
     if (k == 0) return 0.0;
     if (previous == nullptr) return std::nullopt;  // the run ended at frame k - 1
-    const bool bySpin = scene_.render.timeRemap->rate == scene::TimeRemap::Rate::Spin;
-    const double rate = std::abs(bySpin ? previous->forward.spinRate : previous->forward.precessionRate);
-    return lastTime_ += playbackRate(scene_.render, rate) / scene_.render.fps;
+    double rate = render.timeScale;
+    SlowedBy by = SlowedBy::Nothing;
+    if (render.timeRemap) {
+      const bool bySpin = render.timeRemap->rate == scene::TimeRemap::Rate::Spin;
+      rate = playbackRate(render, std::abs(bySpin ? previous->forward.spinRate : previous->forward.precessionRate));
+      if (rate < render.timeScale) by = SlowedBy::Rate;
+    }
+    if (render.flightSlowDown || render.impactSlowDown) {
+      // Slower still where the coin flies or an impact is near: the rule's rate at frame k's time.
+      if (const ScheduledSlowDown scheduled = scheduledSlowDown(render, schedule_, lastTime_);
+          render.timeScale * scheduled.multiplier < rate) {
+        rate = render.timeScale * scheduled.multiplier;
+        by = scheduled.by;
+      }
+    }
+    slowedBy_.push_back(by);  // frame k - 1's rule: the step to frame k is its playback rate
+    return lastTime_ += rate / render.fps;
   }
 
   bool keeps(long k, double time, double end) override {
-    if (!scene_.render.timeRemap) return k < frameCount(end, scene_.render.timeScale, scene_.render.fps);
+    if (!isRemapped(scene_.render)) return k < frameCount(end, scene_.render.timeScale, scene_.render.fps);
     // The sum of steps drifts by round-off; a relative 1e-12 keeps the frame at the very end.
     if (time > end * (1 + 1e-12)) return false;
     if (k == maxFrames_) {
@@ -85,26 +107,45 @@ class ClipFrameTimes final : public FramePlan {
     return true;
   }
 
+  // The rule that set each frame's step to the next, for the frames asked so far.
+  std::vector<SlowedBy> slowedBy() && { return std::move(slowedBy_); }
+
  private:
   const scene::SceneConfig& scene_;
+  const SlowMotionSchedule& schedule_;
   long maxFrames_;
   double perFrame_;    // s of simulated time, without a remap
   long ofDuration_;    // frames of a run that lasts its duration, without a remap
   double lastTime_ = 0;  // s, the remapped frame time last given
+  std::vector<SlowedBy> slowedBy_;
 };
 
-}  // namespace
+// The one pass's record and what the plan reports besides: the rule behind each frame's rate and
+// the flight and impact schedule it followed.
+struct ClipRecord {
+  RunRecord record;
+  std::vector<SlowedBy> slowedBy;
+  SlowMotionSchedule schedule;
+};
 
-RunRecord recordFrames(const scene::SceneConfig& scene, const Simulation& simulation, long maxFrames) {
-  ClipFrameTimes plan(scene, maxFrames);
-  RunRecord record = recordRun(simulation, plan);
-  if (!scene.render.timeRemap) {
-    if (const long total = frameCount(record.survey.endTime, scene.render.timeScale, scene.render.fps);
+ClipRecord recordClip(const scene::SceneConfig& scene, const Simulation& simulation, long maxFrames) {
+  ClipRecord clip{.record = {}, .slowedBy = {}, .schedule = planSlowMotion(scene, simulation)};
+  ClipFrameTimes plan(scene, maxFrames, clip.schedule);
+  clip.record = recordRun(simulation, plan);
+  if (!isRemapped(scene.render)) {
+    if (const long total = frameCount(clip.record.survey.endTime, scene.render.timeScale, scene.render.fps);
         total > maxFrames) {
       refuseFrames(scene, maxFrames, std::to_string(total));
     }
   }
-  return record;
+  clip.slowedBy = std::move(plan).slowedBy();
+  return clip;
+}
+
+}  // namespace
+
+RunRecord recordFrames(const scene::SceneConfig& scene, const Simulation& simulation, long maxFrames) {
+  return recordClip(scene, simulation, maxFrames).record;
 }
 
 namespace {
@@ -191,13 +232,17 @@ void refuseAbsurdDuration(const scene::SceneConfig& scene, long maxFrames) {
 
 // The plan of the frames `record` holds; a coin that landed on its face gets its landing's frame
 // (appended to record.frames) and then lies still for kLandingHoldSeconds, so the end is seen.
-ClipPlan planOf(const scene::SceneConfig& scene, RunRecord& record) {
+ClipPlan planOf(const scene::SceneConfig& scene, ClipRecord& clip) {
+  RunRecord& record = clip.record;
   const MotionSurvey& survey = record.survey;
   std::vector<FrameState>& frames = record.frames;
   ClipPlan plan;
   plan.fps = scene.render.fps;
   plan.timeScale = scene.render.timeScale;
-  plan.remapped = scene.render.timeRemap.has_value();
+  plan.remapped = isRemapped(scene.render);
+  plan.byEvents = scene.render.flightSlowDown || scene.render.impactSlowDown;
+  plan.flights = std::move(clip.schedule.flights);
+  plan.impacts = std::move(clip.schedule.impacts);
   plan.endTime = survey.endTime;
   if (survey.stoppedBy) plan.stopDescription = describeStop(*survey.stoppedBy);
   plan.landed = survey.stoppedBy && survey.stoppedBy->event == physics::ModelEvent::FaceDown;
@@ -216,10 +261,14 @@ ClipPlan planOf(const scene::SceneConfig& scene, RunRecord& record) {
     plan.times.push_back(frames[k].time);
     plan.playbackRates.push_back(step * scene.render.fps);
     plan.contactRates.push_back(std::abs(frames[k].precessionRate));
+    // The rule behind the step, which the last frames keep as they keep its pace.
+    const std::size_t stepFrom = k < lastPlanned ? k : lastPlanned > 0 ? lastPlanned - 1 : 0;
+    plan.slowedBy.push_back(stepFrom < clip.slowedBy.size() ? clip.slowedBy[stepFrom] : SlowedBy::Nothing);
   }
   plan.times.insert(plan.times.end(), holdFrames, survey.endTime);
   plan.playbackRates.insert(plan.playbackRates.end(), holdFrames, 0.0);
   plan.contactRates.insert(plan.contactRates.end(), holdFrames, plan.contactRates.back());
+  plan.slowedBy.insert(plan.slowedBy.end(), holdFrames, SlowedBy::Nothing);
   return plan;
 }
 
@@ -229,8 +278,8 @@ ClipPlan planClip(const scene::SceneConfig& scene, long maxFrames, const std::at
   refuseAbsurdDuration(scene, maxFrames);
   Simulation simulation = buildSimulation(scene);
   simulation.cancel = cancel;
-  RunRecord record = recordFrames(scene, simulation, maxFrames);
-  return planOf(scene, record);
+  ClipRecord clip = recordClip(scene, simulation, maxFrames);
+  return planOf(scene, clip);
 }
 
 FrameRange framesIn(const ClipPlan& plan, const TimeWindow& window) {
@@ -293,6 +342,37 @@ std::string speedOf(double rate) {
   return "real time";
 }
 
+// The rule a frame's rate is set by, as the plan's table names it.
+std::string_view ruleOf(SlowedBy by) {
+  switch (by) {
+    case SlowedBy::Rate: return "rate";
+    case SlowedBy::Flight: return "flight";
+    case SlowedBy::Impact: return "impact";
+    case SlowedBy::Nothing: break;
+  }
+  return "-";
+}
+
+// The flight and impact slow-downs' line of the plan: what they followed and how many frames they set.
+std::string slowMotionLine(const ClipPlan& plan) {
+  const auto framesBy = [&](SlowedBy by) { return std::count(plan.slowedBy.begin(), plan.slowedBy.end(), by); };
+  std::vector<std::string> stretches;
+  for (const SlowMotionSchedule::Span& span : plan.flights) {
+    stretches.push_back(fmt::format("{:.6f} to {:.6f} s", span.start, span.end));
+  }
+  constexpr std::size_t kListed = 4;  // stretches named; a hopping coin may have hundreds
+  if (stretches.size() > kListed) {
+    stretches.resize(kListed);
+    stretches.emplace_back("...");
+  }
+  return fmt::format("slow motion: {} frames by flight, in the air {} time{} ({}); {} frames by impact, {} impact{}{}",
+                     framesBy(SlowedBy::Flight), plan.flights.size(), plan.flights.size() == 1 ? "" : "s",
+                     fmt::join(stretches, ", "), framesBy(SlowedBy::Impact), plan.impacts.size(),
+                     plan.impacts.size() == 1 ? "" : "s",
+                     plan.impacts.empty() ? "" : fmt::format(" from {:.6f} to {:.6f} s", plan.impacts.front(),
+                                                             plan.impacts.back()));
+}
+
 }  // namespace
 
 std::vector<std::string> planLines(const ClipPlan& plan, const TimeWindow& window) {
@@ -304,6 +384,7 @@ std::vector<std::string> planLines(const ClipPlan& plan, const TimeWindow& windo
                                              : ""));
   lines.push_back(fmt::format("simulated: 0 to {:.6f} s{}", plan.endTime,
                               plan.stopDescription ? "; the run stops early: " + *plan.stopDescription : ""));
+  if (plan.byEvents) lines.push_back(slowMotionLine(plan));
   const FrameRange range = framesIn(plan, window);
   const auto first = static_cast<std::size_t>(range.first), last = static_cast<std::size_t>(range.last);
   const long written = range.last - range.first + 1;
@@ -332,14 +413,15 @@ std::vector<std::string> planLines(const ClipPlan& plan, const TimeWindow& windo
     }
   }
   lines.emplace_back("playback over the clip (a row where a rate changed by 25 % or more; rate: simulated s per "
-                     "video s; contact: the contact point round the floor, turns per s):");
+                     "video s; contact: the contact point round the floor, turns per s; slowed_by: the time remap's "
+                     "rule that set the rate):");
   lines.emplace_back(
-      "    frame    video_s        sim_s       rate        speed  contact_Hz  contact_turns_per_video_s");
+      "    frame    video_s        sim_s       rate        speed  contact_Hz  contact_turns_per_video_s  slowed_by");
   for (const std::size_t k : rows) {
     const double rate = plan.playbackRates[k], turns = plan.contactRates[k] / (2 * std::numbers::pi);
-    lines.push_back(fmt::format("{:9d} {:10.3f} {:12.6f} {:10.6f} {:>12} {:11.3f} {:26.3f}", k,
+    lines.push_back(fmt::format("{:9d} {:10.3f} {:12.6f} {:10.6f} {:>12} {:11.3f} {:26.3f}  {:>9}", k,
                                 static_cast<double>(k) / plan.fps, plan.times[k], rate,
-                                speedOf(rate), turns, turns * rate));
+                                speedOf(rate), turns, turns * rate, ruleOf(plan.slowedBy[k])));
   }
   return lines;
 }
@@ -426,8 +508,9 @@ VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& si
       4 * static_cast<std::uint64_t>(settings.width) * static_cast<std::uint64_t>(settings.height);
   requireRendererAddressSpace(settings, sink.workingMemory(frameBytes));
   render::Renderer renderer(settings);
-  RunRecord record = recordFrames(scene, simulation, options.maxFrames);
-  const ClipPlan plan = planOf(scene, record);
+  ClipRecord clip = recordClip(scene, simulation, options.maxFrames);
+  const ClipPlan plan = planOf(scene, clip);
+  const RunRecord& record = clip.record;
   const std::vector<FrameState>& frames = record.frames;
   const long simulatedFrames = plan.simulatedFrames;
   const long total = plan.frames();

@@ -15,6 +15,7 @@
 
 #include "pipeline/run_record.h"
 #include "pipeline/simulation.h"
+#include "pipeline/slow_motion.h"
 #include "scene/scene_config.h"
 #include "pipeline/cancelled.h"
 #include "video/frame_sink.h"
@@ -47,7 +48,8 @@ long frameCount(double simulatedSeconds, double timeScale, int fps);
 double playbackRate(const scene::RenderSpec& render, double rate);
 
 // The one pass over `simulation` (buildSimulation(scene)): the survey, the trace and the state at
-// every frame time t_(k+1) = t_k + playbackRate(rate(t_k)) / fps up to the run's end. Throws
+// every frame time t_(k+1) = t_k + playbackRate(rate(t_k)) / fps up to the run's end, or slower where
+// render.time_remap.flight or .impact slows it (slow_motion.h: known from a first run before it). Throws
 // std::invalid_argument when the clip has more than `maxFrames` frames.
 RunRecord recordFrames(const scene::SceneConfig& scene, const Simulation& simulation,
                        long maxFrames = kDefaultMaxFrames);
@@ -88,10 +90,15 @@ struct ClipPlan {
   int fps = 0;
   double timeScale = 1;   // render.time_scale: simulated s per video s without a remap
   bool remapped = false;  // render.time_remap is set: the playback rate follows the motion
+  bool byEvents = false;  // render.time_remap.flight or .impact is set
   std::vector<double> times;  // s of simulated time shown by each frame; the landing's hold repeats endTime
   // Simulated s per video s at each frame, as the overlay and the sound's pitch use it (FrameTiming).
   std::vector<double> playbackRates;
   std::vector<double> contactRates;  // rad/s, |phi-dot| at each frame (the hold keeps the landing's)
+  std::vector<SlowedBy> slowedBy;    // the time remap's rule that set each frame's playback rate
+  // What render.time_remap.flight and .impact followed (slow_motion.h): empty without them.
+  std::vector<SlowMotionSchedule::Span> flights;
+  std::vector<double> impacts;       // s
   long simulatedFrames = 0;          // frames before the landing's hold
   bool landed = false;               // the coin landed on its face: kLandingHoldSeconds of hold follow
   double endTime = 0;                // s of simulated time where the run ends (its duration, or an event)

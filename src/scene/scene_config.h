@@ -96,6 +96,16 @@ struct TimeRemap {
   double growth = 0;  // in [0, 1): the visible rate grows as (rate / limit)^growth (video_frames.h)
 };
 
+// render.time_remap.flight and render.time_remap.impact: slow motion while the coin is in the air and
+// around each impact of its rim ("flight": true), eased in and out (pipeline/video_frames.h eventSlowDown).
+struct EventSlowDown {
+  double slow = 1;    // in (0, 1]: time_scale's multiplier in the air, or at the impact's instant
+  // s of simulated time over which the multiplier eases back to 1 on either side. The rate then changes
+  // by at most a factor exp(1.5 (1 - slow) time_scale / (window fps)) from one frame to the next
+  // (slow_motion.h): 1.27 at time_scale 1 and 60 fps for 0.1 s, which plays a toss's ease in 0.4 s.
+  double window = 0.1;
+};
+
 // render.audio: a sound track synthesised from the motion (docs/sound.md).
 struct AudioSpec {
   enum class Pitch {
@@ -124,6 +134,9 @@ struct RenderSpec {
   // When set, playback slows further whenever the chosen rate exceeds its limit, so that rate seen
   // on screen never exceeds the limit times time_scale (an Euler's disk stays readable).
   std::optional<TimeRemap> timeRemap;
+  // render.time_remap.flight and .impact: slower still in the air and near each impact, known from a
+  // first run of the simulation (pipeline/video_frames.h); the slowest of all the rules plays.
+  std::optional<EventSlowDown> flightSlowDown, impactSlowDown;
   CameraSpec camera;
   bool trace = true, hud = true;
   video::X264Options video;        // render.video

@@ -267,6 +267,22 @@ std::optional<AudioSpec> parseAudio(const JsonReader& render) {
   return audio;
 }
 
+// render.time_remap.flight or .impact (`key`), when given.
+std::optional<EventSlowDown> parseSlowDown(const JsonReader& remap, std::string_view key) {
+  const nlohmann::json* node = remap.child(key);
+  if (node == nullptr) return std::nullopt;
+  const std::string path = fmt::format("render.time_remap.{}", key);
+  const JsonReader r(*node, path, "", path);
+  if (!r.has("slow")) {
+    r.fail("slow", fmt::format("required: the playback rate {}, times time_scale, in (0, 1] (0.25 plays it 4x slower)",
+                               key == "flight" ? "in the air" : "at an impact"));
+  }
+  EventSlowDown slowDown;
+  slowDown.slow = boundedNumber(r, "slow", slowDown.slow);
+  slowDown.window = boundedNumber(r, "window", slowDown.window);
+  return slowDown;
+}
+
 RenderSpec parseRender(const JsonReader& top) {
   RenderSpec render;
   const nlohmann::json* node = top.child("render");
@@ -291,19 +307,32 @@ RenderSpec parseRender(const JsonReader& top) {
   render.timeScale = boundedNumber(r, "time_scale", render.timeScale);
   if (const nlohmann::json* remap = r.child("time_remap")) {
     const JsonReader m(*remap, "render.time_remap", "", "render.time_remap");
-    if (m.has("spin_rate") == m.has("precession_rate")) {
-      r.fail("time_remap", "give exactly one of spin_rate (slow down by psi-dot) or precession_rate (by phi-dot, the "
-                           "contact point's rate round the floor), in rad/s");
+    constexpr std::string_view kByRate = "give exactly one of spin_rate (slow down by psi-dot) or precession_rate (by "
+                                         "phi-dot, the contact point's rate round the floor), in rad/s";
+    const bool byRate = m.has("spin_rate") || m.has("precession_rate");
+    const bool byEvents = m.has("flight") || m.has("impact");
+    if (m.has("spin_rate") && m.has("precession_rate")) r.fail("time_remap", std::string(kByRate));
+    if (!byRate && !byEvents) {
+      r.fail("time_remap",
+             fmt::format("{}, or flight or impact (slow motion in the air, around each impact)", kByRate));
     }
-    const std::string_view key = m.has("spin_rate") ? "spin_rate" : "precession_rate";
-    const double limit = m.number(key, 0);
-    if (!schema::rangeViolation(m.spec(key), limit).empty()) {
-      m.fail(key, fmt::format("must be a rate > {:g} {}, got {}", m.spec(key).lower->value, m.spec(key).unit, limit));
+    if (byRate) {
+      const std::string_view key = m.has("spin_rate") ? "spin_rate" : "precession_rate";
+      const double limit = m.number(key, 0);
+      if (!schema::rangeViolation(m.spec(key), limit).empty()) {
+        m.fail(key, fmt::format("must be a rate > {:g} {}, got {}", m.spec(key).lower->value, m.spec(key).unit, limit));
+      }
+      const double growth = boundedNumber(m, "growth", 0);
+      render.timeRemap = TimeRemap{.rate = key == "spin_rate" ? TimeRemap::Rate::Spin : TimeRemap::Rate::Precession,
+                                   .limit = limit,
+                                   .growth = growth};
+    } else if (m.has("growth")) {
+      m.fail("growth",
+             "shapes the slow-down of spin_rate or precession_rate, and neither is given: add one of them, or remove "
+             "growth");
     }
-    const double growth = boundedNumber(m, "growth", 0);
-    render.timeRemap = TimeRemap{.rate = key == "spin_rate" ? TimeRemap::Rate::Spin : TimeRemap::Rate::Precession,
-                                 .limit = limit,
-                                 .growth = growth};
+    render.flightSlowDown = parseSlowDown(m, "flight");
+    render.impactSlowDown = parseSlowDown(m, "impact");
   }
   render.camera = parseCamera(r);
   render.trace = r.boolean("trace", render.trace);

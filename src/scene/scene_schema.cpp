@@ -76,6 +76,7 @@ std::vector<Key> buildTable() {
   const render::RenderSettings& picture = render.picture;
   const CameraSpec& camera = render.camera;
   const AudioSpec audio;
+  const EventSlowDown slowDown;
   const physics::AirDrag air;
   const physics::RollingResistance rolling;
   const physics::SpinFriction pivoting;
@@ -304,7 +305,8 @@ std::vector<Key> buildTable() {
       {.path = "render.time_scale", .type = T::Number, .unit = "", .defaultText = number(render.timeScale),
        .lower = open(0), .doc = "simulated seconds per video second (0.5 = half speed, 2 = twice as fast)"},
       {.path = "render.time_remap", .type = T::Object, .unit = "", .defaultText = "",
-       .doc = "slow motion where the motion is fast: exactly one of `spin_rate` and `precession_rate`"},
+       .doc = "slow motion: where the motion is fast (one of `spin_rate` and `precession_rate`), in the air "
+              "(`flight`), at each impact (`impact`); at least one, and the slowest of them plays"},
       {.path = "render.camera", .type = T::Object, .unit = "", .defaultText = "{}",
        .doc = "where the picture is seen from"},
       {.path = "render.trace", .type = T::Boolean, .unit = "", .defaultText = render.trace ? "true" : "false",
@@ -344,6 +346,29 @@ std::vector<Key> buildTable() {
        .why = "0 holds the visible rate constant, 0.5 lets it grow as the square root of the real one",
        .doc = "above the limit S the rate on screen is time_scale x S x (rate / S)^growth, at most a quarter turn per "
               "frame"},
+      {.path = "render.time_remap.flight", .type = T::Object, .unit = "", .defaultText = "",
+       .doc = "slow motion while the coin is in the air (`\"flight\": true`), eased in before each lift-off and out "
+              "after each landing"},
+      {.path = "render.time_remap.impact", .type = T::Object, .unit = "", .defaultText = "",
+       .doc = "slow motion around each impact of the rim (`\"flight\": true`), eased in before it and out after it"},
+
+      {.path = "render.time_remap.flight.slow", .type = T::Number, .unit = "", .defaultText = "", .required = true,
+       .lower = open(0), .upper = closed(1),
+       .doc = "the playback rate in the air, times time_scale (0.25 plays a flight 4x slower)"},
+      {.path = "render.time_remap.flight.window", .type = T::Number, .unit = "s",
+       .defaultText = number(slowDown.window),
+       .lower = closed(0), .onlyWith = {"render.time_remap.flight.slow=0.25"},
+       .doc = "simulated time over which the slow-down eases in before a lift-off and out after a landing "
+              "(0: at once)"},
+      {.path = "render.time_remap.impact.slow", .type = T::Number, .unit = "", .defaultText = "", .required = true,
+       .lower = open(0), .upper = closed(1),
+       .doc = "the playback rate at an impact's instant, times time_scale (0.05 plays it 20x slower)"},
+      {.path = "render.time_remap.impact.window", .type = T::Number, .unit = "s",
+       .defaultText = number(slowDown.window),
+       .lower = open(0), .onlyWith = {"render.time_remap.impact.slow=0.05"},
+       .why = "the slow-down eases in and out over it; 0.1 s changes the rate by at most 1.27x a frame at 60 fps",
+       .doc = "simulated time before and after each impact over which the slow-down eases in and out; from one "
+              "frame to the next the rate changes by at most exp(1.5 (1 - slow) time_scale / (window fps))"},
 
       {.path = "render.camera.mode", .type = T::Name, .unit = "", .defaultText = nameOf(camera.mode, kCameraModeNames),
        .names = namesOf(kCameraModeNames),

@@ -169,6 +169,10 @@ val runResult(const pipeline::TrajectoryReport& result, double duration, const s
   val eventList = val::array();
   for (const auto& [t, event] : events) eventList.call<void>("push", event);
   out.set("events", eventList);
+  // The impacts' times, s ("flight": true): the page slows down at each (render.time_remap.impact).
+  std::vector<double> impactTimes;
+  for (const pipeline::ImpactRecord& impact : result.impacts) impactTimes.push_back(impact.t);
+  out.set("impacts", copiedOut(std::span<const double>(impactTimes)));
 
   if (const auto& e = result.singularTime) {
     val singular = val::object();

@@ -528,6 +528,24 @@ case("remap-both", C, "time_remap with spin_rate and precession_rate",
 case("remap-growth-one", C, "time_remap growth 1 (would never slow down)",
      REN + "render.time_remap.precession_rate=10 --set render.time_remap.growth=1", 2,
      "render.time_remap.growth: must be in [0, 1)", key="render.time_remap.growth")
+case("remap-empty", C, "time_remap with no rule at all",
+     REN + "'render.time_remap={}'", 2,
+     "render.time_remap: give exactly one of spin_rate (slow down by psi-dot) or precession_rate (by phi-dot, the "
+     "contact point's rate round the floor), in rad/s, or flight or impact", key="render.time_remap")
+case("remap-flight-no-slow", C, "time_remap.flight without its slow",
+     REN + "render.time_remap.flight.window=0.1", 2,
+     "render.time_remap.flight.slow: required: the playback rate in the air, times time_scale, in (0, 1]",
+     key="render.time_remap.flight.slow")
+case("remap-impact-slow-zero", C, "time_remap.impact.slow 0 (would never move on)",
+     REN + "render.time_remap.impact.slow=0", 2,
+     "render.time_remap.impact.slow: must be in (0, 1], got 0", key="render.time_remap.impact.slow")
+case("remap-impact-window-zero", C, "time_remap.impact.window 0 (an instant no frame falls on)",
+     REN + "render.time_remap.impact.slow=0.1 --set render.time_remap.impact.window=0", 2,
+     "render.time_remap.impact.window: must be > 0 (the slow-down eases in and out over it", key="render.time_remap.impact.window")
+case("remap-growth-alone", C, "time_remap growth with only a flight slow-down",
+     REN + "render.time_remap.flight.slow=0.25 --set render.time_remap.growth=0.5", 2,
+     "render.time_remap.growth: shapes the slow-down of spin_rate or precession_rate, and neither is given",
+     key="render.time_remap.growth")
 
 # --- solver
 C = "solver"

@@ -12,7 +12,7 @@
 //   and the coin where `coinroll still` draws it, within 2 px;
 // - a bad scene in the box, or a bad value in a control, shows the program's message beside it;
 // - a run in progress shows its progress and gives way to a newer one; playback follows
-//   render.time_remap as `coinroll render --frame-times` reports it.
+//   render.time_remap as `coinroll render --frame-times` reports it, in the air and at each impact too.
 // Exits 77 (ctest's skip), saying why, where Chromium or web/node_modules is missing.
 import { spawnSync } from 'node:child_process';
 import { existsSync, mkdtempSync, readFileSync, rmSync, statSync, writeFileSync } from 'node:fs';
@@ -286,6 +286,24 @@ try {
     }
   }
   check('playback slows down as coinroll render\'s time remap does', worstRate.error <= 1, `worst ${worstRate.error.toFixed(2)} of the tolerance, ${worstRate.detail}`);
+
+  // The coin toss: slower in the air and eased to 20x slow at each impact (render.time_remap.flight and
+  // .impact), from the impacts the core reports: each frame's rate as coinroll render chose it, to 1e-4.
+  await page.select('#example', 'coin_toss');
+  await settled();
+  const tossText = readFileSync(join(repo, 'examples/coin_toss.json'), 'utf8');
+  const tossRender = coinroll(['render', 'scene.json', '--to', '0.8', '--frame-times', 'frames.csv', '-o', 'f_%05d.png',
+                               '--set', 'render.width=64', '--set', 'render.height=64'], tossText);
+  if (tossRender.status !== 0) throw new Error(`coinroll render failed: ${tossRender.stderr}`);
+  const tossFrames = csvOf(readFileSync(join(scratch, 'frames.csv'), 'utf8')).columns;
+  let worstToss = { error: 0 };
+  for (let k = 0; k < tossFrames.sim_time_s.length; ++k) {
+    const rate = await hook('playbackRate', tossFrames.sim_time_s[k]), expected = tossFrames.playback_rate[k];
+    const error = Math.abs(rate / expected - 1) / 1e-4;
+    if (!(error <= worstToss.error)) worstToss = { error, detail: `t = ${tossFrames.sim_time_s[k]} s: page ${rate}, coinroll render ${expected}` };
+  }
+  check('playback slows down in the air and at each impact as coinroll render does', worstToss.error <= 1 &&
+        tossFrames.playback_rate.some((r) => Math.abs(r - 0.05) < 1e-3), `worst ${worstToss.error.toFixed(2)} of the tolerance, ${worstToss.detail}`);
 
   // coinroll export: the built page with a scene in it opens on that scene and runs it as the program does.
   const exported = join(scratch, 'ring.html');

@@ -20,7 +20,11 @@ function renderSpec(scene) {
   return {
     time_scale: or(render.time_scale, 'render.time_scale'),
     fps: or(render.fps, 'render.fps'),
-    time_remap: remap && Object.assign({}, remap, { growth: or(remap.growth, 'render.time_remap.growth') }),
+    time_remap: remap && Object.assign({}, remap, {
+      growth: or(remap.growth, 'render.time_remap.growth'),
+      flight: remap.flight && { slow: remap.flight.slow, window: or(remap.flight.window, 'render.time_remap.flight.window') },
+      impact: remap.impact && { slow: remap.impact.slow, window: or(remap.impact.window, 'render.time_remap.impact.window') },
+    }),
     trace: or(render.trace, 'render.trace'),
     hud: or(render.hud, 'render.hud'),
     camera: {
@@ -172,7 +176,7 @@ function draw() {
 }
 
 // Playback: simulated seconds advance at the scene's playback rate (render.time_scale, slowed by
-// render.time_remap where the motion is fast) times the speed chosen; the end is held 1.5 s, then
+// render.time_remap where the motion is fast, in the air and at each impact) times the speed chosen; the end is held 1.5 s, then
 // the run plays again.
 function frame(now) {
   requestAnimationFrame(frame);

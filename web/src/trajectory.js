@@ -1,7 +1,8 @@
 // One run of the core as the page reads it: the CSV's columns (every number from the WebAssembly
 // module), the coin's state between rows, the overlay's lines as the renderer prints them
 // (src/pipeline/snapshot.cpp hudLines) and the playback rate of render.time_scale and
-// render.time_remap (src/pipeline/video_frames.cpp playbackRate).
+// render.time_remap (src/pipeline/video_frames.cpp playbackRate; its flight and impact slow-downs,
+// src/pipeline/slow_motion.cpp).
 //
 // The overlay's rates are the CSV's own rates in other components, not physics: in the seed's frame
 // omega = theta-dot e_X + phi-dot e_y + psi-dot e_Z with e_y = cos(theta) e_Y - sin(theta) e_Z
@@ -46,6 +47,32 @@ export class Trajectory {
                           events: result.events, report: result.report, scene, sampleDt, render });
     this.endTime = this.columns.t[this.rows - 1];
     this.hasEffects = Array.isArray(scene.effects) && scene.effects.length > 0;
+    this.impacts = Array.from(result.impacts || []);
+    this.flights = this.stretchesInTheAir();
+  }
+
+  // The stretches in the air that render.time_remap.flight follows, as src/pipeline/slow_motion.cpp
+  // scheduleOf reads them off the renderer's grid (the rows j sampleDt apart while the run lasts): each
+  // from the last row on the floor before it (or 0) to the last impact in the step where the coin is
+  // down again (or the run's end).
+  stretchesInTheAir() {
+    const { phase } = this.columns, dt = this.sampleDt, flights = [];
+    if (!phase) return flights;
+    const flies = [];
+    for (let j = 0; j < this.rows && j * dt <= this.endTime; ++j) flies.push(phase[j] === 2);
+    for (let j = 0; j < flies.length;) {
+      if (!flies[j]) { ++j; continue; }
+      const first = j;
+      while (j < flies.length && flies[j]) ++j;
+      const span = { start: first === 0 ? 0 : (first - 1) * dt, end: this.endTime };
+      if (j < flies.length) {
+        span.end = j * dt;
+        const within = this.impacts.filter((t) => t > (j - 1) * dt && t <= j * dt);
+        if (within.length > 0) span.end = within[within.length - 1];
+      }
+      flights.push(span);
+    }
+    return flights;
   }
 
   // The row at or before t and the fraction of the step past it; a time on a row is that row.
@@ -107,9 +134,19 @@ export class Trajectory {
   // Simulated seconds per second of playback at a moment of the run: render.time_scale, slowed where
   // render.time_remap's rate (|psi-dot| or |phi-dot|) exceeds its limit S, to
   // v = max(time_scale S, min(time_scale S (rate / S)^growth, pi fps / 2)) rad per second on screen.
+  // Slower still, with render.time_remap.flight or .impact, in the air and around each impact: the
+  // slowest of the rules plays.
   playbackRate(state) {
-    const { time_scale: timeScale, fps, time_remap: remap } = this.render;
+    const { time_scale: timeScale, time_remap: remap } = this.render;
     if (!remap) return timeScale;
+    let rate = timeScale;
+    if (remap.spin_rate !== undefined || remap.precession_rate !== undefined) rate = this.byRate(state, remap);
+    if (remap.flight || remap.impact) rate = Math.min(rate, timeScale * this.slowDownAt(state.t, remap));
+    return rate;
+  }
+
+  byRate(state, remap) {
+    const { time_scale: timeScale, fps } = this.render;
     const bySpin = remap.spin_rate !== undefined;
     const limit = bySpin ? remap.spin_rate : remap.precession_rate;
     const rate = Math.abs(bySpin ? state.psiDot : state.phiDot);
@@ -118,6 +155,28 @@ export class Trajectory {
     const quarterTurnPerFrame = Math.PI / 2 * fps;
     const visible = Math.max(held, Math.min(held * Math.pow(rate / limit, remap.growth), quarterTurnPerFrame));
     return Math.min(timeScale, visible / rate);
+  }
+
+  // time_scale's multiplier at simulated time t: slow + (1 - slow) e(d / window), e(x) = 3x^2 - 2x^3, d the
+  // distance to the nearest stretch in the air (0 inside) or impact, the slower of the two
+  // (src/pipeline/slow_motion.h easedMultiplier).
+  slowDownAt(t, remap) {
+    const eased = ({ slow, window }, distance) => {
+      if (distance <= 0) return slow;
+      if (distance >= window) return 1;
+      const x = distance / window;
+      return slow + (1 - slow) * x * x * (3 - 2 * x);
+    };
+    let multiplier = 1;
+    if (remap.flight) {
+      const distance = Math.min(...this.flights.map(({ start, end }) => Math.max(start - t, t - end, 0)));
+      multiplier = Math.min(multiplier, eased(remap.flight, distance));
+    }
+    if (remap.impact) {
+      const distance = Math.min(...this.impacts.map((time) => Math.abs(time - t)));
+      multiplier = Math.min(multiplier, eased(remap.impact, distance));
+    }
+    return multiplier;
   }
 
   // The box round every centre and contact point (the renderer's survey).

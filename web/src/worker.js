@@ -28,8 +28,8 @@ onmessage = async (event) => {
       sampleDt, sourceName,
       onProgress: (rows, expected) => { postMessage({ type: 'progress', id, rows, expected }); return true; },
     });
-    const { names, columns, rows, end, events, report, stats } = result;
-    postMessage({ type: 'result', id, names, columns, rows, end, events, report, stats, ms: performance.now() - start },
+    const { names, columns, rows, end, events, impacts, report, stats } = result;
+    postMessage({ type: 'result', id, names, columns, rows, end, events, impacts, report, stats, ms: performance.now() - start },
                 Object.values(columns).map((column) => column.buffer));
   } catch (e) {
     postMessage({ type: 'error', id, message: e.message, kind: e.kind, exitCode: e.exitCode });

@@ -50,12 +50,19 @@ Sliding slidingTerms(const CoinModel& model, const SlidingState& state, double m
 }
 
 // (1.7): [I + M k m^t] omega-dot = -omega x I omega + N0 k + tau, then N = N0 - M m . omega-dot (1.5).
-void solve(const CoinModel& model, const Sliding& t, const Eigen::Vector3d& w, const Eigen::Vector3d& torqueBody,
-           Eigen::Vector3d& dOmega, double& N) {
+// The matrix of omega-dot's equations, the same for every pass of the couples' normal force: its LU
+// is computed once per state.
+Eigen::PartialPivLU<Eigen::Matrix3d> omegaDotMatrix(const CoinModel& model, const Sliding& t) {
   const Eigen::Vector3d inertia(model.I_X, model.I_X, model.I_Z);
-  const Eigen::Matrix3d A = Eigen::Matrix3d(inertia.asDiagonal()) + model.M * t.k * t.m.transpose();
+  return Eigen::PartialPivLU<Eigen::Matrix3d>(Eigen::Matrix3d(inertia.asDiagonal()) +
+                                              model.M * t.k * t.m.transpose());
+}
+
+void solve(const CoinModel& model, const Sliding& t, const Eigen::PartialPivLU<Eigen::Matrix3d>& lu,
+           const Eigen::Vector3d& w, const Eigen::Vector3d& torqueBody, Eigen::Vector3d& dOmega, double& N) {
+  const Eigen::Vector3d inertia(model.I_X, model.I_X, model.I_Z);
   const Eigen::Vector3d b = -w.cross(inertia.cwiseProduct(w)) + t.N0 * t.k + torqueBody;
-  dOmega = A.partialPivLu().solve(b);
+  dOmega = lu.solve(b);
   N = t.N0 - model.M * t.m.dot(dOmega);
 }
 
@@ -64,14 +71,15 @@ Forward forwardFrom(const CoinModel& model, const SlidingState& state, double mu
   const Eigen::Matrix3d& R = t.geo.floorFromBody;
   Forward f;
   double N = 0;
-  solve(model, t, s.omegaBody, Eigen::Vector3d::Zero(), f.dOmega, N);
+  const Eigen::PartialPivLU<Eigen::Matrix3d> lu = omegaDotMatrix(model, t);
+  solve(model, t, lu, s.omegaBody, Eigen::Vector3d::Zero(), f.dOmega, N);
   if (!model.effects.empty()) {
     ContactKinematics kinematics{.e_X = R * t.geo.e_X, .e_Y = R * t.geo.e_Y, .e_Z = R.col(2), .omega = R * s.omegaBody,
                                  .faceRadius = model.a - model.rim.edgeRadius, .outerRadius = model.a, .N = N};
     for (int pass = 0; pass < kMaxNormalForcePasses; ++pass) {
       kinematics.N = N;
       f.loads = totalLoads(model.effects, kinematics);
-      solve(model, t, s.omegaBody, R.transpose() * f.loads.torque, f.dOmega, N);
+      solve(model, t, lu, s.omegaBody, R.transpose() * f.loads.torque, f.dOmega, N);
       if (N == kinematics.N) break;
     }
   }

@@ -208,6 +208,8 @@ HybridRun::HybridRun(const Simulation& simulation) : simulation_(simulation) {
   if (mode == physics::ContactMode::Rolling) {
     startRolling(0, start, 0);
   } else {
+    // A start off the rolling constraint is stated as the later switches are (issue 40).
+    switches_.push_back({0, true});
     const physics::SlidingState fromZeroSlip{.attitude = start};
     startSliding(0, mode == physics::ContactMode::Sliding ? sliding : fromZeroSlip, 0, mode);
   }

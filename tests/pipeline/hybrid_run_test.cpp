@@ -52,9 +52,12 @@ TEST(Sliding, AnUprightSkidRollsAtTheClosedFormTimeSpeedAndWork) {
     const double work = 0.5 * M * v0 * v0 - 0.5 * (M + I_Z / (a * a)) * vAfter * vAfter;
     pipeline::CoinRun run(sim);
     const pipeline::RunSample end = *run.sampleAt(1.0);
-    ASSERT_EQ(run.switches().size(), 1u) << coin.dump();
-    EXPECT_FALSE(run.switches()[0].toSliding);
-    EXPECT_TRUE(isNear(run.switches()[0].t, tStar, 1e-9)) << coin.dump();
+    // The start off the rolling constraint (t = 0, to sliding), then the stop.
+    ASSERT_EQ(run.switches().size(), 2u) << coin.dump();
+    EXPECT_TRUE(run.switches()[0].toSliding);
+    EXPECT_EQ(run.switches()[0].t, 0.0);
+    EXPECT_FALSE(run.switches()[1].toSliding);
+    EXPECT_TRUE(isNear(run.switches()[1].t, tStar, 1e-9)) << coin.dump();
     EXPECT_FALSE(end.forward.sliding);
     EXPECT_TRUE(isNear(end.forward.velocity.x() / vAfter, 1, 1e-9)) << coin.dump();
     EXPECT_TRUE(isNear(end.dissipated / work, 1, 1e-9)) << coin.dump();
@@ -75,8 +78,8 @@ TEST(Sliding, AnUprightSkidAtTheDefaultTolerancesCreepsToItsStop) {
   const double tStar = v0 / (mu * g * (1 + sim.model.M * sim.model.a * sim.model.a / sim.model.I_Z));
   pipeline::CoinRun run(sim);
   const pipeline::RunSample end = *run.sampleAt(1.0);
-  ASSERT_EQ(run.switches().size(), 1u);
-  EXPECT_TRUE(isNear(run.switches()[0].t, tStar, 1e-9));
+  ASSERT_EQ(run.switches().size(), 2u);  // slides at t = 0, rolls at t*
+  EXPECT_TRUE(isNear(run.switches()[1].t, tStar, 1e-9));
   EXPECT_FALSE(end.forward.sliding);
 }
 
@@ -264,7 +267,7 @@ TEST(Sliding, TheCsvCarriesTheSlipAndTheSwitches) {
             "t,theta,phi,psi,omega_X,omega_Y,omega_Z,x,y,z,contact_x,contact_z,energy,normal_force,friction_force,"
             "power,dissipated,slip_speed,sliding");
   EXPECT_EQ(first.substr(first.rfind(',') - 1), "1,1");  // slip speed 1 m/s, sliding
-  ASSERT_EQ(result.switches.size(), 1u);
+  ASSERT_EQ(result.switches.size(), 2u);  // slides at t = 0, rolls at t*
 }
 
 }  // namespace

@@ -16,6 +16,7 @@ struct ContactKinematics {
   Eigen::Vector3d e_Z;    // coin axis: the face normal
   Eigen::Vector3d omega;  // rad/s, angular velocity
   double faceRadius = 0;  // m, radius of the flat face the air gap lies under: a - rho (docs/rim.md §6)
+  double holeRadius = 0;  // m, a ring's hole b <= faceRadius in that face: no air is squeezed under it
   double N = 0;           // N, normal force of the floor (the model needs N > 0)
 };
 

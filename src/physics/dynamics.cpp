@@ -129,6 +129,7 @@ ContactKinematics kinematicsFrom(const CoinModel& model, const CoinState& s, con
           .e_Z = axes.row(2).transpose(),
           .omega = axes.transpose() * Eigen::Vector3d(s.omega_X, s.omega_Y, s.omega_Z),
           .faceRadius = model.a - model.rim.edgeRadius,
+          .holeRadius = model.holeRadius,
           .N = N};
 }
 

@@ -52,6 +52,7 @@ ContactKinematics contactKinematics(const CoinModel& m, const QuaternionState& s
           .e_Z = geo.floorFromBody.col(2),
           .omega = geo.floorFromBody * s.omegaBody,
           .faceRadius = m.a - m.rim.edgeRadius,
+          .holeRadius = m.holeRadius,
           .N = N};
 }
 

@@ -18,11 +18,13 @@ namespace {
 
 bool isDissipative(const Simulation& simulation) { return !simulation.model.effects.empty() || simulation.sliding; }
 
-// Without a cone nothing watches |F| <= mu N: the ratio the rolling contact needed is kept instead.
+// Without a cone nothing watches |F| <= mu N: the ratio the rolling contact needed is kept instead,
+// with the first time it was reached; a later sample must exceed it by more than round-off, or a
+// steady motion's time would be whichever sample's last bit came out largest (another libm's differs).
 void noteFrictionNeeded(std::optional<FrictionNeeded>& needed, double t, const physics::Forward& f) {
   if (f.flying || f.sliding || !(f.reaction.N > 0)) return;
   const double ratio = f.reaction.F / f.reaction.N;
-  if (!needed || ratio > needed->ratio) needed = FrictionNeeded{.ratio = ratio, .t = t};
+  if (!needed || ratio > needed->ratio * (1 + 1e-9)) needed = FrictionNeeded{.ratio = ratio, .t = t};
 }
 
 }  // namespace

@@ -16,6 +16,13 @@ Loads loads(const AirDrag& law, const ContactKinematics& k) {
     const double Omega = rocking.norm() / alpha;
     resistance *= a * alpha * std::sqrt(Omega * law.density / mu);
   }
+  // A ring's hole is open to the room (p = 0 on both edges of the annulus): the Reynolds equation over
+  // b <= r <= a gives (1 - b^2/a^2)^3 of the disk's power for any conductance uniform over the face,
+  // Moffatt's and the boundary layer's alike (docs/euler_disk.md 2.5a).
+  if (k.holeRadius > 0) {
+    const double open = 1 - (k.holeRadius * k.holeRadius) / (a * a);
+    resistance *= open * open * open;
+  }
   return {.torque = -resistance * rocking, .power = resistance * rocking.squaredNorm()};
 }
 

@@ -19,6 +19,7 @@ struct AirDrag {
 
 // tau = -C omega_h with C = pi mu a^3 / (4 alpha^3) (Moffatt, eq. 2.2) or
 // C = (pi / 4) sqrt(mu rho) a^4 |omega_h|^(1/2) alpha^(-5/2) (boundary layer, eq. 2.6); P = C |omega_h|^2.
+// A ring's face is the annulus b <= r <= a: both laws times (1 - b^2 / a^2)^3 (eq. 2.5a), 0 for a hoop.
 Loads loads(const AirDrag& law, const ContactKinematics& k);
 
 }  // namespace coinroll::physics

@@ -10,7 +10,14 @@ CoinModel diskModel(double M, double a, double g) {
 
 CoinModel ringModel(double M, double a, double b, double g) {
   const double sumOfSquares = a * a + b * b;
-  return {.M = M, .a = a, .g = g, .I_X = M * sumOfSquares / 4, .I_Z = M * sumOfSquares / 2, .rim = {}, .effects = {}};
+  return {.M = M,
+          .a = a,
+          .g = g,
+          .I_X = M * sumOfSquares / 4,
+          .I_Z = M * sumOfSquares / 2,
+          .rim = {},
+          .holeRadius = b,
+          .effects = {}};
 }
 
 double naturalTime(const CoinModel& model) { return std::sqrt(model.a / model.g); }

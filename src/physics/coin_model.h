@@ -24,6 +24,7 @@ struct CoinModel {
   double I_X = 0;  // kg m^2, moment about a diameter (I_X = I_Y by symmetry)
   double I_Z = 0;  // kg m^2, moment about the symmetry axis
   Rim rim;         // thickness 0 (the default): the seed's thin coin, bit for bit
+  double holeRadius = 0;  // m, b: a ring's hole, open to the room under the face (air drag, docs/euler_disk.md 2.5a)
   std::vector<Effect> effects;  // empty: the seed's ideal rolling, energy conserved
   Friction friction{};  // the default: no cone (no slip monitor) and no sliding friction
 };

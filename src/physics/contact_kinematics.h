@@ -19,6 +19,7 @@ struct ContactKinematics {
   double faceRadius = 0;  // m, radius of the flat face the air gap lies under: a - rho (docs/rim.md §6)
   // m, a: the floor's pressure on the coin centres no farther than this from P; infinite, no bound.
   double outerRadius = std::numeric_limits<double>::infinity();
+  double holeRadius = 0;  // m, a ring's hole b <= faceRadius in that face: no air is squeezed under it
   double N = 0;           // N, normal force of the floor (the model needs N > 0)
 };
 

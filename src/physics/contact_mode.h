@@ -31,12 +31,18 @@ double slideOnsetMargin(const CoinModel& model, const Forward& rolling);
 // fits the static cone, else creeping on from zero slip, its direction at its rest.
 ContactMode modeAfterSlipStops(const CoinModel& model, const Forward& rolling);
 
-// A free slide's slip stops when this falls through zero (t: s).
-double slipStopMargin(double t, const Eigen::Vector2d& slip);
+// A free slide's slip stops when this falls through zero (t: s; slipRate: the slip's rate, m/s^2):
+// at stoppedSlip(t), or earlier where the slip closes so fast that it would stop within
+// slipStopLead(t) (a hard skid).
+double slipStopMargin(double t, const Eigen::Vector2d& slip, const Eigen::Vector2d& slipRate);
 
 // A creeping slide's slip stops when this falls through zero: `rest` is friction's direction along
-// the slip's rest (floor frame, unit, horizontal).
-double creepStopMargin(double t, const Eigen::Vector2d& slip, const Eigen::Vector3d& rest);
+// the slip's rest (floor frame, unit, horizontal); the same rule along it.
+double creepStopMargin(double t, const Eigen::Vector2d& slip, const Eigen::Vector2d& slipRate,
+                       const Eigen::Vector3d& rest);
+
+// s: a slide also ends once its slip would stop within this at its present rate.
+double slipStopLead(double t);
 
 // m/s: the slip speed above which its direction is integrated, at a rest of strength `restoring`
 // (Creep::restoring, m/s^2).

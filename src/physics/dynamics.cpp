@@ -130,6 +130,7 @@ ContactKinematics kinematicsFrom(const CoinModel& model, const CoinState& s, con
           .omega = axes.transpose() * Eigen::Vector3d(s.omega_X, s.omega_Y, s.omega_Z),
           .faceRadius = model.a - model.rim.edgeRadius,
           .outerRadius = model.a,
+          .holeRadius = model.holeRadius,
           .N = N};
 }
 

@@ -53,6 +53,7 @@ ContactKinematics contactKinematics(const CoinModel& m, const QuaternionState& s
           .omega = geo.floorFromBody * s.omegaBody,
           .faceRadius = m.a - m.rim.edgeRadius,
           .outerRadius = m.a,
+          .holeRadius = m.holeRadius,
           .N = N};
 }
 

@@ -74,8 +74,14 @@ Forward forwardFrom(const CoinModel& model, const SlidingState& state, double mu
   const Eigen::PartialPivLU<Eigen::Matrix3d> lu = omegaDotMatrix(model, t);
   solve(model, t, lu, s.omegaBody, Eigen::Vector3d::Zero(), f.dOmega, N);
   if (!model.effects.empty()) {
-    ContactKinematics kinematics{.e_X = R * t.geo.e_X, .e_Y = R * t.geo.e_Y, .e_Z = R.col(2), .omega = R * s.omegaBody,
-                                 .faceRadius = model.a - model.rim.edgeRadius, .outerRadius = model.a, .N = N};
+    ContactKinematics kinematics{.e_X = R * t.geo.e_X,
+                                 .e_Y = R * t.geo.e_Y,
+                                 .e_Z = R.col(2),
+                                 .omega = R * s.omegaBody,
+                                 .faceRadius = model.a - model.rim.edgeRadius,
+                                 .outerRadius = model.a,
+                                 .holeRadius = model.holeRadius,
+                                 .N = N};
     for (int pass = 0; pass < kMaxNormalForcePasses; ++pass) {
       kinematics.N = N;
       f.loads = totalLoads(model.effects, kinematics);

@@ -33,7 +33,8 @@ class CoinRun {
   // Lift-off and slip crossings the run went on past (on_invalid "warn"), in time order so far.
   std::vector<RunEvent> warnings() const;
 
-  // The switches between rolling and sliding so far (none unless the scene has "sliding": true).
+  // The switches between rolling and sliding so far (none unless the scene has "sliding": true); a run
+  // that starts off the rolling constraint (an initial slip, or the static cone exceeded) has one at t = 0.
   std::vector<ModeSwitch> switches() const;
 
   // The rim's impacts so far (none unless the scene has "flight": true).

@@ -74,6 +74,11 @@ physics::SlidingState slidingStateOf(const integrate::Vec<kSlidingSize>& y) {
   return physics::toSlidingState(y.head<physics::kSlidingStateSize>());
 }
 
+// m/s^2: the slip's rate, for the stop's rule (physics::slipStopMargin).
+Eigen::Vector2d slipRateOf(const SlidingRhs& rhs, double t, const integrate::Vec<kSlidingSize>& y) {
+  return rhs(t, y).segment<2>(physics::kSlidingStateSize - 2);
+}
+
 physics::QuaternionState rollingStateOf(const integrate::Vec<kRollingSize>& y) {
   return physics::toQuaternionState(y.head<physics::kQuaternionStateSize>());
 }
@@ -148,14 +153,30 @@ class SlidingSegment final : public TrajectoryMotion<kSlidingSize, SlidingKind, 
     if (!hit || (hit->id != kSlipStops && hit->id != kSlipCreeps && hit->id != kSlipFrees && hit->id != kLiftsOff)) {
       return std::nullopt;
     }
-    const physics::SlidingState state = slidingStateOf(hit->y);
-    const physics::Forward forward = kind().sliding.forward(hit->y.head<physics::kSlidingStateSize>());
+    const integrate::Vec<kSlidingSize> y = hit->id == kSlipStops ? closedSlip(hit->t, hit->y) : hit->y;
+    const physics::SlidingState state = slidingStateOf(y);
+    const physics::Forward forward = kind().sliding.forward(y.head<physics::kSlidingStateSize>());
     return Handover{.id = hit->id,
                     .t = hit->t,
                     .state = state,
                     .flight = flightStateOf(state.attitude, forward),
                     .forward = forward,
-                    .dissipated = hit->y[kSlidingSize - 1]};
+                    .dissipated = y[kSlidingSize - 1]};
+  }
+
+ private:
+  // A slide ended by physics::slipStopLead (a slip closing faster than 100 m/s^2) stops with up to
+  // 1e-13 s of slip left, whose centre velocity the roll would drop at once: M v |s| of energy, 2.4e-7 of
+  // a hard skid's work. That last |s| / (closing rate) of sliding is applied as one increment instead
+  // (docs/sliding.md §4.4), so the roll starts from the skid's closed form to O(lead^2); a slide that
+  // reached physics::stoppedSlip(t) is handed over as before.
+  integrate::Vec<kSlidingSize> closedSlip(double t, const integrate::Vec<kSlidingSize>& y) const {
+    const integrate::Vec<kSlidingSize> rate = kind().sliding(t, y);
+    const Eigen::Vector2d slip = slidingStateOf(y).slip;
+    const double speed = slip.norm();
+    const double closing = speed > 0 ? -slip.dot(rate.segment<2>(physics::kSlidingStateSize - 2)) / speed : 0.0;
+    if (!(physics::slipStopLead(t) * closing > physics::stoppedSlip(t))) return y;
+    return y + (speed / closing) * rate;
   }
 };
 
@@ -253,6 +274,8 @@ HybridRun::HybridRun(const Simulation& simulation) : simulation_(simulation) {
   if (mode == physics::ContactMode::Rolling) {
     startRolling(0, start, 0);
   } else {
+    // A start off the rolling constraint is stated as the later switches are (issue 40).
+    switches_.push_back({0, true});
     const physics::SlidingState fromZeroSlip{.attitude = start};
     startSliding(0, mode == physics::ContactMode::Sliding ? sliding : fromZeroSlip, 0, mode);
   }
@@ -306,8 +329,8 @@ void HybridRun::startSliding(double t, const physics::SlidingState& state, doubl
       [forwardOf](double, const Y& y) { return forwardOf(y).normalEffectiveMass - physics::kPainleveMargin; }, -1,
       true));
   if (mode == physics::ContactMode::Sliding) {
-    events.push_back(switchEvent<kSlidingSize>(kSlipStops, "rolls", [](double at, const Y& y) {
-      return physics::slipStopMargin(at, slidingStateOf(y).slip);
+    events.push_back(switchEvent<kSlidingSize>(kSlipStops, "rolls", [rhs](double at, const Y& y) {
+      return physics::slipStopMargin(at, slidingStateOf(y).slip, slipRateOf(rhs, at, y));
     }));
     events.push_back(switchEvent<kSlidingSize>(kSlipCreeps, "creeps", [model, forwardOf](double, const Y& y) {
       return physics::slipCreepMargin(model, y.head<physics::kSlidingStateSize>(), forwardOf(y));
@@ -317,7 +340,8 @@ void HybridRun::startSliding(double t, const physics::SlidingState& state, doubl
     // length has a kink there that a step can jump: the stop is found on the slip along the rest.
     events.push_back(switchEvent<kSlidingSize>(kSlipStops, "rolls", [rhs](double at, const Y& y) {
       const physics::SlidingStateVec coin = y.head<physics::kSlidingStateSize>();
-      return physics::creepStopMargin(at, physics::toSlidingState(coin).slip, rhs.frictionDirection(coin));
+      return physics::creepStopMargin(at, physics::toSlidingState(coin).slip, slipRateOf(rhs, at, y),
+                                      rhs.frictionDirection(coin));
     }));
     events.push_back(switchEvent<kSlidingSize>(
         kSlipFrees, "slips freely",

@@ -57,7 +57,8 @@ class Motion {
   // Lift-off and slip crossings the run went on past (on_invalid "warn"), in time order so far.
   virtual std::vector<RunEvent> warnings() const = 0;
 
-  // The switches between rolling and sliding so far (none unless the scene has "sliding": true).
+  // The switches between rolling and sliding so far (none unless the scene has "sliding": true); a run
+  // that starts off the rolling constraint (an initial slip, or the static cone exceeded) has one at t = 0.
   virtual std::vector<ModeSwitch> switches() const { return {}; }
 
   // The rim's impacts so far, in time order (none unless the scene has "flight": true).

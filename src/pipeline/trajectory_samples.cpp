@@ -2,7 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "pipeline/coin_run.h"
 
@@ -15,6 +17,15 @@ long sampleCount(double duration, double sampleDt) {
 namespace {
 
 bool isDissipative(const Simulation& simulation) { return !simulation.model.effects.empty() || simulation.sliding; }
+
+// Without a cone nothing watches |F| <= mu N: the ratio the rolling contact needed is kept instead,
+// with the first time it was reached; a later sample must exceed it by more than round-off, or a
+// steady motion's time would be whichever sample's last bit came out largest (another libm's differs).
+void noteFrictionNeeded(std::optional<FrictionNeeded>& needed, double t, const physics::Forward& f) {
+  if (f.flying || f.sliding || !(f.reaction.N > 0)) return;
+  const double ratio = f.reaction.F / f.reaction.N;
+  if (!needed || ratio > needed->ratio * (1 + 1e-9)) needed = FrictionNeeded{.ratio = ratio, .t = t};
+}
 
 }  // namespace
 
@@ -58,10 +69,14 @@ TrajectoryReport sampleTrajectory(const Simulation& simulation, double sampleDt,
       values.push_back(f.flying ? 2 : f.sliding ? 1 : 0);
       values.push_back(sample->impacts);
     }
+    if (!simulation.model.friction.cone) noteFrictionNeeded(result.frictionNeeded, t, f);
     row(values);
     ++result.rows;
   }
   result.stoppedBy = run.stoppedBy();
+  if (result.stoppedBy && !simulation.model.friction.cone) {
+    noteFrictionNeeded(result.frictionNeeded, result.stoppedBy->t, result.stoppedBy->forward);
+  }
   const bool flat = result.stoppedBy && (result.stoppedBy->event == physics::ModelEvent::CoinFlat ||
                                          result.stoppedBy->event == physics::ModelEvent::FaceDown);
   if (!simulation.model.effects.empty() && flat) {
@@ -78,22 +93,26 @@ TrajectoryReport sampleTrajectory(const Simulation& simulation, double sampleDt,
 }
 
 std::vector<std::string> reportLines(const TrajectoryReport& report) {
-  std::vector<std::string> lines;
+  // The run's notes in the order the coin met them: a reader follows the motion down the log.
+  std::vector<std::pair<double, std::string>> timed;
   for (const ModeSwitch& w : report.switches) {
-    lines.push_back(fmt::format("coinroll: {} at t = {:.9f} s", w.toSliding ? "slides" : "rolls", w.t));
+    timed.emplace_back(w.t, fmt::format("coinroll: {} at t = {:.9f} s", w.toSliding ? "slides" : "rolls", w.t));
   }
   for (const ImpactRecord& impact : report.impacts) {
-    lines.push_back(fmt::format("coinroll: impact at t = {:.9f}, normal speed {:.6g} m/s ({})", impact.t,
-                                impact.normalSpeed,
-                                impact.bouncesEnd ? fmt::format("bounce-end: the rim stays on the floor, {:.3g} J lost",
-                                                                impact.energyLost)
-                                                  : fmt::format("rebound {:.6g} m/s, {:.3g} J lost",
-                                                                impact.reboundSpeed, impact.energyLost)));
+    timed.emplace_back(
+        impact.t,
+        fmt::format("coinroll: impact at t = {:.9f}, normal speed {:.6g} m/s ({})", impact.t, impact.normalSpeed,
+                    impact.bouncesEnd
+                        ? fmt::format("bounce-end: the rim stays on the floor, {:.3g} J lost", impact.energyLost)
+                        : fmt::format("rebound {:.6g} m/s, {:.3g} J lost", impact.reboundSpeed, impact.energyLost)));
   }
   for (const RunEvent& warning : report.warnings) {
-    lines.push_back("coinroll: warning: the ideal contact fails here (on_invalid: warn, going on): " +
-                    describeStop(warning));
+    timed.emplace_back(warning.t, "coinroll: warning: the ideal contact fails here (on_invalid: warn, going on): " +
+                                      describeStop(warning));
   }
+  std::stable_sort(timed.begin(), timed.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<std::string> lines;
+  for (auto& [t, line] : timed) lines.push_back(std::move(line));
   if (report.stoppedBy) lines.push_back("coinroll: stopped early: " + describeStop(*report.stoppedBy));
   using physics::ModelEvent;
   if (report.flight && report.stoppedBy &&
@@ -109,6 +128,17 @@ std::vector<std::string> reportLines(const TrajectoryReport& report) {
         fmt::format("coinroll: singular time t0 = {:.6f} s, {:.3g} s after the stop "
                     "(tilt ~ (t0 - t)^{:.3f}, fitted over {:.6g} s <= t <= {:.6g} s, {} samples)",
                     e.t0, e.t0 - report.stoppedBy->t, e.gamma, e.fitFrom, e.fitTo, e.samples));
+  }
+  if (const std::optional<FrictionNeeded>& needed = report.frictionNeeded) {
+    // Below 1e-9 it is round-off of a reaction that needs none (spin in place, straight rolling).
+    lines.push_back(needed->ratio < 1e-9
+                        ? fmt::format("coinroll: no friction cone (the scene has no `friction`): rolling needed no "
+                                      "friction (|F|/N at most {:.3g} over the samples)",
+                                      needed->ratio)
+                        : fmt::format("coinroll: no friction cone (the scene has no `friction`): rolling needed |F|/N "
+                                      "up to {:.6g}, at t = {:.6f} s (largest over the samples); a friction "
+                                      "coefficient below it would have let the coin slip",
+                                      needed->ratio, needed->t));
   }
   lines.push_back(fmt::format("coinroll: {} rows, {} steps ({} rejected), {} right-hand-side evaluations", report.rows,
                               report.stats.acceptedSteps, report.stats.rejectedSteps, report.stats.rhsEvaluations));

@@ -40,6 +40,13 @@ std::vector<std::string_view> trajectoryColumns(const Simulation& simulation);
 // instead of 231.
 long sampleCount(double duration, double sampleDt);
 
+// A scene without `friction` has no cone to leave (ideal rolling): the most friction per unit of
+// normal force its rolling contact needed, so a reader knows which mu it takes (docs/sliding.md §4.7).
+struct FrictionNeeded {
+  double ratio = 0;  // the largest |F| / N over the samples in contact (and the stop)
+  double t = 0;      // s, where it was reached
+};
+
 // How a sampled run went.
 struct TrajectoryReport {
   long rows = 0;
@@ -49,6 +56,7 @@ struct TrajectoryReport {
   std::vector<ImpactRecord> impacts;  // "flight": true: each impact of the rim
   bool flight = false;                // "flight": true: a run that ends lying on a face says which
   std::optional<SingularTimeEstimate> singularTime;  // a spin-down that reached coin-flat or face-down
+  std::optional<FrictionNeeded> frictionNeeded;      // no `friction` in the scene: the cone it needed
   integrate::Stats stats;
 };
 
@@ -58,8 +66,10 @@ using TrajectoryRow = std::function<void(std::span<const double>)>;
 TrajectoryReport sampleTrajectory(const Simulation& simulation, double sampleDt, const TrajectoryRow& row);
 
 // What `coinroll simulate` prints on stderr about a run, a line each, without line breaks: the
-// switches, the impacts, the warnings, the stop, the face it lies on, the singular time and the
-// counts. The WebAssembly core returns the same lines.
+// switches, the impacts and the warnings merged in simulated-time order (at one time: switch, impact,
+// warning), then the stop, the face it lies on, the singular time, the friction a scene without
+// `friction` needed, and the counts. The WebAssembly
+// core returns the same lines.
 std::vector<std::string> reportLines(const TrajectoryReport& report);
 
 }  // namespace coinroll::pipeline

@@ -57,6 +57,18 @@ TEST_F(RimCliTest, TheCsvHeightIsTheSolidsAndTheContactIsOnTheFloorUnderTheRim) 
   }
 }
 
+TEST_F(RimCliTest, ACornerOfOneNanometreStillStopsAtUpright) {
+  // The corner's impact at upright shrinks with its offset e = h/2 - rho but exists for every e > 0
+  // (docs/rim.md (7.0b)): a toy rounded to 1 nm short of fully still stops there.
+  const fs::path scene = dir_ / "tiny_corner.json";
+  std::ofstream(scene) << R"({"coin": {"radius": 0.0375, "mass": 0.45, "thickness": 0.013,
+    "edge_radius": 0.006499999}, "initial": {"theta": 2, "omega_X": -1.5, "omega_Z": 20}, "duration": 5})";
+  const coinroll::testing::RunResult r = runCoinroll("simulate " + scene.string() + " --csv /dev/null");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("stopped early: corner-switch at t = "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("0.0000 deg)"), std::string::npos) << r.output;
+}
+
 TEST_F(RimCliTest, ACorneredRimStopsWhereItWouldSwitchCorners) {
   // A fast straight roll with a wobble that carries it through upright.
   const fs::path scene = dir_ / "corner.json", csv = dir_ / "corner.csv";

@@ -13,6 +13,7 @@
 #include "physics/dynamics.h"
 #include "physics/effects.h"
 #include "physics/observables.h"
+#include "physics/quaternion_dynamics.h"
 #include "physics/steady.h"
 #include "physics/spin_down.h"
 #include "pipeline/singular_time.h"
@@ -111,6 +112,32 @@ TEST(AirDrag, QuasiSteadyPowerIsMoffattsAndBildstensClosedForm) {
                             std::pow(a, 2.75) * std::pow(alpha, -1.25);
     EXPECT_TRUE(isNear(bildstenPower / bildsten, 1, kClosedForm));
   }
+}
+
+TEST(AirDrag, ARingSqueezesAirOnlyUnderItsAnnulus) {
+  // docs/euler_disk.md (2.5a): the ring's air power is the disk's of the same face times (1 - b^2/a_f^2)^3,
+  // for both laws and both formulations; a thick ring's face is a_f = a - rho; a hoop (b = a_f) has none.
+  // The "disk" is the same ring model with the hole closed, so only the law's reading of b differs.
+  const double b = 0.03;
+  CoinModel thick = ringModel(0.2, 0.0375, b, 9.81);
+  thick.rim = {.thickness = 0.004, .edgeRadius = 0.001};
+  for (const CoinModel& ring : {ringModel(0.2, 0.0375, b, 9.81), thick, ringModel(0.2, 0.0375, 0.0375, 9.81)}) {
+    const double a_f = ring.a - ring.rim.edgeRadius;
+    const double factor = std::pow(1 - ring.holeRadius * ring.holeRadius / (a_f * a_f), 3);
+    CoinModel disk = ring;
+    disk.holeRadius = 0;
+    const CoinState s{.theta = 80 * kDeg, .phi = 0.3, .psi = 0.2, .omega_X = 0.7, .omega_Y = 6, .omega_Z = -1.5};
+    for (const Effect& law : {Effect{AirDrag{}}, Effect{AirDrag{.model = AirFlow::BoundaryLayer}}}) {
+      CoinModel withHole = ring, withoutHole = disk;
+      withHole.effects = withoutHole.effects = {law};
+      const double diskPower = forward(withoutHole, s).loads.power;
+      ASSERT_GT(diskPower, 0);
+      EXPECT_TRUE(isNear(forward(withHole, s).loads.power / diskPower, factor, 1e-12)) << ring.holeRadius;
+      const double diskPowerQ = forward(withoutHole, fromEulerState(s)).loads.power;
+      EXPECT_TRUE(isNear(forward(withHole, fromEulerState(s)).loads.power / diskPowerQ, factor, 1e-12));
+    }
+  }
+  EXPECT_TRUE(isNear(std::pow(1 - b * b / (0.0375 * 0.0375), 3), 0.046656, 1e-12));  // (1 - 0.64)^3
 }
 
 TEST(RollingResistance, QuasiSteadyPowerIsDeltaMgOmega) {

@@ -112,6 +112,29 @@ TEST(Rim, ConservesEnergyOverLongRunsAndThroughUprightWhenRounded) {
   EXPECT_TRUE(isBelow(energyDrift<Formulation::Quaternion>(toy(0.0016), wobbling, 30), 1e-10));
 }
 
+TEST(Rim, ACornerOfAnySizeMeetsTheFloorAtUprightWithTwiceItsOffsetTimesTheTiltRate) {
+  // docs/rim.md (7.0a)-(7.0b): rolling on one corner up to upright, the other corner's material point,
+  // c_new = c_old - 2 sigma e e_Z, moves at -2 sigma e omega x e_Z: into the floor at 2 e |theta'| and
+  // along it at 2 e |omega_Y|, for every e > 0. No held contact can continue from there (docs/rim.md §7).
+  for (const double e : {4.9e-3, 1e-6, 1e-9}) {
+    const CoinModel m = toy(0.0065 - e);
+    ASSERT_FALSE(m.rim.fullyRounded());
+    for (const double sigma : {1.0, -1.0}) {
+      // Just short of upright on the side sigma, tilting towards the other.
+      const CoinState s{.theta = sigma * 1e-12, .omega_X = -sigma * 1.5, .omega_Y = 0.7, .omega_Z = 20};
+      for (const Forward& f : {forward(m, s), forward(m, fromEulerState(s))}) {
+        const Eigen::Vector3d e_Z = f.axes.row(2).transpose();
+        const double offset = m.rim.cornerOffset();
+        const Eigen::Vector3d cNew = f.contactVector - 2 * sigma * offset * e_Z;
+        const Eigen::Vector3d u = f.velocity + f.omega.cross(cNew);
+        // u is v + omega x c_new, a difference of two ~0.75 m/s vectors: 1e-15 m/s of round-off besides.
+        EXPECT_TRUE(isNear(u.y(), -2 * offset * 1.5, 1e-8 * offset + 1e-15)) << e << " " << sigma;  // into the floor
+        EXPECT_TRUE(isNear(Eigen::Vector2d(u.x(), u.z()).norm(), 2 * offset * 0.7, 1e-8 * offset + 1e-15)) << e;
+      }
+    }
+  }
+}
+
 TEST(Rim, TheTwoFormulationsFollowOneTrajectory) {
   const CoinModel m = toy(0.0016);
   const CoinState start{.theta = 35 * kDeg, .phi = 0.3, .omega_X = 0.7, .omega_Y = 3.0, .omega_Z = 6.0, .x = 0.01};

@@ -144,7 +144,8 @@ SteadyState steady(const Scene& scene);
 // hardware thread). A grid key that is no scene field, or no number, is refused before any work.
 struct SweepTable {
   // "point", one column per axis (its key), then "t_end", "theta_min", "theta_max",
-  // "energy_start", "energy_end"; NaN in those five where the point failed.
+  // "energy_start", "energy_end", "theta_end" (rad, at the run's end: a toss's face, heads < 0);
+  // NaN in those six where the point failed.
   Columns columns;
   std::vector<std::string> end;  // per point: "duration", the event that ended it, or "error: <why>"
   long gridPoints = 0;

@@ -87,8 +87,9 @@ class SweepTable(Table):
 
     Columns "point", one per grid key (its values), "end" (a str array: "duration", the event
     that ended the point's run, or "error: <why>"), then "t_end", "theta_min", "theta_max"
-    (rad), "energy_start", "energy_end" (J), NaN where the point failed. grid_points: the points
-    in the grid; digest: the sweep's identity, as its CSV's "sweep" column.
+    (rad), "energy_start", "energy_end" (J), "theta_end" (rad, at the run's end: a toss's face,
+    heads where < 0), NaN where the point failed. grid_points: the points in the grid; digest: the
+    sweep's identity, as its CSV's "sweep" column.
     """
 
     def __init__(self, names, arrays, end, grid_points, digest):

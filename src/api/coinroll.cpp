@@ -185,7 +185,7 @@ SweepTable sweep(const Scene& scene, const std::vector<std::string>& axes, int t
   SweepTable table{.columns = {}, .end = {}, .gridPoints = identity.gridPoints, .digest = identity.digest};
   table.columns.names.push_back("point");
   for (const pipeline::GridAxis& axis : spec.axes) table.columns.names.push_back(axis.key);
-  for (const char* name : {"t_end", "theta_min", "theta_max", "energy_start", "energy_end"})
+  for (const char* name : {"t_end", "theta_min", "theta_max", "energy_start", "energy_end", "theta_end"})
     table.columns.names.push_back(name);
   table.columns.values.resize(table.columns.names.size());
   translatingErrors([&] {
@@ -194,7 +194,8 @@ SweepTable sweep(const Scene& scene, const std::vector<std::string>& axes, int t
       std::size_t column = 0;
       values[column++].push_back(static_cast<double>(point.point));
       for (const double v : point.values) values[column++].push_back(v);
-      for (const double v : {point.tEnd, point.thetaMin, point.thetaMax, point.energyStart, point.energyEnd}) {
+      for (const double v :
+           {point.tEnd, point.thetaMin, point.thetaMax, point.energyStart, point.energyEnd, point.thetaEnd}) {
         values[column++].push_back(v);
       }
       table.end.push_back(point.end);

@@ -298,8 +298,9 @@ CLI::App* addSweepCommand(CLI::App& app, SweepOptions& options) {
   command->footer(
       "Rows: point, the grid values, end (duration, or the event that ended the run, or error: why), t_end, "
       "theta_min,\n"
-      "theta_max (rad, over samples every 0.01 s and the end), energy_start, energy_end (J). Same bytes for any "
-      "--threads.\n"
+      "theta_max (rad, over samples every 0.01 s and the end), energy_start, energy_end (J), theta_end (rad, at the "
+      "end;\n"
+      "a toss's face: heads < 0, tails > 0), grid_points, sweep. Same bytes for any --threads.\n"
       "  coinroll sweep examples/straight_stable.json --grid initial.omega_Z=2:20:10 --grid initial.theta=1:10:10 -o "
       "map.csv\n"
       "  coinroll sweep scene.json --grid coin.mass=0.01:1:5:log --grid initial.theta=5,10,20 -o mass.csv\n"

@@ -45,7 +45,7 @@ std::string csvField(std::string_view text) {
 
 struct PointSummary {
   std::string end;  // "duration" or the event's name
-  double tEnd = 0, thetaMin = 0, thetaMax = 0, energyStart = 0, energyEnd = 0;
+  double tEnd = 0, thetaMin = 0, thetaMax = 0, energyStart = 0, energyEnd = 0, thetaEnd = 0;
 };
 
 PointSummary summarize(const Simulation& simulation) {
@@ -65,21 +65,24 @@ PointSummary summarize(const Simulation& simulation) {
     if (!first) first = s;
     include(s->state);
   }
-  double energyEnd = 0;
+  // The last state: the event's, or the duration's. Its theta's sign is a toss's face (heads < 0),
+  // as simulate reports it at `decided`, `rest` or `face-down`.
+  const auto ending = [&summary, &include](const physics::CoinState& last, double energy) {
+    include(last);
+    summary.thetaEnd = last.theta;
+    summary.energyEnd = energy;
+  };
   if (const auto hit = run.stoppedBy()) {
     summary.end = physics::eventName(hit->event);
     summary.tEnd = hit->t;
-    include(hit->state);
-    energyEnd = hit->forward.energy;
+    ending(hit->state, hit->forward.energy);
   } else {
     const RunSample last = *run.sampleAt(simulation.duration);
     summary.end = "duration";
     summary.tEnd = simulation.duration;
-    include(last.state);
-    energyEnd = last.forward.energy;
+    ending(last.state, last.forward.energy);
   }
   summary.energyStart = first->forward.energy;  // t = 0 always has a sample: events are crossings after it
-  summary.energyEnd = energyEnd;
   return summary;
 }
 
@@ -111,7 +114,7 @@ SweepPoint computePoint(const SweepSpec& spec, long point, const std::atomic<boo
     const PointSummary s = summarize(simulation);
     result.end = s.end;
     result.tEnd = s.tEnd, result.thetaMin = s.thetaMin, result.thetaMax = s.thetaMax;
-    result.energyStart = s.energyStart, result.energyEnd = s.energyEnd;
+    result.energyStart = s.energyStart, result.energyEnd = s.energyEnd, result.thetaEnd = s.thetaEnd;
   } catch (const Cancelled&) {
     throw;  // not the point's failure: the whole sweep stops
   } catch (const std::bad_alloc&) {
@@ -120,7 +123,7 @@ SweepPoint computePoint(const SweepSpec& spec, long point, const std::atomic<boo
     constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
     result.end = std::string("error: ") + e.what();
     result.failed = true;
-    result.tEnd = result.thetaMin = result.thetaMax = result.energyStart = result.energyEnd = kNaN;
+    result.tEnd = result.thetaMin = result.thetaMax = result.energyStart = result.energyEnd = result.thetaEnd = kNaN;
   }
   return result;
 }
@@ -135,7 +138,7 @@ void refuseEmptyGrid(const SweepSpec& spec) {
 std::string sweepHeader(const std::vector<GridAxis>& axes) {
   std::string header = "point";
   for (const GridAxis& axis : axes) header.append(",").append(csvField(axis.key));
-  header.append(",end,t_end,theta_min,theta_max,energy_start,energy_end").append(kSweepIdentityColumns);
+  header.append(kSweepSummaryColumns).append(kSweepIdentityColumns);
   return header;
 }
 
@@ -254,10 +257,10 @@ SweepResult writeSweepCsv(const SweepSpec& spec, std::ostream& out, const std::f
   const SweepResult result = runSweep(spec, [&](const SweepPoint& point) {
     text = fmt::format("{}", point.point);
     for (const double v : point.values) text += fmt::format(",{}", v);
-    if (point.failed) text += "," + csvField(point.end) + ",,,,,";
+    if (point.failed) text += "," + csvField(point.end) + ",,,,,,";  // the six numbers empty
     else
-      text += fmt::format(",{},{},{},{},{},{}", point.end, point.tEnd, point.thetaMin, point.thetaMax,
-                          point.energyStart, point.energyEnd);
+      text += fmt::format(",{},{},{},{},{},{},{}", point.end, point.tEnd, point.thetaMin, point.thetaMax,
+                          point.energyStart, point.energyEnd, point.thetaEnd);
     out << text << rowEnd;
     // Checked per row: a full disk is found before the rest of a long sweep is computed for nothing.
     if (!out) throw std::runtime_error("writing the sweep's rows failed");

@@ -30,11 +30,15 @@ struct SweepSpec {
   long maxPoints = kDefaultMaxPoints;
 };
 
-// The header's last two columns, after the contract's: SweepIdentity.
+// The header's columns after the grid keys: the contract's six, then theta_end, which tells a
+// toss's face (theta < 0: heads).
+inline constexpr std::string_view kSweepSummaryColumns =
+    ",end,t_end,theta_min,theta_max,energy_start,energy_end,theta_end";
+// The header's last two columns, after the summary's: SweepIdentity.
 inline constexpr std::string_view kSweepIdentityColumns = ",grid_points,sweep";
 
-// "point,<keys>,end,t_end,theta_min,theta_max,energy_start,energy_end,grid_points,sweep": the
-// contract's columns, then the sweep's identity (SweepIdentity).
+// "point,<keys>,end,t_end,theta_min,theta_max,energy_start,energy_end,theta_end,grid_points,sweep":
+// the contract's columns, theta_end, then the sweep's identity (SweepIdentity).
 std::string sweepHeader(const std::vector<GridAxis>& axes);
 
 // A grid key that names no field, or names one twice, would give a whole grid of identical or
@@ -62,7 +66,10 @@ struct SweepPoint {
   std::vector<double> values;  // each axis' value at the point, in the axes' order
   std::string end;             // "duration", the event that ended the run, or "error: <the loader's or run's message>"
   bool failed = false;         // `end` is an error; the numbers below are then NaN
-  double tEnd = 0, thetaMin = 0, thetaMax = 0, energyStart = 0, energyEnd = 0;
+  double tEnd = 0;                         // s
+  double thetaMin = 0, thetaMax = 0;       // rad, over samples every 0.01 s and the last state
+  double energyStart = 0, energyEnd = 0;   // J
+  double thetaEnd = 0;                     // rad, of the last state: at the event that ended the run, or the duration
 };
 
 struct SweepResult {

@@ -38,6 +38,30 @@ std::string_view identityOf(std::string_view row) {
   return beforeLast == std::string_view::npos ? std::string_view() : row.substr(beforeLast);
 }
 
+// The header's columns between the grid keys and the identity must be this coinroll's
+// (kSweepSummaryColumns): a shard of another version has other columns, and its rows, merged with
+// this version's, would make a file that no sweep writes. A shard written before theta_end existed
+// is named as such, so its user knows to run it again rather than look for a wrong axis.
+void refuseOtherSummaryColumns(std::string_view header, std::string_view name) {
+  const std::string_view columns = header.substr(0, header.size() - kSweepIdentityColumns.size());
+  if (columns.ends_with(kSweepSummaryColumns)) return;
+  constexpr std::string_view kTheta = ",theta_end";
+  static_assert(kSweepSummaryColumns.ends_with(kTheta));
+  const std::string_view beforeTheta = kSweepSummaryColumns.substr(0, kSweepSummaryColumns.size() - kTheta.size());
+  if (columns.ends_with(beforeTheta)) {
+    throw std::invalid_argument(fmt::format(
+        "{}: its header has no theta_end column (\"...,energy_end,grid_points,sweep\" where this coinroll writes "
+        "\"...,energy_end,theta_end,grid_points,sweep\"): written by an older coinroll; run that shard again with "
+        "this one", name));
+  }
+  // The keys end where the summary begins: a grid key is a scene field, never "end".
+  const std::size_t summary = columns.find(",end,");
+  throw std::invalid_argument(fmt::format(
+      "{}: its header's columns after the grid keys are \"{}\" where this coinroll writes \"{}\": written by "
+      "another coinroll, or edited; run that shard again with this one", name,
+      summary == std::string_view::npos ? columns : columns.substr(summary + 1), kSweepSummaryColumns.substr(1)));
+}
+
 // A list of point numbers for a message: the first 20, then how many more.
 std::string pointList(const std::vector<long>& points) {
   const std::size_t shown = std::min<std::size_t>(points.size(), 20);
@@ -103,6 +127,7 @@ void mergeSweepShards(const std::vector<std::filesystem::path>& shards, std::ost
                                               "which sweep a shard belongs to: written by an older coinroll, or "
                                               "edited; run the sweep again", name));
     }
+    refuseOtherSummaryColumns(line, name);
     if (header.empty()) {
       header = line;
       firstHeaderSource = name;

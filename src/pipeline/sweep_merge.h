@@ -9,7 +9,8 @@
 
 namespace coinroll::pipeline {
 
-// Concatenates shard files in point order after checking that they share one header, that every
+// Concatenates shard files in point order after checking that they share one header with this
+// coinroll's summary columns (an older coinroll's shard, without theta_end, is refused), that every
 // row belongs to one sweep (SweepIdentity), that no file was cut short and that every point of the
 // grid is there exactly once. A shard may be a pipe or a FIFO, or "-" for standard input, and may
 // hold only the header (a shard with no points). Throws std::runtime_error naming the file and

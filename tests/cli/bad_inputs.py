@@ -75,13 +75,16 @@ def scene(**changes):
 
 VALID = scene()
 SMALL = "--set render.width=64 --set render.height=48"  # renders in well under a second
-HEADER = "point,initial.theta,end,t_end,theta_min,theta_max,energy_start,energy_end,grid_points,sweep"
+HEADER = "point,initial.theta,end,t_end,theta_min,theta_max,energy_start,energy_end,theta_end,grid_points,sweep"
+# The header of a shard written before theta_end existed.
+HEADER_BEFORE_THETA_END = HEADER.replace(",theta_end", "")
 SWEEP_ID = "40,0123456789abcdef"  # a 40-point grid's identity columns (written by the sweep itself)
 
 
-def shard(points, identity=SWEEP_ID):
-    rows = "".join(f"{p},{1 + p / 10},duration,0.5,0.1,0.2,0.3,0.3,{identity}\n" for p in points)
-    return HEADER + "\n" + rows
+def shard(points, identity=SWEEP_ID, before_theta_end=False):
+    theta_end = "" if before_theta_end else ",0.15"
+    rows = "".join(f"{p},{1 + p / 10},duration,0.5,0.1,0.2,0.3,0.3{theta_end},{identity}\n" for p in points)
+    return (HEADER_BEFORE_THETA_END if before_theta_end else HEADER) + "\n" + rows
 
 
 SHARDS = {"scene.json": VALID, "p1.csv": shard(range(0, 40, 2)), "p2.csv": shard(range(1, 40, 2))}
@@ -973,7 +976,7 @@ case("merge-truncated", C, "a shard cut off mid-row", MERGE + "p1.csv p2.csv", 1
      files={**SHARDS, "p2.csv": shard(range(1, 40, 2))[:-20]})
 case("merge-no-point", C, "a row without its point number", MERGE + "bad.csv", 1,
      "bad.csv:2: a row must start with its point number", key="bad.csv",
-     files={"bad.csv": "point,a,grid_points,sweep\nx,1,1,0123456789abcdef\n"})
+     files={"bad.csv": HEADER + "\nx,1,duration,0.5,0.1,0.2,0.3,0.3,0.15,40,0123456789abcdef\n"})
 # Shards that know their sweep (issue 21 section 4): the identity columns grid_points and sweep.
 case("merge-cut-at-line-break", C, "the last shard cut after a whole row (an interrupted `sweep -o - > part.csv`)",
      MERGE + "p1.csv p2.csv", 1, "sweep-merge: points missing (of 40 in the grid): 39", key="missing",
@@ -998,6 +1001,22 @@ case("merge-no-identity", C, "a shard without the identity columns (an older coi
      "old.csv: its header has no grid_points and sweep columns", key="old.csv",
      files={"old.csv": "point,initial.theta,end,t_end,theta_min,theta_max,energy_start,energy_end\n"
                        "0,1,duration,0.5,0.1,0.2,0.3,0.3\n"})
+# Shards that say each toss's face (theta_end): a shard of an older coinroll, alone or with this one's
+# in either order, is named, not merged into a file this coinroll does not write or taken for another sweep.
+NO_THETA_END = "no theta_end column before"
+OLD_SHARDS = {**SHARDS, "old2.csv": shard(range(1, 40, 2), before_theta_end=True)}
+case("merge-before-theta-end", C, "a shard without theta_end (an older coinroll's) after this one's",
+     MERGE + "p1.csv old2.csv", 2,
+     "old2.csv: its header has no theta_end column (\"...,energy_end,grid_points,sweep\" where this coinroll "
+     "writes \"...,energy_end,theta_end,grid_points,sweep\"): written by an older coinroll; run that shard again",
+     key="old2.csv", files=OLD_SHARDS, na_before=NO_THETA_END)
+case("merge-before-theta-end-first", C, "a shard without theta_end (an older coinroll's) given first",
+     MERGE + "old2.csv p1.csv", 2, "old2.csv: its header has no theta_end column", key="old2.csv", files=OLD_SHARDS,
+     na_before=NO_THETA_END)
+case("merge-other-columns", C, "a shard whose summary columns are not this coinroll's", MERGE + "p1.csv x2.csv", 2,
+     "x2.csv: its header's columns after the grid keys are \"end,t_end,theta_min,theta_max,energy_start,theta_end\" "
+     "where this coinroll writes \"end,t_end,theta_min,theta_max,energy_start,energy_end,theta_end\"",
+     key="x2.csv", files={**SHARDS, "x2.csv": shard(range(1, 40, 2)).replace("energy_end,", "")})
 case("merge-point-beyond-grid", C, "a row numbered beyond its grid's size", MERGE + "p1.csv p2.csv far.csv", 1,
      "far.csv:2: point 40 is outside the grid of 40 points", key="far.csv",
      files={**SHARDS, "far.csv": shard([40])})

@@ -104,7 +104,7 @@ TEST_F(SweepCliTest, RowsFollowTheGridLastAxisFastestAndMatchTheTrajectoryCsv) {
   std::string line;
   std::getline(in, line);
   EXPECT_EQ(line, "point,initial.theta,initial.omega_Z,end,t_end,theta_min,theta_max,energy_start,energy_end,"
-                  "grid_points,sweep");
+                  "theta_end,grid_points,sweep");
   std::vector<std::vector<std::string>> rows;
   while (std::getline(in, line)) rows.push_back(fields(line));
   ASSERT_EQ(rows.size(), 56u);
@@ -115,24 +115,63 @@ TEST_F(SweepCliTest, RowsFollowTheGridLastAxisFastestAndMatchTheTrajectoryCsv) {
   EXPECT_EQ(row[2], "16");
   EXPECT_EQ(row[3], "duration");
 
-  // The same point through simulate: its CSV's theta extremes and energies are the summary's.
+  // The same point through simulate: its CSV's theta extremes, energies and last theta are the summary's.
   const fs::path csv = dir_ / "point13.csv";
   ASSERT_EQ(runCoinroll("simulate " + scene().string() + " --set initial.theta=10 --set initial.omega_Z=16 --csv " +
                         csv.string()).exitCode, 0);
   std::ifstream trajectory(csv);
   std::getline(trajectory, line);
-  double thetaMin = 1e9, thetaMax = -1e9, energyStart = 0, energyEnd = 0;
+  double thetaMin = 1e9, thetaMax = -1e9, energyStart = 0, energyEnd = 0, thetaEnd = 0;
   for (bool first = true; std::getline(trajectory, line); first = false) {
     const std::vector<std::string> f = fields(line);
     thetaMin = std::min(thetaMin, std::stod(f[1]));
     thetaMax = std::max(thetaMax, std::stod(f[1]));
     if (first) energyStart = std::stod(f[12]);
     energyEnd = std::stod(f[12]);
+    thetaEnd = std::stod(f[1]);
   }
   EXPECT_EQ(std::stod(row[5]), thetaMin);
   EXPECT_EQ(std::stod(row[6]), thetaMax);
   EXPECT_EQ(std::stod(row[7]), energyStart);
   EXPECT_EQ(std::stod(row[8]), energyEnd);
+  EXPECT_EQ(std::stod(row[9]), thetaEnd);
+}
+
+// A sweep of tosses tells each one's face: where a toss is decided (docs/flight.md §5a), theta_end's
+// sign (heads < 0) is the face `simulate` reports for the same point. A toss that ends otherwise
+// (this coin's cornered rim stops one at corner-switch, passing upright) has no face in either.
+TEST_F(SweepCliTest, ATossSweepsThetaEndIsTheFaceSimulateReports) {
+  const std::string toss = std::string(COINROLL_SOURCE_DIR) + "/examples/coin_toss.json --set stop_when_decided=true";
+  const fs::path sweep = dir_ / "tosses.csv";
+  const RunResult r = runCoinroll("sweep " + toss + " --grid initial.omega_X=30:45:4 --grid initial.v_y=1:3:3 -q -o " +
+                                  sweep.string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  std::stringstream rows(slurp(sweep));
+  std::string line;
+  std::getline(rows, line);
+  ASSERT_EQ(fields(line).at(9), "theta_end") << line;
+  std::map<std::string, int> faces;
+  while (std::getline(rows, line)) {
+    const std::vector<std::string> f = fields(line);
+    ASSERT_EQ(f.size(), 12u) << line;
+    const RunResult point = runCoinroll("simulate " + toss + " --set initial.omega_X=" + f[1] +
+                                        " --set initial.v_y=" + f[2] + " --csv " + (dir_ / "point.csv").string());
+    ASSERT_EQ(point.exitCode, 0) << point.output;
+    if (f[3] != "decided") {
+      EXPECT_NE(point.output.find("stopped early: " + f[3] + " "), std::string::npos) << line << "\n" << point.output;
+      EXPECT_EQ(point.output.find("coinroll: heads"), std::string::npos) << point.output;
+      EXPECT_EQ(point.output.find("coinroll: tails"), std::string::npos) << point.output;
+      continue;
+    }
+    const double thetaEnd = std::stod(f[9]);
+    ASSERT_NE(thetaEnd, 0.0) << line;
+    const std::string face = thetaEnd < 0 ? "heads" : "tails";
+    ++faces[face];
+    EXPECT_NE(point.output.find("coinroll: " + face + " "), std::string::npos) << line << "\n" << point.output;
+  }
+  EXPECT_GE(faces["heads"] + faces["tails"], 10);  // measured: 11 of the 12 decided
+  EXPECT_GT(faces["heads"], 0);                    // both faces come up, so a sign taken the wrong way round fails
+  EXPECT_GT(faces["tails"], 0);
 }
 
 // Every row ends with the sweep's identity: the grid's size and a digest of the scene and the grid,

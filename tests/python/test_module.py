@@ -103,7 +103,7 @@ def test_sweep_gives_the_commands_table(tmp_path, run_cli):
     assert cli.returncode == 0, cli.stderr
     rows = list(csv.DictReader(out.open()))
     assert table.columns == ["point", "initial.theta", "initial.omega_Z", "end", "t_end", "theta_min", "theta_max",
-                             "energy_start", "energy_end"]
+                             "energy_start", "energy_end", "theta_end"]
     assert table.rows == len(rows) == table.grid_points == 8
     assert list(table["end"]) == [row["end"] for row in rows]
     for name in table.columns:

@@ -75,11 +75,16 @@ ImpulsePath step(const ImpulsePath& s, double dp, const Mode& mode, const Eigen:
   return {.u = s.u + K * dP, .P = s.P + dP, .work = s.work + dp / 6 * (s.u.y() + 2 * u2.y() + 2 * u3.y() + u4.y())};
 }
 
-// tau* = -K_tt^-1 K_tn: the tangential impulse per normal impulse that keeps the slip at zero.
-Eigen::Vector3d stickingRatio(const Eigen::Matrix3d& K) {
+// K_tt: K's block between the floor's two horizontal directions, x and z.
+Eigen::Matrix2d tangentialBlock(const Eigen::Matrix3d& K) {
   Eigen::Matrix2d Ktt;
   Ktt << K(0, 0), K(0, 2), K(2, 0), K(2, 2);
-  const Eigen::Vector2d tau = -Ktt.inverse() * Eigen::Vector2d(K(0, 1), K(2, 1));
+  return Ktt;
+}
+
+// tau* = -K_tt^-1 K_tn: the tangential impulse per normal impulse that keeps the slip at zero.
+Eigen::Vector3d stickingRatio(const Eigen::Matrix3d& K) {
+  const Eigen::Vector2d tau = -tangentialBlock(K).inverse() * Eigen::Vector2d(K(0, 1), K(2, 1));
   return {tau.x(), 0, tau.y()};
 }
 
@@ -155,9 +160,8 @@ ImpactOutcome resolveImpact(const CoinModel& m, const FlightState& state, const 
     mode = *rest;
   }
   const double dp = outcome.approachSpeed / K(1, 1) / kStepsPerCompression;
-  Eigen::Matrix2d Ktt;
-  Ktt << K(0, 0), K(0, 2), K(2, 0), K(2, 2);
-  const double directionStiffness = mu * Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(Ktt).eigenvalues().maxCoeff();
+  const double directionStiffness =
+      mu * Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(tangentialBlock(K)).eigenvalues().maxCoeff();
   bool compressing = true;
   double target = 0;  // W_n at which restitution ends, eq. (3.5)
   for (int steps = 0;; ++steps) {

@@ -11,6 +11,10 @@ namespace coinroll::physics {
 struct Rim {
   double thickness = 0;   // m, h; 0: the seed's thin coin
   double edgeRadius = 0;  // m, rho in [0, h/2]: the tube radius rounding the outer rim
+  // +1 or -1: the corner a contact segment rolls or slides on, held past upright, where the contact's
+  // continuation on it stays smooth, so that an integrator's trial stages across theta = 0 see no
+  // jump and the corner-switch event is located on accepted steps (docs/rim.md §7); 0: the lower one.
+  double heldCorner = 0;
 
   bool thin() const { return thickness == 0; }
   // rho = h/2: the rim is a half-torus, smooth through upright; below it two corners meet there.
@@ -32,7 +36,7 @@ struct ContactOffset {
 
 inline ContactOffset contactOffset(const Rim& rim, double a, double sinTheta, double cosTheta) {
   const double rho = rim.edgeRadius;
-  const double side = sinTheta < 0 ? -1.0 : 1.0;
+  const double side = rim.heldCorner != 0 ? rim.heldCorner : sinTheta < 0 ? -1.0 : 1.0;
   return {.reach = a - rho + rho * cosTheta,
           .lift = side * rim.cornerOffset() + rho * sinTheta,
           .dReach = -rho * sinTheta,

@@ -16,6 +16,7 @@ std::string_view eventName(ModelEvent event) {
     case ModelEvent::Rest: return "rest";
     case ModelEvent::ImpactJam: return "impact-jam";
     case ModelEvent::Decided: return "decided";
+    case ModelEvent::OnEdge: return "on-edge";
   }
   return "event";
 }

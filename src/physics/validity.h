@@ -25,10 +25,11 @@ enum class ModelEvent {
   Rest,          // flight: the coin landed flat on a face and lies there (docs/flight.md §5)
   ImpactJam,     // flight: an impact whose friction stops the normal impulse from ending it (docs/flight.md §3)
   Decided,       // flight, stop_when_decided: too little energy left to pass upright, the face up is final (§5a)
+  OnEdge,        // flight, a cornered rim: the rocking between its corners died away, it stands on its band (§4a)
 };
 
 // The contract's name: "coin-flat", "face-down", "corner-switch", "lift-off", "slip", "painleve", "stick-slip",
-// "rest", "impact-jam", "decided".
+// "rest", "impact-jam", "decided", "on-edge".
 std::string_view eventName(ModelEvent event);
 
 // rad. The Euler-angle equations carry tan(theta) and 1 / cos(theta); at 89 degrees the coin's

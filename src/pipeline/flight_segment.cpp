@@ -24,9 +24,6 @@ constexpr double kShortestHop = 1e-3;
 // rad: the tumbling coin turns at most this between two readings of its gap.
 constexpr double kStepTurn = std::numbers::pi / 8;
 
-// docs/flight.md eq. (4.1): bounces end at a rebound that would lift the rim 1e-6 a.
-constexpr double kRestHeight = 1e-6;
-
 // s: the first time the closed form's g = gap + kTouchDepth a falls through zero after t0, up to
 // `until`. Before the centre comes down to reachBelowCentre no attitude can touch: the search starts
 // there. From then on g is read every eighth of a turn of the coin (its rim dips towards the floor
@@ -73,6 +70,11 @@ RunSample flightSample(const physics::CoinModel& model, const physics::FlightSta
           .dissipated = dissipated};
 }
 
+double restSpeed(const physics::CoinModel& model) {
+  constexpr double kRestHeight = 1e-6;  // per m of radius
+  return std::sqrt(2 * model.g * kRestHeight * model.a);
+}
+
 physics::FlightState onTheFloor(const physics::CoinModel& model, physics::FlightState state) {
   state.centre.y() = physics::lowestPointDepth(model, state.q);
   return state;
@@ -96,10 +98,9 @@ Landing land(const Simulation& simulation, double t, const physics::FlightState&
     return landing;
   }
   physics::ImpactLaw law = *simulation.flight;
-  const double restSpeed = std::sqrt(2 * model.g * kRestHeight * model.a);
   physics::ImpactOutcome outcome = physics::resolveImpact(model, atTouch, law);
   // The last of a bounce sequence is made plastic, so the rim stays on the floor (docs/flight.md §4).
-  const bool bouncesEnd = plastic || (!outcome.jammed && outcome.reboundSpeed < restSpeed);
+  const bool bouncesEnd = plastic || (!outcome.jammed && outcome.reboundSpeed < restSpeed(model));
   if (bouncesEnd && law.restitution > 0) {
     law.restitution = 0;
     outcome = physics::resolveImpact(model, atTouch, law);

@@ -51,6 +51,9 @@ class FreeFlight {
 // the contact's height carries round-off), moved by at most 1e-12 a.
 physics::FlightState onTheFloor(const physics::CoinModel& model, physics::FlightState state);
 
+// m/s, u_rest of docs/flight.md eq. (4.1): bounces end at a rebound that would lift the rim 1e-6 a.
+double restSpeed(const physics::CoinModel& model);
+
 // What a touchdown leads to (docs/flight.md §3-§5).
 struct Landing {
   enum class Next {

@@ -27,6 +27,7 @@ constexpr int kSlipFrees = kFirstSwitchId + 2;   // creeping: the slip's directi
 constexpr int kSlipCreeps = kFirstSwitchId + 3;  // sliding: the slip's direction is too fast to integrate
 constexpr int kLiftsOff = kFirstSwitchId + 4;    // rolling or sliding with flight: N falls through zero
 constexpr int kTouchdown = kFirstSwitchId + 5;   // flight: the rim reaches the floor
+constexpr int kCornerLands = kFirstSwitchId + 6;  // rolling or sliding with flight: a cornered rim passes upright
 
 // Stick-slip: more switches than this within one simulated second end the run (docs/sliding.md §4).
 constexpr std::size_t kMaxSwitchesPerSecond = 1000;
@@ -98,6 +99,32 @@ struct SlidingKind {
   }
 };
 
+// theta' of a coin at upright (theta = 0), from (1.4) of docs/quaternion_formulation.md: the symmetry
+// axis n turns at omega x n, and theta = atan2(-n_y, |n_xz|).
+double uprightTiltRate(const Eigen::Quaterniond& q, const Eigen::Vector3d& omegaBody) {
+  const Eigen::Vector3d normal = q * Eigen::Vector3d::UnitZ();
+  return -(q * omegaBody).cross(normal).y();
+}
+
+// The attitude q at upright turned to theta = side 1e-12 rad, where the rim's lowest point is that
+// side's corner: at |theta| ~ 1e-16 which corner is lowest is round-off's (thetaOf and the contact
+// geometry can disagree on it). The turn is about y x n, which at upright moves theta and nothing else.
+// It lifts the centre by (h/2 - rho) 1e-12, M g 2.5e-15 J for a 10 g coin's 2.5 mm corner offset:
+// energy the budget of a thousand landings does not see at 1e-9 (a turn of 1e-9 rad did, on a rocking
+// coin's last landings).
+Eigen::Quaterniond pastUpright(const Eigen::Quaterniond& q, double side) {
+  constexpr double kPastUpright = 1e-12;  // rad
+  const Eigen::Vector3d axis = Eigen::Vector3d::UnitY().cross(q * Eigen::Vector3d::UnitZ()).normalized();
+  return (Eigen::AngleAxisd(side * kPastUpright - physics::thetaOf(q), axis) * q).normalized();
+}
+
+// `model` holding the corner a contact segment starting at attitude q rolls or slides on (Rim::heldCorner):
+// its equations then continue smoothly past upright and the corner-switch event is located on them.
+physics::CoinModel holdingCorner(physics::CoinModel model, const Eigen::Quaterniond& q) {
+  if (physics::hasCorners(model)) model.rim.heldCorner = physics::thetaOf(q) < 0 ? -1.0 : 1.0;
+  return model;
+}
+
 template <int N>
 integrate::Event<N> switchEvent(int id, const char* name, std::function<double(double, const integrate::Vec<N>&)> g,
                                 int direction = -1) {
@@ -132,7 +159,7 @@ class RollingSegment final : public TrajectoryMotion<kRollingSize, RollingKind, 
 
   std::optional<Handover> handover() const override {
     const auto& hit = endHit();
-    if (!hit || (hit->id != kSlideOnset && hit->id != kLiftsOff)) return std::nullopt;
+    if (!hit || (hit->id != kSlideOnset && hit->id != kLiftsOff && hit->id != kCornerLands)) return std::nullopt;
     const physics::QuaternionState state = rollingStateOf(hit->y);
     const physics::Forward forward = physics::forward(kind().model, state);
     return Handover{.id = hit->id,
@@ -150,7 +177,8 @@ class SlidingSegment final : public TrajectoryMotion<kSlidingSize, SlidingKind, 
 
   std::optional<Handover> handover() const override {
     const auto& hit = endHit();
-    if (!hit || (hit->id != kSlipStops && hit->id != kSlipCreeps && hit->id != kSlipFrees && hit->id != kLiftsOff)) {
+    if (!hit || (hit->id != kSlipStops && hit->id != kSlipCreeps && hit->id != kSlipFrees && hit->id != kLiftsOff &&
+                 hit->id != kCornerLands)) {
       return std::nullopt;
     }
     const integrate::Vec<kSlidingSize> y = hit->id == kSlipStops ? closedSlip(hit->t, hit->y) : hit->y;
@@ -220,15 +248,20 @@ class FlightSegment final : public ContactSegment {
 };
 
 // With flight the coin leaves the floor where N falls through zero: lift-off becomes a switch to a
-// flight, read inside each step as the cone is (a hop shorter than a step shows no sign change).
+// flight, read inside each step as the cone is (a hop shorter than a step shows no sign change). A
+// cornered rim passing upright becomes the other corner's landing (docs/flight.md §4a).
 template <int N>
-void liftOffSwitches(std::vector<integrate::Event<N>>& events) {
+void flightSwitches(std::vector<integrate::Event<N>>& events) {
   for (integrate::Event<N>& e : events) {
-    if (e.id != static_cast<int>(ModelEvent::LiftOff)) continue;
-    e.id = kLiftsOff;
-    e.name = "lifts off";
-    e.terminal = true;
-    e.interiorChecks = kConeGrazeChecks;
+    if (e.id == static_cast<int>(ModelEvent::LiftOff)) {
+      e.id = kLiftsOff;
+      e.name = "lifts off";
+      e.terminal = true;
+      e.interiorChecks = kConeGrazeChecks;
+    } else if (e.id == static_cast<int>(ModelEvent::CornerSwitch)) {
+      e.id = kCornerLands;
+      e.name = "corner lands";
+    }
   }
 }
 
@@ -291,30 +324,31 @@ constexpr bool kLiftOffEndsTheRun = true;
 
 void HybridRun::startRolling(double t, const physics::QuaternionState& state, double dissipated) {
   using Y = integrate::Vec<kRollingSize>;
+  const physics::CoinModel model = holdingCorner(simulation_.model, state.q);
   std::vector<integrate::Event<kRollingSize>> events =
-      validityEvents<Formulation::Quaternion, kRollingSize>(simulation_.model, std::nullopt, kLiftOffEndsTheRun);
+      validityEvents<Formulation::Quaternion, kRollingSize>(model, std::nullopt, kLiftOffEndsTheRun);
   integrate::Event<kRollingSize> slides =
-      switchEvent<kRollingSize>(kSlideOnset, "slides", [model = simulation_.model](double, const Y& y) {
+      switchEvent<kRollingSize>(kSlideOnset, "slides", [model](double, const Y& y) {
         return physics::slideOnsetMargin(model, physics::forward(model, rollingStateOf(y)));
       });
   slides.interiorChecks = kConeGrazeChecks;
   events.push_back(std::move(slides));
-  if (simulation_.flight) liftOffSwitches(events);
+  if (simulation_.flight) flightSwitches(events);
   if (simulation_.stopWhenDecided) {
-    events.push_back(decidedEvent<kRollingSize>(simulation_.model, [model = simulation_.model](const Y& y) {
+    events.push_back(decidedEvent<kRollingSize>(model, [model](const Y& y) {
       return physics::forward(model, rollingStateOf(y)).energy;
     }));
   }
   Y y0;
   y0 << physics::toVector(state), dissipated;
-  segment_ = std::make_unique<RollingSegment>(RollingKind{simulation_.model}, t, y0, simulation_.solver,
+  segment_ = std::make_unique<RollingSegment>(RollingKind{model}, t, y0, simulation_.solver,
                                               std::move(events), simulation_.duration);
 }
 
 void HybridRun::startSliding(double t, const physics::SlidingState& state, double dissipated,
                              physics::ContactMode mode) {
   using Y = integrate::Vec<kSlidingSize>;
-  const physics::CoinModel& model = simulation_.model;
+  const physics::CoinModel model = holdingCorner(simulation_.model, state.attitude.q);
   const Eigen::Vector2d along = state.slip.norm() > 0 ? state.slip.normalized() : Eigen::Vector2d::UnitX();
   const SlidingRhs rhs{.model = model, .mode = mode, .direction = Eigen::Vector3d(along.x(), 0, along.y())};
   const auto forwardOf = [rhs](const Y& y) { return rhs.forward(y.head<physics::kSlidingStateSize>()); };
@@ -351,7 +385,7 @@ void HybridRun::startSliding(double t, const physics::SlidingState& state, doubl
         },
         +1));
   }
-  if (simulation_.flight) liftOffSwitches(events);
+  if (simulation_.flight) flightSwitches(events);
   if (simulation_.stopWhenDecided) {
     events.push_back(decidedEvent<kSlidingSize>(model, [forwardOf](const Y& y) { return forwardOf(y).energy; }));
   }
@@ -385,11 +419,26 @@ void HybridRun::startContact(double t, const physics::SlidingState& state, doubl
   }
 }
 
-bool HybridRun::land(double t, const physics::FlightState& atTouch, double dissipated) {
+bool HybridRun::land(double t, const physics::FlightState& atTouch, double dissipated,
+                     std::optional<Eigen::Vector3d> otherCorner) {
   std::size_t recent = 0;
   for (const ImpactRecord& impact : impacts_) recent += impact.t > t - 1 ? 1 : 0;
-  const Landing landing = pipeline::land(simulation_, t, atTouch, dissipated, recent >= kMaxImpactsPerSecond);
+  const bool chattering = recent >= kMaxImpactsPerSecond;
+  Landing landing = pipeline::land(simulation_, t, atTouch, dissipated, chattering);
+  landing.impact.corner = otherCorner.has_value();
   impacts_.push_back(landing.impact);
+  // The rocking between the corners has died away: both ends of the flat band rest on the floor, the
+  // coin stands on its edge (docs/flight.md §4a).
+  if (otherCorner && landing.next == Landing::Next::Contact) {
+    const double still = restSpeed(simulation_.model);
+    const Eigen::Vector3d landed = physics::lowestPointVector(simulation_.model, landing.state.q);
+    const bool onBand = physics::pointVelocity(landing.state, landed).norm() < still &&
+                        physics::pointVelocity(landing.state, *otherCorner).norm() < still;
+    if (onBand || chattering) {
+      ending_ = Ending{.event = ModelEvent::OnEdge, .t = t, .state = landing.state, .dissipated = landing.dissipated};
+      return false;
+    }
+  }
   // An impact takes energy at once, so the fall below standing upright's is read here, not located.
   const bool decided = (landing.next == Landing::Next::Flight || landing.next == Landing::Next::Contact) &&
                        simulation_.stopWhenDecided && belowUpright(simulation_.model, landing.state);
@@ -439,6 +488,16 @@ bool HybridRun::switchIfDue() {
   if (handover->id == kTouchdown) {
     retire();
     return land(t, handover->flight, dissipated);
+  }
+  if (handover->id == kCornerLands) {
+    retire();
+    // The corner the tilt moves towards lands; the one the coin rolled on is the band's other end.
+    const physics::FlightState& leaving = handover->flight;
+    const double side = uprightTiltRate(leaving.q, leaving.omegaBody) < 0 ? -1.0 : 1.0;
+    physics::FlightState landing = leaving;
+    landing.q = pastUpright(leaving.q, side);
+    return land(t, onTheFloor(simulation_.model, landing), dissipated,
+                physics::lowestPointVector(simulation_.model, pastUpright(leaving.q, -side)));
   }
   if (handover->id == kSlideOnset) {
     if (tooManySwitches(t)) return false;

@@ -45,8 +45,11 @@ class HybridRun final : public Motion {
   // The rim held on the floor after a landing (docs/flight.md §4): sliding, creeping or rolling as
   // at a start, or flying on where the floor cannot hold it (N <= 0).
   void startContact(double t, const physics::SlidingState& state, double dissipated);
-  // The touchdown at t: the impact, and what follows it; false when the run ends there.
-  bool land(double t, const physics::FlightState& atTouch, double dissipated);
+  // The touchdown at t: the impact, and what follows it; false when the run ends there. With
+  // `otherCorner` (floor components, from the centre of mass) the landing is a cornered rim's corner
+  // as the coin passes upright, the other corner the one it rolled on (docs/flight.md §4a).
+  bool land(double t, const physics::FlightState& atTouch, double dissipated,
+            std::optional<Eigen::Vector3d> otherCorner = std::nullopt);
   // Moves to the next segment when the current one ended in a switch; false when a model event ended it.
   bool switchIfDue();
 

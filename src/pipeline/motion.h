@@ -34,6 +34,7 @@ struct ImpactRecord {
   double reboundSpeed = 0;  // m/s, how fast it left; 0 at the bounce-end, where the rim stays down
   double energyLost = 0;    // J
   bool bouncesEnd = false;  // the last impact of a bounce sequence (the event bounce-end)
+  bool corner = false;      // a cornered rim's other corner, landing as the coin passes upright
 };
 
 class Motion {

@@ -294,7 +294,8 @@ std::string describeStop(const RunEvent& hit) {
     case ModelEvent::CornerSwitch:
       meaning =
           "the coin passed upright, where the contact jumps from one corner of the rim to the other (an impact the "
-          "model leaves out; coin.edge_radius = thickness / 2 rolls through upright)";
+          "rolling model leaves out: \"flight\": true lands the other corner by the impact law; coin.edge_radius = "
+          "thickness / 2 rolls through upright)";
       break;
     case ModelEvent::LiftOff: meaning = "the normal force reached zero; the coin would leave the floor"; break;
     case ModelEvent::Slip: meaning = "friction reached mu N; the contact would start slipping"; break;
@@ -318,6 +319,13 @@ std::string describeStop(const RunEvent& hit) {
       meaning = fmt::format("the coin has less energy than standing upright on its rim takes, so it can no longer "
                             "turn over: {} up from here on (stop_when_decided)",
                             physics::faceName(physics::faceUp(hit.state.theta)));
+      break;
+    case ModelEvent::OnEdge:
+      meaning = fmt::format(
+          "the coin stands on its edge: the rocking between the rim's two corners has died away (both move slower "
+          "than the bounce-end's speed, docs/flight.md §4a) and the flat band between them lies on the floor, the "
+          "centre moving at {:.3g} m/s; rolling on the band is not modelled",
+          std::hypot(hit.forward.velocity.x(), hit.forward.velocity.z()));
       break;
   }
   return fmt::format("{} at t = {:.9f} s (theta = {:.4f} deg): {}", physics::eventName(hit.event), hit.t,

@@ -101,7 +101,8 @@ std::vector<std::string> reportLines(const TrajectoryReport& report) {
   for (const ImpactRecord& impact : report.impacts) {
     timed.emplace_back(
         impact.t,
-        fmt::format("coinroll: impact at t = {:.9f}, normal speed {:.6g} m/s ({})", impact.t, impact.normalSpeed,
+        fmt::format("coinroll: impact at t = {:.9f}, normal speed {:.6g} m/s ({}{})", impact.t, impact.normalSpeed,
+                    impact.corner ? "the other corner, at upright; " : "",
                     impact.bouncesEnd
                         ? fmt::format("bounce-end: the rim stays on the floor, {:.3g} J lost", impact.energyLost)
                         : fmt::format("rebound {:.6g} m/s, {:.3g} J lost", impact.reboundSpeed, impact.energyLost)));
@@ -121,6 +122,9 @@ std::vector<std::string> reportLines(const TrajectoryReport& report) {
     const physics::FaceUp face = physics::faceUp(report.stoppedBy->state.theta);
     lines.push_back(fmt::format("coinroll: {} (the {} face up)", physics::faceName(face),
                                 face == physics::FaceUp::Heads ? "+e_Z" : "-e_Z"));
+  }
+  if (report.stoppedBy && report.stoppedBy->event == ModelEvent::OnEdge) {
+    lines.push_back("coinroll: on its edge (neither face up)");
   }
   if (report.singularTime) {
     const SingularTimeEstimate& e = *report.singularTime;

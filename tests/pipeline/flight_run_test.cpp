@@ -201,3 +201,89 @@ TEST(Flight, ATossDecidedEarlyShowsTheFaceItComesToRestOn) {
   }
   EXPECT_GE(decidedBeforeRest, 3);
 }
+
+namespace {
+
+// A thick coin with sharp-ish corners (docs/flight.md §4a): released inside its balance angle
+// atan(e / (a - rho)) = 12.2 deg it rocks on its flat band, one corner landing each time it passes
+// upright.
+nlohmann::json rockingCoin(double restitution) {
+  return {{"coin", {{"radius", 0.012}, {"mass", 0.01}, {"thickness", 0.006}, {"edge_radius", 0.0005}}},
+          {"initial", {{"theta", 3}}},
+          {"friction", 1},
+          {"sliding", true},
+          {"flight", true},
+          {"restitution", restitution},
+          {"duration", 5},
+          {"solver", kTightSolver}};
+}
+
+TEST(Flight, ARockingCoinKeepsHousnersShareOfItsTiltRateAtEachCornerLanding) {
+  const pipeline::Simulation sim = simulationOf(rockingCoin(0));
+  const pipeline::TrajectoryReport report = pipeline::sampleTrajectory(sim, 1e-3, [](auto) {});
+  // A plastic landing that sticks turns the coin about the new corner with the angular momentum about
+  // it unchanged (eq. 4.4): the tilt rate, and the corner's approach 2 e |theta'|, keep r of themselves,
+  // and the rolling between two landings gives back the tilt rate it took (energy is conserved there).
+  const double M = sim.model.M, a = sim.model.a, e = sim.model.rim.cornerOffset();
+  const double r = (sim.model.I_X + M * (a * a - e * e)) / (sim.model.I_X + M * (a * a + e * e));
+  const std::vector<pipeline::ImpactRecord>& impacts = report.impacts;
+  ASSERT_GE(impacts.size(), 20u);
+  const double restSpeed = std::sqrt(2 * sim.model.g * 1e-6 * a);
+  for (std::size_t k = 0; k + 1 < impacts.size(); ++k) {
+    EXPECT_TRUE(impacts[k].corner) << k;
+    EXPECT_TRUE(isNear(impacts[k + 1].normalSpeed / impacts[k].normalSpeed, r, 1e-7)) << k;
+  }
+  // The first landing's speed from the energy the fall from 3 deg gives the rotation about the corner.
+  const double h0 = physics::lowestPointDepth(sim.model, physics::attitude(sim.initial));
+  const double tiltRate = std::sqrt(2 * M * sim.model.g * (h0 - a) / (sim.model.I_X + M * (a * a + e * e)));
+  EXPECT_TRUE(isNear(impacts[0].normalSpeed, 2 * e * tiltRate, 1e-7));
+  // It ends standing on its band after the first landing from which the corner it leaves rises, at
+  // 2 e |theta'| = r times the landing's speed, slower than the bounce-end's speed (eq. 4.1).
+  ASSERT_TRUE(report.stoppedBy);
+  EXPECT_EQ(report.stoppedBy->event, physics::ModelEvent::OnEdge);
+  EXPECT_LT(r * impacts.back().normalSpeed, restSpeed);
+  EXPECT_GE(r * impacts[impacts.size() - 2].normalSpeed, restSpeed);
+  EXPECT_TRUE(isNear(report.stoppedBy->t, impacts.back().t, 1e-15));
+}
+
+TEST(Flight, ARockingCoinClosesItsEnergyBudgetThroughEveryCornerLanding) {
+  for (const double restitution : {0.0, 0.5}) {
+    const pipeline::Simulation sim = simulationOf(rockingCoin(restitution));
+    pipeline::CoinRun run(sim);
+    const double start = run.sampleAt(0)->forward.energy;
+    double worst = 0;
+    for (double t = 0; t <= 5; t += 1e-3) {
+      const std::optional<pipeline::RunSample> s = run.sampleAt(t);
+      if (!s) break;
+      worst = std::max(worst, std::abs(s->forward.energy + s->dissipated - start));
+    }
+    EXPECT_TRUE(isBelow(worst, 1e-9 * start)) << restitution;
+    ASSERT_TRUE(run.stoppedBy()) << restitution;
+    EXPECT_EQ(run.stoppedBy()->event, physics::ModelEvent::OnEdge) << restitution;
+    // Standing on the band it keeps the energy of standing upright, M g a, and a little rocking.
+    EXPECT_TRUE(isNear(run.stoppedBy()->forward.energy, physics::uprightEnergy(sim.model), 1e-6)) << restitution;
+  }
+}
+
+TEST(Flight, ACoinPassingUprightWithEnergyToSpareLandsOnItsOtherFace) {
+  // Tipped from -12 deg towards upright fast enough to climb over the other corner's balance point.
+  nlohmann::json scene = rockingCoin(0.3);
+  scene["initial"] = {{"theta", -12}, {"omega_X", 4}};
+  scene["effects"] = {{{"type", "rolling_resistance"}, {"length", 2e-5}}};
+  const pipeline::Simulation sim = simulationOf(scene);
+  const pipeline::TrajectoryReport report = pipeline::sampleTrajectory(sim, 1e-3, [](auto) {});
+  ASSERT_TRUE(report.stoppedBy);
+  EXPECT_EQ(report.stoppedBy->event, physics::ModelEvent::FaceDown);
+  EXPECT_EQ(physics::faceUp(report.stoppedBy->state.theta), physics::FaceUp::Tails);
+  ASSERT_FALSE(report.impacts.empty());
+  EXPECT_TRUE(report.impacts.front().corner);
+  // Without flight the same coin stops where it passes upright.
+  scene["flight"] = false;
+  scene.erase("restitution");
+  const pipeline::TrajectoryReport rolling = pipeline::sampleTrajectory(simulationOf(scene), 1e-3, [](auto) {});
+  ASSERT_TRUE(rolling.stoppedBy);
+  EXPECT_EQ(rolling.stoppedBy->event, physics::ModelEvent::CornerSwitch);
+  EXPECT_TRUE(isNear(rolling.stoppedBy->t, report.impacts.front().t, 1e-9));
+}
+
+}  // namespace

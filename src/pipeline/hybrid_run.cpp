@@ -414,6 +414,8 @@ void HybridRun::startContact(double t, const physics::SlidingState& state, doubl
   if (mode == physics::ContactMode::Rolling) {
     startRolling(t, state.attitude, dissipated);
   } else {
+    // A landing that slides is stated as the switches are, so every `rolls at` has its `slides at`.
+    switches_.push_back({t, true});
     startSliding(t, mode == physics::ContactMode::Sliding ? state : physics::SlidingState{.attitude = state.attitude},
                  dissipated, mode);
   }

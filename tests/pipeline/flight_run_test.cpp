@@ -113,6 +113,10 @@ TEST(Flight, ATiltedSpinningDropClosesItsEnergyBudgetToItsRest) {
   EXPECT_TRUE(isBelow(worst, 1e-9 * start));
   EXPECT_TRUE(flew && rolled && slid);
   EXPECT_GE(run.impacts().size(), 3u);
+  // The notes name every change to sliding, a landing's included: slides and rolls alternate.
+  const std::vector<pipeline::ModeSwitch> switches = run.switches();
+  ASSERT_FALSE(switches.empty());
+  for (std::size_t k = 0; k < switches.size(); ++k) EXPECT_EQ(switches[k].toSliding, k % 2 == 0) << k;
   ASSERT_TRUE(run.stoppedBy());
   EXPECT_EQ(run.stoppedBy()->event, physics::ModelEvent::FaceDown);
 }

@@ -95,6 +95,7 @@ nlohmann::json landedFlip(double psi, double turns, double upSpeed, double resti
 // How a landed flip ended: the face up, the event, when, and its cost.
 struct LandedOutcome {
   bool headsUp = false;
+  bool onEdge = false;  // the event on-edge: no face up (docs/flight.md §4a)
   std::string end;  // the event's name, or "duration"
   double t = 0;     // s, simulated
   long evaluations = 0;
@@ -106,16 +107,23 @@ LandedOutcome landedFace(nlohmann::json flip, bool decided) {
   flip["stop_when_decided"] = decided;
   const pipeline::Simulation sim = pipeline::buildSimulation(scene::parseScene(flip, "toss"));
   pipeline::CoinRun run(sim);
-  double t = 0;
-  while (run.sampleAt(t + 0.01)) t += 0.01;
+  const double duration = flip["duration"].get<double>();
+  double t = 0, theta = 0;
+  for (double next = 0.01; next <= duration; next += 0.01) {
+    const std::optional<pipeline::RunSample> sample = run.sampleAt(next);
+    if (!sample) break;
+    t = next;
+    theta = sample->state.theta;
+  }
   LandedOutcome outcome;
   outcome.evaluations = run.stats().rhsEvaluations;
   if (const std::optional<pipeline::RunEvent> stop = run.stoppedBy()) {
     outcome.headsUp = stop->state.theta < 0;
+    outcome.onEdge = stop->event == physics::ModelEvent::OnEdge;
     outcome.end = physics::eventName(stop->event);
     outcome.t = stop->t;
   } else {
-    outcome.headsUp = run.sampleAt(t)->state.theta < 0;
+    outcome.headsUp = theta < 0;
     outcome.end = "duration";
     outcome.t = t;
   }
@@ -182,7 +190,7 @@ int main(int argc, char** argv) {
   const int kLanded = argc > 2 ? std::stoi(argv[2]) : 2000;
   for (const double restitution : {0.2, 0.5, 0.8}) {
     std::mt19937 flips(2023);
-    int same = 0, caught = 0, checked = 0;
+    int same = 0, caught = 0, checked = 0, edges = 0;
     double decided = 0, decidedMs = 0, restMs = 0;
     std::map<std::string, int> endings;
     for (int k = 0; k < kLanded; ++k) {
@@ -192,7 +200,8 @@ int main(int argc, char** argv) {
       const auto begin = std::chrono::steady_clock::now();
       const LandedOutcome landed = landedFace(flip, true);
       decidedMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
-      same += landed.headsUp ? 1 : 0;
+      same += landed.headsUp && !landed.onEdge ? 1 : 0;
+      edges += landed.onEdge ? 1 : 0;
       decided += landed.t / kLanded;
       ++endings[landed.end];
       caught += caughtSameSide(m, launch(m, psi, turns * 2 * std::numbers::pi, up)) ? 1 : 0;
@@ -206,7 +215,8 @@ int main(int argc, char** argv) {
         }
       }
     }
-    const double landedFraction = static_cast<double>(same) / kLanded;
+    // Of the flips that show a face: one left standing on its edge shows neither.
+    const double landedFraction = static_cast<double>(same) / std::max(kLanded - edges, 1);
     const double caughtFraction = static_cast<double>(caught) / kLanded;
     std::string endingText;
     for (const auto& [name, count] : endings)

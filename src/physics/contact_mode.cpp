@@ -56,16 +56,16 @@ double stopThreshold(double t, double closingRate) {
 
 }  // namespace
 
-double slipStopMargin(double t, const Eigen::Vector2d& slip, const Eigen::Vector2d& slipRate) {
+double slipStopMargin(double t, const Eigen::Vector2d& slip, const Eigen::Vector2d& slipRate, double resolvedSlip) {
   const double speed = slip.norm();
   const double closing = speed > 0 ? -slip.dot(slipRate) / speed : 0.0;
-  return speed - stopThreshold(t, closing);
+  return speed - std::max(stopThreshold(t, closing), resolvedSlip);
 }
 
-double creepStopMargin(double t, const Eigen::Vector2d& slip, const Eigen::Vector2d& slipRate,
+double creepStopMargin(double t, const Eigen::Vector2d& slip, const Eigen::Vector2d& slipRate, double resolvedSlip,
                        const Eigen::Vector3d& rest) {
   const double closing = -(slipRate.x() * rest.x() + slipRate.y() * rest.z());
-  return slip.x() * rest.x() + slip.y() * rest.z() - stopThreshold(t, closing);
+  return slip.x() * rest.x() + slip.y() * rest.z() - std::max(stopThreshold(t, closing), resolvedSlip);
 }
 
 // The rest turns with the fastest of the body's rotation, the contact's precession and the rocking

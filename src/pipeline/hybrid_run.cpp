@@ -362,9 +362,10 @@ void HybridRun::startSliding(double t, const physics::SlidingState& state, doubl
       ModelEvent::Painleve,
       [forwardOf](double, const Y& y) { return forwardOf(y).normalEffectiveMass - physics::kPainleveMargin; }, -1,
       true));
+  const double resolvedSlip = 10 * simulation_.solver.atol;
   if (mode == physics::ContactMode::Sliding) {
-    events.push_back(switchEvent<kSlidingSize>(kSlipStops, "rolls", [rhs](double at, const Y& y) {
-      return physics::slipStopMargin(at, slidingStateOf(y).slip, slipRateOf(rhs, at, y));
+    events.push_back(switchEvent<kSlidingSize>(kSlipStops, "rolls", [rhs, resolvedSlip](double at, const Y& y) {
+      return physics::slipStopMargin(at, slidingStateOf(y).slip, slipRateOf(rhs, at, y), resolvedSlip);
     }));
     events.push_back(switchEvent<kSlidingSize>(kSlipCreeps, "creeps", [model, forwardOf](double, const Y& y) {
       return physics::slipCreepMargin(model, y.head<physics::kSlidingStateSize>(), forwardOf(y));
@@ -372,9 +373,9 @@ void HybridRun::startSliding(double t, const physics::SlidingState& state, doubl
   } else {
     // Friction keeps to the rest while the slip passes zero, so the slip crosses it smoothly and its
     // length has a kink there that a step can jump: the stop is found on the slip along the rest.
-    events.push_back(switchEvent<kSlidingSize>(kSlipStops, "rolls", [rhs](double at, const Y& y) {
+    events.push_back(switchEvent<kSlidingSize>(kSlipStops, "rolls", [rhs, resolvedSlip](double at, const Y& y) {
       const physics::SlidingStateVec coin = y.head<physics::kSlidingStateSize>();
-      return physics::creepStopMargin(at, physics::toSlidingState(coin).slip, slipRateOf(rhs, at, y),
+      return physics::creepStopMargin(at, physics::toSlidingState(coin).slip, slipRateOf(rhs, at, y), resolvedSlip,
                                       rhs.frictionDirection(coin));
     }));
     events.push_back(switchEvent<kSlidingSize>(
@@ -405,7 +406,13 @@ void HybridRun::startContact(double t, const physics::SlidingState& state, doubl
   const Eigen::Vector3d along = state.slip.norm() > 0 ? Eigen::Vector3d(state.slip.x(), 0, state.slip.y()).normalized()
                                                       : Eigen::Vector3d::UnitX();
   const physics::Forward slipping = physics::slidingForward(model, state, model.friction.kinetic, along);
-  const physics::ContactMode mode = physics::startingMode(model, rolling, slipping);
+  physics::ContactMode mode = physics::startingMode(model, rolling, slipping);
+  // A landing can leave a slip already below creeping's threshold, where its direction turns too fast
+  // to integrate; free sliding would never cross into creeping and would stall on steps shrinking with
+  // the slip (seen at rtol 1e-8: steps of 2e-11 s). It creeps from the start, slip and all.
+  const bool creepsAtOnce = mode == physics::ContactMode::Sliding &&
+                            physics::slipCreepMargin(model, physics::toVector(state), slipping) < 0;
+  if (creepsAtOnce) mode = physics::ContactMode::Creeping;
   const physics::Forward& held = mode == physics::ContactMode::Rolling ? rolling : slipping;
   if (physics::liftOffMargin(model, held) <= 0) {
     startFlight(t, onTheFloor(model, flightStateOf(state.attitude, held)), dissipated);
@@ -416,7 +423,9 @@ void HybridRun::startContact(double t, const physics::SlidingState& state, doubl
   } else {
     // A landing that slides is stated as the switches are, so every `rolls at` has its `slides at`.
     switches_.push_back({t, true});
-    startSliding(t, mode == physics::ContactMode::Sliding ? state : physics::SlidingState{.attitude = state.attitude},
+    startSliding(t,
+                 mode == physics::ContactMode::Sliding || creepsAtOnce ? state
+                                                                       : physics::SlidingState{.attitude = state.attitude},
                  dissipated, mode);
   }
 }

@@ -290,4 +290,28 @@ TEST(Flight, ACoinPassingUprightWithEnergyToSpareLandsOnItsOtherFace) {
   EXPECT_TRUE(isNear(rolling.stoppedBy->t, report.impacts.front().t, 1e-9));
 }
 
+TEST(Flight, ATossAtALooseAbsoluteToleranceEndsWhereItsSlipStops) {
+  // A landing's slide closed to 1e-9 m/s in 6 us and then chattered about zero at atol's level,
+  // above the stop's 1.5e-11 m/s, on steps of 2e-11 s: the run never ended. The stop now lies at
+  // 10 atol at least (physics::slipStopMargin).
+  nlohmann::json scene = flipOfAQuarter(30.76923076923077, 3, 2.25);
+  scene["coin"]["edge_radius"] = 0.0003;
+  scene["initial"] = {{"theta", -89}, {"omega_X", 30.76923076923077}, {"omega_Z", 3}, {"y", 0.3}, {"v_y", 2.25},
+                      {"v_x", 0.1}};
+  scene["friction"] = 0.5;
+  scene["restitution"] = 0.4;
+  scene["effects"] = {{{"type", "air_drag"}, {"model", "boundary_layer"}, {"viscosity", 1.8e-05}, {"density", 1.2}},
+                      {{"type", "rolling_resistance"}, {"length", 1e-4}}};
+  scene["stop_when_decided"] = true;
+  scene["duration"] = 6;
+  scene["solver"] = {{"rtol", 1e-8}, {"atol", 1e-10}};
+  pipeline::Simulation sim = simulationOf(scene);
+  sim.solver.maxSteps = 100000;  // the stalled run throws here instead of running on (it takes 1,600)
+  pipeline::CoinRun run(sim);
+  for (double t = 0; run.sampleAt(t); t += 0.01) {
+  }
+  ASSERT_TRUE(run.stoppedBy());
+  EXPECT_EQ(run.stoppedBy()->event, physics::ModelEvent::Decided);
+}
+
 }  // namespace

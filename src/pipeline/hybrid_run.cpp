@@ -406,13 +406,7 @@ void HybridRun::startContact(double t, const physics::SlidingState& state, doubl
   const Eigen::Vector3d along = state.slip.norm() > 0 ? Eigen::Vector3d(state.slip.x(), 0, state.slip.y()).normalized()
                                                       : Eigen::Vector3d::UnitX();
   const physics::Forward slipping = physics::slidingForward(model, state, model.friction.kinetic, along);
-  physics::ContactMode mode = physics::startingMode(model, rolling, slipping);
-  // A landing can leave a slip already below creeping's threshold, where its direction turns too fast
-  // to integrate; free sliding would never cross into creeping and would stall on steps shrinking with
-  // the slip (seen at rtol 1e-8: steps of 2e-11 s). It creeps from the start, slip and all.
-  const bool creepsAtOnce = mode == physics::ContactMode::Sliding &&
-                            physics::slipCreepMargin(model, physics::toVector(state), slipping) < 0;
-  if (creepsAtOnce) mode = physics::ContactMode::Creeping;
+  const physics::ContactMode mode = physics::startingMode(model, rolling, slipping);
   const physics::Forward& held = mode == physics::ContactMode::Rolling ? rolling : slipping;
   if (physics::liftOffMargin(model, held) <= 0) {
     startFlight(t, onTheFloor(model, flightStateOf(state.attitude, held)), dissipated);
@@ -423,9 +417,7 @@ void HybridRun::startContact(double t, const physics::SlidingState& state, doubl
   } else {
     // A landing that slides is stated as the switches are, so every `rolls at` has its `slides at`.
     switches_.push_back({t, true});
-    startSliding(t,
-                 mode == physics::ContactMode::Sliding || creepsAtOnce ? state
-                                                                       : physics::SlidingState{.attitude = state.attitude},
+    startSliding(t, mode == physics::ContactMode::Sliding ? state : physics::SlidingState{.attitude = state.attitude},
                  dissipated, mode);
   }
 }

@@ -154,6 +154,10 @@ InterruptGuard::InterruptGuard(int exitCode) {
 
 InterruptGuard::~InterruptGuard() {
   ::alarm(0);
+  // After a stop request the process is on its way out; with the default action back, a second
+  // signal in that window would kill it outright instead of ending it as endNow says (a second
+  // SIGINT 2 ms after the first, during a render that stopped within them).
+  if (firstRequest.load() != 0) return;
   for (auto entry = previous_.rbegin(); entry != previous_.rend(); ++entry)
     ::sigaction(entry->first, &entry->second, nullptr);
 }

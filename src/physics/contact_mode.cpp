@@ -79,8 +79,18 @@ double freeSlipSpeed(const CoinModel& model, const Forward& sliding, double rest
 // A slip that falls back to half the creep's threshold hands its direction to its rest, once it has
 // come to the rest: the threshold fades to zero as the slip's angle from the rest grows to
 // kCreepAlignment, so a slide that ends across the rest's pull (a skid) is integrated to its end.
+//
+// The rest's search costs some twenty evaluations of the slip's rate, and a slide asks at every step.
+// The threshold is at most half the free slip speed at the rest's restoring, and it is nonzero only
+// within kCreepAlignment of the rest, where the restoring differs from the slip direction's own (two
+// evaluations) by a part in 1e5 unless the pull itself is next to none: a slip faster than the free
+// slip speed at its own direction's restoring is above the threshold whatever the rest, and its
+// margin is its speed (positive as the true margin is, so the event sees the same crossings).
 double slipCreepMargin(const CoinModel& model, const SlidingStateVec& y, const Forward& sliding) {
-  const Eigen::Vector2d slip = toSlidingState(y).slip;
+  const SlidingState state = toSlidingState(y);
+  const Eigen::Vector2d& slip = state.slip;
+  const double restoringHere = slipDirectionRestoring(model, state, model.friction.kinetic);
+  if (slip.norm() > freeSlipSpeed(model, sliding, restoringHere)) return slip.norm();
   const std::optional<Creep> creep = findCreep(model, y, model.friction.kinetic);
   if (!creep) return slip.norm();
   const Eigen::Vector2d rest(creep->slipHat.x(), creep->slipHat.z());

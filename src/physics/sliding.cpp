@@ -28,8 +28,8 @@ struct Sliding {
   Eigen::Vector3d m, k;      // body: c x e_y and c x (e_y - mu s_hat)     (1.6)
 };
 
-Sliding slidingTerms(const CoinModel& model, const SlidingState& state, double mu,
-                     const Eigen::Vector3d& slipDirection) {
+// The terms the friction's direction leaves alone: everything but slipHat and k.
+Sliding undirectedTerms(const CoinModel& model, const SlidingState& state) {
   const QuaternionState& s = state.attitude;
   Sliding t;
   t.geo = contactGeometry(model, s.q);
@@ -40,12 +40,22 @@ Sliding slidingTerms(const CoinModel& model, const SlidingState& state, double m
   const Eigen::Vector3d& spinAtContact = t.spinAtContact = R * w.cross(c);
   t.slip = Eigen::Vector3d(state.slip.x(), 0, state.slip.y());  // horizontal: the held contact (1.2)
   t.velocity = t.slip - spinAtContact;
-  const double speed = t.slip.norm();
-  t.slipHat = speed > kSlipRoundOff ? Eigen::Vector3d(t.slip / speed) : slipDirection;
   const Eigen::Vector3d& u = t.geo.up;
   t.N0 = model.M * model.g - model.M * w.cross(t.cDot + w.cross(c)).dot(u);
   t.m = c.cross(u);
-  t.k = c.cross(u - mu * R.transpose() * t.slipHat);
+  return t;
+}
+
+void directFriction(Sliding& t, double mu, const Eigen::Vector3d& slipHat) {
+  t.slipHat = slipHat;
+  t.k = t.geo.c.cross(t.geo.up - mu * t.geo.floorFromBody.transpose() * slipHat);
+}
+
+Sliding slidingTerms(const CoinModel& model, const SlidingState& state, double mu,
+                     const Eigen::Vector3d& slipDirection) {
+  Sliding t = undirectedTerms(model, state);
+  const double speed = t.slip.norm();
+  directFriction(t, mu, speed > kSlipRoundOff ? Eigen::Vector3d(t.slip / speed) : slipDirection);
   return t;
 }
 
@@ -66,13 +76,18 @@ void solve(const CoinModel& model, const Sliding& t, const Eigen::PartialPivLU<E
   N = t.N0 - model.M * t.m.dot(dOmega);
 }
 
-Forward forwardFrom(const CoinModel& model, const SlidingState& state, double mu, const Sliding& t) {
+struct Accelerations {
+  Eigen::Vector3d dOmega;
+  double N = 0;
+  Loads loads;  // the effects' torque and power at N
+};
+
+Accelerations accelerations(const CoinModel& model, const SlidingState& state, const Sliding& t) {
   const QuaternionState& s = state.attitude;
   const Eigen::Matrix3d& R = t.geo.floorFromBody;
-  Forward f;
-  double N = 0;
+  Accelerations a;
   const Eigen::PartialPivLU<Eigen::Matrix3d> lu = omegaDotMatrix(model, t);
-  solve(model, t, lu, s.omegaBody, Eigen::Vector3d::Zero(), f.dOmega, N);
+  solve(model, t, lu, s.omegaBody, Eigen::Vector3d::Zero(), a.dOmega, a.N);
   if (!model.effects.empty()) {
     ContactKinematics kinematics{.e_X = R * t.geo.e_X,
                                  .e_Y = R * t.geo.e_Y,
@@ -81,14 +96,35 @@ Forward forwardFrom(const CoinModel& model, const SlidingState& state, double mu
                                  .faceRadius = model.a - model.rim.edgeRadius,
                                  .outerRadius = model.a,
                                  .holeRadius = model.holeRadius,
-                                 .N = N};
+                                 .N = a.N};
     for (int pass = 0; pass < kMaxNormalForcePasses; ++pass) {
-      kinematics.N = N;
-      f.loads = totalLoads(model.effects, kinematics);
-      solve(model, t, lu, s.omegaBody, R.transpose() * f.loads.torque, f.dOmega, N);
-      if (N == kinematics.N) break;
+      kinematics.N = a.N;
+      a.loads = totalLoads(model.effects, kinematics);
+      solve(model, t, lu, s.omegaBody, R.transpose() * a.loads.torque, a.dOmega, a.N);
+      if (a.N == kinematics.N) break;
     }
   }
+  return a;
+}
+
+// ds/dt = a_G + d(omega x c)/dt, the latter in the turning body frame (docs/sliding.md eq. 4.1);
+// horizontally a_G is friction's alone (1.8).
+Eigen::Vector2d slipRate(const CoinModel& model, const Sliding& t, const Eigen::Vector3d& w,
+                         const Eigen::Vector3d& dOmega, double N, double mu) {
+  const Eigen::Vector3d friction = N * (Eigen::Vector3d::UnitY() - mu * t.slipHat);
+  const ContactGeometry& geo = t.geo;
+  const Eigen::Vector3d spinRate =
+      geo.floorFromBody * (dOmega.cross(geo.c) + w.cross(t.cDot) + w.cross(w.cross(geo.c)));
+  return {friction.x() / model.M + spinRate.x(), friction.z() / model.M + spinRate.z()};
+}
+
+Forward forwardFrom(const CoinModel& model, const SlidingState& state, double mu, const Sliding& t) {
+  const QuaternionState& s = state.attitude;
+  Forward f;
+  const Accelerations a = accelerations(model, state, t);
+  f.dOmega = a.dOmega;
+  f.loads = a.loads;
+  const double N = a.N;
   const Eigen::Vector3d inverseInertiaK(t.k.x() / model.I_X, t.k.y() / model.I_X, t.k.z() / model.I_Z);
   f.normalEffectiveMass = 1 + model.M * t.m.dot(inverseInertiaK);  // (3.2)
   f.reaction.R = N * (Eigen::Vector3d::UnitY() - mu * t.slipHat);
@@ -119,13 +155,7 @@ SlidingRates ratesFrom(const CoinModel& model, const SlidingStateVec& y, const S
   dy.segment<3>(kOmegaBody1) = f.dOmega;
   dy[kCentreX] = f.velocity.x();
   dy[kCentreZ] = f.velocity.z();
-  // ds/dt = a_G + d(omega x c)/dt, the latter in the turning body frame (docs/sliding.md eq. 4.1);
-  // horizontally a_G is friction's alone (1.8).
-  const ContactGeometry& geo = terms.geo;
-  const Eigen::Vector3d spinRate =
-      geo.floorFromBody * (f.dOmega.cross(geo.c) + w.cross(terms.cDot) + w.cross(w.cross(geo.c)));
-  dy[kSlipX] = f.reaction.R.x() / model.M + spinRate.x();
-  dy[kSlipZ] = f.reaction.R.z() / model.M + spinRate.z();
+  dy.tail<2>() = slipRate(model, terms, w, f.dOmega, f.reaction.N, mu);
   rates.power = f.loads.power;
   return rates;
 }
@@ -177,9 +207,8 @@ double angleOf(const Eigen::Vector2d& slip) { return std::atan2(slip.y(), slip.x
 
 // The terms with friction along -slipHat whatever the slip's own direction.
 Sliding termsAlong(const CoinModel& model, const SlidingState& state, double mu, const Eigen::Vector3d& slipHat) {
-  Sliding terms = slidingTerms(model, {.attitude = state.attitude}, mu, slipHat);
-  terms.slip = Eigen::Vector3d(state.slip.x(), 0, state.slip.y());
-  terms.velocity = terms.slip - terms.spinAtContact;
+  Sliding terms = undirectedTerms(model, state);
+  directFriction(terms, mu, slipHat);
   return terms;
 }
 
@@ -188,26 +217,44 @@ SlidingRates ratesAlong(const CoinModel& model, const SlidingStateVec& y, double
   return ratesFrom(model, y, state, termsAlong(model, state, mu, floorDirection(angle)), mu);
 }
 
-// s_perp . s-dot with friction along -s_hat(angle): the slip's turn rate times |s|. The slip itself
-// does not enter it (it moves only the centre).
-double turning(const CoinModel& model, const SlidingStateVec& y, double mu, double angle) {
-  const SlidingRates r = ratesAlong(model, y, mu, angle);
-  return -std::sin(angle) * r.dy[kSlipX] + std::cos(angle) * r.dy[kSlipZ];
-}
+// s_perp . s-dot with friction along -s_hat(angle), of one state at any angle: the slip's turn rate
+// times |s|. The search for the rest asks it at some twenty angles, so what the angle leaves alone
+// (the contact's geometry, N0) is computed once, and of the rates only the slip's.
+class Turning {
+ public:
+  Turning(const CoinModel& model, const SlidingStateVec& y, double mu)
+      : model_(model), state_(toSlidingState(y)), undirected_(undirectedTerms(model, state_)), mu_(mu) {}
 
-double restoringAt(const CoinModel& model, const SlidingStateVec& y, double mu, double angle) {
-  return -(turning(model, y, mu, angle + kAngleStep) - turning(model, y, mu, angle - kAngleStep)) / (2 * kAngleStep);
-}
+  double operator()(double angle) const {
+    Sliding terms = undirected_;
+    directFriction(terms, mu_, floorDirection(angle));
+    const Accelerations a = accelerations(model_, state_, terms);
+    const Eigen::Vector2d rate = slipRate(model_, terms, state_.attitude.omegaBody, a.dOmega, a.N, mu_);
+    return -std::sin(angle) * rate.x() + std::cos(angle) * rate.y();
+  }
+
+  double restoringAt(double angle) const {
+    return -((*this)(angle + kAngleStep) - (*this)(angle - kAngleStep)) / (2 * kAngleStep);
+  }
+
+  double mu() const { return mu_; }
+  const CoinModel& model() const { return model_; }
+
+ private:
+  const CoinModel& model_;
+  SlidingState state_;
+  Sliding undirected_;
+  double mu_;
+};
 
 // Newton for turning(angle) = target from `angle`: the angle and the restoring there, or nothing when
 // it finds no attracting rest.
-std::optional<std::pair<double, double>> solveTurning(const CoinModel& model, const SlidingStateVec& y, double mu,
-                                                      double angle, double target) {
+std::optional<std::pair<double, double>> solveTurning(const Turning& turning, double angle, double target) {
   for (int pass = 0; pass <= kMaxCreepPasses && std::isfinite(angle); ++pass) {
-    const double restoring = restoringAt(model, y, mu, angle);
-    const double change = (turning(model, y, mu, angle) - target) / restoring;
+    const double restoring = turning.restoringAt(angle);
+    const double change = (turning(angle) - target) / restoring;
     angle += change;
-    if (std::abs(change) < kAngleConverged && restoring > kLeastRestoring * mu * model.g)
+    if (std::abs(change) < kAngleConverged && restoring > kLeastRestoring * turning.mu() * turning.model().g)
       return std::pair{angle, restoring};
   }
   return std::nullopt;
@@ -231,19 +278,20 @@ std::optional<Creep> findCreep(const CoinModel& model, const SlidingStateVec& y,
   } else if (neutral && slip.norm() > kSlipRoundOff) {
     start = angleOf(slip);
   }
-  const auto rest = solveTurning(model, y, mu, start, 0);
+  const Turning turning(model, y, mu);
+  const auto rest = solveTurning(turning, start, 0);
   if (!rest) return std::nullopt;
   const auto [restAngle, restoring] = *rest;
   // The rest turns with the motion; a slip that keeps up with it must turn at the same rate, which
   // takes turning(angle) = |s| x (its rate): the rest to first order in the lag (docs/sliding.md eq. 4.14).
   const SlidingStateVec flow = ratesAlong(model, y, mu, restAngle).dy;
   const double restRate =
-      (turning(model, y + kFlowStep * flow, mu, restAngle) - turning(model, y - kFlowStep * flow, mu, restAngle)) /
+      (Turning(model, y + kFlowStep * flow, mu)(restAngle) - Turning(model, y - kFlowStep * flow, mu)(restAngle)) /
       (2 * kFlowStep * restoring);
   const double slipSpeed = slip.norm();
   double angle = restAngle;
   if (slipSpeed > 0) {
-    const auto lagging = solveTurning(model, y, mu, restAngle, slipSpeed * restRate);
+    const auto lagging = solveTurning(turning, restAngle, slipSpeed * restRate);
     if (!lagging) return std::nullopt;
     angle = lagging->first;
   }
@@ -262,7 +310,7 @@ Forward slidingForwardAlong(const CoinModel& model, const SlidingState& state, d
 }
 
 double slipDirectionRestoring(const CoinModel& model, const SlidingState& state, double mu) {
-  return restoringAt(model, toVector(state), mu, angleOf(state.slip));
+  return Turning(model, toVector(state), mu).restoringAt(angleOf(state.slip));
 }
 
 }  // namespace coinroll::physics

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <memory>
 #include <utility>
 
 #include "physics/contact_mode.h"
@@ -42,10 +44,25 @@ struct SlidingRhs {
   physics::ContactMode mode = physics::ContactMode::Sliding;
   Eigen::Vector3d direction;  // free: s_hat while the slip is below round-off
 
+  // The last state's creeping friction direction, shared by the segment's copies of this
+  // right-hand side: a step's last stage and the events at its end ask for the same state, and the
+  // rest's search costs some twenty evaluations. A pure function's memo: the bits do not change.
+  struct Remembered {
+    physics::SlidingStateVec y;
+    Eigen::Vector3d direction;
+  };
+  std::shared_ptr<std::optional<Remembered>> lastDirection = std::make_shared<std::optional<Remembered>>();
+
   // Creeping: along the rest, searched from the segment's direction where rolling leaves every
   // direction neutral (a trial state past zero slip must not flip friction with it, or the slip's
   // stop is never crossed); where a trial state has no rest, along the slip itself, as when free.
   Eigen::Vector3d frictionDirection(const physics::SlidingStateVec& y) const {
+    std::optional<Remembered>& last = *lastDirection;
+    if (last && std::memcmp(last->y.data(), y.data(), sizeof(double) * y.size()) == 0) return last->direction;
+    last = Remembered{.y = y, .direction = searchFrictionDirection(y)};
+    return last->direction;
+  }
+  Eigen::Vector3d searchFrictionDirection(const physics::SlidingStateVec& y) const {
     if (const std::optional<physics::Creep> creep = physics::findCreep(model, y, model.friction.kinetic, direction)) {
       return creep->slipHat;
     }

@@ -1,7 +1,5 @@
 #include "physics/sliding.h"
 
-#include <Eigen/LU>
-
 #include <cmath>
 #include <string>
 #include <optional>
@@ -26,6 +24,8 @@ struct Sliding {
   Eigen::Vector3d slipHat;   // floor, unit
   double N0 = 0;             // N, the normal force without omega-dot's part (1.5)
   Eigen::Vector3d m, k;      // body: c x e_y and c x (e_y - mu s_hat)     (1.6)
+  Eigen::Vector3d inverseInertiaK;  // body: I_G^-1 k
+  double D = 1;                     // the normal effective mass (3.2)
 };
 
 // The terms the friction's direction leaves alone: everything but slipHat and k.
@@ -46,34 +46,31 @@ Sliding undirectedTerms(const CoinModel& model, const SlidingState& state) {
   return t;
 }
 
-void directFriction(Sliding& t, double mu, const Eigen::Vector3d& slipHat) {
+void directFriction(const CoinModel& model, Sliding& t, double mu, const Eigen::Vector3d& slipHat) {
   t.slipHat = slipHat;
   t.k = t.geo.c.cross(t.geo.up - mu * t.geo.floorFromBody.transpose() * slipHat);
+  t.inverseInertiaK = Eigen::Vector3d(t.k.x() / model.I_X, t.k.y() / model.I_X, t.k.z() / model.I_Z);
+  t.D = 1 + model.M * t.m.dot(t.inverseInertiaK);
 }
 
 Sliding slidingTerms(const CoinModel& model, const SlidingState& state, double mu,
                      const Eigen::Vector3d& slipDirection) {
   Sliding t = undirectedTerms(model, state);
   const double speed = t.slip.norm();
-  directFriction(t, mu, speed > kSlipRoundOff ? Eigen::Vector3d(t.slip / speed) : slipDirection);
+  directFriction(model, t, mu, speed > kSlipRoundOff ? Eigen::Vector3d(t.slip / speed) : slipDirection);
   return t;
 }
 
-// (1.7): [I + M k m^t] omega-dot = -omega x I omega + N0 k + tau, then N = N0 - M m . omega-dot (1.5).
-// The matrix of omega-dot's equations, the same for every pass of the couples' normal force: its LU
-// is computed once per state.
-Eigen::PartialPivLU<Eigen::Matrix3d> omegaDotMatrix(const CoinModel& model, const Sliding& t) {
-  const Eigen::Vector3d inertia(model.I_X, model.I_X, model.I_Z);
-  return Eigen::PartialPivLU<Eigen::Matrix3d>(Eigen::Matrix3d(inertia.asDiagonal()) +
-                                              model.M * t.k * t.m.transpose());
-}
-
-void solve(const CoinModel& model, const Sliding& t, const Eigen::PartialPivLU<Eigen::Matrix3d>& lu,
-           const Eigen::Vector3d& w, const Eigen::Vector3d& torqueBody, Eigen::Vector3d& dOmega, double& N) {
+// (1.7): [I_G + M k m^t] omega-dot = -omega x I_G omega + N0 k + tau is a rank-one update of the
+// diagonal I_G, solved by Sherman-Morrison (3.2): with b its right-hand side, m . omega-dot =
+// m . I_G^-1 b / D, so N = N0 - M m . I_G^-1 b / D (1.5) and omega-dot = I_G^-1 (b - M k (m . omega-dot)).
+void solve(const CoinModel& model, const Sliding& t, const Eigen::Vector3d& w, const Eigen::Vector3d& torqueBody,
+           Eigen::Vector3d& dOmega, double& N) {
   const Eigen::Vector3d inertia(model.I_X, model.I_X, model.I_Z);
   const Eigen::Vector3d b = -w.cross(inertia.cwiseProduct(w)) + t.N0 * t.k + torqueBody;
-  dOmega = lu.solve(b);
-  N = t.N0 - model.M * t.m.dot(dOmega);
+  const double mOmegaDot = t.m.dot(b.cwiseQuotient(inertia)) / t.D;
+  dOmega = b.cwiseQuotient(inertia) - model.M * mOmegaDot * t.inverseInertiaK;
+  N = t.N0 - model.M * mOmegaDot;
 }
 
 struct Accelerations {
@@ -86,8 +83,7 @@ Accelerations accelerations(const CoinModel& model, const SlidingState& state, c
   const QuaternionState& s = state.attitude;
   const Eigen::Matrix3d& R = t.geo.floorFromBody;
   Accelerations a;
-  const Eigen::PartialPivLU<Eigen::Matrix3d> lu = omegaDotMatrix(model, t);
-  solve(model, t, lu, s.omegaBody, Eigen::Vector3d::Zero(), a.dOmega, a.N);
+  solve(model, t, s.omegaBody, Eigen::Vector3d::Zero(), a.dOmega, a.N);
   if (!model.effects.empty()) {
     ContactKinematics kinematics{.e_X = R * t.geo.e_X,
                                  .e_Y = R * t.geo.e_Y,
@@ -100,7 +96,7 @@ Accelerations accelerations(const CoinModel& model, const SlidingState& state, c
     for (int pass = 0; pass < kMaxNormalForcePasses; ++pass) {
       kinematics.N = a.N;
       a.loads = totalLoads(model.effects, kinematics);
-      solve(model, t, lu, s.omegaBody, R.transpose() * a.loads.torque, a.dOmega, a.N);
+      solve(model, t, s.omegaBody, R.transpose() * a.loads.torque, a.dOmega, a.N);
       if (a.N == kinematics.N) break;
     }
   }
@@ -125,8 +121,7 @@ Forward forwardFrom(const CoinModel& model, const SlidingState& state, double mu
   f.dOmega = a.dOmega;
   f.loads = a.loads;
   const double N = a.N;
-  const Eigen::Vector3d inverseInertiaK(t.k.x() / model.I_X, t.k.y() / model.I_X, t.k.z() / model.I_Z);
-  f.normalEffectiveMass = 1 + model.M * t.m.dot(inverseInertiaK);  // (3.2)
+  f.normalEffectiveMass = t.D;
   f.reaction.R = N * (Eigen::Vector3d::UnitY() - mu * t.slipHat);
   f.reaction.N = N;
   f.reaction.F = mu * std::abs(N);
@@ -208,7 +203,7 @@ double angleOf(const Eigen::Vector2d& slip) { return std::atan2(slip.y(), slip.x
 // The terms with friction along -slipHat whatever the slip's own direction.
 Sliding termsAlong(const CoinModel& model, const SlidingState& state, double mu, const Eigen::Vector3d& slipHat) {
   Sliding terms = undirectedTerms(model, state);
-  directFriction(terms, mu, slipHat);
+  directFriction(model, terms, mu, slipHat);
   return terms;
 }
 
@@ -227,7 +222,7 @@ class Turning {
 
   double operator()(double angle) const {
     Sliding terms = undirected_;
-    directFriction(terms, mu_, floorDirection(angle));
+    directFriction(model_, terms, mu_, floorDirection(angle));
     const Accelerations a = accelerations(model_, state_, terms);
     const Eigen::Vector2d rate = slipRate(model_, terms, state_.attitude.omegaBody, a.dOmega, a.N, mu_);
     return -std::sin(angle) * rate.x() + std::cos(angle) * rate.y();

@@ -15,6 +15,7 @@ struct AirDrag {
   AirFlow model = AirFlow::Moffatt;
   double viscosity = 1.8e-5;  // Pa s, dynamic viscosity mu of air at 20 C
   double density = 1.2;       // kg/m^3, air at 20 C and sea-level pressure (boundary-layer model only)
+  static constexpr bool kReadsNormalForce = false;  // the air does not feel the load
 };
 
 // tau = -C omega_h with C = pi mu a^3 / (4 alpha^3) (Moffatt, eq. 2.2) or

@@ -168,10 +168,9 @@ Forward accelerations(const CoinModel& model, const CoinState& s, double sinThet
     // N depends on a couple only through its e_X part, and no N-dependent law has one (docs/rim.md
     // eq. 4.3): the first pass finds N under the N-independent couples, the second is exact. Only N
     // changes between the passes.
-    ContactKinematics kinematics = kinematicsFrom(model, s, f.axes, f.reaction.N);
+    NormalForceLoads effectLoads(model.effects, kinematicsFrom(model, s, f.axes, f.reaction.N));
     for (int pass = 0; pass < 2; ++pass) {
-      kinematics.N = f.reaction.N;
-      f.loads = totalLoads(model.effects, kinematics);
+      f.loads = effectLoads.at(f.reaction.N);
       f.dOmega = withCouple(f.axes * f.loads.torque);
       f.reaction = reactionFrom(model, f.axes, centreAcceleration(model, s, rim, omega, f.dOmega));
     }

@@ -1,5 +1,8 @@
 #include "physics/effects.h"
 
+#include <algorithm>
+#include <type_traits>
+
 namespace coinroll::physics {
 
 namespace {
@@ -21,9 +24,39 @@ std::string_view typeName(const Effect& effect) {
                     effect);
 }
 
+namespace {
+
+bool readsNormalForce(const Effect& effect) {
+  return std::visit([](const auto& law) { return std::decay_t<decltype(law)>::kReadsNormalForce; }, effect);
+}
+
+Loads loadsOf(const Effect& effect, const ContactKinematics& k) {
+  return std::visit([&k](const auto& law) { return loads(law, k); }, effect);
+}
+
+}  // namespace
+
+NormalForceLoads::NormalForceLoads(std::span<const Effect> effects, const ContactKinematics& k)
+    : effects_(effects), kinematics_(k) {
+  for (std::size_t i = 0; i < std::min(effects.size(), kRemembered); ++i) {
+    if (!readsNormalForce(effects[i])) fixed_[i] = loadsOf(effects[i], k);
+  }
+}
+
+Loads NormalForceLoads::at(double N) const {
+  ContactKinematics atN = kinematics_;
+  atN.N = N;
+  Loads sum;
+  for (std::size_t i = 0; i < effects_.size(); ++i) {
+    const bool fixed = i < kRemembered && !readsNormalForce(effects_[i]);
+    sum += fixed ? fixed_[i] : loadsOf(effects_[i], atN);
+  }
+  return sum;
+}
+
 Loads totalLoads(std::span<const Effect> effects, const ContactKinematics& k) {
   Loads sum;
-  for (const Effect& effect : effects) sum += std::visit([&k](const auto& law) { return loads(law, k); }, effect);
+  for (const Effect& effect : effects) sum += loadsOf(effect, k);
   return sum;
 }
 

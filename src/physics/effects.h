@@ -9,6 +9,8 @@
 // is checked for every law). A couple that depends on N must have no part along e_X: the normal
 // force's two passes (dynamics.cpp, quaternion_dynamics.cpp) are exact only then (tested).
 
+#include <array>
+#include <cstddef>
 #include <span>
 #include <string_view>
 #include <variant>
@@ -27,5 +29,20 @@ std::string_view typeName(const Effect& effect);
 
 // The sum of every law's couple and power.
 Loads totalLoads(std::span<const Effect> effects, const ContactKinematics& k);
+
+// totalLoads of one state at the normal forces its passes try (and, sliding, at every friction
+// direction the creep's search tries): only N changes between the calls, so a law that does not read
+// it (kReadsNormalForce false: air drag) is evaluated once. The same sum, in the same order, to the bit.
+class NormalForceLoads {
+ public:
+  NormalForceLoads(std::span<const Effect> effects, const ContactKinematics& k);
+  Loads at(double N) const;
+
+ private:
+  static constexpr std::size_t kRemembered = 4;  // laws past these are evaluated at every call
+  std::span<const Effect> effects_;
+  ContactKinematics kinematics_;
+  std::array<Loads, kRemembered> fixed_;  // the N-free laws' loads, by the law's place
+};
 
 }  // namespace coinroll::physics

@@ -61,10 +61,9 @@ ContactKinematics contactKinematics(const CoinModel& m, const QuaternionState& s
 // reason as in the Euler angles (docs/rim.md eq. 4.3). `f` holds the ideal ones on entry.
 void addEffects(const CoinModel& m, const QuaternionState& s, const ContactGeometry& geo, const Eigen::Vector3d& cDot,
                 Forward& f) {
-  ContactKinematics kinematics = contactKinematics(m, s, geo, f.reaction.N);  // only N changes per pass
+  NormalForceLoads effectLoads(m.effects, contactKinematics(m, s, geo, f.reaction.N));
   for (int pass = 0; pass < 2; ++pass) {
-    kinematics.N = f.reaction.N;
-    f.loads = totalLoads(m.effects, kinematics);
+    f.loads = effectLoads.at(f.reaction.N);
     const Eigen::Vector3d torqueBody = geo.floorFromBody.transpose() * f.loads.torque;
     f.dOmega = angularAcceleration(m, geo, s.omegaBody, cDot, &torqueBody);
     f.reaction = reactionFrom(m, s, geo, cDot, f.dOmega);

@@ -23,6 +23,7 @@ struct RollingResistance {
   // m: the couple also grows as (|psi-dot| / kRollingReferenceRate)^(m - 1), so P ~ |psi-dot|^m;
   // 1 is the wheel's constant couple, 2 the power ~ Omega^2 McDonald and McDonald (2000) measured.
   double rateExponent = 1;
+  static constexpr bool kReadsNormalForce = true;
 };
 
 // P = delta N |psi-dot| (the contact moves at a |psi-dot|, resisted by (delta / a) N), done by

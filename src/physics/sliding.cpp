@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "physics/body_contact.h"
+#include "physics/effects.h"
 
 namespace coinroll::physics {
 
@@ -79,25 +80,32 @@ struct Accelerations {
   Loads loads;  // the effects' torque and power at N
 };
 
-Accelerations accelerations(const CoinModel& model, const SlidingState& state, const Sliding& t) {
+// The effects' loads of a state: everything the laws read but N is fixed by the attitude.
+NormalForceLoads effectLoadsOf(const CoinModel& model, const SlidingState& state, const Sliding& t) {
+  const Eigen::Matrix3d& R = t.geo.floorFromBody;
+  return {model.effects,
+          {.e_X = R * t.geo.e_X,
+           .e_Y = R * t.geo.e_Y,
+           .e_Z = R.col(2),
+           .omega = R * state.attitude.omegaBody,
+           .faceRadius = model.a - model.rim.edgeRadius,
+           .outerRadius = model.a,
+           .holeRadius = model.holeRadius,
+           .N = 0}};
+}
+
+Accelerations accelerations(const CoinModel& model, const SlidingState& state, const Sliding& t,
+                            const NormalForceLoads& effectLoads) {
   const QuaternionState& s = state.attitude;
   const Eigen::Matrix3d& R = t.geo.floorFromBody;
   Accelerations a;
   solve(model, t, s.omegaBody, Eigen::Vector3d::Zero(), a.dOmega, a.N);
   if (!model.effects.empty()) {
-    ContactKinematics kinematics{.e_X = R * t.geo.e_X,
-                                 .e_Y = R * t.geo.e_Y,
-                                 .e_Z = R.col(2),
-                                 .omega = R * s.omegaBody,
-                                 .faceRadius = model.a - model.rim.edgeRadius,
-                                 .outerRadius = model.a,
-                                 .holeRadius = model.holeRadius,
-                                 .N = a.N};
     for (int pass = 0; pass < kMaxNormalForcePasses; ++pass) {
-      kinematics.N = a.N;
-      a.loads = totalLoads(model.effects, kinematics);
+      const double triedN = a.N;
+      a.loads = effectLoads.at(triedN);
       solve(model, t, s.omegaBody, R.transpose() * a.loads.torque, a.dOmega, a.N);
-      if (a.N == kinematics.N) break;
+      if (a.N == triedN) break;
     }
   }
   return a;
@@ -117,7 +125,8 @@ Eigen::Vector2d slipRate(const CoinModel& model, const Sliding& t, const Eigen::
 Forward forwardFrom(const CoinModel& model, const SlidingState& state, double mu, const Sliding& t) {
   const QuaternionState& s = state.attitude;
   Forward f;
-  const Accelerations a = accelerations(model, state, t);
+  const NormalForceLoads effectLoads = effectLoadsOf(model, state, t);
+  const Accelerations a = accelerations(model, state, t, effectLoads);
   f.dOmega = a.dOmega;
   f.loads = a.loads;
   const double N = a.N;
@@ -218,12 +227,16 @@ SlidingRates ratesAlong(const CoinModel& model, const SlidingStateVec& y, double
 class Turning {
  public:
   Turning(const CoinModel& model, const SlidingStateVec& y, double mu)
-      : model_(model), state_(toSlidingState(y)), undirected_(undirectedTerms(model, state_)), mu_(mu) {}
+      : model_(model),
+        state_(toSlidingState(y)),
+        undirected_(undirectedTerms(model, state_)),
+        effectLoads_(effectLoadsOf(model, state_, undirected_)),
+        mu_(mu) {}
 
   double operator()(double angle) const {
     Sliding terms = undirected_;
     directFriction(model_, terms, mu_, floorDirection(angle));
-    const Accelerations a = accelerations(model_, state_, terms);
+    const Accelerations a = accelerations(model_, state_, terms, effectLoads_);
     const Eigen::Vector2d rate = slipRate(model_, terms, state_.attitude.omegaBody, a.dOmega, a.N, mu_);
     return -std::sin(angle) * rate.x() + std::cos(angle) * rate.y();
   }
@@ -239,6 +252,7 @@ class Turning {
   const CoinModel& model_;
   SlidingState state_;
   Sliding undirected_;
+  NormalForceLoads effectLoads_;
   double mu_;
 };
 

@@ -13,6 +13,7 @@ struct SpinFriction {
   // m, l: the couple is l N. Coulomb friction mu_s over a uniformly loaded circular patch of
   // radius r_p gives l = (2/3) mu_s r_p (eq. 2.13).
   double length = 5e-6;
+  static constexpr bool kReadsNormalForce = true;
 };
 
 // tau = -l N sign(omega_n) e_y, omega_n = omega . e_y; P = l N |omega_n| (eq. 2.12).

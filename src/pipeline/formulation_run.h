@@ -53,7 +53,10 @@ std::unique_ptr<Motion> startFormulationRun(const Simulation& simulation) {
     if constexpr (FormulationKind<F, N>::kDissipative) y0[N - 1] = 0;  // nothing dissipated yet
     return std::make_unique<FormulationRun<F, N>>(
         FormulationKind<F, N>{simulation.model}, 0.0, y0, simulation.solver,
-        validityEvents<F, N>(simulation.model, simulation.model.friction.cone, simulation.validityIsTerminal),
+        validityEvents<F, N>(simulation.model, simulation.model.friction.cone, simulation.validityIsTerminal,
+                             remembering<N>([model = simulation.model](const integrate::Vec<N>& y) {
+                               return forwardOf<F, N>(model, y);
+                             })),
         simulation.duration);
   };
   constexpr int kSize = physics::kMotionSize<F>;

@@ -342,19 +342,18 @@ constexpr bool kLiftOffEndsTheRun = true;
 void HybridRun::startRolling(double t, const physics::QuaternionState& state, double dissipated) {
   using Y = integrate::Vec<kRollingSize>;
   const physics::CoinModel model = holdingCorner(simulation_.model, state.q);
+  const auto forward =
+      remembering<kRollingSize>([model](const Y& y) { return physics::forward(model, rollingStateOf(y)); });
   std::vector<integrate::Event<kRollingSize>> events =
-      validityEvents<Formulation::Quaternion, kRollingSize>(model, std::nullopt, kLiftOffEndsTheRun);
-  integrate::Event<kRollingSize> slides =
-      switchEvent<kRollingSize>(kSlideOnset, "slides", [model](double, const Y& y) {
-        return physics::slideOnsetMargin(model, physics::forward(model, rollingStateOf(y)));
-      });
+      validityEvents<Formulation::Quaternion, kRollingSize>(model, std::nullopt, kLiftOffEndsTheRun, forward);
+  integrate::Event<kRollingSize> slides = switchEvent<kRollingSize>(
+      kSlideOnset, "slides",
+      [model, forward](double, const Y& y) { return physics::slideOnsetMargin(model, forward(y)); });
   slides.interiorChecks = kConeGrazeChecks;
   events.push_back(std::move(slides));
   if (simulation_.flight) flightSwitches(events);
   if (simulation_.stopWhenDecided) {
-    events.push_back(decidedEvent<kRollingSize>(model, [model](const Y& y) {
-      return physics::forward(model, rollingStateOf(y)).energy;
-    }));
+    events.push_back(decidedEvent<kRollingSize>(model, [forward](const Y& y) { return forward(y).energy; }));
   }
   Y y0;
   y0 << physics::toVector(state), dissipated;
@@ -368,7 +367,8 @@ void HybridRun::startSliding(double t, const physics::SlidingState& state, doubl
   const physics::CoinModel model = holdingCorner(simulation_.model, state.attitude.q);
   const Eigen::Vector2d along = state.slip.norm() > 0 ? state.slip.normalized() : Eigen::Vector2d::UnitX();
   const SlidingRhs rhs{.model = model, .mode = mode, .direction = Eigen::Vector3d(along.x(), 0, along.y())};
-  const auto forwardOf = [rhs](const Y& y) { return rhs.forward(y.head<physics::kSlidingStateSize>()); };
+  const auto forwardOf =
+      remembering<kSlidingSize>([rhs](const Y& y) { return rhs.forward(y.head<physics::kSlidingStateSize>()); });
   std::vector<integrate::Event<kSlidingSize>> events = geometryEvents<kSlidingSize>(
       model, Formulation::Quaternion, [](const Y& y) { return physics::thetaOf(slidingStateOf(y).attitude.q); });
   events.push_back(modelEvent<kSlidingSize>(

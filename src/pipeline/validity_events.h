@@ -3,7 +3,12 @@
 // with or without the dissipated-energy component: each reads the forward pass of the formulation
 // that integrates the run (physics/forward.h) and asks physics/validity.h.
 
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <cstring>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -43,6 +48,37 @@ physics::Forward forwardOf(const physics::CoinModel& model, const integrate::Vec
   }
 }
 
+// The friction cone is read at this many points inside each step as well as at its ends: a wobble
+// grazes it for a fraction of a step (F/N reached 0.24041 in a cone of 0.24 between two step ends
+// inside it, issue 40), and a missed crossing is a slide the run never makes.
+inline constexpr int kConeGrazeChecks = 3;
+
+// A forward pass that remembers the last few states it was asked for, shared by the copies of the
+// function (the events of one segment): a step's events read the same states one after another (its
+// end, and lift-off's and the cone's checks at the same interior points), each a whole forward pass.
+// A pure function's memo, keyed on y's bits: the results do not change.
+template <int N>
+std::function<physics::Forward(const integrate::Vec<N>&)> remembering(
+    std::function<physics::Forward(const integrate::Vec<N>&)> forward) {
+  constexpr std::size_t kStates = kConeGrazeChecks + 1;  // a step's interior points and its end
+  struct Memo {
+    std::array<integrate::Vec<N>, kStates> states;
+    std::array<physics::Forward, kStates> passes;
+    std::size_t filled = 0, next = 0;
+  };
+  return [forward = std::move(forward), memo = std::make_shared<Memo>()](const integrate::Vec<N>& y) {
+    for (std::size_t i = 0; i < memo->filled; ++i) {
+      if (std::memcmp(memo->states[i].data(), y.data(), sizeof(double) * N) == 0) return memo->passes[i];
+    }
+    memo->states[memo->next] = y;
+    memo->passes[memo->next] = forward(y);
+    const physics::Forward& pass = memo->passes[memo->next];
+    memo->filled = std::max(memo->filled, memo->next + 1);
+    memo->next = (memo->next + 1) % kStates;
+    return pass;
+  };
+}
+
 // theta alone, without a whole forward pass: the flat and corner events need nothing else.
 template <physics::Formulation F, int N>
 double thetaOf(const integrate::Vec<N>& y) {
@@ -52,11 +88,6 @@ double thetaOf(const integrate::Vec<N>& y) {
     return physics::thetaOf(physics::toQuaternionState(y.template head<physics::kQuaternionStateSize>()).q);
   }
 }
-
-// The friction cone is read at this many points inside each step as well as at its ends: a wobble
-// grazes it for a fraction of a step (F/N reached 0.24041 in a cone of 0.24 between two step ends
-// inside it, issue 40), and a missed crossing is a slide the run never makes.
-inline constexpr int kConeGrazeChecks = 3;
 
 template <int N>
 integrate::Event<N> modelEvent(physics::ModelEvent kind, std::function<double(double, const integrate::Vec<N>&)> g,
@@ -86,24 +117,22 @@ std::vector<integrate::Event<N>> geometryEvents(const physics::CoinModel& model,
 
 // The geometry's events, lift-off (N falls through 0) and, when mu is given, slip (F rises through
 // mu N). Lift-off and slip end the run when `validityIsTerminal`, else they are recorded and the run
-// goes on.
+// goes on. `forward` is formulation F's forward pass (a segment passes the one its other events share).
 template <physics::Formulation F, int N>
 std::vector<integrate::Event<N>> validityEvents(const physics::CoinModel& model, std::optional<double> friction,
-                                                bool validityIsTerminal) {
+                                                bool validityIsTerminal,
+                                                std::function<physics::Forward(const integrate::Vec<N>&)> forward) {
   using Y = integrate::Vec<N>;
   using physics::ModelEvent;
   std::vector<integrate::Event<N>> events = geometryEvents<N>(model, F, [](const Y& y) { return thetaOf<F, N>(y); });
   events.push_back(modelEvent<N>(
-      ModelEvent::LiftOff,
-      [model](double, const Y& y) { return physics::liftOffMargin(model, forwardOf<F, N>(model, y)); }, -1,
-      validityIsTerminal));
+      ModelEvent::LiftOff, [model, forward](double, const Y& y) { return physics::liftOffMargin(model, forward(y)); },
+      -1, validityIsTerminal));
   if (friction) {
     integrate::Event<N> slip = modelEvent<N>(
         ModelEvent::Slip,
-        [model, mu = *friction](double, const Y& y) {
-          return physics::slipMargin(model, forwardOf<F, N>(model, y), mu);
-        },
-        -1, validityIsTerminal);
+        [model, forward, mu = *friction](double, const Y& y) { return physics::slipMargin(model, forward(y), mu); }, -1,
+        validityIsTerminal);
     slip.interiorChecks = kConeGrazeChecks;
     events.push_back(std::move(slip));
   }

@@ -8,6 +8,8 @@
 #include <numbers>
 #include <random>
 #include <string>
+#include <type_traits>
+#include <variant>
 #include <vector>
 
 #include "physics/dynamics.h"
@@ -44,6 +46,32 @@ Loads loadsOf(const Effect& law, const ContactKinematics& k) { return totalLoads
 std::vector<Effect> everyLaw() {
   return {AirDrag{}, AirDrag{.model = AirFlow::BoundaryLayer}, RollingResistance{},
           RollingResistance{.length = 3e-6, .loadExponent = 0.7}, SpinFriction{}};
+}
+
+// NormalForceLoads evaluates a law that says it does not read N once per state: the law must mean it
+// (its loads the same at any load), and a law that says it does must change with N.
+TEST(EffectLoads, ALawReadsTheNormalForceExactlyWhenItSaysSo) {
+  const CoinState s{20 * kDeg, 0.3, -1.1, 4.0, -2.0, 9.0, 0, 0};
+  for (const Effect& law : everyLaw()) {
+    const Loads light = loadsOf(law, contactKinematics(kToy, s, 0.5));
+    const Loads heavy = loadsOf(law, contactKinematics(kToy, s, 5.0));
+    const bool reads = std::visit([](const auto& l) { return std::decay_t<decltype(l)>::kReadsNormalForce; }, law);
+    EXPECT_EQ(reads, light.torque != heavy.torque) << typeName(law);
+    EXPECT_EQ(reads, light.power != heavy.power) << typeName(law);
+  }
+}
+
+TEST(EffectLoads, TheNormalForcePassesSumTheSameBitsAsTotalLoads) {
+  const CoinState s{35 * kDeg, 0.3, -1.1, 7.0, -3.0, 12.0, 0, 0};
+  const std::vector<Effect> effects = {RollingResistance{.length = 3e-6}, AirDrag{.model = AirFlow::BoundaryLayer},
+                                       SpinFriction{}, AirDrag{}, RollingResistance{.loadExponent = 0.7}};
+  const NormalForceLoads passes(effects, contactKinematics(kToy, s, 1.0));
+  for (const double N : {0.0, 0.3, 1.0, 3.7, 11.0}) {
+    const Loads expected = totalLoads(effects, contactKinematics(kToy, s, N));
+    const Loads actual = passes.at(N);
+    EXPECT_EQ(actual.torque, expected.torque) << "N = " << N;
+    EXPECT_EQ(actual.power, expected.power) << "N = " << N;
+  }
 }
 
 TEST(EffectLoads, DeclaredPowerIsTheWorkOfTheCoupleAndNeverNegative) {

@@ -8,6 +8,7 @@
 
 #include "pipeline/coin_run.h"
 #include "pipeline/simulation.h"
+#include "pipeline/validity_events.h"
 #include "scene/scene_loader.h"
 #include "tolerance.h"
 
@@ -41,3 +42,37 @@ TEST(CoinRun, QuaternionRunUnwrapsPhiAndPsiLikeTheEulerAnglesBetweenSparseQuerie
 }
 
 }  // namespace
+
+namespace coinroll::pipeline {
+namespace {
+
+// The events' shared forward pass: what it returns is the pass itself, and it runs the pass once per
+// state among the last kConeGrazeChecks + 1 states (a step's interior checks and its end).
+TEST(RememberedForward, ReturnsThePassAndRunsItOncePerRecentState) {
+  using Y = integrate::Vec<3>;
+  int passes = 0;
+  const auto forward = remembering<3>([&passes](const Y& y) {
+    ++passes;
+    physics::Forward f;
+    f.energy = y.sum();
+    return f;
+  });
+  const auto copy = forward;  // a second event of the same segment
+  const Y a(1, 2, 3), b(4, 5, 6), c(7, 8, 9), d(1, 1, 1), e(2, 2, 2);
+  EXPECT_EQ(forward(a).energy, 6);
+  EXPECT_EQ(copy(a).energy, 6);
+  EXPECT_EQ(passes, 1);
+  for (const Y& y : {b, c, d}) copy(y);
+  EXPECT_EQ(forward(a).energy, 6);
+  EXPECT_EQ(passes, 4);
+  forward(e);  // five states: the oldest, a, is forgotten
+  EXPECT_EQ(forward(a).energy, 6);
+  EXPECT_EQ(passes, 6);
+  // -0 and +0 are different bits: the memo compares bits, not values.
+  forward(Y(0, 0, 0));
+  forward(Y(-0.0, 0, 0));
+  EXPECT_EQ(passes, 8);
+}
+
+}  // namespace
+}  // namespace coinroll::pipeline

@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <optional>
 
 #include "physics/coin_model.h"
 #include "physics/contact_mode.h"
@@ -94,6 +95,61 @@ TEST(ContactMode, AStartWithASlipSlidesAndOtherwiseRollsWhereTheRollingReactionF
   EXPECT_GT(slipStopMargin(0.5, Eigen::Vector2d(5e-9, 0), -hardClosing, kDefaultResolved), 0);
   EXPECT_LT(creepStopMargin(0.5, Eigen::Vector2d(5e-9, 0), hardClosing, kDefaultResolved, Eigen::Vector3d::UnitX()), 0);
   EXPECT_GT(creepStopMargin(0.5, Eigen::Vector2d(7e-9, 0), hardClosing, kDefaultResolved, Eigen::Vector3d::UnitX()), 0);
+}
+
+// s_perp . s-dot with friction along -slipHat: the slip's turn rate times |s| (docs/sliding.md §4.6).
+double turningAlong(const CoinModel& m, const SlidingStateVec& y, double mu, const Eigen::Vector3d& slipHat) {
+  const SlidingStateVec dy = slidingRatesAlong(m, y, mu, slipHat).dy;
+  return -slipHat.z() * dy[kSlipX] + slipHat.x() * dy[kSlipZ];
+}
+
+Eigen::Vector3d alongAngle(double angle) { return {std::cos(angle), 0, std::sin(angle)}; }
+
+// The creeping slide's friction direction against its defining equations, each checked another way:
+// the rest turns the slip at nothing, the lagging direction at the rest's own rate (eq. 4.14), the
+// restoring is the slope there, and the rest's rate is the difference of the rests found at states
+// a little before and after along the motion.
+TEST(Creep, TheRestAndItsLagSolveTheirEquations) {
+  CoinModel m = diskModel(0.4, 0.0375, 9.81);
+  const double mu = 0.2;
+  int checked = 0;
+  for (const double theta : {15.0, 25.0, 40.0}) {
+    for (const double slipAngle : {0.3, 2.0, -1.2}) {
+      const QuaternionState q =
+          fromEulerState(CoinState{.theta = theta * kDeg, .omega_X = -0.5, .omega_Y = 3.0, .omega_Z = 9.0});
+      SlidingStateVec y = toVector(SlidingState{.attitude = q});
+      const std::optional<Creep> rest = findCreep(m, y, mu);
+      if (!rest) continue;
+      const double restAngle = std::atan2(rest->slipHat.z(), rest->slipHat.x());
+      EXPECT_LT(std::abs(turningAlong(m, y, mu, rest->slipHat)) / rest->restoring, 1e-12) << theta;
+      constexpr double kAngleStep = 1e-5;
+      const double slope = -(turningAlong(m, y, mu, alongAngle(restAngle + kAngleStep)) -
+                             turningAlong(m, y, mu, alongAngle(restAngle - kAngleStep))) /
+                           (2 * kAngleStep);
+      EXPECT_TRUE(isNear(rest->restoring, slope, 1e-6 * std::abs(slope))) << theta;
+      constexpr double kTimeStep = 1e-5;
+      const SlidingStateVec flow = slidingRatesAlong(m, y, mu, rest->slipHat).dy;
+      const auto restAngleAt = [&](double dt) {
+        SlidingStateVec moved = y + dt * flow;
+        moved.tail<2>().setZero();
+        const Eigen::Vector3d hat = findCreep(m, moved, mu).value().slipHat;
+        return std::atan2(hat.z(), hat.x());
+      };
+      const double restRate = (restAngleAt(kTimeStep) - restAngleAt(-kTimeStep)) / (2 * kTimeStep);
+      EXPECT_TRUE(isNear(rest->restRate, restRate, 1e-5 * std::abs(restRate) + 1e-9)) << theta;
+      // A creeping slip of 1e-6 m/s lags its rest: friction along the lagging direction turns it at
+      // the rest's rate.
+      const double slipSpeed = 1e-6;
+      y.tail<2>() = slipSpeed * Eigen::Vector2d(std::cos(slipAngle), std::sin(slipAngle));
+      const std::optional<Creep> lagging = findCreep(m, y, mu);
+      ASSERT_TRUE(lagging) << theta;
+      EXPECT_LT(std::abs(turningAlong(m, y, mu, lagging->slipHat) - slipSpeed * lagging->restRate) / lagging->restoring,
+                1e-12)
+          << theta;
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, 9);
 }
 
 }  // namespace

@@ -14,18 +14,35 @@ namespace {
 
 // (3.4): [I_G + M (|c|^2 1 - c c^t)] omega-dot = -omega x I_G omega - M c x (omega x c-dot + omega x (omega x c))
 //                                                + M g c x e_y + tau
-Eigen::Vector3d angularAcceleration(const CoinModel& m, const ContactGeometry& geo, const Eigen::Vector3d& omega,
-                                    const Eigen::Vector3d& cDot, const Eigen::Vector3d* torqueBody = nullptr) {
-  const Eigen::Vector3d inertia(m.I_X, m.I_X, m.I_Z);  // principal moments about G, material frame
-  const Eigen::Vector3d& c = geo.c;
-  const Eigen::Matrix3d A = Eigen::Matrix3d(inertia.asDiagonal()) +
-                            m.M * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
+// The matrix and the couple-free right-hand side of one state, factorised once: the effects' passes
+// solve it again with their couples (the same operations as solving from scratch, so the same bits).
+struct EulerSystem {
+  Eigen::LLT<Eigen::Matrix3d> A;
+  Eigen::Vector3d b;
+
+  EulerSystem(const CoinModel& m, const ContactGeometry& geo, const Eigen::Vector3d& omega,
+              const Eigen::Vector3d& cDot) {
+    const Eigen::Vector3d inertia(m.I_X, m.I_X, m.I_Z);  // principal moments about G, material frame
+    const Eigen::Vector3d& c = geo.c;
+    A.compute(Eigen::Matrix3d(inertia.asDiagonal()) +
+              m.M * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose()));
+    b = -omega.cross(inertia.cwiseProduct(omega)) - m.M * c.cross(omega.cross(cDot) + omega.cross(omega.cross(c))) +
+        m.M * m.g * c.cross(geo.up);
+  }
+
   // A couple adds to b (docs/euler_disk.md eq. 1.3); the ideal path adds none, so a scene without
   // effects integrates exactly as before.
-  Eigen::Vector3d b = -omega.cross(inertia.cwiseProduct(omega)) -
-                      m.M * c.cross(omega.cross(cDot) + omega.cross(omega.cross(c))) + m.M * m.g * c.cross(geo.up);
-  if (torqueBody != nullptr) b += *torqueBody;
-  return A.llt().solve(b);
+  Eigen::Vector3d angularAcceleration() const { return A.solve(b); }
+  Eigen::Vector3d angularAcceleration(const Eigen::Vector3d& torqueBody) const {
+    Eigen::Vector3d withCouple = b;
+    withCouple += torqueBody;
+    return A.solve(withCouple);
+  }
+};
+
+Eigen::Vector3d angularAcceleration(const CoinModel& m, const ContactGeometry& geo, const Eigen::Vector3d& omega,
+                                    const Eigen::Vector3d& cDot) {
+  return EulerSystem(m, geo, omega, cDot).angularAcceleration();
 }
 
 Eigen::Vector3d centreOfMassVelocityBody(const ContactGeometry& geo, const Eigen::Vector3d& omega) {
@@ -60,22 +77,23 @@ ContactKinematics contactKinematics(const CoinModel& m, const QuaternionState& s
 // The angular acceleration and reaction with the effects' couples: two passes, exact for the same
 // reason as in the Euler angles (docs/rim.md eq. 4.3). `f` holds the ideal ones on entry.
 void addEffects(const CoinModel& m, const QuaternionState& s, const ContactGeometry& geo, const Eigen::Vector3d& cDot,
-                Forward& f) {
+                const EulerSystem& euler, Forward& f) {
   NormalForceLoads effectLoads(m.effects, contactKinematics(m, s, geo, f.reaction.N));
   for (int pass = 0; pass < 2; ++pass) {
     f.loads = effectLoads.at(f.reaction.N);
     const Eigen::Vector3d torqueBody = geo.floorFromBody.transpose() * f.loads.torque;
-    f.dOmega = angularAcceleration(m, geo, s.omegaBody, cDot, &torqueBody);
+    f.dOmega = euler.angularAcceleration(torqueBody);
     f.reaction = reactionFrom(m, s, geo, cDot, f.dOmega);
   }
 }
 
 Forward forwardAt(const CoinModel& m, const QuaternionState& s, const ContactGeometry& geo) {
   const Eigen::Vector3d cDot = contactDrift(m, geo, s.omegaBody);
+  const EulerSystem euler(m, geo, s.omegaBody, cDot);
   Forward f;
-  f.dOmega = angularAcceleration(m, geo, s.omegaBody, cDot);
+  f.dOmega = euler.angularAcceleration();
   f.reaction = reactionFrom(m, s, geo, cDot, f.dOmega);
-  if (!m.effects.empty()) addEffects(m, s, geo, cDot, f);
+  if (!m.effects.empty()) addEffects(m, s, geo, cDot, euler, f);
   setAttitudeKinematics(m, s.q, s.omegaBody, s.x, s.z, geo,
                         geo.floorFromBody * centreOfMassVelocityBody(geo, s.omegaBody), f);
   return f;
@@ -159,10 +177,11 @@ QuaternionRates quaternionRates(const CoinModel& model, const QuaternionStateVec
     dy.segment<3>(kOmegaBody1) = angularAcceleration(model, geo, omega, cDot);           // (3.4)
   } else {
     const QuaternionState s{.q = q, .omegaBody = omega, .x = y[kCentreX], .z = y[kCentreZ]};
+    const EulerSystem euler(model, geo, omega, cDot);
     Forward f;
-    f.dOmega = angularAcceleration(model, geo, omega, cDot);
+    f.dOmega = euler.angularAcceleration();
     f.reaction = reactionFrom(model, s, geo, cDot, f.dOmega);
-    addEffects(model, s, geo, cDot, f);
+    addEffects(model, s, geo, cDot, euler, f);
     dy.segment<3>(kOmegaBody1) = f.dOmega;
     rates.power = f.loads.power;
   }

@@ -11,7 +11,7 @@ namespace coinroll::physics {
 namespace {
 
 // rad: the creeping slip's direction lags its rest by at most this before it is integrated freely
-// (docs/sliding.md §4.6): the lag is (turn rate of the rest) |s| / restoring.
+// (docs/sliding.md §4.6): the lag is (turn rate of the rest) |s| / pull (eq. 4.17).
 constexpr double kCreepLag = 1e-3;
 // rad: a free slip is handed back to its rest only within this angle of it (docs/sliding.md §4.6).
 constexpr double kCreepAlignment = 1e-5;
@@ -70,10 +70,10 @@ double creepStopMargin(double t, const Eigen::Vector2d& slip, const Eigen::Vecto
 
 // The rest turns with the fastest of the body's rotation, the contact's precession and the rocking
 // rate sqrt(g/a) (kCreepLag).
-double freeSlipSpeed(const CoinModel& model, const Forward& sliding, double restoring) {
+double freeSlipSpeed(const CoinModel& model, const Forward& sliding, double pull) {
   const double turnRate =
       std::max({sliding.omega.norm(), std::abs(sliding.precessionRate), std::sqrt(model.g / model.a)});
-  return kCreepLag * std::max(restoring, 0.0) / turnRate;
+  return kCreepLag * std::max(pull, 0.0) / turnRate;
 }
 
 // A slip that falls back to half the creep's threshold hands its direction to its rest, once it has
@@ -81,27 +81,27 @@ double freeSlipSpeed(const CoinModel& model, const Forward& sliding, double rest
 // kCreepAlignment, so a slide that ends across the rest's pull (a skid) is integrated to its end.
 //
 // The rest's search costs some twenty evaluations of the slip's rate, and a slide asks at every step.
-// The threshold is at most half the free slip speed at the rest's restoring, and it is nonzero only
-// within kCreepAlignment of the rest, where the restoring differs from the slip direction's own (two
+// The threshold is at most half the free slip speed at the rest's pull, and it is nonzero only within
+// kCreepAlignment of the rest, where the pull differs from the slip direction's own (three
 // evaluations) by a part in 1e5 unless the pull itself is next to none: a slip faster than the free
-// slip speed at its own direction's restoring is above the threshold whatever the rest, and its
-// margin is its speed (positive as the true margin is, so the event sees the same crossings).
+// slip speed at its own direction's pull is above the threshold whatever the rest, and its margin
+// is its speed (positive as the true margin is, so the event sees the same crossings).
 double slipCreepMargin(const CoinModel& model, const SlidingStateVec& y, const Forward& sliding) {
   const SlidingState state = toSlidingState(y);
   const Eigen::Vector2d& slip = state.slip;
-  const double restoringHere = slipDirectionRestoring(model, state, model.friction.kinetic);
-  if (slip.norm() > freeSlipSpeed(model, sliding, restoringHere)) return slip.norm();
+  const double pullHere = slipDirectionPull(model, state, model.friction.kinetic);
+  if (slip.norm() > freeSlipSpeed(model, sliding, pullHere)) return slip.norm();
   const std::optional<Creep> creep = findCreep(model, y, model.friction.kinetic);
   if (!creep) return slip.norm();
   const Eigen::Vector2d rest(creep->slipHat.x(), creep->slipHat.z());
   const double angleFromRest = std::acos(std::clamp(rest.dot(slip.normalized()), -1.0, 1.0));
   const double nearness = std::max(0.0, 1 - angleFromRest / kCreepAlignment);
-  return slip.norm() - 0.5 * nearness * freeSlipSpeed(model, sliding, creep->restoring);
+  return slip.norm() - 0.5 * nearness * freeSlipSpeed(model, sliding, creep->pull);
 }
 
 double slipFreeMargin(const CoinModel& model, const SlidingStateVec& y, const Forward& sliding) {
-  const double restoring = findCreep(model, y, model.friction.kinetic).value_or(Creep{}).restoring;
-  return toSlidingState(y).slip.norm() - freeSlipSpeed(model, sliding, restoring);
+  const double pull = findCreep(model, y, model.friction.kinetic).value_or(Creep{}).pull;
+  return toSlidingState(y).slip.norm() - freeSlipSpeed(model, sliding, pull);
 }
 
 }  // namespace coinroll::physics

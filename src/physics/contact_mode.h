@@ -47,9 +47,9 @@ double creepStopMargin(double t, const Eigen::Vector2d& slip, const Eigen::Vecto
 // s: a slide also ends once its slip would stop within this at its present rate.
 double slipStopLead(double t);
 
-// m/s: the slip speed above which its direction is integrated, at a rest of strength `restoring`
-// (Creep::restoring, m/s^2).
-double freeSlipSpeed(const CoinModel& model, const Forward& sliding, double restoring);
+// m/s: the slip speed above which its direction is integrated, at a rest whose lag is pulled by
+// `pull` (Creep::pull, m/s^2).
+double freeSlipSpeed(const CoinModel& model, const Forward& sliding, double pull);
 
 // A free slide hands friction's direction to the slip's rest when this falls through zero.
 double slipCreepMargin(const CoinModel& model, const SlidingStateVec& y, const Forward& sliding);

@@ -66,10 +66,14 @@ struct Creep {
   Eigen::Vector3d slipHat;  // floor, unit, horizontal: friction is along -slipHat
   double restoring = 0;     // -d(s_perp . s-dot)/d(angle) at the rest, m/s^2 (positive: it attracts)
   double restRate = 0;      // rad/s, the rest's turn rate
+  // m/s^2: restoring plus the slip's rate along the rest, which pulls on the lag as well: the lag is
+  // |s| restRate / pull (docs/sliding.md eq. 4.17); positive wherever a Creep is found.
+  double pull = 0;
 };
 // std::nullopt when there is no attracting rest next to the direction opposite the rolling friction
-// force. Where rolling needs next to no friction (an upright coin rolling straight: every direction
-// is neutral) the search starts from `neutralStart` when given, else from the slip's own direction:
+// force, or when the slip closes along it faster than the rest pulls (pull <= 0: no slow direction).
+// Where rolling needs next to no friction (an upright coin rolling straight: every direction is
+// neutral) the search starts from `neutralStart` when given, else from the slip's own direction:
 // a creeping segment passes its own so that the rest keeps its side while the slip passes zero.
 std::optional<Creep> findCreep(const CoinModel& model, const SlidingStateVec& y, double mu,
                                const std::optional<Eigen::Vector3d>& neutralStart = std::nullopt);
@@ -80,9 +84,9 @@ SlidingRates slidingRatesAlong(const CoinModel& model, const SlidingStateVec& y,
 Forward slidingForwardAlong(const CoinModel& model, const SlidingState& state, double mu,
                             const Eigen::Vector3d& slipHat);
 
-// -d(s_perp . s-dot)/d(angle) at the slip's own direction, m/s^2: the pull towards a rest (positive)
-// or away from one; the direction turns at this over |s|.
-double slipDirectionRestoring(const CoinModel& model, const SlidingState& state, double mu);
+// Creep::pull as if the rest were at the slip's own direction, m/s^2: -d(s_perp . s-dot)/d(angle)
+// there plus s_hat . s-dot. Near a rest it is the rest's pull to a part in 1e5.
+double slipDirectionPull(const CoinModel& model, const SlidingState& state, double mu);
 
 // m/s: speeds below this are the slip's round-off, not a direction (docs/sliding.md §4).
 inline constexpr double kSlipRoundOff = 1e-13;

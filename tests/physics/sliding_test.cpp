@@ -106,9 +106,9 @@ double turningAlong(const CoinModel& m, const SlidingStateVec& y, double mu, con
 Eigen::Vector3d alongAngle(double angle) { return {std::cos(angle), 0, std::sin(angle)}; }
 
 // The creeping slide's friction direction against its defining equations, each checked another way:
-// the rest turns the slip at nothing, the lagging direction at the rest's own rate (eq. 4.14), the
-// restoring is the slope there, and the rest's rate is the difference of the rests found at states
-// a little before and after along the motion.
+// the rest turns the slip at nothing, the lagging direction as (4.17) says, the restoring is the slope
+// there, the rest's rate is the difference of the rests found at states a little before and after
+// along the motion, and the pull is the restoring plus the slip's rate along the rest.
 TEST(Creep, TheRestAndItsLagSolveTheirEquations) {
   CoinModel m = diskModel(0.4, 0.0375, 9.81);
   const double mu = 0.2;
@@ -137,15 +137,17 @@ TEST(Creep, TheRestAndItsLagSolveTheirEquations) {
       };
       const double restRate = (restAngleAt(kTimeStep) - restAngleAt(-kTimeStep)) / (2 * kTimeStep);
       EXPECT_TRUE(isNear(rest->restRate, restRate, 1e-5 * std::abs(restRate) + 1e-9)) << theta;
-      // A creeping slip of 1e-6 m/s lags its rest: friction along the lagging direction turns it at
-      // the rest's rate.
-      const double slipSpeed = 1e-6;
-      y.tail<2>() = slipSpeed * Eigen::Vector2d(std::cos(slipAngle), std::sin(slipAngle));
+      const double slipRate = rest->slipHat.x() * flow[kSlipX] + rest->slipHat.z() * flow[kSlipZ];
+      EXPECT_TRUE(isNear(rest->pull, rest->restoring + slipRate, 1e-12 * rest->restoring)) << theta;
+      // A creeping slip of 1e-6 m/s lags its rest: friction along the lagging direction turns it as
+      // the slip along the rest, sigma, times the rest's rate, pulled by K / P (eq. 4.17).
+      y.tail<2>() = 1e-6 * Eigen::Vector2d(std::cos(slipAngle), std::sin(slipAngle));
+      const double sigma = y[kSlipX] * rest->slipHat.x() + y[kSlipZ] * rest->slipHat.z();
       const std::optional<Creep> lagging = findCreep(m, y, mu);
       ASSERT_TRUE(lagging) << theta;
-      EXPECT_LT(std::abs(turningAlong(m, y, mu, lagging->slipHat) - slipSpeed * lagging->restRate) / lagging->restoring,
-                1e-12)
-          << theta;
+      const double target = sigma * lagging->restRate * lagging->restoring / lagging->pull;
+      EXPECT_LT(std::abs(turningAlong(m, y, mu, lagging->slipHat) - target) / lagging->restoring, 1e-12) << theta;
+      EXPECT_GT(std::abs(target) / lagging->restoring, 1e-9) << theta;  // the lag is not lost in the check
       ++checked;
     }
   }

@@ -12,7 +12,9 @@ inline constexpr double kRollingReferenceLoad = 1.0;
 inline constexpr double kRollingReferenceRate = 1.0;
 
 // rad/s. Below this rolling rate omega . h the couple fades linearly to zero instead of
-// switching sign; a spin-down rolls a thousand times faster than this until it is flat.
+// switching sign; a spin-down rolls a thousand times faster than this until it is flat. A coin whose
+// rim stops rolling before it is flat (the coin toss, its last 0.77 ms) sits inside the fade, where the
+// couple is viscous and stiff: rate N a / (this I_X) ~ 1e7 1/s (docs/euler_disk.md eq. 2.14a).
 inline constexpr double kRollingRegularisationRate = 1e-3;
 
 struct RollingResistance {

@@ -235,11 +235,16 @@ class Turning {
         mu_(mu) {}
 
   double operator()(double angle) const {
+    const Eigen::Vector2d rate = slipRateAt(angle);
+    return -std::sin(angle) * rate.x() + std::cos(angle) * rate.y();
+  }
+
+  // s-dot (floor x, z) with friction along -s_hat(angle).
+  Eigen::Vector2d slipRateAt(double angle) const {
     Sliding terms = undirected_;
     directFriction(model_, terms, mu_, floorDirection(angle));
     const Accelerations a = accelerations(model_, state_, terms, effectLoads_);
-    const Eigen::Vector2d rate = slipRate(model_, terms, state_.attitude.omegaBody, a.dOmega, a.N, mu_);
-    return -std::sin(angle) * rate.x() + std::cos(angle) * rate.y();
+    return slipRate(model_, terms, state_.attitude.omegaBody, a.dOmega, a.N, mu_);
   }
 
   double restoringAt(double angle) const {
@@ -343,9 +348,9 @@ Forward slidingForwardAlong(const CoinModel& model, const SlidingState& state, d
 
 double slipDirectionPull(const CoinModel& model, const SlidingState& state, double mu) {
   const double angle = angleOf(state.slip);
-  const SlidingStateVec y = toVector(state);
-  const SlidingStateVec dy = ratesAlong(model, y, mu, angle).dy;
-  return Turning(model, y, mu).restoringAt(angle) + std::cos(angle) * dy[kSlipX] + std::sin(angle) * dy[kSlipZ];
+  const Turning turning(model, toVector(state), mu);
+  const Eigen::Vector2d rate = turning.slipRateAt(angle);
+  return turning.restoringAt(angle) + std::cos(angle) * rate.x() + std::sin(angle) * rate.y();
 }
 
 }  // namespace coinroll::physics

@@ -496,7 +496,8 @@ bool HybridRun::switchIfDue() {
   const auto tooManySwitches = [this](double t) {
     std::size_t recent = 0;
     for (const ModeSwitch& w : switches_) recent += w.t > t - 1 ? 1 : 0;
-    return recent >= kMaxSwitchesPerSecond;
+    switchRefused_ = recent >= kMaxSwitchesPerSecond;
+    return switchRefused_;
   };
   const double t = handover->t, dissipated = handover->dissipated;
   const physics::SlidingState& state = handover->state;
@@ -563,6 +564,10 @@ std::optional<RunEvent> HybridRun::stoppedBy(const physics::CoinState& continuat
     return runEventOf(static_cast<int>(ending_->event), ending_->t,
                       flightSample(simulation_.model, ending_->state, ending_->dissipated, continuation));
   }
+  // A switch found before the duration but after the last query has not stopped the run: asked now,
+  // the run would have named it stick-slip (a sweep whose duration fell between a bounce's touchdown
+  // and the next summary point ended `stick-slip`).
+  if (segment_->handover() && !switchRefused_) return std::nullopt;
   return segment_->stoppedBy(continuation);
 }
 

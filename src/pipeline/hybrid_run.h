@@ -66,6 +66,9 @@ class HybridRun final : public Motion {
     double dissipated = 0;
   };
   std::optional<Ending> ending_;
+  // The current segment's switch was refused (more than the run allows per second): stick-slip ends
+  // the run there. Any other switch the segment ended in is the next sample's to take, not a stop.
+  bool switchRefused_ = false;
   integrate::Stats finishedStats_;  // of the segments before the current one
 };
 

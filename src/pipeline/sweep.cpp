@@ -72,12 +72,14 @@ PointSummary summarize(const Simulation& simulation) {
     summary.thetaEnd = last.theta;
     summary.energyEnd = energy;
   };
+  // The run goes on to its duration first: a stop after the last summary point is still its stop.
+  const std::optional<RunSample> atDuration = run.sampleAt(simulation.duration);
   if (const auto hit = run.stoppedBy()) {
     summary.end = physics::eventName(hit->event);
     summary.tEnd = hit->t;
     ending(hit->state, hit->forward.energy);
   } else {
-    const RunSample last = *run.sampleAt(simulation.duration);
+    const RunSample& last = *atDuration;
     summary.end = "duration";
     summary.tEnd = simulation.duration;
     ending(last.state, last.forward.energy);

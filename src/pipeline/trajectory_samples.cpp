@@ -73,6 +73,11 @@ TrajectoryReport sampleTrajectory(const Simulation& simulation, double sampleDt,
     row(values);
     ++result.rows;
   }
+  // The rows end at the last multiple of the sample step; the run goes on to its duration, and a stop
+  // after the last row is still its stop.
+  if (result.rows == rows && static_cast<double>(rows - 1) * sampleDt < simulation.duration) {
+    run.sampleAt(simulation.duration);
+  }
   result.stoppedBy = run.stoppedBy();
   if (result.stoppedBy && !simulation.model.friction.cone) {
     noteFrictionNeeded(result.frictionNeeded, result.stoppedBy->t, result.stoppedBy->forward);

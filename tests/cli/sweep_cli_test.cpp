@@ -174,6 +174,25 @@ TEST_F(SweepCliTest, ATossSweepsThetaEndIsTheFaceSimulateReports) {
   EXPECT_GT(faces["tails"], 0);
 }
 
+// A run's end lies at its duration, not at the last summary point before it: a toss whose duration
+// fell between a bounce's touchdown and the next point ended `stick-slip` at that touchdown.
+TEST_F(SweepCliTest, ARunEndsAtItsDurationWhereverTheSummaryPointsFall) {
+  const std::string toss = std::string(COINROLL_SOURCE_DIR) + "/examples/coin_toss.json --set duration=0.5147";
+  const fs::path sweep = dir_ / "short.csv";
+  const RunResult r = runCoinroll("sweep " + toss + " --grid initial.v_x=0.1:0.1:1 -q -o " + sweep.string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  std::stringstream rows(slurp(sweep));
+  std::string line;
+  std::getline(rows, line);
+  ASSERT_TRUE(std::getline(rows, line));
+  const std::vector<std::string> f = fields(line);
+  EXPECT_EQ(f.at(2), "duration") << line;
+  EXPECT_EQ(f.at(3), "0.5147") << line;
+  const RunResult point = runCoinroll("simulate " + toss + " --csv " + (dir_ / "point.csv").string());
+  ASSERT_EQ(point.exitCode, 0) << point.output;
+  EXPECT_EQ(point.output.find("stopped early"), std::string::npos) << point.output;
+}
+
 // Every row ends with the sweep's identity: the grid's size and a digest of the scene and the grid,
 // equal in every shard and the unsharded file, different for another scene, --set or grid. A merge
 // refuses a mixture and a shard cut after a whole row, and reads shards from pipes.

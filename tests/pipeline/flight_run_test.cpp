@@ -91,6 +91,32 @@ TEST(Flight, ACoinDroppedFlatRestsOnItsFace) {
   }
 }
 
+// The rows stop at the last multiple of the sample step, the run at its duration. A bounce's touchdown
+// between the two was reported as the run's stop, named stick-slip; a rest there was not reported.
+TEST(Flight, WhatHappensBetweenTheLastRowAndTheDurationIsTheRunsOwn) {
+  const pipeline::Simulation bouncing = [] {
+    nlohmann::json scene = edgeDownDrop();
+    scene["duration"] = 0.105;  // the first touchdown is at 0.10096 s, after the last row's 0.09 s
+    return simulationOf(scene);
+  }();
+  const pipeline::TrajectoryReport bounced = pipeline::sampleTrajectory(bouncing, 0.03, [](auto) {});
+  EXPECT_EQ(bounced.rows, 4);
+  EXPECT_FALSE(bounced.stoppedBy) << physics::eventName(bounced.stoppedBy->event);
+  ASSERT_EQ(bounced.impacts.size(), 1u);
+  EXPECT_TRUE(isNear(bounced.impacts[0].t, std::sqrt(2 * kDropHeight / kG), 1e-9));
+
+  nlohmann::json flat = edgeDownDrop();
+  flat["coin"]["thickness"] = 0.002;
+  flat["initial"] = {{"theta", 89.97}, {"y", 0.05}, {"omega_Z", 4}};
+  flat["duration"] = 0.105;
+  const pipeline::Simulation resting = simulationOf(flat);
+  const pipeline::TrajectoryReport rested = pipeline::sampleTrajectory(resting, 0.03, [](auto) {});
+  ASSERT_TRUE(rested.stoppedBy);
+  EXPECT_EQ(rested.stoppedBy->event, physics::ModelEvent::Rest);
+  EXPECT_GT(rested.stoppedBy->t, 0.09);
+  EXPECT_LT(rested.stoppedBy->t, 0.105);
+}
+
 TEST(Flight, ATiltedSpinningDropClosesItsEnergyBudgetToItsRest) {
   nlohmann::json scene = edgeDownDrop();
   scene["coin"]["thickness"] = 0.002;

@@ -50,8 +50,20 @@ struct DuplicateKey {
   std::string path;  // "initial.theta", "effects.0.length"
 };
 
-// The parser's callback, refusing duplicate keys. It follows the nesting: each open object keeps
-// the keys seen so far, each open array its element count, so a duplicate is named by its path.
+// An array or object wider than a scene can mean, at `path`. Thrown from the parser's callback.
+struct TooWide {
+  std::string path;
+};
+
+// A scene's arrays and objects hold a handful of values. One of millions (a 16 MB array of zeros is
+// eight million) takes 16 bytes a value to hold and as much again to free, as nlohmann's destructor
+// first moves the elements onto a list of its own: near the address-space limit that second
+// allocation, made while the scene's error unwound, ended the program in std::terminate.
+constexpr std::size_t kMaxSceneWidth = 1 << 16;
+
+// The parser's callback, refusing duplicate keys and arrays or objects wider than kMaxSceneWidth. It
+// follows the nesting: each open object keeps the keys seen so far, each open array its element
+// count, so a duplicate or a wide value is named by its path.
 class DuplicateKeyGuard {
  public:
   bool operator()(int /*depth*/, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
@@ -72,6 +84,7 @@ class DuplicateKeyGuard {
       case Event::key: {
         std::string key = parsed.get<std::string>();
         if (!frames_.back().keys.insert(key).second) throw DuplicateKey{joinedPath(key)};
+        if (frames_.back().keys.size() > kMaxSceneWidth) throw TooWide{pathOfInnermost()};
         frames_.back().pendingKey = std::move(key);
         break;
       }
@@ -95,13 +108,26 @@ class DuplicateKeyGuard {
   std::string nameOfNextValue() {
     if (frames_.empty()) return {};
     Frame& parent = frames_.back();
-    return parent.isArray ? std::to_string(parent.elements++) : parent.pendingKey;
+    if (!parent.isArray) return parent.pendingKey;
+    if (static_cast<std::size_t>(parent.elements) >= kMaxSceneWidth) throw TooWide{pathOfInnermost()};
+    return std::to_string(parent.elements++);
   }
 
   std::string joinedPath(const std::string& key) const {
     std::string path;
     for (std::size_t i = 1; i < frames_.size(); ++i) path += printableKey(frames_[i].name) + ".";
     return path + printableKey(key);
+  }
+
+  // The innermost open array's or object's path, "(top level)" for the document itself.
+  std::string pathOfInnermost() const {
+    if (frames_.size() < 2) return "(top level)";
+    std::string path = printableKey(frames_[1].name);
+    for (std::size_t i = 2; i < frames_.size(); ++i) {
+      path += '.';
+      path += printableKey(frames_[i].name);
+    }
+    return path;
   }
 
   std::vector<Frame> frames_;
@@ -143,6 +169,9 @@ nlohmann::json parseSceneText(std::string_view text, std::string_view sourceName
   }
   try {
     return nlohmann::json::parse(text, DuplicateKeyGuard());
+  } catch (const TooWide& wide) {
+    throw SceneError(fmt::format("{}: {}: more than {} values in one array or object; {}", sourceName, wide.path,
+                                 kMaxSceneWidth, "a scene file is a small JSON document"));
   } catch (const DuplicateKey& duplicate) {
     throw SceneError(fmt::format("{}: {}: given twice; give each key once (which value was meant?)", sourceName,
                                  duplicate.path));

@@ -1627,8 +1627,8 @@ case("compare-too-large", C, "two PNGs declaring 20000x20000: more than compare 
      "ulimit -v 1000000; exec {bin} compare huge.png huge.png", 2,
      "are 20000x20000, more than the 58982400 pixels compare decodes (7680x7680, the largest picture coinroll draws)",
      key="20000x20000", shell=True, files=HUGE, timeout=5, na_before=ISSUE21_3)
-case("compare-memory", C, "two 7680x7680 PNGs under an 800 MB address-space limit: refused before decoding",
-     "ulimit -v 800000; exec {bin} compare max.png max2.png", 2,
+case("compare-memory", C, "two 7680x7680 PNGs under a 650 MB address-space limit: refused before decoding",
+     "ulimit -v 650000; exec {bin} compare max.png max2.png", 2,
      "not enough memory for comparing two 7680x7680 pictures: it needs about 675 MiB", key="memory", shell=True,
      files=HUGE, timeout=5, na_before=ISSUE21_3)
 # A decode cannot stop half-way; on a loaded machine one can outlast the 3 s grace, and then the
@@ -1680,10 +1680,16 @@ case("sweep-thread-stacks", C, "sweep --threads 4 with 1 GB thread stacks under 
      "--grid initial.theta=1:20:40 -o o.csv", 1, "of 4: Resource temporarily unavailable: a thread needs memory for "
      "its stack, within the address-space limit of 1465 MiB (ulimit -v 1500000)",
      key="thread", shell=True, timeout=10)
-# A bare std::bad_alloc before: a 16 MiB array parsed into JSON needs some 300 MB more.
-case("out-of-memory-named", C, "a 16 MB scene array under a 500 MB address-space limit: out of memory, named",
-     "ulimit -v 500000; exec {bin} simulate big.json --csv o.csv", 1,
-     "out of memory: the address-space limit of 489 MiB (ulimit -v 500000) is used up", key="memory", shell=True,
+# A bare std::bad_alloc before. The scene reader's 16 MiB buffer cannot be had under 16 MB.
+case("out-of-memory-named", C, "a scene under a 16 MB address-space limit: out of memory, named",
+     "ulimit -v 16000; exec {bin} simulate scene.json --csv o.csv", 1,
+     "out of memory: the address-space limit of 16 MiB (ulimit -v 16000) is used up", key="memory", shell=True,
+     timeout=10)
+# A 16 MiB array is eight million JSON values: parsed, it took 128 MB, and as much again to free,
+# which under a 250 MB limit ended the program in std::terminate as the scene's error unwound.
+case("scene-too-many-values", C, "a 16 MB scene array of zeros under a 250 MB address-space limit",
+     "ulimit -v 250000; exec {bin} simulate big.json --csv o.csv", 2,
+     "big.json: (top level): more than 65536 values in one array or object", key="(top level)", shell=True,
      files={"big.json": "[" + "0," * ((8 << 20) - 4) + "0]"}, timeout=10)
 # A damaged row numbered 9e18 made sweep-merge count (and list) every point up to it.
 case("merge-point-9e18", C, "sweep-merge with a row numbered 9e18 under a 1 GB address-space limit",

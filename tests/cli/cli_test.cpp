@@ -80,6 +80,37 @@ TEST_F(CliTest, EveryBadSceneGetsExitTwoANamedKeyAndNoFile) {
   }
 }
 
+// FFmpeg and Mesa (with LLVM, some 140 libraries) are opened by the first render call, not at
+// start-up: linked, they cost every command 50 ms before main. The loader's own log says which
+// files a run opened.
+TEST_F(CliTest, OnlyARenderLoadsFfmpegAndMesa) {
+  const fs::path scene = writeScene(kValid);
+  const auto loaded = [](const RunResult& r, const std::string& soname) {
+    return r.output.find("file=" + soname) != std::string::npos;
+  };
+  const std::string simulate = "simulate " + scene.string() + " --csv " + (dir_ / "a.csv").string();
+  for (const std::string& arguments : {std::string("--version"), simulate}) {
+    const RunResult r = run(arguments, "LD_DEBUG=files");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    ASSERT_TRUE(loaded(r, "libfmt.so")) << "the loader's log is missing: " << r.output.substr(0, 400);
+    for (const char* soname : {"libavcodec.so", "libavformat.so", "libswscale.so", "libOSMesa.so", "libEGL.so"}) {
+      EXPECT_FALSE(loaded(r, soname)) << arguments << " loaded " << soname;
+    }
+  }
+  const RunResult still =
+      run("still " + scene.string() + " --time 0.1 --set render.width=64 --set render.height=48 -o " +
+              (dir_ / "a.png").string(),
+          "LD_DEBUG=files");
+  ASSERT_EQ(still.exitCode, 0) << still.output;
+  EXPECT_TRUE(loaded(still, "libOSMesa.so") || loaded(still, "libEGL.so"));
+  const RunResult video =
+      run("render " + scene.string() + " --set duration=0.1 --set render.width=64 --set render.height=48 -o " +
+              (dir_ / "a.mp4").string(),
+          "LD_DEBUG=files");
+  ASSERT_EQ(video.exitCode, 0) << video.output;
+  EXPECT_TRUE(loaded(video, "libavcodec.so"));
+}
+
 TEST_F(CliTest, BadCommandLinesGetExitTwo) {
   const fs::path scene = writeScene(kValid), csv = dir_ / "out.csv";
   EXPECT_EQ(run("simulate " + scene.string() + " --csv " + csv.string() + " --sample-dt 0").exitCode, 2);

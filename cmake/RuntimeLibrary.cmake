@@ -1,9 +1,9 @@
 # A library coinroll opens when it first calls into it (src/io/runtime_library.h) instead of linking
-# it: sets <prefix>_SONAME, read from the file pkg-config found (the headers' version), and
-# <prefix>_PACKAGE, the Debian package holding it, for the forwarders' messages. The packages also
-# go to the .deb's Depends (COINROLL_RUNTIME_PACKAGES), which dpkg-shlibdeps, reading only what is
-# linked, no longer finds.
-function(coinroll_runtime_library prefix library_file)
+# it: gives `target`'s forwarders COINROLL_<prefix>_SONAME, read from the file pkg-config found (the
+# headers' version), and COINROLL_<prefix>_PACKAGE, the Debian package holding it, for their
+# messages. The packages also go to the .deb's Depends (COINROLL_RUNTIME_PACKAGES), which
+# dpkg-shlibdeps, reading only what is linked, no longer finds.
+function(coinroll_runtime_library target prefix library_file)
   execute_process(COMMAND ${CMAKE_OBJDUMP} -p ${library_file} OUTPUT_VARIABLE dump RESULT_VARIABLE failed
                   ERROR_QUIET)
   if(failed OR NOT dump MATCHES "SONAME +([^\n]+)")
@@ -17,6 +17,6 @@ function(coinroll_runtime_library prefix library_file)
   else()
     set(package "the package that provides ${soname}")
   endif()
-  set(${prefix}_SONAME ${soname} PARENT_SCOPE)
-  set(${prefix}_PACKAGE ${package} PARENT_SCOPE)
+  target_compile_definitions(${target} PRIVATE COINROLL_${prefix}_SONAME="${soname}"
+                                                COINROLL_${prefix}_PACKAGE="${package}")
 endfunction()

@@ -103,7 +103,20 @@ class Control {
       this.box = element('input', { type: 'number', step: 'any', 'aria-label': path });
       if (this.key.minimum) this.box.min = this.key.minimum.value;
       if (this.key.maximum) this.box.max = this.key.maximum.value;
-      this.slider.addEventListener('input', () => this.commit(fromSlider(this.scale, Number(this.slider.value)), true));
+      this.slider.addEventListener('input', () => this.commit(fromSlider(this.scale, Number(this.slider.value))));
+      // A drag keeps the span it started on until the pointer lets go: re-centring the span on each
+      // value the drag writes would move the value under a still pointer, and compound on every move.
+      this.slider.addEventListener('pointerdown', () => {
+        this.held = true;
+        const release = () => {
+          window.removeEventListener('pointerup', release, true);
+          window.removeEventListener('pointercancel', release, true);
+          this.held = false;
+          this.refresh();
+        };
+        window.addEventListener('pointerup', release, true);
+        window.addEventListener('pointercancel', release, true);
+      });
       this.box.addEventListener('change', () => this.commit(this.box.value === '' ? NaN : Number(this.box.value)));
       this.row.append(this.slider, this.box, element('span', { class: 'unit', text: this.key.unit || '' }));
     }
@@ -131,21 +144,22 @@ class Control {
       const usable = value !== undefined && !(this.optional && !present);
       this.slider.disabled = this.box.disabled = !usable;
       if (document.activeElement !== this.box) this.box.value = value !== undefined ? numberText(value) : '';
-      if (!this.dragging) this.scale = sliderScale(this.key, Number(value));
-      if (value !== undefined) this.slider.value = toSlider(this.scale, value);
+      if (!this.held) {
+        this.scale = sliderScale(this.key, Number(value));
+        if (value !== undefined) this.slider.value = toSlider(this.scale, value);
+      }
+      this.slider.dataset.from = this.scale.from;
+      this.slider.dataset.to = this.scale.to;
     }
   }
 
-  commit(value, fromSlider = false) {
+  commit(value) {
     if (this.key.type === 'number' && !Number.isFinite(value)) {
       this.error.textContent = `${this.path}: type a number${this.key.unit ? ` in ${this.key.unit}` : ''}, range ${rangeText(this.key)}`;
       return;
     }
-    // The slider keeps its span while it is dragged, so that the value follows the pointer.
-    this.dragging = fromSlider;
     setPath(this.page.scene, this.path, value);
     this.page.changed(this.path);
-    this.dragging = false;
   }
 
   onCheck() {

@@ -19,6 +19,10 @@ struct Event {
   // crossing there and back within one step (a friction cone grazed for a millisecond) shows no
   // sign change at the step's ends. Each point costs one g; 0 checks the ends only.
   int interiorChecks = 0;
+  // g's rate dg/dt (or any function with its sign and its zeros), where the state gives it cheaply:
+  // a dip of g to the far side of zero and back within one step, which neither the ends nor the
+  // interior points see, has an extremum where this changes sign; it is located there and read.
+  std::function<double(double t, const Vec<N>& y)> rate = nullptr;
 };
 
 template <int N>

@@ -29,7 +29,10 @@ class Trajectory {
       : f_(std::move(f)), config_(config), events_(std::move(events)), t0_(t0), t_(t0), y_(y0) {
     validate();
     f0_ = evaluate(t_, y_);
-    for (const Event<N>& e : events_) gAtStart_.push_back(e.g(t_, y_));
+    for (const Event<N>& e : events_) {
+      gAtStart_.push_back(e.g(t_, y_));
+      rateAtStart_.push_back(e.rate ? e.rate(t_, y_) : 0.0);
+    }
     h_ = isAdaptive(config_.method) ? initialStep() : config_.dt;
     interval_ = hermiteInterval<N>(t_, 0.0, y_, f0_, y_, f0_);
   }
@@ -253,7 +256,23 @@ class Trajectory {
           from = t, gFrom = g;
         }
       }
-      if (!crossed && !crosses(e, gFrom, gEnd)) continue;
+      const double rateFrom = rateAtStart_[i];
+      if (e.rate) rateAtStart_[i] = e.rate(t_, y_);
+      if (!crossed && !crosses(e, gFrom, gEnd)) {
+        // No sign change: an extremum between the step's ends may still reach the far side of zero.
+        // Only the whole step's ends are compared: with interior points the dip is between two of
+        // them, and their rates are not read.
+        if (!e.rate || e.interiorChecks > 0) continue;
+        const double rateEnd = rateAtStart_[i];
+        const bool dip = e.direction <= 0 && gFrom > 0 && gEnd > 0 && rateFrom < 0 && rateEnd > 0;
+        const bool peak = e.direction >= 0 && gFrom < 0 && gEnd < 0 && rateFrom > 0 && rateEnd < 0;
+        if (!dip && !peak) continue;
+        const double tExtremum = locateRoot([&](double t) { return e.rate(t, interval().at(t)); }, from, rateFrom,
+                                            t_, rateEnd);
+        const double gExtremum = e.g(tExtremum, interval().at(tExtremum));
+        if (!crosses(e, gFrom, gExtremum)) continue;
+        to = tExtremum, gTo = gExtremum;
+      }
       const double tRoot = locateRoot([&](double t) { return e.g(t, interval().at(t)); }, from, gFrom, to, gTo);
       EventHit<N> hit{e.name, e.id, tRoot, interval().at(tRoot)};
       if (!e.terminal) {
@@ -288,6 +307,7 @@ class Trajectory {
   SolverConfig config_;
   std::vector<Event<N>> events_;
   std::vector<double> gAtStart_;  // each event's g at the start of the current step
+  std::vector<double> rateAtStart_;  // and its rate, for the events that give one
   double t0_;                     // s, where the run started (the pace is measured from here)
   double t_;                      // s, end of the last accepted step
   Vec<N> y_, f0_;                 // state and slope at t_

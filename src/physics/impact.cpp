@@ -181,6 +181,7 @@ ImpactOutcome resolveImpact(const CoinModel& m, const FlightState& state, const 
     // closes hundreds of times slower than (3.7) lets steps grow.
     double stepSize = dp;
     bool settled = false;
+    Mode stepMode = mode;
     if (mode.contact == ContactMode::Slipping) {
       const double slip = horizontal(s.u).norm();
       const Eigen::Vector3d slipRate = horizontal(K * impulseRate(mode, s.u, mu));
@@ -188,7 +189,11 @@ ImpactOutcome resolveImpact(const CoinModel& m, const FlightState& state, const 
       const double closing = -slipRate.dot(direction);
       settled = closing > 0 && (slipRate + closing * direction).norm() <= kSettledTurn * closing;
       if (settled) {
+        // Friction keeps the settled direction all the way to the stop, so the step holds it: the
+        // rate re-read at the stop, where the slip has no direction, would drop up to a sixth of the
+        // step's friction impulse, and an impact that sticks would gain energy (docs/flight.md 3.8).
         stepSize = std::min(dp, slip / closing);
+        stepMode = Mode{.contact = ContactMode::Ray, .ratio = -mu * direction};
       } else {
         if (slipRate.norm() > 0) stepSize = std::min(dp, 0.5 * slip / slipRate.norm());
         if (directionStiffness > 0) stepSize = std::min(stepSize, slip / directionStiffness);
@@ -197,15 +202,15 @@ ImpactOutcome resolveImpact(const CoinModel& m, const FlightState& state, const 
     const auto ended = [&](const ImpulsePath& x) {
       return compressing ? x.u.y() >= 0 : x.work >= target || x.u.y() < 0;
     };
-    ImpulsePath next = step(s, stepSize, mode, K, mu);
+    ImpulsePath next = step(s, stepSize, stepMode, K, mu);
     const bool reachesTheStop = settled && stepSize < dp && !ended(next);
     if (ended(next)) {
       double lo = 0, hi = 1;
       for (int i = 0; i < kBisections; ++i) {
         const double mid = 0.5 * (lo + hi);
-        (ended(step(s, mid * stepSize, mode, K, mu)) ? hi : lo) = mid;
+        (ended(step(s, mid * stepSize, stepMode, K, mu)) ? hi : lo) = mid;
       }
-      next = step(s, hi * stepSize, mode, K, mu);
+      next = step(s, hi * stepSize, stepMode, K, mu);
     }
     s = next;
     if (mode.contact == ContactMode::Slipping &&

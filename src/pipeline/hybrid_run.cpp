@@ -116,13 +116,6 @@ struct SlidingKind {
   }
 };
 
-// theta' of a coin at upright (theta = 0), from (1.4) of docs/quaternion_formulation.md: the symmetry
-// axis n turns at omega x n, and theta = atan2(-n_y, |n_xz|).
-double uprightTiltRate(const Eigen::Quaterniond& q, const Eigen::Vector3d& omegaBody) {
-  const Eigen::Vector3d normal = q * Eigen::Vector3d::UnitZ();
-  return -(q * omegaBody).cross(normal).y();
-}
-
 // The attitude q at upright turned to theta = side 1e-12 rad, where the rim's lowest point is that
 // side's corner: at |theta| ~ 1e-16 which corner is lowest is round-off's (thetaOf and the contact
 // geometry can disagree on it). The turn is about y x n, which at upright moves theta and nothing else.
@@ -370,7 +363,11 @@ void HybridRun::startSliding(double t, const physics::SlidingState& state, doubl
   const auto forwardOf =
       remembering<kSlidingSize>([rhs](const Y& y) { return rhs.forward(y.head<physics::kSlidingStateSize>()); });
   std::vector<integrate::Event<kSlidingSize>> events = geometryEvents<kSlidingSize>(
-      model, Formulation::Quaternion, [](const Y& y) { return physics::thetaOf(slidingStateOf(y).attitude.q); });
+      model, Formulation::Quaternion, [](const Y& y) { return physics::thetaOf(slidingStateOf(y).attitude.q); },
+      [](const Y& y) {
+        const physics::QuaternionState attitude = slidingStateOf(y).attitude;
+        return tiltRate(attitude.q, attitude.omegaBody);
+      });
   events.push_back(modelEvent<kSlidingSize>(
       ModelEvent::LiftOff,
       [model, forwardOf](double, const Y& y) { return physics::liftOffMargin(model, forwardOf(y)); }, -1,
@@ -514,7 +511,7 @@ bool HybridRun::switchIfDue() {
     retire();
     // The corner the tilt moves towards lands; the one the coin rolled on is the band's other end.
     const physics::FlightState& leaving = handover->flight;
-    const double side = uprightTiltRate(leaving.q, leaving.omegaBody) < 0 ? -1.0 : 1.0;
+    const double side = tiltRate(leaving.q, leaving.omegaBody) < 0 ? -1.0 : 1.0;
     physics::FlightState landing = leaving;
     landing.q = pastUpright(leaving.q, side);
     return land(t, onTheFloor(simulation_.model, landing), dissipated,

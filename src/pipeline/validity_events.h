@@ -98,10 +98,29 @@ integrate::Event<N> modelEvent(physics::ModelEvent kind, std::function<double(do
 
 // coin-flat or face-down (|theta| reaches physics::flatStopFor) and, for a rim with corners,
 // corner-switch (theta passes 0): the events of the coin's geometry, which always end the run.
-// `theta` reads the tilt of an integrated state.
+// theta's rate times cos theta, -d(n_y)/dt for the symmetry axis n (sin theta = -n_y): theta'
+// where the tilt is small, with its sign and zeros at every tilt, without a forward pass.
+inline double tiltRate(const Eigen::Quaterniond& q, const Eigen::Vector3d& omegaBody) {
+  const Eigen::Vector3d normal = q * Eigen::Vector3d::UnitZ();
+  return -(q * omegaBody).cross(normal).y();
+}
+
+template <physics::Formulation F, int N>
+double tiltRateOf(const integrate::Vec<N>& y) {
+  if constexpr (F == physics::Formulation::EulerAngles) {
+    return y[physics::kOmega_X];
+  } else {
+    const physics::QuaternionState s = physics::toQuaternionState(y.template head<physics::kQuaternionStateSize>());
+    return tiltRate(s.q, s.omegaBody);
+  }
+}
+
+// `theta` reads the tilt of an integrated state, `tiltRate` its rate's sign (tiltRateOf): a corner
+// rolled past upright and back within one step is seen at the turn of the tilt (issue 49).
 template <int N>
 std::vector<integrate::Event<N>> geometryEvents(const physics::CoinModel& model, physics::Formulation formulation,
-                                                std::function<double(const integrate::Vec<N>&)> theta) {
+                                                std::function<double(const integrate::Vec<N>&)> theta,
+                                                std::function<double(const integrate::Vec<N>&)> tiltRate) {
   using Y = integrate::Vec<N>;
   const physics::FlatStop flat = physics::flatStopFor(model, formulation);
   std::vector<integrate::Event<N>> events;
@@ -109,8 +128,10 @@ std::vector<integrate::Event<N>> geometryEvents(const physics::CoinModel& model,
       flat.event, [theta, tilt = flat.tilt](double, const Y& y) { return physics::flatMargin(theta(y), tilt); }, -1,
       true));
   if (physics::hasCorners(model)) {
-    events.push_back(modelEvent<N>(
-        physics::ModelEvent::CornerSwitch, [theta](double, const Y& y) { return theta(y); }, 0, true));
+    integrate::Event<N> corner = modelEvent<N>(
+        physics::ModelEvent::CornerSwitch, [theta](double, const Y& y) { return theta(y); }, 0, true);
+    corner.rate = [tiltRate](double, const Y& y) { return tiltRate(y); };
+    events.push_back(std::move(corner));
   }
   return events;
 }
@@ -124,7 +145,8 @@ std::vector<integrate::Event<N>> validityEvents(const physics::CoinModel& model,
                                                 std::function<physics::Forward(const integrate::Vec<N>&)> forward) {
   using Y = integrate::Vec<N>;
   using physics::ModelEvent;
-  std::vector<integrate::Event<N>> events = geometryEvents<N>(model, F, [](const Y& y) { return thetaOf<F, N>(y); });
+  std::vector<integrate::Event<N>> events = geometryEvents<N>(
+      model, F, [](const Y& y) { return thetaOf<F, N>(y); }, [](const Y& y) { return tiltRateOf<F, N>(y); });
   events.push_back(modelEvent<N>(
       ModelEvent::LiftOff, [model, forward](double, const Y& y) { return physics::liftOffMargin(model, forward(y)); },
       -1, validityIsTerminal));

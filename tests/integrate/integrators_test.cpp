@@ -218,6 +218,27 @@ TEST(Events, FallingZeroIsLocatedToATenthOfANanosecond) {
   }
 }
 
+// An event whose g dips through zero and back inside one step shows no sign change at the step's
+// ends: with its rate given, the dip's minimum is located and read, and the first crossing found.
+// y = cos t: g = y + 0.995 dips to -0.005 at pi, under zero for |t - pi| < acos(0.995), inside one
+// RK4 step from 3 to 3.5. Without the rate the dip is not seen at all.
+TEST(Events, ADipInsideOneStepIsFoundFromTheRate) {
+  for (const bool withRate : {false, true}) {
+    Event<2> dip{.name = "dip", .g = [](double, const V2& y) { return y[0] + 0.995; }, .direction = -1};
+    if (withRate) dip.rate = [](double, const V2& y) { return y[1]; };
+    Trajectory trajectory(Oscillator{}, 0.0, V2(1, 0), SolverConfig{.method = Method::Rk4, .dt = 0.5}, {dip});
+    const bool ran = trajectory.stateAt(5.0).has_value();
+    if (!withRate) {
+      EXPECT_TRUE(ran);
+      continue;
+    }
+    ASSERT_FALSE(ran);
+    ASSERT_TRUE(trajectory.stoppedBy().has_value());
+    // The crossing on RK4's dense output of a step of 0.5 s: within its error of the exact one.
+    EXPECT_TRUE(isNear(trajectory.stoppedBy()->t, std::numbers::pi - std::acos(0.995), 2e-2));
+  }
+}
+
 TEST(Events, DirectionFilterSkipsTheOtherCrossing) {
   std::vector<Event<2>> events{{.name = "rising", .g = [](double, const V2& y) { return y[0]; }, .direction = +1}};
   Trajectory trajectory(Oscillator{}, 0.0, V2(1, 0), SolverConfig{.rtol = 1e-13, .atol = 1e-15}, events);

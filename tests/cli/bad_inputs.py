@@ -1460,6 +1460,22 @@ case("sigterm-grace-fifo", C, "one SIGTERM while opening a FIFO nobody reads: en
      "interrupted by SIGTERM and not stopped within 3 s", key="interrupted", files={"scene.json": VALID, "fifo": Fifo},
      signal=TERM, wait_for="fifo", settle=0.1, timeout=10, na_before=ISSUE21,
      gtest=("SignalsCliTest.ARequestToStopNotAnsweredInTimeEndsTheRunAtOnce",))
+# Standard error a pipe whose reader is gone (issue 50): the forced end's line raised SIGPIPE inside
+# the handler that had just locked the list of unfinished files to remove them, and the SIGPIPE
+# handler waited for that lock, spinning at 100 % CPU until SIGKILL. No message can arrive; the exit
+# code, the time and the directory say it. A stop the loop answers writes its line from the program,
+# not a handler: SIGPIPE ends it silently, as a reader gone always does, after the removal.
+DEAD_STDERR = " 2> >(exit 0)"
+ISSUE50 = "spun for ever before (issue 50)"
+case("sigterm-grace-fifo-stderr-gone", C, "one SIGTERM while opening a FIFO nobody reads, stderr a pipe nobody reads",
+     "exec {bin} " + FIFO_SIM + DEAD_STDERR, 1, None, shell=True, files={"scene.json": VALID, "fifo": Fifo},
+     signal=TERM, wait_for="fifo", settle=0.1, timeout=10, na_before=ISSUE50)
+case("sigint-twice-fifo-stderr-gone", C, "a second SIGINT while opening a FIFO nobody reads, stderr a pipe nobody reads",
+     "exec {bin} " + FIFO_SIM + DEAD_STDERR, 1, None, shell=True, files={"scene.json": VALID, "fifo": Fifo},
+     signal=INT, then=((INT, 0.5),), wait_for="fifo", settle=0.1, timeout=10, na_before=ISSUE50)
+case("sigint-sequence-stderr-gone", C, "SIGINT during a PNG sequence, stderr a pipe nobody reads: no frame left",
+     "exec {bin} " + LONG_RENDER + "f_%03d.png -q" + DEAD_STDERR, -signal.SIGPIPE, None, shell=True, files=EARLIER,
+     signal=INT, na_before=ISSUE50)
 # A signal ignored when coinroll starts stays ignored: nohup's SIGHUP.
 case("nohup-sighup", C, "SIGHUP under nohup (ignored from the start): the run goes on to its end",
      "trap '' HUP; exec {bin} simulate scene.json --csv o.csv --sample-dt 0.0005 --set duration=150", 0, None,

@@ -1557,6 +1557,66 @@ case("sigint-simulate-provenance", C, "SIGINT during simulate --provenance over 
      files={"scene.json": VALID, "o.csv": "an earlier CSV\n", "p.json": "an earlier provenance\n"},
      na_before=NO_SIDECARS, gtest=(G_SIDECAR_SIGNAL,))
 
+# --- export (issue 50): the page template is an input like the scene, read within a bound; the page
+# goes only under an HTML name, and its embedded scene cannot end or swallow the page's script.
+C = "export"
+PAGE_SLOT = '<script type="application/json" id="coinroll-scene">'
+PAGE = f"<html>{PAGE_SLOT}null</script><script>start()</script></html>"
+EXPORT = "COINROLL_PAGE=page.html exec {bin} export scene.json -q "
+WITH_PAGE = {"scene.json": VALID, "page.html": PAGE}
+EATEN = "no such check before (issue 50)"
+
+
+def check_embedded_scene(name, scene_name):
+    """The page `name` holds the scene named `scene_name` in its slot as JSON with no '<' in it (so no
+    '</script', '<!--' or '<script' can change where the element ends), and the page's script after it."""
+    def check(d):
+        html = (d / name).read_text()
+        start = html.find(PAGE_SLOT)
+        if start < 0:
+            return f"{name} has no scene element"
+        body = html[start + len(PAGE_SLOT):]
+        end = body.find("</script>")
+        embedded = body[:end]
+        if "<" in embedded:
+            return f"{name}: the embedded scene holds a raw '<': {embedded[:80]!r}"
+        if json.loads(embedded).get("name") != scene_name:
+            return f"{name}: the embedded scene's name is not {scene_name!r}"
+        return None if body[end:] == "</script><script>start()</script></html>" else f"{name}: the page after the scene changed"
+    return check
+
+
+case("export-over-template", C, "export -o the page template it reads (COINROLL_PAGE=page.html -o page.html)",
+     EXPORT + "-o page.html", 2, "-o page.html: that is the input page.html; choose another output name", key="page.html",
+     shell=True, files=WITH_PAGE, na_before=EATEN)
+case("export-over-template-link", C, "export -o a link to the page template",
+     EXPORT + "-o link.html", 2, "-o link.html: that is the input page.html; choose another output name",
+     key="link.html", shell=True, files={**WITH_PAGE, "link.html": ("symlink", "page.html")}, na_before=EATEN)
+case("export-page-dev-zero", C, "COINROLL_PAGE=/dev/zero (never ends)",
+     "COINROLL_PAGE=/dev/zero exec {bin} export scene.json -q -o o.html", 1,
+     "COINROLL_PAGE=/dev/zero: more than 67108864 bytes; a built page is about 1.2 MB", key="COINROLL_PAGE",
+     shell=True, timeout=10, na_before=EATEN)
+case("export-page-directory", C, "COINROLL_PAGE a directory",
+     "COINROLL_PAGE=sub exec {bin} export scene.json -q -o o.html", 1,
+     "COINROLL_PAGE=sub: is a directory; name the built page", key="COINROLL_PAGE", shell=True,
+     files={"scene.json": VALID, "sub": Dir}, na_before=EATEN)
+case("export-page-missing", C, "COINROLL_PAGE a file that does not exist",
+     "COINROLL_PAGE=nope.html exec {bin} export scene.json -q -o o.html", 1,
+     "COINROLL_PAGE=nope.html: cannot read the built page: No such file or directory", key="COINROLL_PAGE",
+     shell=True, na_before=EATEN)
+case("export-page-unreadable", C, "COINROLL_PAGE a file nobody may read (as nobody when run as root)",
+     "export COINROLL_PAGE=page.html; " + as_nobody_when_root("export scene.json -q -o o.html"), 1,
+     "COINROLL_PAGE=page.html: cannot read the built page: Permission denied", key="COINROLL_PAGE", shell=True,
+     files={"scene.json": VALID, "page.html": with_mode(PAGE, 0o000)}, na_before=EATEN)
+case("export-as-mp4", C, "export -o page.mp4 (an HTML page under a video's name)", EXPORT + "-o page.mp4", 2,
+     "-o page.mp4: export writes an HTML page; name it .html, e.g. -o page.html", key="-o page.mp4", shell=True,
+     files=WITH_PAGE, na_before=EATEN)
+HOSTILE_NAME = "a <!-- b <script> c </script> d"
+case("export-name-comment-script", C, "a scene name holding '<!--' then '<script': the page's script stays alive",
+     EXPORT + "-o o.html", 0, None, shell=True, produces=("o.html",),
+     files={"scene.json": scene(name=HOSTILE_NAME), "page.html": PAGE},
+     check=check_embedded_scene("o.html", HOSTILE_NAME), na_before=EATEN)
+
 # --- compare: a golden check in someone else's CI; 2 means "could not compare", never "same"
 C = "compare"
 NO_COMPARE = "no compare command before"

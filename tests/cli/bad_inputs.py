@@ -1026,6 +1026,46 @@ case("merge-from-pipes", C, "shards read from a pipe, a process substitution and
 case("merge-stdin-twice", C, "- (standard input) given twice", MERGE + "- -", 2,
      "sweep-merge: - (standard input) is given more than once", key="standard input", files=SHARDS)
 
+# Every cell of a row is of its column's type (issue 50: a theta_end edited to "abc" merged, exit 0).
+DAMAGED = "merged as it was before (issue 50)"
+
+
+def damaged_shard(row, column, value):
+    """p2.csv with the cell `column` of its `row`-th row (1: the first after the header) set to `value`."""
+    lines = shard(range(1, 40, 2)).splitlines()
+    cells = lines[row].split(",")
+    cells[HEADER.split(",").index(column)] = value
+    lines[row] = ",".join(cells)
+    return "\n".join(lines) + "\n"
+
+
+case("merge-cell-not-number", C, "a shard with a theta_end edited to abc", MERGE + "p1.csv p2.csv", 1,
+     'p2.csv:3: theta_end: "abc" is not a number; a damaged or edited shard, run it again', key="p2.csv:3",
+     files={**SHARDS, "p2.csv": damaged_shard(2, "theta_end", "abc")}, na_before=DAMAGED)
+case("merge-grid-cell-not-number", C, "a shard with a grid value edited to 1.2x", MERGE + "p1.csv p2.csv", 1,
+     'p2.csv:2: initial.theta: "1.2x" is not a number', key="p2.csv:2",
+     files={**SHARDS, "p2.csv": damaged_shard(1, "initial.theta", "1.2x")}, na_before=DAMAGED)
+case("merge-cell-empty", C, "a shard with an empty energy_end where the point did not fail", MERGE + "p1.csv p2.csv",
+     1, 'p2.csv:4: energy_end: "" is not a number', key="p2.csv:4",
+     files={**SHARDS, "p2.csv": damaged_shard(3, "energy_end", "")}, na_before=DAMAGED)
+case("merge-end-empty", C, "a shard with an empty end", MERGE + "p1.csv p2.csv", 1,
+     "p2.csv:2: end: empty; it holds how the run ended", key="p2.csv:2",
+     files={**SHARDS, "p2.csv": damaged_shard(1, "end", "")}, na_before=DAMAGED)
+case("merge-digest-damaged", C, "a shard whose first row's sweep digest is not 16 hex digits", MERGE + "p1.csv",
+     1, 'p1.csv:2: sweep: "0123456789abcdeg" is not 16 hexadecimal digits', key="p1.csv:2",
+     files={**SHARDS, "p1.csv": shard(range(0, 40, 2), "40,0123456789abcdeg")}, na_before=DAMAGED)
+case("merge-failed-point-ok", C, "a shard with a failed point (end quoted, its six numbers empty) merges (must work)",
+     MERGE + "p1.csv p2.csv", 0, None, produces=("m.csv",),
+     files={**SHARDS, "p2.csv": shard(range(3, 40, 2)).replace("\n", '\n1,1.1,"error: integration stalled, at t = 0.2 s",'
+                                                                   ',,,,,,40,0123456789abcdef\n', 1)},
+     na_before=DAMAGED)
+case("merge-summary", C, "sweep-merge says what it wrote (must work)", MERGE + "p1.csv p2.csv", 0,
+     "coinroll: wrote m.csv (40 points from 2 shards)", key="wrote", files=SHARDS, produces=("m.csv",),
+     na_before="no summary before (issue 50)")
+case("merge-quiet", C, "sweep-merge -q, like the other commands: nothing on stderr (must work)",
+     "set -o pipefail; {bin} sweep-merge -q -o m.csv p1.csv p2.csv 2>&1 | (! grep .)", 0, None, shell=True,
+     files=SHARDS, produces=("m.csv",), na_before="no -q before (issue 50)")
+
 # --- output paths
 C = "output paths"
 # A default output name (no -o) is never taken over from another scene's output (issue 39.4): the scene

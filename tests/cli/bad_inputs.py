@@ -630,6 +630,16 @@ case("set-unknown-key", C, "--set nosuch=1", SIM + " --set nosuch=1", 2, "nosuch
      key="nosuch")
 case("set-unknown-nested", C, "--set coin.nosuch=1", SIM + " --set coin.nosuch=1", 2,
      "coin.nosuch: unknown key; allowed here: shape,", key="coin.nosuch")
+NULL_KEY = "accepted in silence before (issue 50)"
+case("set-unknown-key-null", C, "--set nosuch=null (null removes a key: there is no such key)",
+     SIM + " --set nosuch=null", 2, "--set nosuch=null: nosuch: unknown key; allowed here: name,", key="nosuch",
+     na_before=NULL_KEY)
+case("set-unknown-nested-null", C, "--set coin.nosuch=null", SIM + " --set coin.nosuch=null", 2,
+     "--set coin.nosuch=null: coin.nosuch: unknown key; allowed here: shape,", key="coin.nosuch", na_before=NULL_KEY)
+case("set-unknown-parent-null", C, "--set nosuch.radius=null", SIM + " --set nosuch.radius=null", 2,
+     "--set nosuch.radius=null: nosuch: unknown key; allowed here: name,", key="nosuch", na_before=NULL_KEY)
+case("set-known-absent-null", C, "--set render.camera.eye=null on a scene without a render block (must work)",
+     SIM + " --set render.camera.eye=null", 0, None, produces=("o.csv",), na_before=NULL_KEY)
 case("set-empty-value", C, "--set coin.radius= (empty value)", SIM + " --set coin.radius=", 2,
      'coin.radius: must be a number, got string ""', key="coin.radius")
 case("set-no-key", C, "--set =3", SIM + " --set =3", 2,

@@ -36,13 +36,15 @@ thread_local int sectionDepth = 0;
 thread_local sigset_t maskBeforeSection;
 
 // gettid and sched_yield are bare system calls, so safe in a handler whatever POSIX's list says;
-// the holder runs on another thread and needs the processor to finish. Returns at once when this
-// thread holds the lock already.
-void lock() noexcept {
+// the holder runs on another thread and needs the processor to finish. A removal (`reentrant`)
+// returns at once when this thread holds the lock already; a section never does, so that a file is
+// never listed or published on the thread of a removal that left the lock held for good, and the
+// section's end never releases that hold.
+void lock(bool reentrant) noexcept {
   const pid_t self = ::gettid();
   pid_t expected = 0;
   while (!files.holder.compare_exchange_weak(expected, self, std::memory_order_acquire)) {
-    if (expected == self) return;
+    if (reentrant && expected == self) return;
     expected = 0;
     ::sched_yield();
   }
@@ -57,7 +59,7 @@ UnfinishedFilesSection::UnfinishedFilesSection() {
   sigset_t all;
   ::sigfillset(&all);
   ::pthread_sigmask(SIG_BLOCK, &all, &maskBeforeSection);
-  lock();
+  lock(false);
 }
 
 UnfinishedFilesSection::~UnfinishedFilesSection() {
@@ -105,7 +107,7 @@ void removeUnfinishedFiles() noexcept {
   // Outside a section, a lock this thread already holds was taken by a removal this call
   // interrupts, or one that ran before it: the list is locked against every change, so it is
   // read again (unlinking a removed file again only fails) instead of waited for.
-  lock();
+  lock(true);
   for (const std::string& path : files.paths) {
     if (!path.empty()) ::unlink(path.c_str());
   }

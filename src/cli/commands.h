@@ -84,6 +84,7 @@ void runSweep(const SweepOptions& options);
 struct SweepMergeOptions {
   std::vector<std::string> shards;
   std::string output;
+  bool quiet = false;  // no summary on stderr
 };
 void runSweepMerge(const SweepMergeOptions& options);
 

@@ -65,6 +65,13 @@ void say(const char* text) noexcept {
 // so the process ends here. Only async-signal-safe calls from here on.
 [[noreturn]] void endNow(int signal) noexcept {
   io::removeUnfinishedFiles();
+  // Standard error may be a pipe whose reader is gone: the line below is then lost, and the write
+  // fails with EPIPE instead of raising SIGPIPE, so the exit code stays the command's failure code
+  // rather than a death by SIGPIPE inside this handler.
+  struct sigaction ignore {};
+  ignore.sa_handler = SIG_IGN;
+  ::sigemptyset(&ignore.sa_mask);
+  ::sigaction(SIGPIPE, &ignore, nullptr);
   const int first = firstRequest.load();
   say("coinroll: error: interrupted by ");
   say(signalName(first));

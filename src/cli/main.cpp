@@ -317,7 +317,9 @@ CLI::App* addSweepMergeCommand(CLI::App& app, SweepMergeOptions& options) {
   command->add_option("-o,--output", options.output, "Output CSV path (written atomically), or - for standard output")
       ->required();
   command->add_option("shards", options.shards, "Shard CSV files (any order)")->required();
-  command->footer("Fails, naming the points, if a point is missing or repeated.");
+  addQuietFlag(*command, options.quiet, "No summary on stderr");
+  command->footer("Fails, naming the points, if a point is missing or repeated, or the file, row and column of a "
+                  "cell that is not of its column's type.");
   return command;
 }
 

@@ -92,11 +92,17 @@ void runSweepMerge(const SweepMergeOptions& options) {
   }
   if (options.output != "-") refuseOverwritingInput("-o", options.output, shards);
   ProgressLine noProgress(ProgressLine::Style::Off, "", "");
-  withProgress(noProgress, options.output, [&] {
+  const long points = withProgress(noProgress, options.output, [&] {
+    long merged = 0;
     writeTextOutput(options.output, "merged sweep",
-                    [&](std::ostream& out) { pipeline::mergeSweepShards(shards, out, &interruptRequested()); });
-    return 0;
+                    [&](std::ostream& out) { merged = pipeline::mergeSweepShards(shards, out, &interruptRequested()); });
+    return merged;
   });
+  if (!options.quiet) {
+    std::cerr << fmt::format("coinroll: wrote {} ({} points from {} shards)\n",
+                             options.output == "-" ? "standard output" : scene::printable(options.output), points,
+                             shards.size());
+  }
 }
 
 }  // namespace coinroll::cli

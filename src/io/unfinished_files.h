@@ -9,7 +9,8 @@
 // The list belongs to the process, not to an object, because a signal handler can reach nothing
 // else. Every change to it happens inside an UnfinishedFilesSection, which blocks the calling
 // thread's signals and takes a lock, so a handler never sees the list half changed and never
-// waits for a lock its own thread holds: on another thread it waits for the section to end.
+// waits for a lock its own thread holds: on another thread it waits for the section to end, and
+// inside a removal on its own thread (a handler run inside another) it does not wait at all.
 
 #include <cstddef>
 #include <filesystem>
@@ -56,7 +57,8 @@ class UnfinishedFilesSection {
 // Removes every listed file. For a process about to end: async-signal-safe, it waits for a
 // section running on another thread to end, and it leaves the list locked, so no thread creates
 // or publishes a file after it. Called on a thread inside a section (a crash there), it removes
-// nothing: the list may be half changed.
+// nothing: the list may be half changed. Called again on a thread whose removal it interrupts or
+// follows (a handler inside a handler), it removes them again rather than wait for itself.
 void removeUnfinishedFiles() noexcept;
 
 // Files listed now (for tests).

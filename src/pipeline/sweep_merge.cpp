@@ -10,24 +10,72 @@
 #include <iostream>
 #include <map>
 #include <stdexcept>
+#include <string_view>
 #include <system_error>
+#include <vector>
 
 #include "pipeline/cancelled.h"
 #include "pipeline/sweep.h"
+#include "scene/json_reader.h"
 
 namespace coinroll::pipeline {
 
 namespace {
 
-// Fields of one CSV row as csvField writes them (quoted fields may hold commas).
-std::size_t csvFieldCount(std::string_view row) {
-  std::size_t fields = 1;
+// The fields of one CSV row as csvField writes them (a quoted field may hold commas), quotes kept,
+// into `fields` (reused from row to row: a merge may read ten million).
+void splitCsvRow(std::string_view row, std::vector<std::string_view>& fields) {
+  fields.clear();
   bool quoted = false;
-  for (const char c : row) {
-    if (c == '"') quoted = !quoted;
-    else if (c == ',' && !quoted) ++fields;
+  std::size_t start = 0;
+  for (std::size_t i = 0; i < row.size(); ++i) {
+    if (row[i] == '"') quoted = !quoted;
+    else if (row[i] == ',' && !quoted) {
+      fields.push_back(row.substr(start, i - start));
+      start = i + 1;
+    }
   }
-  return fields;
+  fields.push_back(row.substr(start));
+}
+
+bool isNumber(std::string_view cell) {
+  double value = 0;
+  const auto [end, error] = std::from_chars(cell.data(), cell.data() + cell.size(), value);
+  return !cell.empty() && error == std::errc() && end == cell.data() + cell.size();
+}
+
+bool isDigest(std::string_view cell) {
+  return cell.size() == 16 && std::all_of(cell.begin(), cell.end(), [](char c) {
+           return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f');
+         });
+}
+
+// Every cell of a row must be what the sweep writes in its column: a shard edited by hand or
+// damaged on its way (a theta_end turned "abc") would otherwise be merged as if computed, and
+// found, if ever, by whatever reads the table. Columns: point (read by the caller), the grid values,
+// end, the six numbers (empty for a failed point, whose end is "error: why"), grid_points and sweep
+// (the identity, compared by the caller).
+void refuseDamagedCells(const std::vector<std::string_view>& cells, const std::vector<std::string_view>& columns,
+                        const std::string& name, long lineNumber) {
+  const auto refuse = [&](std::size_t column, std::string_view rule) {
+    return std::runtime_error(fmt::format("{}:{}: {}: {}; a damaged or edited shard, run it again", name, lineNumber,
+                                          columns[column], rule));
+  };
+  const auto quoted = [](std::string_view cell) { return fmt::format("\"{}\"", scene::printable(cell)); };
+  const std::size_t end = columns.size() - 9;  // the column after the grid values
+  for (std::size_t column = 1; column < end; ++column) {
+    if (!isNumber(cells[column])) throw refuse(column, quoted(cells[column]) + " is not a number");
+  }
+  const std::string_view endCell = cells[end];
+  if (endCell.empty()) throw refuse(end, "empty; it holds how the run ended (duration, an event, or error: why)");
+  const bool failed = endCell.substr(endCell.starts_with('"') ? 1 : 0).starts_with("error: ");
+  for (std::size_t column = end + 1; column < end + 7; ++column) {
+    if (failed && !cells[column].empty()) {
+      throw refuse(column, quoted(cells[column]) + " where a failed point (its end an error) has no number");
+    }
+    if (!failed && !isNumber(cells[column])) throw refuse(column, quoted(cells[column]) + " is not a number");
+  }
+  if (!isDigest(cells.back())) throw refuse(columns.size() - 1, quoted(cells.back()) + " is not 16 hexadecimal digits");
 }
 
 // The row's last two fields, ",<grid points>,<digest>": never quoted, so found from the end.
@@ -71,7 +119,7 @@ std::string pointList(const std::vector<long>& points) {
 
 }  // namespace
 
-void mergeSweepShards(const std::vector<std::filesystem::path>& shards, std::ostream& out,
+long mergeSweepShards(const std::vector<std::filesystem::path>& shards, std::ostream& out,
                       const std::atomic<bool>* cancel) {
   if (shards.empty()) throw std::invalid_argument("sweep-merge: give the shard files to merge");
   if (std::count(shards.begin(), shards.end(), "-") > 1) {
@@ -135,7 +183,8 @@ void mergeSweepShards(const std::vector<std::filesystem::path>& shards, std::ost
       throw std::runtime_error(fmt::format("{}: its header differs from {}'s: shards of sweeps over different axes; "
                                            "merge only the shards of one sweep", name, firstHeaderSource));
     }
-    const std::size_t headerFields = csvFieldCount(header);
+    std::vector<std::string_view> columns, cells;
+    splitCsvRow(header, columns);
     while (readLine(line)) {
       throwIfCancelled(cancel);
       refuseCutLine();
@@ -145,10 +194,12 @@ void mergeSweepShards(const std::vector<std::filesystem::path>& shards, std::ost
       if (error != std::errc() || comma == std::string::npos || end != line.data() + comma || point < 0) {
         throw std::runtime_error(fmt::format("{}:{}: a row must start with its point number", name, lineNumber));
       }
-      if (const std::size_t fields = csvFieldCount(line); fields != headerFields) {
+      splitCsvRow(line, cells);
+      if (cells.size() != columns.size()) {
         throw std::runtime_error(fmt::format("{}:{}: {} fields where the header has {}: a damaged shard; run it again",
-                                             name, lineNumber, fields, headerFields));
+                                             name, lineNumber, cells.size(), columns.size()));
       }
+      refuseDamagedCells(cells, columns, name, lineNumber);
       const std::string_view rowIdentity = identityOf(line);
       if (identity.empty()) {
         const std::string_view count = rowIdentity.substr(1, rowIdentity.find(',', 1) - 1);
@@ -208,6 +259,7 @@ void mergeSweepShards(const std::vector<std::filesystem::path>& shards, std::ost
   out << header << '\n';
   for (const auto& [point, row] : rows) out << row << '\n';
   if (!out) throw std::runtime_error("sweep-merge: writing the merged file failed");
+  return static_cast<long>(rows.size());
 }
 
 }  // namespace coinroll::pipeline

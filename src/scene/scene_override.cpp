@@ -5,11 +5,63 @@
 #include <algorithm>
 #include <charconv>
 #include <string>
+#include <vector>
 
 #include "scene/json_reader.h"
 #include "scene/scene_error.h"
+#include "scene/scene_schema.h"
 
 namespace coinroll::scene {
+
+namespace {
+
+// "effects[air_drag].length" -> "effects.length": a schema path without the variant of its block,
+// as a --set path reads once its list indices are dropped.
+std::string withoutVariants(std::string_view path) {
+  std::string plain;
+  bool inVariant = false;
+  for (const char c : path) {
+    if (c == '[') inVariant = true;
+    else if (c == ']') inVariant = false;
+    else if (!inVariant) plain += c;
+  }
+  return plain;
+}
+
+// The names the scene format allows in `block` (a dotted path without list indices): every
+// variant's, for a block that has several ("initial" and "initial[steady]"; each effect type's).
+std::vector<std::string_view> namesIn(std::string_view block) {
+  std::vector<std::string_view> names;
+  for (const schema::Key& key : schema::keys()) {
+    if (withoutVariants(key.block()) == block && std::find(names.begin(), names.end(), key.name()) == names.end())
+      names.push_back(key.name());
+  }
+  return names;
+}
+
+// A removal (KEY=null) whose key the scene does not hold changes nothing, so the loader never sees
+// the key to refuse it: a misspelt --set nosuchkey=null would pass in silence while nosuchkey=1 is
+// refused. Each name along the path must be one the scene format has, as if it were being set.
+void refuseUnknownRemoval(std::string_view assignment, std::string_view path) {
+  std::string block, walked;
+  while (!path.empty()) {
+    const std::string_view key = path.substr(0, path.find('.'));
+    path = path.size() > key.size() ? path.substr(key.size() + 1) : std::string_view();
+    if (!walked.empty()) walked += '.';
+    walked += printableKey(key);
+    if (std::all_of(key.begin(), key.end(), [](char c) { return c >= '0' && c <= '9'; })) continue;  // a list entry
+    const std::vector<std::string_view> allowed = namesIn(block);
+    if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
+      throw SceneError(fmt::format("--set {}: {}: unknown key; allowed here: {}", printable(assignment), walked,
+                                   fmt::join(allowed, ", ")),
+                       SceneError::Kind::UnknownKey);
+    }
+    if (!block.empty()) block += '.';
+    block += key;
+  }
+}
+
+}  // namespace
 
 void applyOverride(nlohmann::json& document, std::string_view assignment) {
   const auto equals = assignment.find('=');
@@ -67,13 +119,16 @@ void applyOverride(nlohmann::json& document, std::string_view assignment) {
             SceneError::Kind::UnknownKey);
       }
       const bool removal = value.is_null();
+      if (removal && !node->contains(key)) {
+        // Nothing to remove, which is the default asked for, if the key is one the scene could hold.
+        refuseUnknownRemoval(assignment, path);
+        return;
+      }
       if (dot == std::string_view::npos) {
         if (removal) node->erase(key);
         else (*node)[key] = std::move(value);
         return;
       }
-      // Removing under a key the scene does not have leaves nothing to remove.
-      if (removal && !node->contains(key)) return;
       node = &(*node)[key];
       if (node->is_null()) *node = nlohmann::json::object();
     } else {

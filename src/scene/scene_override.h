@@ -9,7 +9,8 @@ namespace coinroll::scene {
 
 // "initial.theta=12": the value is read as JSON when it parses as JSON, else taken as a string;
 // missing objects along the path are created. The value null removes the key, so the scene takes
-// the key's default ("render.audio=null": no sound track), or removes a list's entry.
+// the key's default ("render.audio=null": no sound track), or removes a list's entry; a key to
+// remove that the scene format does not have is refused (SceneError, UnknownKey), as when set.
 void applyOverride(nlohmann::json& document, std::string_view assignment);
 
 }  // namespace coinroll::scene

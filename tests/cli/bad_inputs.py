@@ -630,6 +630,16 @@ case("set-unknown-key", C, "--set nosuch=1", SIM + " --set nosuch=1", 2, "nosuch
      key="nosuch")
 case("set-unknown-nested", C, "--set coin.nosuch=1", SIM + " --set coin.nosuch=1", 2,
      "coin.nosuch: unknown key; allowed here: shape,", key="coin.nosuch")
+NULL_KEY = "accepted in silence before (issue 50)"
+case("set-unknown-key-null", C, "--set nosuch=null (null removes a key: there is no such key)",
+     SIM + " --set nosuch=null", 2, "--set nosuch=null: nosuch: unknown key; allowed here: name,", key="nosuch",
+     na_before=NULL_KEY)
+case("set-unknown-nested-null", C, "--set coin.nosuch=null", SIM + " --set coin.nosuch=null", 2,
+     "--set coin.nosuch=null: coin.nosuch: unknown key; allowed here: shape,", key="coin.nosuch", na_before=NULL_KEY)
+case("set-unknown-parent-null", C, "--set nosuch.radius=null", SIM + " --set nosuch.radius=null", 2,
+     "--set nosuch.radius=null: nosuch: unknown key; allowed here: name,", key="nosuch", na_before=NULL_KEY)
+case("set-known-absent-null", C, "--set render.camera.eye=null on a scene without a render block (must work)",
+     SIM + " --set render.camera.eye=null", 0, None, produces=("o.csv",), na_before=NULL_KEY)
 case("set-empty-value", C, "--set coin.radius= (empty value)", SIM + " --set coin.radius=", 2,
      'coin.radius: must be a number, got string ""', key="coin.radius")
 case("set-no-key", C, "--set =3", SIM + " --set =3", 2,
@@ -1025,6 +1035,46 @@ case("merge-from-pipes", C, "shards read from a pipe, a process substitution and
      produces=("m.csv",))
 case("merge-stdin-twice", C, "- (standard input) given twice", MERGE + "- -", 2,
      "sweep-merge: - (standard input) is given more than once", key="standard input", files=SHARDS)
+
+# Every cell of a row is of its column's type (issue 50: a theta_end edited to "abc" merged, exit 0).
+DAMAGED = "merged as it was before (issue 50)"
+
+
+def damaged_shard(row, column, value):
+    """p2.csv with the cell `column` of its `row`-th row (1: the first after the header) set to `value`."""
+    lines = shard(range(1, 40, 2)).splitlines()
+    cells = lines[row].split(",")
+    cells[HEADER.split(",").index(column)] = value
+    lines[row] = ",".join(cells)
+    return "\n".join(lines) + "\n"
+
+
+case("merge-cell-not-number", C, "a shard with a theta_end edited to abc", MERGE + "p1.csv p2.csv", 1,
+     'p2.csv:3: theta_end: "abc" is not a number; a damaged or edited shard, run it again', key="p2.csv:3",
+     files={**SHARDS, "p2.csv": damaged_shard(2, "theta_end", "abc")}, na_before=DAMAGED)
+case("merge-grid-cell-not-number", C, "a shard with a grid value edited to 1.2x", MERGE + "p1.csv p2.csv", 1,
+     'p2.csv:2: initial.theta: "1.2x" is not a number', key="p2.csv:2",
+     files={**SHARDS, "p2.csv": damaged_shard(1, "initial.theta", "1.2x")}, na_before=DAMAGED)
+case("merge-cell-empty", C, "a shard with an empty energy_end where the point did not fail", MERGE + "p1.csv p2.csv",
+     1, 'p2.csv:4: energy_end: "" is not a number', key="p2.csv:4",
+     files={**SHARDS, "p2.csv": damaged_shard(3, "energy_end", "")}, na_before=DAMAGED)
+case("merge-end-empty", C, "a shard with an empty end", MERGE + "p1.csv p2.csv", 1,
+     "p2.csv:2: end: empty; it holds how the run ended", key="p2.csv:2",
+     files={**SHARDS, "p2.csv": damaged_shard(1, "end", "")}, na_before=DAMAGED)
+case("merge-digest-damaged", C, "a shard whose first row's sweep digest is not 16 hex digits", MERGE + "p1.csv",
+     1, 'p1.csv:2: sweep: "0123456789abcdeg" is not 16 hexadecimal digits', key="p1.csv:2",
+     files={**SHARDS, "p1.csv": shard(range(0, 40, 2), "40,0123456789abcdeg")}, na_before=DAMAGED)
+case("merge-failed-point-ok", C, "a shard with a failed point (end quoted, its six numbers empty) merges (must work)",
+     MERGE + "p1.csv p2.csv", 0, None, produces=("m.csv",),
+     files={**SHARDS, "p2.csv": shard(range(3, 40, 2)).replace("\n", '\n1,1.1,"error: integration stalled, at t = 0.2 s",'
+                                                                   ',,,,,,40,0123456789abcdef\n', 1)},
+     na_before=DAMAGED)
+case("merge-summary", C, "sweep-merge says what it wrote (must work)", MERGE + "p1.csv p2.csv", 0,
+     "coinroll: wrote m.csv (40 points from 2 shards)", key="wrote", files=SHARDS, produces=("m.csv",),
+     na_before="no summary before (issue 50)")
+case("merge-quiet", C, "sweep-merge -q, like the other commands: nothing on stderr (must work)",
+     "set -o pipefail; {bin} sweep-merge -q -o m.csv p1.csv p2.csv 2>&1 | (! grep .)", 0, None, shell=True,
+     files=SHARDS, produces=("m.csv",), na_before="no -q before (issue 50)")
 
 # --- output paths
 C = "output paths"
@@ -1460,6 +1510,22 @@ case("sigterm-grace-fifo", C, "one SIGTERM while opening a FIFO nobody reads: en
      "interrupted by SIGTERM and not stopped within 3 s", key="interrupted", files={"scene.json": VALID, "fifo": Fifo},
      signal=TERM, wait_for="fifo", settle=0.1, timeout=10, na_before=ISSUE21,
      gtest=("SignalsCliTest.ARequestToStopNotAnsweredInTimeEndsTheRunAtOnce",))
+# Standard error a pipe whose reader is gone (issue 50): the forced end's line raised SIGPIPE inside
+# the handler that had just locked the list of unfinished files to remove them, and the SIGPIPE
+# handler waited for that lock, spinning at 100 % CPU until SIGKILL. No message can arrive; the exit
+# code, the time and the directory say it. A stop the loop answers writes its line from the program,
+# not a handler: SIGPIPE ends it silently, as a reader gone always does, after the removal.
+DEAD_STDERR = " 2> >(exit 0)"
+ISSUE50 = "spun for ever before (issue 50)"
+case("sigterm-grace-fifo-stderr-gone", C, "one SIGTERM while opening a FIFO nobody reads, stderr a pipe nobody reads",
+     "exec {bin} " + FIFO_SIM + DEAD_STDERR, 1, None, shell=True, files={"scene.json": VALID, "fifo": Fifo},
+     signal=TERM, wait_for="fifo", settle=0.1, timeout=10, na_before=ISSUE50)
+case("sigint-twice-fifo-stderr-gone", C, "a second SIGINT while opening a FIFO nobody reads, stderr a pipe nobody reads",
+     "exec {bin} " + FIFO_SIM + DEAD_STDERR, 1, None, shell=True, files={"scene.json": VALID, "fifo": Fifo},
+     signal=INT, then=((INT, 0.5),), wait_for="fifo", settle=0.1, timeout=10, na_before=ISSUE50)
+case("sigint-sequence-stderr-gone", C, "SIGINT during a PNG sequence, stderr a pipe nobody reads: no frame left",
+     "exec {bin} " + LONG_RENDER + "f_%03d.png -q" + DEAD_STDERR, -signal.SIGPIPE, None, shell=True, files=EARLIER,
+     signal=INT, na_before=ISSUE50)
 # A signal ignored when coinroll starts stays ignored: nohup's SIGHUP.
 case("nohup-sighup", C, "SIGHUP under nohup (ignored from the start): the run goes on to its end",
      "trap '' HUP; exec {bin} simulate scene.json --csv o.csv --sample-dt 0.0005 --set duration=150", 0, None,
@@ -1540,6 +1606,66 @@ case("sigint-simulate-provenance", C, "SIGINT during simulate --provenance over 
      LONG_SIM + " --provenance p.json", 1, interrupted(INT, "o.csv"), key="interrupted", signal=INT,
      files={"scene.json": VALID, "o.csv": "an earlier CSV\n", "p.json": "an earlier provenance\n"},
      na_before=NO_SIDECARS, gtest=(G_SIDECAR_SIGNAL,))
+
+# --- export (issue 50): the page template is an input like the scene, read within a bound; the page
+# goes only under an HTML name, and its embedded scene cannot end or swallow the page's script.
+C = "export"
+PAGE_SLOT = '<script type="application/json" id="coinroll-scene">'
+PAGE = f"<html>{PAGE_SLOT}null</script><script>start()</script></html>"
+EXPORT = "COINROLL_PAGE=page.html exec {bin} export scene.json -q "
+WITH_PAGE = {"scene.json": VALID, "page.html": PAGE}
+EATEN = "no such check before (issue 50)"
+
+
+def check_embedded_scene(name, scene_name):
+    """The page `name` holds the scene named `scene_name` in its slot as JSON with no '<' in it (so no
+    '</script', '<!--' or '<script' can change where the element ends), and the page's script after it."""
+    def check(d):
+        html = (d / name).read_text()
+        start = html.find(PAGE_SLOT)
+        if start < 0:
+            return f"{name} has no scene element"
+        body = html[start + len(PAGE_SLOT):]
+        end = body.find("</script>")
+        embedded = body[:end]
+        if "<" in embedded:
+            return f"{name}: the embedded scene holds a raw '<': {embedded[:80]!r}"
+        if json.loads(embedded).get("name") != scene_name:
+            return f"{name}: the embedded scene's name is not {scene_name!r}"
+        return None if body[end:] == "</script><script>start()</script></html>" else f"{name}: the page after the scene changed"
+    return check
+
+
+case("export-over-template", C, "export -o the page template it reads (COINROLL_PAGE=page.html -o page.html)",
+     EXPORT + "-o page.html", 2, "-o page.html: that is the input page.html; choose another output name", key="page.html",
+     shell=True, files=WITH_PAGE, na_before=EATEN)
+case("export-over-template-link", C, "export -o a link to the page template",
+     EXPORT + "-o link.html", 2, "-o link.html: that is the input page.html; choose another output name",
+     key="link.html", shell=True, files={**WITH_PAGE, "link.html": ("symlink", "page.html")}, na_before=EATEN)
+case("export-page-dev-zero", C, "COINROLL_PAGE=/dev/zero (never ends)",
+     "COINROLL_PAGE=/dev/zero exec {bin} export scene.json -q -o o.html", 1,
+     "COINROLL_PAGE=/dev/zero: more than 67108864 bytes; a built page is about 1.2 MB", key="COINROLL_PAGE",
+     shell=True, timeout=10, na_before=EATEN)
+case("export-page-directory", C, "COINROLL_PAGE a directory",
+     "COINROLL_PAGE=sub exec {bin} export scene.json -q -o o.html", 1,
+     "COINROLL_PAGE=sub: is a directory; name the built page", key="COINROLL_PAGE", shell=True,
+     files={"scene.json": VALID, "sub": Dir}, na_before=EATEN)
+case("export-page-missing", C, "COINROLL_PAGE a file that does not exist",
+     "COINROLL_PAGE=nope.html exec {bin} export scene.json -q -o o.html", 1,
+     "COINROLL_PAGE=nope.html: cannot read the built page: No such file or directory", key="COINROLL_PAGE",
+     shell=True, na_before=EATEN)
+case("export-page-unreadable", C, "COINROLL_PAGE a file nobody may read (as nobody when run as root)",
+     "export COINROLL_PAGE=page.html; " + as_nobody_when_root("export scene.json -q -o o.html"), 1,
+     "COINROLL_PAGE=page.html: cannot read the built page: Permission denied", key="COINROLL_PAGE", shell=True,
+     files={"scene.json": VALID, "page.html": with_mode(PAGE, 0o000)}, na_before=EATEN)
+case("export-as-mp4", C, "export -o page.mp4 (an HTML page under a video's name)", EXPORT + "-o page.mp4", 2,
+     "-o page.mp4: export writes an HTML page; name it .html, e.g. -o page.html", key="-o page.mp4", shell=True,
+     files=WITH_PAGE, na_before=EATEN)
+HOSTILE_NAME = "a <!-- b <script> c </script> d"
+case("export-name-comment-script", C, "a scene name holding '<!--' then '<script': the page's script stays alive",
+     EXPORT + "-o o.html", 0, None, shell=True, produces=("o.html",),
+     files={"scene.json": scene(name=HOSTILE_NAME), "page.html": PAGE},
+     check=check_embedded_scene("o.html", HOSTILE_NAME), na_before=EATEN)
 
 # --- compare: a golden check in someone else's CI; 2 means "could not compare", never "same"
 C = "compare"

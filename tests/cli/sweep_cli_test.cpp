@@ -88,7 +88,7 @@ TEST_F(SweepCliTest, DashWritesTheSameBytesToStandardOutputAndNoFile) {
     ASSERT_EQ(runCoinroll("sweep " + scene().string() + kGrid + " -q --shard " + shard + "/2 -o " +
                           (dir_ / (std::string("part") + shard + ".csv")).string()).exitCode, 0);
   }
-  ASSERT_EQ(runCoinroll("sweep-merge -o - " + (dir_ / "part1.csv").string() + " " + (dir_ / "part2.csv").string() +
+  ASSERT_EQ(runCoinroll("sweep-merge -q -o - " + (dir_ / "part1.csv").string() + " " + (dir_ / "part2.csv").string() +
                         " > " + merged.string())
                 .exitCode,
             0);

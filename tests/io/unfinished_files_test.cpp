@@ -36,6 +36,10 @@ void writeFile(const fs::path& path, const std::string& content) { std::ofstream
 
 std::atomic<bool> handled{false};
 extern "C" void onSignal(int) { handled = true; }
+extern "C" void removeAndEnd(int) {
+  coinroll::io::removeUnfinishedFiles();
+  ::_exit(0);
+}
 
 }  // namespace
 
@@ -84,6 +88,32 @@ TEST(UnfinishedFiles, RemovingThemLeavesTheDirectoryAsItWas) {
   ASSERT_TRUE(WIFEXITED(status));
   EXPECT_EQ(scratch.fileCount(), 1);
   EXPECT_EQ(contentOf(scratch / "f_0"), "earlier");
+}
+
+// A handler run after (or inside) a removal on the same thread removes again rather than wait for
+// the lock its own thread keeps: SIGPIPE raised by the forced end's message to a dead stderr spun at
+// 100 % CPU for ever (issue 50).
+TEST(UnfinishedFiles, ARemovalOnTheThreadThatRemovedDoesNotWaitForItself) {
+  const ScratchDirectory scratch;
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    ::alarm(10);  // a wait for itself ends by SIGALRM rather than hang the test
+    struct sigaction action {};
+    action.sa_handler = removeAndEnd;
+    ::sigemptyset(&action.sa_mask);
+    ::sigaction(SIGUSR1, &action, nullptr);
+    OutputFile file(scratch / "out.csv", "CSV");
+    file.write("half a CSV");
+    coinroll::io::removeUnfinishedFiles();
+    ::raise(SIGUSR1);
+    ::_exit(1);
+  }
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status)) << "ended by signal " << WTERMSIG(status) << " (SIGALRM: it waited for itself)";
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+  EXPECT_EQ(scratch.fileCount(), 0);
 }
 
 // A section holds signals off its thread, so a handler never runs with the list half changed on

@@ -33,10 +33,9 @@ ContactMode modeAfterSlipStops(const CoinModel& model, const Forward& rolling);
 
 // A free slide's slip stops when this falls through zero (t: s; slipRate: the slip's rate, m/s^2):
 // at stoppedSlip(t), or earlier where the slip closes so fast that it would stop within
-// slipStopLead(t) (a hard skid), and never below `resolvedSlip` (m/s, 10 atol: a slip the
+// slipStopLead(t) (a hard skid), and never below `resolvedSlip` (m/s, 100 atol: a slip the
 // integrator's absolute tolerance cannot hold chatters about zero instead of reaching the stop; a
-// scene at atol 1e-10 stalled there on steps of 2e-11 s). At the default atol of 1e-12 it is
-// stoppedSlip(0), so the rule is unchanged.
+// scene at atol 1e-10 stalled there on steps of 2e-11 s, a landing at the default 1e-12 at 14 atol).
 double slipStopMargin(double t, const Eigen::Vector2d& slip, const Eigen::Vector2d& slipRate, double resolvedSlip);
 
 // A creeping slide's slip stops when this falls through zero: `rest` is friction's direction along

@@ -31,6 +31,13 @@ constexpr int kLiftsOff = kFirstSwitchId + 4;    // rolling or sliding with flig
 constexpr int kTouchdown = kFirstSwitchId + 5;   // flight: the rim reaches the floor
 constexpr int kCornerLands = kFirstSwitchId + 6;  // rolling or sliding with flight: a cornered rim passes upright
 
+// A slide's slip stops at no less than this many times solver.atol (docs/sliding.md eq. 4.18): the
+// integrator holds the slip's components to about atol, and a slip a few atol long chatters about
+// zero, its direction flipping inside each step, on steps of its own |s| / (restoring rate). One
+// landing's slide at the default atol of 1e-12 sat at 1.4e-11 m/s (14 atol) on steps of 8e-11 s,
+// 2.2 million of them, and stopped at 20 atol or more; 100 leaves a factor of 7.
+constexpr double kResolvedSlipPerAtol = 100;
+
 // Stick-slip: more switches than this within one simulated second end the run (docs/sliding.md §4).
 constexpr std::size_t kMaxSwitchesPerSecond = 1000;
 // A rim chattering on the floor: the impact past this many within one simulated second ends the
@@ -376,7 +383,7 @@ void HybridRun::startSliding(double t, const physics::SlidingState& state, doubl
       ModelEvent::Painleve,
       [forwardOf](double, const Y& y) { return forwardOf(y).normalEffectiveMass - physics::kPainleveMargin; }, -1,
       true));
-  const double resolvedSlip = 10 * simulation_.solver.atol;
+  const double resolvedSlip = kResolvedSlipPerAtol * simulation_.solver.atol;
   if (mode == physics::ContactMode::Sliding) {
     events.push_back(switchEvent<kSlidingSize>(kSlipStops, "rolls", [rhs, resolvedSlip](double at, const Y& y) {
       return physics::slipStopMargin(at, slidingStateOf(y).slip, slipRateOf(rhs, at, y), resolvedSlip);

@@ -259,6 +259,54 @@ TEST(Flight, ASlipChatteringAtItsIntegratorsResolutionStops) {
   EXPECT_LT(report.stats.acceptedSteps, 10'000);
 }
 
+// Seeded random tosses onto a table, a third of them perfectly elastic (e = 1), with friction in
+// the impacts and the contact and no other effect: the energy never rises (each row's energy plus
+// what has been dissipated is the start's), and what has been dissipated never falls. A sticking
+// impact at e = 1 created energy in 435 of 533 impacts of a rocking coin before eq. 3.8.
+TEST(Flight, NoTossOntoATableEverGainsEnergy) {
+  std::mt19937 random(23);
+  std::uniform_real_distribution<double> unit(-1, 1), positive(0, 1);
+  int impacts = 0;
+  for (int k = -1; k < 40; ++k) {
+    const double e = k % 3 == 0 ? 1.0 : positive(random);
+    // Every other toss flips in a vertical plane, where a slip keeps its direction and settles at once.
+    const double outOfPlane = k % 2 != 0;
+    nlohmann::json scene = {
+        {"coin",
+         {{"shape", "disk"}, {"radius", 0.01213}, {"mass", 0.00567}, {"thickness", 0.00175}, {"edge_radius", 0.0003}}},
+        {"initial",
+         {{"theta", 80 * unit(random)}, {"phi", outOfPlane * 180 * unit(random)}, {"omega_X", 40 * unit(random)},
+          {"omega_Y", outOfPlane * 10 * unit(random)}, {"omega_Z", outOfPlane * 20 * unit(random)},
+          {"y", 0.02 + 0.05 * positive(random)}, {"v_y", -0.8 * positive(random)},
+          {"v_x", outOfPlane * 0.3 * unit(random)}, {"v_z", 0.5 * unit(random)}}},
+        {"friction", 0.1 + positive(random)}, {"impact_friction", 1.2 * positive(random)}, {"sliding", true},
+        {"flight", true}, {"restitution", e}, {"duration", 0.4}};
+    // First the landing, which gained 1.8e-5 J (0.58 %) in its sticking impact.
+    if (k < 0) {
+      scene["initial"] = {{"theta", 30}, {"omega_X", -40}, {"y", 0.012833}, {"v_y", -0.8}, {"v_z", -0.4}};
+      scene["friction"] = 0.5;
+      scene["impact_friction"] = 1;
+      scene["restitution"] = 1;
+    }
+    const pipeline::Simulation sim = simulationOf(scene);
+    pipeline::CoinRun run(sim);
+    const double start = run.sampleAt(0)->forward.energy;
+    double lastDissipated = 0;
+    for (int row = 0; row <= 4000; ++row) {
+      const std::optional<pipeline::RunSample> s = run.sampleAt(1e-4 * row);
+      if (!s) break;
+      ASSERT_TRUE(isBelow(std::abs(s->forward.energy + s->dissipated - start), 1e-9 * start)) << k << " row " << row;
+      ASSERT_GE(s->dissipated, lastDissipated - 1e-15 * start) << k << " row " << row;
+      lastDissipated = s->dissipated;
+    }
+    for (const pipeline::ImpactRecord& impact : run.impacts()) {
+      EXPECT_GE(impact.energyLost, -1e-15 * start) << k;
+      ++impacts;
+    }
+  }
+  EXPECT_GT(impacts, 50);
+}
+
 TEST(Flight, ATiltedSpinningDropClosesItsEnergyBudgetToItsRest) {
   nlohmann::json scene = edgeDownDrop();
   scene["coin"]["thickness"] = 0.002;

@@ -14,6 +14,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <exception>
 #include <future>
 #include <memory>
 #include <string>
@@ -68,12 +69,18 @@ py::array_t<T> arrayOwning(std::vector<T>&& values, std::vector<py::ssize_t> sha
   return py::array_t<T>(std::move(shape), data, base);
 }
 
+// A table's column, read-only as the Table it goes into is documented to be: the run's numbers,
+// which an edit would silently make disagree with the CSV of the same run.
+py::array_t<double> readOnlyColumn(std::vector<double>&& values) {
+  const auto rows = static_cast<py::ssize_t>(values.size());
+  py::array_t<double> column = arrayOwning(std::move(values), {rows});
+  column.attr("setflags")("write"_a = false);
+  return column;
+}
+
 py::list arraysOwning(std::vector<std::vector<double>>&& columns) {
   py::list arrays;
-  for (std::vector<double>& column : columns) {
-    const auto rows = static_cast<py::ssize_t>(column.size());
-    arrays.append(arrayOwning(std::move(column), {rows}));
-  }
+  for (std::vector<double>& column : columns) arrays.append(readOnlyColumn(std::move(column)));
   return arrays;
 }
 
@@ -120,10 +127,26 @@ py::tuple sweep(const coinroll::Scene& scene, const std::vector<std::string>& ax
                         table.gridPoints, table.digest);
 }
 
+// The Python keyword of each argument the C++ API names in an ArgumentError, so a message names
+// what a Python user types (sample_dt, not sampleDt).
+std::string pythonSpelling(const std::string& argument) {
+  if (argument == "sampleDt") return "sample_dt";
+  if (argument == "time") return "t";
+  if (argument == "output") return "path";
+  return argument;
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_coinroll, module) {
   module.doc() = "coinroll's C++ API; use the coinroll package, which documents it";
+  py::register_exception_translator([](std::exception_ptr error) {
+    try {
+      if (error) std::rethrow_exception(error);
+    } catch (const coinroll::ArgumentError& e) {
+      PyErr_SetString(PyExc_ValueError, e.naming(pythonSpelling(e.argument())).c_str());
+    }
+  });
   module.def("version", &coinroll::version);
 
   py::class_<coinroll::Scene>(module, "Scene")

@@ -7,9 +7,12 @@
 //   find_package(coinroll REQUIRED)            or   pkg-config --cflags --libs coinroll
 //   target_link_libraries(app PRIVATE coinroll::coinroll)
 //
-// Errors are exceptions: SceneError (a std::invalid_argument) for a bad scene, std::invalid_argument
-// for another bad request (the message names the field and the fix, as the command line's exit 2),
-// std::runtime_error for a run or an output that fails. A failed render leaves no file behind.
+// Errors are exceptions: SceneError (a std::invalid_argument) for a bad scene, ArgumentError (one
+// too) for a bad argument of a call, std::invalid_argument for another bad request (the message
+// names the field and the fix, as the command line's exit 2), std::runtime_error for a run or an
+// output that fails. A failed render leaves no file behind. The calls keep the command's rules for
+// what they write and how much: an output never replaces the scene file it was read from, and a
+// run's size is refused before any work when it passes the command's limit.
 //
 // The long calls take a `cancel` flag (Ctrl-C, a closed window, a deadline): set it from another
 // thread or a signal handler and the call stops at its next sample, frame or grid point, removes
@@ -46,6 +49,21 @@ class SceneError : public std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 
+// A bad argument of a call: what() names it as this header spells it ("sampleDt: must be ...").
+// A binding whose users spell the argument otherwise (Python's sample_dt) gives them naming(its
+// spelling), the same message with their name in each place this one stands.
+class ArgumentError : public std::invalid_argument {
+ public:
+  // `around`: the message's text before, between and after the places the argument is named.
+  ArgumentError(std::string argument, std::vector<std::string> around);
+  const std::string& argument() const noexcept { return argument_; }
+  std::string naming(std::string_view spelling) const;
+
+ private:
+  std::string argument_;
+  std::vector<std::string> around_;
+};
+
 // A validated scene. Cheap to copy (the scene is shared and never changes).
 class Scene {
  public:
@@ -57,6 +75,8 @@ class Scene {
 
   std::string name() const;
   double duration() const;  // s of simulated time
+  // The file fromFile read, which renderVideo never writes over; none for the other two.
+  std::optional<std::filesystem::path> file() const;
 
   struct Impl;
   const Impl& impl() const { return *impl_; }
@@ -96,7 +116,9 @@ struct Columns {
 // What simulate returns, under the contract's name for it.
 using Trajectory = Columns;
 
-// Integrates the scene and samples it every `sampleDt` seconds (the CSV's --sample-dt).
+// Integrates the scene and samples it every `sampleDt` seconds (the CSV's --sample-dt). More than
+// the command's limit of rows (duration / sampleDt + 1 > 1e9) is refused before any work with an
+// ArgumentError naming sampleDt.
 Columns simulate(const Scene& scene, double sampleDt = 0.01, const std::atomic<bool>* cancel = nullptr);
 
 // An 8-bit RGBA picture, rows from the top, width * height * 4 bytes.
@@ -106,13 +128,16 @@ struct Image {
   std::vector<std::uint8_t> rgba;
 };
 
-// The picture `coinroll still --time` draws at `time` seconds (clamped to where the run stopped,
-// if a validity event ended it first).
+// The picture `coinroll still --time` draws at `time` seconds, in [0, duration] (clamped to where
+// the run stopped, if a validity event ended it first). ArgumentError naming `time` outside it.
 Image renderStill(const Scene& scene, double time, const std::atomic<bool>* cancel = nullptr);
 
 // The clip `coinroll render -o output` writes; the kind follows the extension (.mp4 H.264, .gif,
 // .webm VP9, .mov ProRes 4444, or a %d pattern for a PNG sequence). The file appears only once it
-// is complete.
+// is complete. Refused before any work, as the command refuses its -o, with an ArgumentError naming
+// `output`: an empty name, or one that is (or whose frames would be) the scene's file() or a file of
+// $COINROLL_ASSET_DIR or $COINROLL_SHADER_DIR; with std::invalid_argument naming the scene key: an
+// output kind that cannot carry the scene's render settings (transparency in an .mp4).
 void renderVideo(const Scene& scene, const std::filesystem::path& output, const std::atomic<bool>* cancel = nullptr);
 
 // What `coinroll steady` prints: the steady motion the scene's `initial` names ({"steady":

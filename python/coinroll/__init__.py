@@ -11,7 +11,8 @@ The same library as the ``coinroll`` command, with its scenes, numbers and pixel
 A ``scene`` is a dict in the scene file's JSON format, a path (str or os.PathLike) to a scene
 file, or None for the built-in default scene; ``overrides`` are the command line's --set
 ("initial.theta=12", the value read as JSON). A bad scene or request raises ValueError with the
-command's message, which names the field. Simulating, drawing and sweeping release the GIL, so
+command's message, which names the field, or the call's keyword where the command names its
+option (sample_dt, t, path); a NaN in a scene dict is refused naming its key. Simulating, drawing and sweeping release the GIL, so
 Python threads run meanwhile; Ctrl-C stops a still, a render or a sweep cleanly (no partial file
 is left) with KeyboardInterrupt, and comes after a simulate returns.
 """
@@ -19,11 +20,28 @@ is left) with KeyboardInterrupt, and comes after a simulate returns.
 import json
 import math
 import os
+import platform
+import sys
 from collections.abc import Mapping
 
-import numpy as np
+from ._built_for import PYTHON as _BUILT_FOR, PYTHON_VERSION as _BUILT_FOR_VERSION
 
-from . import _coinroll
+
+def _cannot_import(error, fix):
+    """An ImportError saying which interpreter the package was built for, and what this one lacks."""
+    this = f"{sys.executable} (Python {platform.python_version()})"
+    return ImportError(f"coinroll cannot be imported by {this}: {error}; coinroll was built for {_BUILT_FOR} "
+                       f"(Python {_BUILT_FOR_VERSION}), which has numpy: run it with that interpreter, or {fix}")
+
+
+try:
+    import numpy as np
+except ImportError as error:
+    raise _cannot_import(error, f"install numpy for this one ({sys.executable} -m pip install numpy)") from error
+try:
+    from . import _coinroll
+except ImportError as error:
+    raise _cannot_import(error, f"build coinroll for this one (cmake -DPython3_EXECUTABLE={sys.executable})") from error
 
 __all__ = ["simulate", "still", "render", "steady", "sweep", "Table", "Trajectory", "SweepTable"]
 __version__ = _coinroll.version()
@@ -32,7 +50,8 @@ __version__ = _coinroll.version()
 class Table(Mapping):
     """Columns by name, in the CSV's order: ``table["energy"]`` is a numpy array.
 
-    A read-only mapping: ``dict(table)``, ``pandas.DataFrame(dict(table))``.
+    A read-only mapping of read-only arrays: ``dict(table)``, ``pandas.DataFrame(dict(table))``,
+    ``table["t"].copy()`` for one to edit.
     """
 
     def __init__(self, names, arrays):
@@ -96,17 +115,32 @@ class SweepTable(Table):
         columns = dict(zip(names, arrays))
         after_keys = list(columns).index("t_end")
         ordered = list(columns.items())
-        ordered.insert(after_keys, ("end", np.array(end, dtype=str)))
+        end = np.array(end, dtype=str)
+        end.flags.writeable = False  # read-only, as the number columns are
+        ordered.insert(after_keys, ("end", end))
         super().__init__([name for name, _ in ordered], [array for _, array in ordered])
         self.grid_points = grid_points
         self.digest = digest
 
 
 def _json_value(value):
-    """numpy's scalars and arrays in a scene dict, as JSON's numbers and lists."""
-    if isinstance(value, (np.generic, np.ndarray)):
-        return value.tolist()
+    """What json.dumps cannot write, refused naming its type."""
     raise TypeError(f"scene: {type(value).__name__} is not a JSON value")
+
+
+def _json_ready(value, key):
+    """`value` with numpy's scalars and arrays as JSON's numbers and lists, and a NaN or an
+    infinity refused naming its key: json.dumps would write a bare NaN, which the scene reader
+    can only call a JSON syntax error."""
+    if isinstance(value, (np.generic, np.ndarray)):
+        value = value.tolist()
+    if isinstance(value, Mapping):
+        return {name: _json_ready(item, f"{key}.{name}" if key else str(name)) for name, item in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_json_ready(item, f"{key}[{i}]") for i, item in enumerate(value)]
+    if isinstance(value, float) and not math.isfinite(value):
+        raise ValueError(f"scene JSON: {key}: must be a finite number, got {value}")
+    return value
 
 
 def _scene(scene, overrides=()):
@@ -114,7 +148,7 @@ def _scene(scene, overrides=()):
     if scene is None:
         return _coinroll.Scene.built_in_default(overrides)
     if isinstance(scene, Mapping):
-        return _coinroll.Scene.from_json(json.dumps(scene, default=_json_value), overrides)
+        return _coinroll.Scene.from_json(json.dumps(_json_ready(scene, ""), default=_json_value), overrides)
     if isinstance(scene, (str, os.PathLike)):
         return _coinroll.Scene.from_file(os.fspath(scene), overrides)
     raise TypeError(f"scene: give a dict in the scene file's format, a path to a scene file or None, "
@@ -126,7 +160,8 @@ def simulate(scene, sample_dt=0.01, overrides=()):
 
     Returns a Trajectory: ``r["theta"]`` a float64 array per CSV column (the same doubles as the
     CSV, whose %.17g reads back exactly), ``r.columns`` the names, ``r.end_event`` and
-    ``r.end_time`` how the run ended.
+    ``r.end_time`` how the run ended. More rows than the command's limit (duration / sample_dt + 1 >
+    10^9) is refused before any work.
     """
     return Trajectory(*_coinroll.simulate(_scene(scene, overrides), sample_dt))
 
@@ -143,7 +178,8 @@ def render(scene, path, overrides=()):
     """Writes the clip ``coinroll render -o path`` writes and returns ``path``.
 
     The kind follows the name: .mp4, or a %d pattern of .png names for a PNG sequence. The file
-    appears only once it is complete; an error or Ctrl-C leaves none.
+    appears only once it is complete; an error or Ctrl-C leaves none. As the command's -o, ``path``
+    is refused when it is (or a frame of its sequence would be) the scene's file.
     """
     _coinroll.render(_scene(scene, overrides), os.fspath(path))
     return path
@@ -176,7 +212,7 @@ def steady(scene=None, *, kind=None, theta=None, omega_Z=None, branch=None, over
                 initial[name] = value
         if branch is not None:
             initial["branch"] = branch
-        overrides.insert(0, "initial=" + json.dumps(initial))
+        overrides.insert(0, "initial=" + json.dumps(_json_ready(initial, "initial"), default=_json_value))
     elif theta is not None or omega_Z is not None or branch is not None:
         raise ValueError("theta, omega_Z and branch describe a steady state: give kind too")
     return _coinroll.steady(_scene(scene, overrides))

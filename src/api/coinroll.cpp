@@ -17,6 +17,7 @@
 #include "physics/steady.h"
 #include "physics/validity.h"
 #include "pipeline/cancelled.h"
+#include "pipeline/inputs.h"
 #include "pipeline/simulation.h"
 #include "pipeline/still.h"
 #include "pipeline/sweep.h"
@@ -24,6 +25,7 @@
 #include "pipeline/video_frames.h"
 #include "scene/scene_loader.h"
 #include "video/make_sink.h"
+#include "video/video_kinds.h"
 
 namespace coinroll {
 
@@ -31,15 +33,42 @@ struct Scene::Impl {
   nlohmann::json document;  // with the overrides applied: what a sweep varies
   std::string sourceName;   // names the scene in messages
   scene::SceneConfig config;
+  std::optional<std::filesystem::path> file = std::nullopt;  // the scene file, an input no output replaces
 };
 
 namespace {
 
 constexpr double kDegreesPerRadian = 180 / std::numbers::pi;
 
-// The library's promise: a bad scene is SceneError (a std::invalid_argument, as any other bad
-// request is) and a cancelled call
-// coinroll::Cancelled, whatever the layer below calls them.
+// A call's argument in a message, between two of these: the layers below write whatever name they
+// are given for it, and translatingErrors cuts the message there into an ArgumentError, which can
+// then name the argument as each door spells it (ArgumentError::naming).
+constexpr char kArgumentMark = '\x1f';
+
+std::string marked(std::string_view argument) { return fmt::format("{0}{1}{0}", kArgumentMark, argument); }
+
+// "a \x1fname\x1f b" -> ArgumentError("name", {"a ", " b"}).
+ArgumentError argumentErrorFrom(std::string_view message) {
+  std::vector<std::string> around;
+  std::string argument;
+  std::size_t start = 0;
+  for (std::size_t piece = 0;; ++piece) {
+    const std::size_t end = message.find(kArgumentMark, start);
+    const std::string_view text = message.substr(start, end == std::string_view::npos ? end : end - start);
+    if (piece % 2 == 0) {
+      around.emplace_back(text);
+    } else {
+      argument = text;
+    }
+    if (end == std::string_view::npos) break;
+    start = end + 1;
+  }
+  return ArgumentError(std::move(argument), std::move(around));
+}
+
+// The library's promise: a bad scene is SceneError, a bad argument ArgumentError (both
+// std::invalid_argument, as any other bad request is) and a cancelled call coinroll::Cancelled,
+// whatever the layer below calls them.
 template <class Work>
 auto translatingErrors(Work&& work) {
   try {
@@ -48,7 +77,19 @@ auto translatingErrors(Work&& work) {
     throw SceneError(e.what());
   } catch (const pipeline::Cancelled&) {
     throw Cancelled();
+  } catch (const std::invalid_argument& e) {
+    if (std::string_view(e.what()).find(kArgumentMark) == std::string_view::npos) throw;
+    throw argumentErrorFrom(e.what());
   }
+}
+
+std::string joinedAround(const std::vector<std::string>& around, std::string_view argument) {
+  std::string message;
+  for (std::size_t i = 0; i < around.size(); ++i) {
+    if (i > 0) message += argument;
+    message += around[i];
+  }
+  return message;
 }
 
 Scene::Impl parsed(nlohmann::json document, const std::vector<std::string>& overrides, std::string_view sourceName) {
@@ -63,9 +104,18 @@ std::string version() { return COINROLL_VERSION; }
 
 Cancelled::Cancelled() : std::runtime_error("interrupted") {}
 
+ArgumentError::ArgumentError(std::string argument, std::vector<std::string> around)
+    : std::invalid_argument(joinedAround(around, argument)),
+      argument_(std::move(argument)),
+      around_(std::move(around)) {}
+
+std::string ArgumentError::naming(std::string_view spelling) const { return joinedAround(around_, spelling); }
+
 Scene Scene::fromFile(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
   return translatingErrors([&] {
-    return Scene(std::make_shared<const Impl>(parsed(scene::readSceneDocument(file), overrides, file.string())));
+    Impl impl = parsed(scene::readSceneDocument(file), overrides, file.string());
+    impl.file = file;
+    return Scene(std::make_shared<const Impl>(std::move(impl)));
   });
 }
 
@@ -89,6 +139,7 @@ Scene Scene::builtInDefault(const std::vector<std::string>& overrides) {
 
 std::string Scene::name() const { return impl_->config.name; }
 double Scene::duration() const { return impl_->config.duration; }
+std::optional<std::filesystem::path> Scene::file() const { return impl_->file; }
 
 const std::vector<double>& Columns::operator[](std::string_view name) const {
   for (std::size_t i = 0; i < names.size(); ++i) {
@@ -99,11 +150,14 @@ const std::vector<double>& Columns::operator[](std::string_view name) const {
 
 // The same rows the CSV writer prints (pipeline/trajectory_samples.h), kept as numbers.
 Columns simulate(const Scene& scene, double sampleDt, const std::atomic<bool>* cancel) {
-  if (!(sampleDt > 0) || !std::isfinite(sampleDt)) {
-    throw std::invalid_argument(fmt::format("sampleDt: must be a finite number > 0 s, got {}", sampleDt));
-  }
   Columns columns;
   const pipeline::TrajectoryReport result = translatingErrors([&] {
+    if (!(sampleDt > 0) || !std::isfinite(sampleDt)) {
+      throw std::invalid_argument(
+          fmt::format("{}: must be a finite number > 0 s, got {}", marked("sampleDt"), sampleDt));
+    }
+    // The command's limit, without its --max-rows: these rows are held in memory, not streamed.
+    pipeline::refuseTooManyRows(scene.duration(), sampleDt, pipeline::kDefaultMaxRows, marked("sampleDt"), "");
     pipeline::Simulation simulation = pipeline::buildSimulation(scene.impl().config);
     simulation.cancel = cancel;
     const std::vector<std::string_view> names = pipeline::trajectoryColumns(simulation);
@@ -125,6 +179,7 @@ Columns simulate(const Scene& scene, double sampleDt, const std::atomic<bool>* c
 Image renderStill(const Scene& scene, double time, const std::atomic<bool>* cancel) {
   pipeline::StillRequest request;
   request.time = time;
+  request.timeName = marked("time");
   request.cancel = cancel;
   pipeline::StillPicture picture = translatingErrors([&] { return pipeline::drawStill(scene.impl().config, request); });
   return {.width = picture.image.width, .height = picture.image.height, .rgba = std::move(picture.image.rgba)};
@@ -132,10 +187,23 @@ Image renderStill(const Scene& scene, double time, const std::atomic<bool>* canc
 
 void renderVideo(const Scene& scene, const std::filesystem::path& output, const std::atomic<bool>* cancel) {
   translatingErrors([&] {
+    // The command's rules for its -o, checked in the same order before any work.
+    const std::string outputName = marked("output");
+    if (output.empty()) {
+      throw std::invalid_argument(fmt::format("{}: the file name is empty; give the file to write, e.g. \"clip.mp4\" "
+                                              "(or \"frame_%05d.png\" for a PNG sequence)", outputName));
+    }
     const scene::SceneConfig& config = scene.impl().config;
-    std::unique_ptr<video::FrameSink> sink = video::makeSinkForPath(output, config.render.mp4Options());
+    const video::VideoOptions encoding = config.render.mp4Options();
+    if (const std::optional<video::VideoFormat> format = video::videoFormatOf(output)) {
+      video::refuseOutputThatCannotCarry(encoding, *format, "\"audio\": false in the scene's render block");
+    }
+    const std::vector<std::filesystem::path> inputs = pipeline::inputFiles(scene.impl().file);
+    video::refuseOverwritingInput(outputName, output, inputs);
+    std::unique_ptr<video::FrameSink> sink = video::makeSinkForPath(output, encoding, inputs);
     pipeline::VideoRunOptions options;
     options.cancel = cancel;
+    options.maxFramesOption = {};  // the API has no way to raise the limit
     return pipeline::renderVideo(config, *sink, options);
   });
 }

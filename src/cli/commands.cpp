@@ -25,6 +25,7 @@
 #include "physics/validity.h"
 #include "pipeline/simulation.h"
 #include "pipeline/still.h"
+#include "pipeline/trajectory_samples.h"
 #include "pipeline/video_frames.h"
 #include "video/async_sink.h"
 #include "video/make_sink.h"
@@ -185,12 +186,11 @@ void runSimulate(const SimulateOptions& options) {
   const std::pair<nlohmann::json, std::string> loaded = loadSceneDocument(options.scene);
   const nlohmann::json& document = loaded.first;
   const scene::SceneConfig scene = scene::parseScene(document, loaded.second);
-  const long maxRows = options.maxRows > 0 ? options.maxRows : kDefaultMaxRows;
-  if (const double rows = scene.duration / options.sampleDt + 1; rows > static_cast<double>(maxRows)) {
-    throw UsageError(
-        fmt::format("--sample-dt {}: duration {} s gives {:.4g} rows, more than the limit {}; raise "
-                    "--sample-dt, or the limit with --max-rows",
-                    options.sampleDt, scene.duration, rows, maxRows));
+  const long maxRows = options.maxRows > 0 ? options.maxRows : pipeline::kDefaultMaxRows;
+  try {
+    pipeline::refuseTooManyRows(scene.duration, options.sampleDt, maxRows, "--sample-dt", "--max-rows");
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
   }
   pipeline::Simulation simulation = pipeline::buildSimulation(scene);
   simulation.cancel = &interruptRequested();

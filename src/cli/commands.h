@@ -17,7 +17,7 @@ struct SimulateOptions {
   SceneSource scene;
   std::string csvPath;    // "-" = stdout
   double sampleDt = 0.01; // s
-  long maxRows = 0;       // 0: kDefaultMaxRows
+  long maxRows = 0;       // 0: pipeline::kDefaultMaxRows
   // A JSON file naming what made the CSV (the contract fixes the CSV's header, so its provenance
   // goes beside it): program, release, scene digest, the resolved scene, the sampling and how the
   // run ended. Unset: none.
@@ -25,10 +25,6 @@ struct SimulateOptions {
   bool quiet = false;  // only warnings and an early stop on stderr: no notes, mode switches or summary
 };
 
-// Rows above this need --max-rows: 10^9 rows is about 300 GB of CSV. Counted from the duration,
-// before the run: a spin-down given a huge duration "until it stops" (1e5 s at 0.01 s is 10^7
-// rows) must still pass, though it writes only the rows before its coin-flat stop.
-inline constexpr long kDefaultMaxRows = 1'000'000'000;
 void runSimulate(const SimulateOptions& options);
 
 struct SteadyOptions {

@@ -29,6 +29,7 @@
 #include "cli/version.h"
 #include "pipeline/resources.h"
 #include "pipeline/sweep.h"
+#include "pipeline/trajectory_samples.h"
 #include "pipeline/video_frames.h"
 #include "scene/render_output.h"
 #include "scene/json_reader.h"
@@ -119,7 +120,8 @@ CLI::App* addSimulateCommand(CLI::App& app, SimulateOptions& options) {
   command
       ->add_option(
           "--max-rows", options.maxRows,
-          fmt::format("Refuse runs whose duration / sample step exceeds this many rows (default {})", kDefaultMaxRows))
+          fmt::format("Refuse runs whose duration / sample step exceeds this many rows (default {})",
+                      coinroll::pipeline::kDefaultMaxRows))
       ->check(kAtLeastOne);
   command->add_option("--provenance", options.provenancePath,
                       "Also write FILE.json naming what made the CSV: coinroll's version, the scene's digest and the "

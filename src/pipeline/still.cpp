@@ -79,7 +79,8 @@ image::Image drawPanels(const scene::SceneConfig& scene, render::Renderer& rende
 StillPicture drawStill(const scene::SceneConfig& scene, const StillRequest& request) {
   if (!std::isfinite(request.time) || request.time < 0 || request.time > scene.duration) {
     throw std::invalid_argument(
-        fmt::format("--time: must be within the scene's duration, 0 to {} s, got {}", scene.duration, request.time));
+        fmt::format("{}: must be within the scene's duration, 0 to {} s, got {}", request.timeName, scene.duration,
+                    request.time));
   }
   if (request.ghosts < 0 || request.ghosts > 500) {
     throw std::invalid_argument(fmt::format("--strobe: must be 0 to 500 copies, got {}", request.ghosts));

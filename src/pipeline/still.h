@@ -13,6 +13,7 @@ namespace coinroll::pipeline {
 
 struct StillRequest {
   double time = 0;                 // s of simulated time, in [0, duration]
+  std::string timeName = "--time";  // names `time` in messages, as the caller's user gives it
   int ghosts = 0;                  // > 0: this many earlier poses, evenly spaced over [ghostsFrom, time)
   double ghostsFrom = 0;           // s, the first ghost's time, in [0, time)
   // The ghosts' times and `time` as panels side by side (a grid of ghosts + 1 pictures, each the

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "pipeline/coin_run.h"
@@ -12,6 +14,17 @@ namespace coinroll::pipeline {
 
 long sampleCount(double duration, double sampleDt) {
   return static_cast<long>(std::floor(duration / sampleDt * (1 + 1e-9))) + 1;
+}
+
+void refuseTooManyRows(double duration, double sampleDt, long maxRows, std::string_view sampleDtName,
+                       std::string_view maxRowsOption) {
+  if (const double rows = duration / sampleDt + 1; rows > static_cast<double>(maxRows)) {
+    const std::string raise = maxRowsOption.empty()
+                                  ? std::string(sampleDtName)
+                                  : fmt::format("{}, or the limit with {}", sampleDtName, maxRowsOption);
+    throw std::invalid_argument(fmt::format("{} {}: duration {} s gives {:.4g} rows, more than the limit {}; raise {}",
+                                            sampleDtName, sampleDt, duration, rows, maxRows, raise));
+  }
 }
 
 namespace {

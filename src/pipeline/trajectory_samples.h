@@ -40,6 +40,19 @@ std::vector<std::string_view> trajectoryColumns(const Simulation& simulation);
 // instead of 231.
 long sampleCount(double duration, double sampleDt);
 
+// Rows above this need the command's --max-rows: 10^9 rows is about 300 GB of CSV, and more than
+// any machine holds in memory for the library's columns. Counted from the duration, before the
+// run: a spin-down given a huge duration "until it stops" (1e5 s at 0.01 s is 10^7 rows) must
+// still pass, though it has only the rows before its coin-flat stop.
+inline constexpr long kDefaultMaxRows = 1'000'000'000;
+
+// Refuses with std::invalid_argument, before any work, sampling `duration` s every `sampleDt` s in
+// more than `maxRows` rows. The message names the sample step as the caller's user gives it
+// (`sampleDtName`: "--sample-dt", "sampleDt") and how they raise the limit (`maxRowsOption`:
+// "--max-rows"; empty when they cannot).
+void refuseTooManyRows(double duration, double sampleDt, long maxRows, std::string_view sampleDtName,
+                       std::string_view maxRowsOption);
+
 // A scene without `friction` has no cone to leave (ideal rolling): the most friction per unit of
 // normal force its rolling contact needed, so a reader knows which mu it takes (docs/sliding.md §4.7).
 struct FrictionNeeded {

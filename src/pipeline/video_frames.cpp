@@ -37,12 +37,16 @@ bool isRemapped(const scene::RenderSpec& render) {
   return render.timeRemap || render.flightSlowDown || render.impactSlowDown;
 }
 
-[[noreturn]] void refuseFrames(const scene::SceneConfig& scene, long maxFrames, const std::string& count) {
+// `raisedWith`: how the caller's user raises the limit; empty when they cannot.
+[[noreturn]] void refuseFrames(const scene::SceneConfig& scene, long maxFrames, std::string_view raisedWith,
+                               const std::string& count) {
+  const std::string fixes = raisedWith.empty() ? "shorten the duration, raise time_scale or lower fps"
+                                               : fmt::format("shorten the duration, raise time_scale or lower fps, or "
+                                                             "raise the limit with {}", raisedWith);
   throw std::invalid_argument(fmt::format(
-      "render: duration {} s at time_scale {}, fps {}{} gives {} frames, more than the limit {}; shorten the duration, "
-      "raise time_scale or lower fps, or raise the limit with --max-frames",
-      scene.duration, scene.render.timeScale, scene.render.fps, isRemapped(scene.render) ? " and the time remap" : "",
-      count, maxFrames));
+      "render: duration {} s at time_scale {}, fps {}{} gives {} frames, more than the limit {}; {}", scene.duration,
+      scene.render.timeScale, scene.render.fps, isRemapped(scene.render) ? " and the time remap" : "", count, maxFrames,
+      fixes));
 }
 
 }  // namespace
@@ -64,8 +68,13 @@ namespace {
 // sample and the flight and impact slow-downs' at t_k (from `schedule`, known ahead).
 class ClipFrameTimes final : public FramePlan {
  public:
-  ClipFrameTimes(const scene::SceneConfig& scene, long maxFrames, const SlowMotionSchedule& schedule)
-      : scene_(scene), schedule_(schedule), maxFrames_(maxFrames), perFrame_(scene.render.timeScale / scene.render.fps),
+  ClipFrameTimes(const scene::SceneConfig& scene, long maxFrames, std::string_view maxFramesOption,
+                 const SlowMotionSchedule& schedule)
+      : scene_(scene),
+        schedule_(schedule),
+        maxFrames_(maxFrames),
+        maxFramesOption_(maxFramesOption),
+        perFrame_(scene.render.timeScale / scene.render.fps),
         ofDuration_(frameCount(scene.duration, scene.render.timeScale, scene.render.fps)) {}
 
   std::optional<double> timeOf(long k, const RunSample* previous) override {
@@ -101,7 +110,7 @@ class ClipFrameTimes final : public FramePlan {
     // The sum of steps drifts by round-off; a relative 1e-12 keeps the frame at the very end.
     if (time > end * (1 + 1e-12)) return false;
     if (k == maxFrames_) {
-      refuseFrames(scene_, maxFrames_,
+      refuseFrames(scene_, maxFrames_, maxFramesOption_,
                    fmt::format("more than {} (the time remap slows it at t = {:.6g} s)", maxFrames_, time));
     }
     return true;
@@ -114,6 +123,7 @@ class ClipFrameTimes final : public FramePlan {
   const scene::SceneConfig& scene_;
   const SlowMotionSchedule& schedule_;
   long maxFrames_;
+  std::string_view maxFramesOption_;
   double perFrame_;    // s of simulated time, without a remap
   long ofDuration_;    // frames of a run that lasts its duration, without a remap
   double lastTime_ = 0;  // s, the remapped frame time last given
@@ -128,14 +138,15 @@ struct ClipRecord {
   SlowMotionSchedule schedule;
 };
 
-ClipRecord recordClip(const scene::SceneConfig& scene, const Simulation& simulation, long maxFrames) {
+ClipRecord recordClip(const scene::SceneConfig& scene, const Simulation& simulation, long maxFrames,
+                      std::string_view maxFramesOption) {
   ClipRecord clip{.record = {}, .slowedBy = {}, .schedule = planSlowMotion(scene, simulation)};
-  ClipFrameTimes plan(scene, maxFrames, clip.schedule);
+  ClipFrameTimes plan(scene, maxFrames, maxFramesOption, clip.schedule);
   clip.record = recordRun(simulation, plan);
   if (!isRemapped(scene.render)) {
     if (const long total = frameCount(clip.record.survey.endTime, scene.render.timeScale, scene.render.fps);
         total > maxFrames) {
-      refuseFrames(scene, maxFrames, std::to_string(total));
+      refuseFrames(scene, maxFrames, maxFramesOption, std::to_string(total));
     }
   }
   clip.slowedBy = std::move(plan).slowedBy();
@@ -145,7 +156,7 @@ ClipRecord recordClip(const scene::SceneConfig& scene, const Simulation& simulat
 }  // namespace
 
 RunRecord recordFrames(const scene::SceneConfig& scene, const Simulation& simulation, long maxFrames) {
-  return recordClip(scene, simulation, maxFrames).record;
+  return recordClip(scene, simulation, maxFrames, kMaxFramesOption).record;
 }
 
 namespace {
@@ -223,10 +234,10 @@ namespace {
 
 // The up-front refusal: the duration's frames bound what a run that goes the distance shows (a remap
 // only adds), so absurd ones are refused before the pass over the run (kUpFrontFrameFactor).
-void refuseAbsurdDuration(const scene::SceneConfig& scene, long maxFrames) {
+void refuseAbsurdDuration(const scene::SceneConfig& scene, long maxFrames, std::string_view maxFramesOption) {
   if (const double atMost = static_cast<double>(scene.duration) / scene.render.timeScale * scene.render.fps;
       atMost > kUpFrontFrameFactor * static_cast<double>(maxFrames)) {
-    refuseFrames(scene, maxFrames, fmt::format("{:.4g}", atMost));
+    refuseFrames(scene, maxFrames, maxFramesOption, fmt::format("{:.4g}", atMost));
   }
 }
 
@@ -275,10 +286,10 @@ ClipPlan planOf(const scene::SceneConfig& scene, ClipRecord& clip) {
 }  // namespace
 
 ClipPlan planClip(const scene::SceneConfig& scene, long maxFrames, const std::atomic<bool>* cancel) {
-  refuseAbsurdDuration(scene, maxFrames);
+  refuseAbsurdDuration(scene, maxFrames, kMaxFramesOption);
   Simulation simulation = buildSimulation(scene);
   simulation.cancel = cancel;
-  ClipRecord clip = recordClip(scene, simulation, maxFrames);
+  ClipRecord clip = recordClip(scene, simulation, maxFrames, kMaxFramesOption);
   return planOf(scene, clip);
 }
 
@@ -497,7 +508,7 @@ class ClipInset {
 }  // namespace
 
 VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& sink, const VideoRunOptions& options) {
-  refuseAbsurdDuration(scene, options.maxFrames);
+  refuseAbsurdDuration(scene, options.maxFrames, options.maxFramesOption);
   Simulation simulation = buildSimulation(scene);
   simulation.cancel = options.cancel;
   render::RenderSettings settings = scene.render.picture;
@@ -508,7 +519,7 @@ VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& si
       4 * static_cast<std::uint64_t>(settings.width) * static_cast<std::uint64_t>(settings.height);
   requireRendererAddressSpace(settings, sink.workingMemory(frameBytes));
   render::Renderer renderer(settings);
-  ClipRecord clip = recordClip(scene, simulation, options.maxFrames);
+  ClipRecord clip = recordClip(scene, simulation, options.maxFrames, options.maxFramesOption);
   const ClipPlan plan = planOf(scene, clip);
   const RunRecord& record = clip.record;
   const std::vector<FrameState>& frames = record.frames;

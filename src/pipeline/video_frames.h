@@ -11,6 +11,7 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "pipeline/run_record.h"
@@ -29,6 +30,7 @@ namespace coinroll::pipeline {
 // kUpFrontFrameFactor times the limit is refused, since the pass alone could take hours.
 inline constexpr long kDefaultMaxFrames = 1'000'000;
 inline constexpr double kUpFrontFrameFactor = 1000;
+inline constexpr std::string_view kMaxFramesOption = "--max-frames";
 
 // s of video. A clip whose coin lands on its face (event face-down) holds the landing's picture
 // this long after its last simulated frame, in silence.
@@ -132,6 +134,8 @@ struct VideoRunOptions {
   std::function<void(const FrameTiming&)> onFrameTiming = {};  // called for each frame pushed, in order; may be empty
   const std::atomic<bool>* cancel = nullptr;          // when set and true, the loop stops (Cancelled)
   long maxFrames = kDefaultMaxFrames;                 // more frames: std::invalid_argument, before any work
+  // How the caller's user raises maxFrames, named in that refusal; empty when they cannot.
+  std::string maxFramesOption = std::string(kMaxFramesOption);
   bool reuseStaticBackground = true;  // render::RenderSettings; off only to measure what it saves
   // Frames outside it are neither drawn nor pushed (the simulation and the trace still run from 0),
   // nor is their sound. std::invalid_argument naming its options when no frame lies in it (framesIn).

@@ -20,7 +20,37 @@ std::optional<VideoFormat> formatOfExtension(const std::filesystem::path& path) 
   return std::nullopt;
 }
 
+// The frame names of `output` when it names a PNG sequence with a well-formed pattern; a malformed
+// one is the sink's to refuse, naming the rule it breaks.
+std::optional<SequencePattern> sequencePatternOf(const std::filesystem::path& output) {
+  if (!namesPngSequence(output)) return std::nullopt;
+  try {
+    return parseSequencePattern(output);
+  } catch (const std::invalid_argument&) {
+    return std::nullopt;
+  }
+}
+
 }  // namespace
+
+void refuseOverwritingInput(std::string_view argument, const std::filesystem::path& output,
+                            const std::vector<std::filesystem::path>& inputs) {
+  std::error_code error;
+  const std::optional<SequencePattern> frames = sequencePatternOf(output);
+  const std::string named = std::string(argument) + " " + output.string();
+  for (const std::filesystem::path& input : inputs) {
+    const std::filesystem::path outputDirectory = output.parent_path().empty() ? "." : output.parent_path();
+    const std::filesystem::path inputDirectory = input.parent_path().empty() ? "." : input.parent_path();
+    if (frames && std::filesystem::equivalent(outputDirectory, inputDirectory, error) &&
+        frames->frameNumberOf(input.filename().string())) {
+      throw std::invalid_argument(named + ": one of its frames would be the input " + input.string() +
+                                  "; choose another output name");
+    }
+    if (std::filesystem::equivalent(output, input, error)) {
+      throw std::invalid_argument(named + ": that is the input " + input.string() + "; choose another output name");
+    }
+  }
+}
 
 std::optional<VideoFormat> videoFormatOf(const std::filesystem::path& path) {
   if (const std::optional<VideoFormat> format = formatOfExtension(path)) return format;

@@ -1,9 +1,11 @@
 #pragma once
-// Picks the sink for an output path, as `coinroll render -o PATH` does.
+// Picks the sink for an output path, as `coinroll render -o PATH` does, and keeps the rule every
+// door (command, library, Python) holds its outputs to.
 
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <string_view>
 #include <vector>
 
 #include "video/encoder_sink.h"
@@ -25,6 +27,13 @@ bool namesPngSequence(const std::filesystem::path& path);
 // forms; the sinks' constructors throw for a bad pattern, bad options or a missing directory.
 // `inputs`: the command's input files, which no frame of a sequence may lead to. With a `group`,
 // the sink's files are staged in it and published by its commit(), not by the sink's finish().
+// An output must never replace a file the caller reads: throws std::invalid_argument, before
+// anything runs, when `output` is one of `inputs` (through any link) or names a PNG sequence one of
+// whose frames would be. `argument` names the output as the caller's user gives it ("-o",
+// "--csv", "output").
+void refuseOverwritingInput(std::string_view argument, const std::filesystem::path& output,
+                            const std::vector<std::filesystem::path>& inputs);
+
 std::unique_ptr<FrameSink> makeSinkForPath(const std::filesystem::path& path, const VideoOptions& options,
                                            const std::vector<std::filesystem::path>& inputs = {},
                                            io::OutputGroup* group = nullptr);

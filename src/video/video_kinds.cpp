@@ -120,7 +120,7 @@ std::string joinedWithOr(std::span<const std::string> items) {
   return joined;
 }
 
-void refuseOutputThatCannotCarry(const VideoOptions& wanted, VideoFormat format) {
+void refuseOutputThatCannotCarry(const VideoOptions& wanted, VideoFormat format, std::string_view soundOff) {
   const VideoKind& kind = videoKind(format);
   if (wanted.alpha && !kind.keepsAlpha()) {
     throw std::invalid_argument("render.background: \"transparent\" needs an output with alpha, and " +
@@ -132,7 +132,7 @@ void refuseOutputThatCannotCarry(const VideoOptions& wanted, VideoFormat format)
   if (wanted.audio && !kind.audio) {
     throw std::invalid_argument("render.audio: a " + std::string(kind.extension) + " gets no sound track; write " +
                                 kindsThat([](const VideoKind& k, const VideoOptions&) { return k.audio; }, wanted) +
-                                ", or leave the sound out with --set render.audio=null");
+                                ", or leave the sound out with " + std::string(soundOff));
   }
   if (!kind.carriesFps(wanted.fps)) {
     throw std::invalid_argument(

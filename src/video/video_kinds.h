@@ -68,7 +68,9 @@ std::string joinedWithOr(std::span<const std::string> items);
 
 // Throws std::invalid_argument in the words of the scene's render block when `format` cannot carry
 // what `wanted` asks for (docs/outputs.md): alpha (render.background "transparent"), a sound track
-// (render.audio) or its frame rate (render.fps); each message names the kinds that can.
-void refuseOutputThatCannotCarry(const VideoOptions& wanted, VideoFormat format);
+// (render.audio) or its frame rate (render.fps); each message names the kinds that can, and
+// `soundOff` how the caller's user leaves the sound out.
+void refuseOutputThatCannotCarry(const VideoOptions& wanted, VideoFormat format,
+                                 std::string_view soundOff = "--set render.audio=null");
 
 }  // namespace coinroll::video

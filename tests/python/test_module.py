@@ -57,7 +57,7 @@ def test_still_is_an_rgba_array():
     assert picture.shape == (120, 160, 4) and picture.dtype == np.uint8
     assert (picture[..., 3] == 255).all()
     assert len(np.unique(picture.reshape(-1, 4), axis=0)) > 100  # a coin and its shading, not a blank
-    with pytest.raises(ValueError, match="--time"):
+    with pytest.raises(ValueError, match="^t: must be within the scene's duration"):
         coinroll.still(TOY, 3)
 
 

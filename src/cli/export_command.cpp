@@ -131,9 +131,9 @@ void runExport(const ExportOptions& options) {
   // or descriptor has no name to check.
   if (options.output && !video::namesExtension(*options.output, ".html") &&
       !video::namesExtension(*options.output, ".htm") && *options.output != "-" && !io::namesStream(*options.output)) {
+    const std::string html = std::filesystem::path(*options.output).replace_extension(".html").string();
     throw UsageError(fmt::format("-o {}: export writes an HTML page; name it .html, e.g. -o {}",
-                                 scene::printable(*options.output),
-                                 scene::printable(std::filesystem::path(*options.output).replace_extension(".html").string())));
+                                 scene::printable(*options.output), scene::printable(html)));
   }
   const auto [document, sourceName] = loadSceneDocument(options.scene);
   // A scene the page would refuse is refused here, with the same message.

@@ -94,8 +94,9 @@ void runSweepMerge(const SweepMergeOptions& options) {
   ProgressLine noProgress(ProgressLine::Style::Off, "", "");
   const long points = withProgress(noProgress, options.output, [&] {
     long merged = 0;
-    writeTextOutput(options.output, "merged sweep",
-                    [&](std::ostream& out) { merged = pipeline::mergeSweepShards(shards, out, &interruptRequested()); });
+    writeTextOutput(options.output, "merged sweep", [&](std::ostream& out) {
+      merged = pipeline::mergeSweepShards(shards, out, &interruptRequested());
+    });
     return merged;
   });
   if (!options.quiet) {

@@ -1539,6 +1539,18 @@ for sig in (signal.SIGSEGV, signal.SIGABRT):
          unsanitized="AddressSanitizer handles SIGSEGV itself: it reports, then aborts"
          if sig == signal.SIGSEGV else None)
 
+# A strobe's copies are drawn in one call that cannot poll (issue 50: exit 0 and the PNG): the
+# request is answered after the draw, before the file; panels are drawn one by one, each polled.
+# A draw on a loaded machine may outlast the 3 s grace: its forced end leaves no file either.
+STROBE50 = "exit 0 and the PNG before (issue 50)"
+case("sigint-still-strobe", C, "SIGINT while a still draws 500 strobe copies",
+     "still scene.json --time 0.4 --strobe 500 -o o.png", 1, interrupted(INT, "o.png"),
+     or_msg="interrupted by SIGINT and not stopped within 3 s", key="interrupted", signal=INT, wait_for="sleep",
+     na_before=STROBE50)
+case("sigterm-still-panels", C, "SIGTERM while a still draws 501 panels",
+     "still scene.json --time 0.4 --strobe 500 --panels -o o.png --set render.width=320 --set render.height=180", 1,
+     interrupted(TERM, "o.png"), key="interrupted", signal=TERM, wait_for="sleep", na_before=STROBE50)
+
 # --- sidecars (issue 39.1): render --frame-times and simulate --provenance are outputs of their run like
 # the video or the CSV: one group, compared by the file a name leads to (not its spelling), published
 # with the rest or not at all, earlier files kept on a failure and on a signal (docs/outputs.md).

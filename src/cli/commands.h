@@ -25,10 +25,12 @@ struct SimulateOptions {
   bool quiet = false;  // only warnings and an early stop on stderr: no notes, mode switches or summary
 };
 
-// Rows above this need --max-rows: 10^9 rows is about 300 GB of CSV. Counted from the duration,
-// before the run: a spin-down given a huge duration "until it stops" (1e5 s at 0.01 s is 10^7
-// rows) must still pass, though it writes only the rows before its coin-flat stop.
-inline constexpr long kDefaultMaxRows = 1'000'000'000;
+// Rows above this need --max-rows: 10^8 rows is about 30 GB of CSV and minutes of sampling, so
+// a --sample-dt with a few zeros too many (1e-9 on a 0.5 s run: 5e8 rows) is refused up front
+// instead of filling the disk. Counted from the duration, before the run: a spin-down given a
+// huge duration "until it stops" (1e5 s at 0.01 s is 10^7 rows) must still pass, though it
+// writes only the rows before its coin-flat stop.
+inline constexpr long kDefaultMaxRows = 100'000'000;
 void runSimulate(const SimulateOptions& options);
 
 struct SteadyOptions {

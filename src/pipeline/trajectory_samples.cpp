@@ -11,7 +11,11 @@
 namespace coinroll::pipeline {
 
 long sampleCount(double duration, double sampleDt) {
-  return static_cast<long>(std::floor(duration / sampleDt * (1 + 1e-9))) + 1;
+  return static_cast<long>(sampleCountUnbounded(duration, sampleDt));
+}
+
+double sampleCountUnbounded(double duration, double sampleDt) {
+  return std::floor(duration / sampleDt * (1 + 1e-9)) + 1;
 }
 
 namespace {

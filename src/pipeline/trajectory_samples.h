@@ -40,6 +40,10 @@ std::vector<std::string_view> trajectoryColumns(const Simulation& simulation);
 // instead of 231.
 long sampleCount(double duration, double sampleDt);
 
+// sampleCount in a double, for a limit checked before the run: an absurd request (1e6 s at
+// 1e-300 s) has more rows than a long holds. Exact, and equal to sampleCount, below 2^53.
+double sampleCountUnbounded(double duration, double sampleDt);
+
 // A scene without `friction` has no cone to leave (ideal rolling): the most friction per unit of
 // normal force its rolling contact needed, so a reader knows which mu it takes (docs/sliding.md §4.7).
 struct FrictionNeeded {

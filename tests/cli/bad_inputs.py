@@ -747,7 +747,8 @@ case("sample-dt-text", C, "--sample-dt abc", SIM + " --sample-dt abc", 2, "Could
 case("max-rows-negative", C, "--max-rows -5", SIM + " --max-rows -5", 2, "--max-rows",
      na_before="no --max-rows before")
 case("max-rows-small", C, "--max-rows 10 for a 51-row run", SIM + " --max-rows 10", 2,
-     "gives 51 rows, more than the limit 10; raise --sample-dt, or the limit with --max-rows", key="--max-rows",
+     "gives 51 rows (about 15.3 kB of CSV), more than the limit 10; raise --sample-dt, or the limit with --max-rows",
+     key="--max-rows",
      na_before="no --max-rows before")
 case("max-frames-small", C, "--max-frames 10 for a 16-frame clip", REN.replace("--set ", "") + "--max-frames 10", 2,
      "gives 16 frames, more than the limit 10;", key="--max-frames", gtest=(G_ABSURD,),
@@ -1780,7 +1781,7 @@ case("compare-sigint", C, "SIGINT while decoding two 7680x7680 pictures: stops, 
 # --- absurd sizes: refused up front, not after hours of work (a short timeout is the check)
 C = "absurd sizes"
 case("rows-absurd", C, "--sample-dt 1e-10: 5e9 rows", SIM + " --sample-dt 1e-10", 2,
-     "more than the limit 1000000000; raise --sample-dt, or the limit with --max-rows", key="rows", timeout=5,
+     "more than the limit 100000000; raise --sample-dt, or the limit with --max-rows", key="rows", timeout=5,
      gtest=(G_ABSURD,))
 case("frames-absurd", C, "render 1e7 s at 240 fps: 2.4e9 frames",
      "render scene.json -o o.mp4 --set duration=1e7 --set render.fps=240", 2,
@@ -1791,6 +1792,17 @@ case("points-absurd", C, "one grid axis of 10^9 points", SW + "--grid initial.th
      "the grid has more than 10000000 points (--max-points)", key="--max-points", timeout=5)
 case("strobe-absurd", C, "still --strobe 100000000", f"still scene.json --time 0.1 -o o.png --strobe 100000000", 2,
      "--strobe: must be 0 to 500 copies, got 100000000", key="--strobe", timeout=5)
+
+# Issue 50: 5e8 rows ran without a word (150 GB of CSV); the count was a fraction ("1.5 rows").
+ISSUE50_ROWS = "ran, or counted rows as a fraction, before (issue 50)"
+case("rows-sample-dt-1e-9", C, "--sample-dt 1e-9 on a 0.5 s run: 5e8 rows", SIM + " --sample-dt 1e-9", 2,
+     "--sample-dt 1e-09: duration 0.5 s gives 500000001 rows (about 150 GB of CSV), more than the limit 100000000; "
+     "raise --sample-dt, or the limit with --max-rows", key="rows", timeout=5, na_before=ISSUE50_ROWS)
+case("rows-whole-count", C, "--sample-dt 1 --max-rows 1 on a 0.5 s run: one row, t = 0 (must work)",
+     SIM + " --sample-dt 1 --max-rows 1", 0, None, produces=("o.csv",), na_before=ISSUE50_ROWS)
+case("rows-whole-count-refused", C, "--sample-dt 0.3 --max-rows 1 on a 0.5 s run: 2 rows, not 2.667",
+     SIM + " --sample-dt 0.3 --max-rows 1", 2, "--sample-dt 0.3: duration 0.5 s gives 2 rows (about 0.6 kB of CSV), "
+     "more than the limit 1", key="rows", na_before=ISSUE50_ROWS)
 
 # --- resources (issue 21, section 3): what a command needs is checked before it starts, and what
 # runs out is named. OpenGL on llvmpipe does not check its allocations (it segfaulted or hung);

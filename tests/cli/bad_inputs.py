@@ -1077,6 +1077,15 @@ case("merge-quiet", C, "sweep-merge -q, like the other commands: nothing on stde
      "set -o pipefail; {bin} sweep-merge -q -o m.csv p1.csv p2.csv 2>&1 | (! grep .)", 0, None, shell=True,
      files=SHARDS, produces=("m.csv",), na_before="no -q before (issue 50)")
 
+# The range's twin of a value listed twice (issue 50: three identical points before).
+case("grid-range-equal-ends", C, "--grid initial.theta=5:5:3: three points of one value",
+     SW + "--grid initial.theta=5:5:3", 2,
+     "--grid initial.theta=5:5:3: START and STOP are equal, so its 3 points would all be 5; give COUNT 1 for that one "
+     "value, or a STOP other than START", key="--grid", na_before="three identical points before (issue 50)")
+case("grid-log-equal-ends", C, "--grid coin.mass=0.4:0.4:2:log", SW + "--grid coin.mass=0.4:0.4:2:log", 2,
+     "--grid coin.mass=0.4:0.4:2:log: START and STOP are equal, so its 2 points would all be 0.4", key="--grid",
+     na_before="two identical points before (issue 50)")
+
 # --- output paths
 C = "output paths"
 # A default output name (no -o) is never taken over from another scene's output (issue 39.4): the scene

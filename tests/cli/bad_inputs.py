@@ -881,6 +881,14 @@ case("steady-kind-with-set", C, "steady --kind circle with --set initial.phi=45:
      check=lambda d: None if '"theta": 20, "phi": 45,' in (d / "out.txt").read_text() else "the --set values were dropped",
      na_before="--set initial.* was dropped before (issue 21)")
 
+# Issue 50: --version was refused under a COINROLL_GL that only drawing needs.
+case("version-bad-gl", C, "COINROLL_GL=bogus coinroll --version: the version all the same, the value named",
+     "COINROLL_GL=bogus exec {bin} --version 1>&2", 0,
+     "; COINROLL_GL=bogus: not an OpenGL back end; accepted values: ", key="COINROLL_GL", shell=True)
+case("still-bad-gl", C, "COINROLL_GL=bogus coinroll still: drawing refuses it",
+     "COINROLL_GL=bogus exec {bin} still scene.json --time 0.1 -o o.png", 2,
+     "COINROLL_GL=bogus: not an OpenGL back end; accepted values: ", key="COINROLL_GL", shell=True)
+
 # --- sweep and sweep-merge
 C = "sweep"
 SW = "sweep scene.json -q -o o.csv "

@@ -386,10 +386,16 @@ pipeline::TimeWindow windowOf(const RenderOptions& options) {
       std::pair{"--from", options.from}, std::pair{"--to", options.to}, std::pair{"--from-video", options.fromVideo},
       std::pair{"--to-video", options.toVideo}, std::pair{"--last", options.last}};
   for (std::size_t i = 0; i < given.size(); ++i) {
-    if (const auto& [name, value] = given[i]; value && !(std::isfinite(*value) && *value >= 0)) {
-      throw UsageError(
-          fmt::format("{} {}: must be a {} >= 0 s", name, *value, i < 2 ? "simulated time" : "video time"));
+    const auto& [name, value] = given[i];
+    const char* clock = i < 2 ? "simulated time" : "video time";
+    // "--to-video inf" most likely means "to the end", which is what leaving the option out gives.
+    if (value && !std::isfinite(*value)) {
+      const char* bound = i == 1 || i == 3 ? "end" : i == 4 ? "whole length" : "start";
+      throw UsageError(fmt::format("{} {}: must be a finite number of seconds ({} >= 0 s); leave {} out for the "
+                                   "clip's {}",
+                                   name, *value, clock, name, bound));
     }
+    if (value && *value < 0) throw UsageError(fmt::format("{} {}: must be a {} >= 0 s", name, *value, clock));
   }
   if (options.last && !(*options.last > 0)) {
     throw UsageError(fmt::format("--last {}: give the seconds of video to keep, > 0", *options.last));

@@ -41,7 +41,8 @@ using namespace coinroll::cli;
 
 void addSceneOptions(CLI::App& command, SceneSource& scene, bool fileRequired) {
   CLI::Option* file =
-      command.add_option("scene", scene.file, "Scene file (JSON; its keys: docs/scene.md, or coinroll schema)");
+      command.add_option("scene", scene.file,
+                         "Scene file (JSON; its keys: docs/scene.md, or coinroll schema); - reads standard input");
   if (fileRequired) file->required();
   command.add_option("--set", scene.overrides,
                      "Override one scene field, KEY.PATH=VALUE (e.g. --set initial.theta=12 --set solver.rtol=1e-9); "

@@ -240,6 +240,24 @@ case("file-deep-in-field", C, "a million nested arrays as render.camera.eye", SI
      "render.camera.eye: must be an array of three finite numbers", key="render.camera.eye",
      files={"scene.json": VALID[:-1] + ', "render": {"camera": {"eye": ' + "[" * 1_000_000 + "]" * 1_000_000 + "}}}"})
 
+# `-` as the scene is standard input for every command that takes one (issue 50: it was taken for
+# a file named "-"); a file redirected in is an input no output may replace.
+ISSUE50_STDIN = "read a file named - before (issue 50)"
+case("stdin-scene", C, "simulate - < scene.json (must work)", "exec {bin} simulate - --csv o.csv < scene.json", 0, None,
+     shell=True, produces=("o.csv",), na_before=ISSUE50_STDIN)
+for command in ("simulate - --csv o.csv", "steady -", "render - -o o.mp4", "still - --time 0.1 -o o.png",
+                "sweep - --grid initial.theta=1:2:2 -o o.csv", "export - -o o.html"):
+    case(f"stdin-bad-{command.split()[0]}", C, f"{command} < a scene with coin.radius -1: its message names stdin",
+         "exec {bin} " + command + " < bad.json", 2, "standard input: coin.radius: must be in [1e-06, 1000] m, got -1",
+         key="standard input", shell=True, files={"bad.json": scene(coin={"radius": -1})}, na_before=ISSUE50_STDIN)
+case("stdin-closed", C, "simulate - with standard input closed", "exec {bin} simulate - --csv o.csv <&-", 2,
+     "scene -: standard input is closed; give the scene on it (coinroll simulate - < scene.json), or name the scene "
+     "file instead of -", key="standard input", shell=True, na_before=ISSUE50_STDIN)
+case("stdin-output-is-input", C, "simulate - --csv scene.json < scene.json: the CSV would replace the scene read",
+     "exec {bin} simulate - --csv scene.json < scene.json", 2,
+     "--csv scene.json: that is the input /dev/stdin; choose another output name", key="--csv", shell=True,
+     na_before=ISSUE50_STDIN)
+
 # --- JSON syntax and values
 C = "scene values"
 case("json-trailing-comma", C, "trailing comma after the last member", SIM, 2,
@@ -772,7 +790,8 @@ case("from-beyond-end", C, "render --from 2 past a 0.5 s run", RW + "--from 2", 
      gtest=(G_RENDER,), na_before=FORMATS)
 case("from-negative", C, "render --from -1", RW + "--from -1", 2, "--from -1: must be a simulated time >= 0 s",
      key="--from", gtest=(G_RENDER,), na_before=FORMATS)
-case("to-nan", C, "render --to nan", RW + "--to nan", 2, "--to nan: must be a simulated time >= 0 s", key="--to",
+case("to-nan", C, "render --to nan", RW + "--to nan", 2,
+     "--to nan: must be a finite number of seconds (simulated time >= 0 s); leave --to out for the clip's end", key="--to",
      na_before=FORMATS)
 case("from-empty", C, "render --from ''", RW + "--from ''", 2, "--from: the value is empty; give a number",
      key="--from", na_before=FORMATS)
@@ -880,6 +899,11 @@ case("steady-kind-with-set", C, "steady --kind circle with --set initial.phi=45:
      shell=True, produces=("out.txt",),
      check=lambda d: None if '"theta": 20, "phi": 45,' in (d / "out.txt").read_text() else "the --set values were dropped",
      na_before="--set initial.* was dropped before (issue 21)")
+
+# Issue 50: "inf" was refused as if it were a negative time.
+case("to-video-inf", C, "render --to-video inf (meant: to the end)", RW + "--to-video inf", 2,
+     "--to-video inf: must be a finite number of seconds (video time >= 0 s); leave --to-video out for the clip's end",
+     key="--to-video", na_before=VIDEO_TIME)
 
 # Issue 50: --version was refused under a COINROLL_GL that only drawing needs.
 case("version-bad-gl", C, "COINROLL_GL=bogus coinroll --version: the version all the same, the value named",

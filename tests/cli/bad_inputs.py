@@ -1845,6 +1845,20 @@ case("rows-whole-count-refused", C, "--sample-dt 0.3 --max-rows 1 on a 0.5 s run
      SIM + " --sample-dt 0.3 --max-rows 1", 2, "--sample-dt 0.3: duration 0.5 s gives 2 rows (about 0.6 kB of CSV), "
      "more than the limit 1", key="rows", na_before=ISSUE50_ROWS)
 
+# Issue 50: the hopeless-pace refusal took 31-42 s; the toss at 1e6 s ran on past 60 s (now more
+# rows than the limit at the default --sample-dt).
+EXAMPLES = REPO / "examples"
+case("pace-hopeless-ring", C, "the ring at omega_Z 1e6 rad/s for 1000 s: 2.7e8 steps, refused within seconds",
+     "simulate ring.json --set initial.omega_Z=1e6 --set duration=1000 --csv /dev/null", 1,
+     "integration would need about 2.7e+08 steps to reach t = 1000 s at its pace so far", key="steps",
+     files={"ring.json": (EXAMPLES / "ring.json").read_text()}, timeout=15, na_before="refused after 31-42 s before (issue 50)",
+     unsanitized="the check is the time, and the sanitizers run the integration several times slower")
+case("toss-no-effects-1e6", C, "the toss without effects for 1e6 s at the default 0.01 s: 1e8 rows, refused up front",
+     "simulate coin_toss.json --set effects=[] --set duration=1e6 --csv o.csv", 2,
+     "--sample-dt 0.01: duration 1000000 s gives 100000001 rows", key="rows",
+     files={"coin_toss.json": (EXAMPLES / "coin_toss.json").read_text()}, timeout=5,
+     na_before="ran on past 60 s before (issue 50)")
+
 # --- resources (issue 21, section 3): what a command needs is checked before it starts, and what
 # runs out is named. OpenGL on llvmpipe does not check its allocations (it segfaulted or hung);
 # the pictures here need about 2 GiB, more than a 1.5 GB address-space limit leaves after the

@@ -1,6 +1,9 @@
 #include "cli/command_support.h"
 
+#include <fcntl.h>
 #include <fmt/format.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
@@ -15,17 +18,40 @@
 #include "pipeline/inputs.h"
 #include "scene/json_reader.h"
 #include "scene/scene_loader.h"
+#include "scene/scene_text.h"
 #include "video/make_sink.h"
 
 namespace coinroll::cli {
 
+namespace {
+
+// `-` as the scene is standard input, as `-` is standard output for --csv and sweep -o: a scene
+// another program makes is piped in without a file between them.
+bool readsStandardInput(const SceneSource& source) { return source.file == "-"; }
+
+nlohmann::json readStandardInputScene() {
+  // Read, a closed descriptor would look like an empty scene ("invalid JSON at line 1, column 1").
+  if (::fcntl(STDIN_FILENO, F_GETFD) == -1) {
+    throw UsageError("scene -: standard input is closed; give the scene on it (coinroll simulate - < scene.json), or "
+                     "name the scene file instead of -");
+  }
+  return scene::readSceneDocument(std::cin, "standard input");
+}
+
+}  // namespace
+
 std::pair<nlohmann::json, std::string> loadSceneDocument(const SceneSource& source,
                                                          const std::optional<nlohmann::json>& initial) {
-  nlohmann::json document = source.file ? scene::readSceneDocument(*source.file) : scene::builtInDefaultScene();
+  nlohmann::json document = !source.file                ? scene::builtInDefaultScene()
+                            : readsStandardInput(source) ? readStandardInputScene()
+                                                         : scene::readSceneDocument(*source.file);
   // A document that is no object has no initial block to replace: the loader names what it is.
   if (initial && document.is_object()) document["initial"] = *initial;
   for (const std::string& assignment : source.overrides) scene::applyOverride(document, assignment);
-  return {std::move(document), source.file ? *source.file : "built-in default scene"};
+  const std::string sourceName = !source.file                ? "built-in default scene"
+                                 : readsStandardInput(source) ? "standard input"
+                                                              : *source.file;
+  return {std::move(document), sourceName};
 }
 
 void refuseOverwritingInput(const std::string& option, const std::filesystem::path& output,
@@ -38,7 +64,15 @@ void refuseOverwritingInput(const std::string& option, const std::filesystem::pa
 }
 
 std::vector<std::filesystem::path> inputsOf(const SceneSource& source) {
-  return pipeline::inputFiles(source.file ? std::optional<std::filesystem::path>(*source.file) : std::nullopt);
+  if (!readsStandardInput(source)) {
+    return pipeline::inputFiles(source.file ? std::optional<std::filesystem::path>(*source.file) : std::nullopt);
+  }
+  // A file redirected in is read like a named one, so no output may replace it; a pipe or a
+  // terminal has nothing to replace (and /dev/null, often standard input, stays writable).
+  std::optional<std::filesystem::path> redirected;
+  struct stat info {};
+  if (::fstat(STDIN_FILENO, &info) == 0 && S_ISREG(info.st_mode)) redirected = "/dev/stdin";
+  return pipeline::inputFiles(redirected);
 }
 
 void refuseEmptyOutputName(const std::string& option, const std::string& name, const std::string& example) {
@@ -87,7 +121,8 @@ std::string fileNameFrom(const std::string& sceneName) {
 std::filesystem::path defaultOutputName(bool named, const std::string& sceneName, const SceneSource& source,
                                         std::string_view extension) {
   std::error_code error;
-  const std::string stem = named || !source.file || !std::filesystem::is_regular_file(*source.file, error)
+  const std::string stem = named || !source.file || readsStandardInput(source) ||
+                                   !std::filesystem::is_regular_file(*source.file, error)
                                ? sceneName
                                : std::filesystem::path(*source.file).stem().string();
   return fileNameFrom(stem) + std::string(extension);

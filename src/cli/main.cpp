@@ -42,7 +42,8 @@ using namespace coinroll::cli;
 
 void addSceneOptions(CLI::App& command, SceneSource& scene, bool fileRequired) {
   CLI::Option* file =
-      command.add_option("scene", scene.file, "Scene file (JSON; its keys: docs/scene.md, or coinroll schema)");
+      command.add_option("scene", scene.file,
+                         "Scene file (JSON; its keys: docs/scene.md, or coinroll schema); - reads standard input");
   if (fileRequired) file->required();
   command.add_option("--set", scene.overrides,
                      "Override one scene field, KEY.PATH=VALUE (e.g. --set initial.theta=12 --set solver.rtol=1e-9); "
@@ -500,13 +501,8 @@ int main(int argc, char** argv) {
   coinroll::pipeline::fitAllocatorToAddressSpaceLimit();
   CLI::App app{"coinroll: a coin rolling without slipping on a table, simulated, rendered headless to MP4 and PNG."};
   app.require_subcommand(1);
-  app.set_version_flag("--version", [] {
-    try {
-      return versionText();
-    } catch (const std::invalid_argument& e) {
-      throw CLI::ValidationError("COINROLL_GL", e.what());  // exit 2, as for any command under it
-    }
-  }, "Print the version, the git revision and the OpenGL back ends (COINROLL_GL), and exit");
+  app.set_version_flag("--version", [] { return versionText(); },
+                       "Print the version, the git revision and the OpenGL back ends (COINROLL_GL), and exit");
   addExamplesFooter(app);
 
   // In the order --help lists them.

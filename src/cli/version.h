@@ -10,8 +10,7 @@ namespace coinroll::cli {
 extern const char* const kGitRevision;
 
 // "coinroll 0.1.0 (git 83f6561a2b3c)" and, on a second line, the OpenGL back ends compiled in and
-// the one COINROLL_GL selects. Opens no GL context. Throws std::invalid_argument for an unknown
-// COINROLL_GL value.
+// the one COINROLL_GL selects (or why its value selects none). Opens no GL context.
 std::string versionText();
 
 }  // namespace coinroll::cli

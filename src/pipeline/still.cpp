@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "image/image.h"
+#include "pipeline/cancelled.h"
 #include "pipeline/run_record.h"
 #include "pipeline/resources.h"
 #include "pipeline/simulation.h"
@@ -21,6 +22,9 @@ namespace coinroll::pipeline {
 
 StillResult renderStill(const scene::SceneConfig& scene, const StillRequest& request) {
   const StillPicture picture = drawStill(scene, request);
+  // A draw cannot poll (a strobe's many copies take seconds): a request to stop made during it is
+  // answered here, before the file exists, as render answers one before its next frame.
+  throwIfCancelled(request.cancel);
   image::writePng(picture.image, request.output, request.text);
   return picture.result;
 }
@@ -46,7 +50,7 @@ constexpr int kMaxPanelColumns = 4;
 // short label (time, tilt above the floor, the contact point's rate) instead of the full HUD, which
 // would cover a third of a small panel; render.hud: false leaves it out.
 image::Image drawPanels(const scene::SceneConfig& scene, render::Renderer& renderer, SnapshotMaker& snapshots,
-                        const std::vector<FrameState>& frames) {
+                        const std::vector<FrameState>& frames, const std::atomic<bool>* cancel) {
   const int count = static_cast<int>(frames.size());
   const int rows = (count + kMaxPanelColumns - 1) / kMaxPanelColumns;
   const int columns = (count + rows - 1) / rows;
@@ -57,6 +61,7 @@ image::Image drawPanels(const scene::SceneConfig& scene, render::Renderer& rende
   if (!scene.render.picture.transparentBackground) std::fill(figure.rgba.begin(), figure.rgba.end(), 255);
   image::Image panel;
   for (int i = 0; i < count; ++i) {
+    throwIfCancelled(cancel);
     const FrameState& frame = frames[static_cast<std::size_t>(i)];
     render::FrameSnapshot snapshot = snapshots.makeSnapshot(frame);
     if (scene.render.hud) {
@@ -111,7 +116,9 @@ StillPicture drawStill(const scene::SceneConfig& scene, const StillRequest& requ
   }
   const double from = std::min(request.ghostsFrom, result.shownTime);
   SnapshotMaker snapshots(scene, simulation.model, record);
-  if (request.panels) return {.image = drawPanels(scene, renderer, snapshots, record.frames), .result = result};
+  if (request.panels) {
+    return {.image = drawPanels(scene, renderer, snapshots, record.frames, request.cancel), .result = result};
+  }
   for (int i = 0; i < request.ghosts; ++i) snapshots.addGhost(record.frames[static_cast<std::size_t>(i)]);
   // A strobe still is a figure: its overlay says how to read the copies and gives the scale.
   std::vector<std::string> legend;

@@ -110,6 +110,12 @@ GridAxis parseGridAxis(std::string_view text) {
   if (axis.count == 1 && axis.start != axis.stop) {
     throw std::invalid_argument(fmt::format("--grid {}: COUNT 1 takes one value; give START = STOP", text));
   }
+  // The range's twin of a value listed twice: every point would be the same run.
+  if (axis.count > 1 && axis.start == axis.stop) {
+    throw std::invalid_argument(fmt::format("--grid {}: START and STOP are equal, so its {} points would all be {}; "
+                                            "give COUNT 1 for that one value, or a STOP other than START",
+                                            text, axis.count, fields[0]));
+  }
   return axis;
 }
 

@@ -13,17 +13,22 @@
 namespace coinroll::pipeline {
 
 long sampleCount(double duration, double sampleDt) {
-  return static_cast<long>(std::floor(duration / sampleDt * (1 + 1e-9))) + 1;
+  return static_cast<long>(sampleCountUnbounded(duration, sampleDt));
+}
+
+double sampleCountUnbounded(double duration, double sampleDt) {
+  return std::floor(duration / sampleDt * (1 + 1e-9)) + 1;
 }
 
 void refuseTooManyRows(double duration, double sampleDt, long maxRows, std::string_view sampleDtName,
-                       std::string_view maxRowsOption) {
-  if (const double rows = duration / sampleDt + 1; rows > static_cast<double>(maxRows)) {
+                       std::string_view maxRowsOption, std::string_view rowsCost) {
+  if (const double rows = sampleCountUnbounded(duration, sampleDt); rows > static_cast<double>(maxRows)) {
     const std::string raise = maxRowsOption.empty()
                                   ? std::string(sampleDtName)
                                   : fmt::format("{}, or the limit with {}", sampleDtName, maxRowsOption);
-    throw std::invalid_argument(fmt::format("{} {}: duration {} s gives {:.4g} rows, more than the limit {}; raise {}",
-                                            sampleDtName, sampleDt, duration, rows, maxRows, raise));
+    const std::string cost = rowsCost.empty() ? std::string() : fmt::format(" ({})", rowsCost);
+    throw std::invalid_argument(fmt::format("{} {}: duration {} s gives {:.0f} rows{}, more than the limit {}; raise {}",
+                                            sampleDtName, sampleDt, duration, rows, cost, maxRows, raise));
   }
 }
 

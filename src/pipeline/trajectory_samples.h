@@ -40,18 +40,24 @@ std::vector<std::string_view> trajectoryColumns(const Simulation& simulation);
 // instead of 231.
 long sampleCount(double duration, double sampleDt);
 
-// Rows above this need the command's --max-rows: 10^9 rows is about 300 GB of CSV, and more than
-// any machine holds in memory for the library's columns. Counted from the duration, before the
-// run: a spin-down given a huge duration "until it stops" (1e5 s at 0.01 s is 10^7 rows) must
-// still pass, though it has only the rows before its coin-flat stop.
-inline constexpr long kDefaultMaxRows = 1'000'000'000;
+// Rows above this need the command's --max-rows: 10^8 rows is about 30 GB of CSV and minutes of
+// sampling, and more than most machines hold in memory for the library's columns, so a sample step
+// with a few zeros too many (1e-9 on a 0.5 s run: 5e8 rows) is refused up front. Counted from the
+// duration, before the run: a spin-down given a huge duration "until it stops" (1e5 s at 0.01 s is
+// 10^7 rows) must still pass, though it has only the rows before its coin-flat stop.
+inline constexpr long kDefaultMaxRows = 100'000'000;
+
+// sampleCount in a double, for a limit checked before the run: an absurd request (1e6 s at
+// 1e-300 s) has more rows than a long holds. Exact, and equal to sampleCount, below 2^53.
+double sampleCountUnbounded(double duration, double sampleDt);
 
 // Refuses with std::invalid_argument, before any work, sampling `duration` s every `sampleDt` s in
-// more than `maxRows` rows. The message names the sample step as the caller's user gives it
-// (`sampleDtName`: "--sample-dt", "sampleDt") and how they raise the limit (`maxRowsOption`:
-// "--max-rows"; empty when they cannot).
+// more than `maxRows` rows, counted as the run writes them (a whole number). The message names the
+// sample step as the caller's user gives it (`sampleDtName`: "--sample-dt", "sampleDt"), how they
+// raise the limit (`maxRowsOption`: "--max-rows"; empty when they cannot), and what the rows would
+// take (`rowsCost`, e.g. "about 150 GB of CSV"; empty for nothing).
 void refuseTooManyRows(double duration, double sampleDt, long maxRows, std::string_view sampleDtName,
-                       std::string_view maxRowsOption);
+                       std::string_view maxRowsOption, std::string_view rowsCost = {});
 
 // A scene without `friction` has no cone to leave (ideal rolling): the most friction per unit of
 // normal force its rolling contact needed, so a reader knows which mu it takes (docs/sliding.md §4.7).

@@ -76,9 +76,15 @@ GlBackend selectedGlBackend() { return glBackendFromEnvironment().value_or(defau
 
 std::string glBackendsLine() {
   const std::string compiled = fmt::format("OpenGL back ends: {}", acceptedValues());
-  if (const std::optional<GlBackend> chosen = glBackendFromEnvironment()) {
-    return fmt::format("{}; {} selects {}", compiled, kGlBackendVariable, glBackendName(*chosen));
+  std::optional<GlBackend> chosen;
+  try {
+    chosen = glBackendFromEnvironment();
+  } catch (const std::invalid_argument& e) {
+    // Said, not thrown: the version is what someone asks for when something is wrong, and it
+    // opens no context; the refusal belongs to drawing.
+    return fmt::format("{}; {} (nothing is drawn until it names one of them)", compiled, e.what());
   }
+  if (chosen) return fmt::format("{}; {} selects {}", compiled, kGlBackendVariable, glBackendName(*chosen));
   return fmt::format("{}; default {}", compiled, glBackendName(defaultGlBackend()));
 }
 

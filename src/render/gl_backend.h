@@ -49,7 +49,8 @@ GlBackend selectedGlBackend();
 
 // The line `coinroll --version` prints: the back ends compiled in, then the one $COINROLL_GL
 // selects when it is set ("OpenGL back ends: osmesa, egl, egl-device; COINROLL_GL selects egl"),
-// else the default ("...; default osmesa"). Throws as parseGlBackend for a bad $COINROLL_GL.
+// else the default ("...; default osmesa"). A bad $COINROLL_GL is named with parseGlBackend's
+// refusal in the line, not thrown: only drawing refuses it.
 std::string glBackendsLine();
 
 }  // namespace coinroll::render

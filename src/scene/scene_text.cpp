@@ -146,6 +146,10 @@ nlohmann::json readSceneDocument(const std::filesystem::path& file) {
   }
   std::ifstream in(file, std::ios::binary);
   if (!in) throw SceneError(fmt::format("{}: cannot open the scene file: {}", file.string(), std::strerror(errno)));
+  return readSceneDocument(in, file.string());
+}
+
+nlohmann::json readSceneDocument(std::istream& in, std::string_view sourceName) {
   // Scenes are a few hundred bytes. The read stops past this, so a huge file given by mistake, or
   // a device that never ends (/dev/zero), is refused instead of filling memory; pipes still work.
   constexpr std::size_t kMaxSceneBytes = 16 << 20;
@@ -154,9 +158,9 @@ nlohmann::json readSceneDocument(const std::filesystem::path& file) {
   text.resize(static_cast<std::size_t>(in.gcount()));
   if (text.size() > kMaxSceneBytes) {
     throw SceneError(
-        fmt::format("{}: more than {} bytes; a scene file is a small JSON document", file.string(), kMaxSceneBytes));
+        fmt::format("{}: more than {} bytes; a scene file is a small JSON document", sourceName, kMaxSceneBytes));
   }
-  return parseSceneText(text, file.string());
+  return parseSceneText(text, sourceName);
 }
 
 nlohmann::json parseSceneText(std::string_view text, std::string_view sourceName) {

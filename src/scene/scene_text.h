@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
+#include <istream>
 #include <string_view>
 
 namespace coinroll::scene {
@@ -12,6 +13,9 @@ namespace coinroll::scene {
 // The JSON document of a scene file, before validation. A syntax error is reported with its line
 // and column.
 nlohmann::json readSceneDocument(const std::filesystem::path& file);
+
+// The same from a stream already open (standard input), its messages naming `sourceName`.
+nlohmann::json readSceneDocument(std::istream& in, std::string_view sourceName);
 
 // The JSON document in `text`; a syntax error names `sourceName`, the line and the column.
 nlohmann::json parseSceneText(std::string_view text, std::string_view sourceName);

@@ -240,6 +240,24 @@ case("file-deep-in-field", C, "a million nested arrays as render.camera.eye", SI
      "render.camera.eye: must be an array of three finite numbers", key="render.camera.eye",
      files={"scene.json": VALID[:-1] + ', "render": {"camera": {"eye": ' + "[" * 1_000_000 + "]" * 1_000_000 + "}}}"})
 
+# `-` as the scene is standard input for every command that takes one (issue 50: it was taken for
+# a file named "-"); a file redirected in is an input no output may replace.
+ISSUE50_STDIN = "read a file named - before (issue 50)"
+case("stdin-scene", C, "simulate - < scene.json (must work)", "exec {bin} simulate - --csv o.csv < scene.json", 0, None,
+     shell=True, produces=("o.csv",), na_before=ISSUE50_STDIN)
+for command in ("simulate - --csv o.csv", "steady -", "render - -o o.mp4", "still - --time 0.1 -o o.png",
+                "sweep - --grid initial.theta=1:2:2 -o o.csv", "export - -o o.html"):
+    case(f"stdin-bad-{command.split()[0]}", C, f"{command} < a scene with coin.radius -1: its message names stdin",
+         "exec {bin} " + command + " < bad.json", 2, "standard input: coin.radius: must be in [1e-06, 1000] m, got -1",
+         key="standard input", shell=True, files={"bad.json": scene(coin={"radius": -1})}, na_before=ISSUE50_STDIN)
+case("stdin-closed", C, "simulate - with standard input closed", "exec {bin} simulate - --csv o.csv <&-", 2,
+     "scene -: standard input is closed; give the scene on it (coinroll simulate - < scene.json), or name the scene "
+     "file instead of -", key="standard input", shell=True, na_before=ISSUE50_STDIN)
+case("stdin-output-is-input", C, "simulate - --csv scene.json < scene.json: the CSV would replace the scene read",
+     "exec {bin} simulate - --csv scene.json < scene.json", 2,
+     "--csv scene.json: that is the input /dev/stdin; choose another output name", key="--csv", shell=True,
+     na_before=ISSUE50_STDIN)
+
 # --- JSON syntax and values
 C = "scene values"
 case("json-trailing-comma", C, "trailing comma after the last member", SIM, 2,
@@ -747,7 +765,8 @@ case("sample-dt-text", C, "--sample-dt abc", SIM + " --sample-dt abc", 2, "Could
 case("max-rows-negative", C, "--max-rows -5", SIM + " --max-rows -5", 2, "--max-rows",
      na_before="no --max-rows before")
 case("max-rows-small", C, "--max-rows 10 for a 51-row run", SIM + " --max-rows 10", 2,
-     "gives 51 rows, more than the limit 10; raise --sample-dt, or the limit with --max-rows", key="--max-rows",
+     "gives 51 rows (about 15.3 kB of CSV), more than the limit 10; raise --sample-dt, or the limit with --max-rows",
+     key="--max-rows",
      na_before="no --max-rows before")
 case("max-frames-small", C, "--max-frames 10 for a 16-frame clip", REN.replace("--set ", "") + "--max-frames 10", 2,
      "gives 16 frames, more than the limit 10;", key="--max-frames", gtest=(G_ABSURD,),
@@ -771,7 +790,8 @@ case("from-beyond-end", C, "render --from 2 past a 0.5 s run", RW + "--from 2", 
      gtest=(G_RENDER,), na_before=FORMATS)
 case("from-negative", C, "render --from -1", RW + "--from -1", 2, "--from -1: must be a simulated time >= 0 s",
      key="--from", gtest=(G_RENDER,), na_before=FORMATS)
-case("to-nan", C, "render --to nan", RW + "--to nan", 2, "--to nan: must be a simulated time >= 0 s", key="--to",
+case("to-nan", C, "render --to nan", RW + "--to nan", 2,
+     "--to nan: must be a finite number of seconds (simulated time >= 0 s); leave --to out for the clip's end", key="--to",
      na_before=FORMATS)
 case("from-empty", C, "render --from ''", RW + "--from ''", 2, "--from: the value is empty; give a number",
      key="--from", na_before=FORMATS)
@@ -879,6 +899,19 @@ case("steady-kind-with-set", C, "steady --kind circle with --set initial.phi=45:
      shell=True, produces=("out.txt",),
      check=lambda d: None if '"theta": 20, "phi": 45,' in (d / "out.txt").read_text() else "the --set values were dropped",
      na_before="--set initial.* was dropped before (issue 21)")
+
+# Issue 50: "inf" was refused as if it were a negative time.
+case("to-video-inf", C, "render --to-video inf (meant: to the end)", RW + "--to-video inf", 2,
+     "--to-video inf: must be a finite number of seconds (video time >= 0 s); leave --to-video out for the clip's end",
+     key="--to-video", na_before=VIDEO_TIME)
+
+# Issue 50: --version was refused under a COINROLL_GL that only drawing needs.
+case("version-bad-gl", C, "COINROLL_GL=bogus coinroll --version: the version all the same, the value named",
+     "COINROLL_GL=bogus exec {bin} --version 1>&2", 0,
+     "; COINROLL_GL=bogus: not an OpenGL back end; accepted values: ", key="COINROLL_GL", shell=True)
+case("still-bad-gl", C, "COINROLL_GL=bogus coinroll still: drawing refuses it",
+     "COINROLL_GL=bogus exec {bin} still scene.json --time 0.1 -o o.png", 2,
+     "COINROLL_GL=bogus: not an OpenGL back end; accepted values: ", key="COINROLL_GL", shell=True)
 
 # --- sweep and sweep-merge
 C = "sweep"
@@ -1075,6 +1108,15 @@ case("merge-summary", C, "sweep-merge says what it wrote (must work)", MERGE + "
 case("merge-quiet", C, "sweep-merge -q, like the other commands: nothing on stderr (must work)",
      "set -o pipefail; {bin} sweep-merge -q -o m.csv p1.csv p2.csv 2>&1 | (! grep .)", 0, None, shell=True,
      files=SHARDS, produces=("m.csv",), na_before="no -q before (issue 50)")
+
+# The range's twin of a value listed twice (issue 50: three identical points before).
+case("grid-range-equal-ends", C, "--grid initial.theta=5:5:3: three points of one value",
+     SW + "--grid initial.theta=5:5:3", 2,
+     "--grid initial.theta=5:5:3: START and STOP are equal, so its 3 points would all be 5; give COUNT 1 for that one "
+     "value, or a STOP other than START", key="--grid", na_before="three identical points before (issue 50)")
+case("grid-log-equal-ends", C, "--grid coin.mass=0.4:0.4:2:log", SW + "--grid coin.mass=0.4:0.4:2:log", 2,
+     "--grid coin.mass=0.4:0.4:2:log: START and STOP are equal, so its 2 points would all be 0.4", key="--grid",
+     na_before="two identical points before (issue 50)")
 
 # --- output paths
 C = "output paths"
@@ -1539,6 +1581,18 @@ for sig in (signal.SIGSEGV, signal.SIGABRT):
          unsanitized="AddressSanitizer handles SIGSEGV itself: it reports, then aborts"
          if sig == signal.SIGSEGV else None)
 
+# A strobe's copies are drawn in one call that cannot poll (issue 50: exit 0 and the PNG): the
+# request is answered after the draw, before the file; panels are drawn one by one, each polled.
+# A draw on a loaded machine may outlast the 3 s grace: its forced end leaves no file either.
+STROBE50 = "exit 0 and the PNG before (issue 50)"
+case("sigint-still-strobe", C, "SIGINT while a still draws 500 strobe copies",
+     "still scene.json --time 0.4 --strobe 500 -o o.png", 1, interrupted(INT, "o.png"),
+     or_msg="interrupted by SIGINT and not stopped within 3 s", key="interrupted", signal=INT, wait_for="sleep",
+     na_before=STROBE50)
+case("sigterm-still-panels", C, "SIGTERM while a still draws 501 panels",
+     "still scene.json --time 0.4 --strobe 500 --panels -o o.png --set render.width=320 --set render.height=180", 1,
+     interrupted(TERM, "o.png"), key="interrupted", signal=TERM, wait_for="sleep", na_before=STROBE50)
+
 # --- sidecars (issue 39.1): render --frame-times and simulate --provenance are outputs of their run like
 # the video or the CSV: one group, compared by the file a name leads to (not its spelling), published
 # with the rest or not at all, earlier files kept on a failure and on a signal (docs/outputs.md).
@@ -1768,7 +1822,7 @@ case("compare-sigint", C, "SIGINT while decoding two 7680x7680 pictures: stops, 
 # --- absurd sizes: refused up front, not after hours of work (a short timeout is the check)
 C = "absurd sizes"
 case("rows-absurd", C, "--sample-dt 1e-10: 5e9 rows", SIM + " --sample-dt 1e-10", 2,
-     "more than the limit 1000000000; raise --sample-dt, or the limit with --max-rows", key="rows", timeout=5,
+     "more than the limit 100000000; raise --sample-dt, or the limit with --max-rows", key="rows", timeout=5,
      gtest=(G_ABSURD,))
 case("frames-absurd", C, "render 1e7 s at 240 fps: 2.4e9 frames",
      "render scene.json -o o.mp4 --set duration=1e7 --set render.fps=240", 2,
@@ -1779,6 +1833,31 @@ case("points-absurd", C, "one grid axis of 10^9 points", SW + "--grid initial.th
      "the grid has more than 10000000 points (--max-points)", key="--max-points", timeout=5)
 case("strobe-absurd", C, "still --strobe 100000000", f"still scene.json --time 0.1 -o o.png --strobe 100000000", 2,
      "--strobe: must be 0 to 500 copies, got 100000000", key="--strobe", timeout=5)
+
+# Issue 50: 5e8 rows ran without a word (150 GB of CSV); the count was a fraction ("1.5 rows").
+ISSUE50_ROWS = "ran, or counted rows as a fraction, before (issue 50)"
+case("rows-sample-dt-1e-9", C, "--sample-dt 1e-9 on a 0.5 s run: 5e8 rows", SIM + " --sample-dt 1e-9", 2,
+     "--sample-dt 1e-09: duration 0.5 s gives 500000001 rows (about 150 GB of CSV), more than the limit 100000000; "
+     "raise --sample-dt, or the limit with --max-rows", key="rows", timeout=5, na_before=ISSUE50_ROWS)
+case("rows-whole-count", C, "--sample-dt 1 --max-rows 1 on a 0.5 s run: one row, t = 0 (must work)",
+     SIM + " --sample-dt 1 --max-rows 1", 0, None, produces=("o.csv",), na_before=ISSUE50_ROWS)
+case("rows-whole-count-refused", C, "--sample-dt 0.3 --max-rows 1 on a 0.5 s run: 2 rows, not 2.667",
+     SIM + " --sample-dt 0.3 --max-rows 1", 2, "--sample-dt 0.3: duration 0.5 s gives 2 rows (about 0.6 kB of CSV), "
+     "more than the limit 1", key="rows", na_before=ISSUE50_ROWS)
+
+# Issue 50: the hopeless-pace refusal took 31-42 s; the toss at 1e6 s ran on past 60 s (now more
+# rows than the limit at the default --sample-dt).
+EXAMPLES = REPO / "examples"
+case("pace-hopeless-ring", C, "the ring at omega_Z 1e6 rad/s for 1000 s: 2.7e8 steps, refused within seconds",
+     "simulate ring.json --set initial.omega_Z=1e6 --set duration=1000 --csv /dev/null", 1,
+     "integration would need about 2.7e+08 steps to reach t = 1000 s at its pace so far", key="steps",
+     files={"ring.json": (EXAMPLES / "ring.json").read_text()}, timeout=15, na_before="refused after 31-42 s before (issue 50)",
+     unsanitized="the check is the time, and the sanitizers run the integration several times slower")
+case("toss-no-effects-1e6", C, "the toss without effects for 1e6 s at the default 0.01 s: 1e8 rows, refused up front",
+     "simulate coin_toss.json --set effects=[] --set duration=1e6 --csv o.csv", 2,
+     "--sample-dt 0.01: duration 1000000 s gives 100000001 rows", key="rows",
+     files={"coin_toss.json": (EXAMPLES / "coin_toss.json").read_text()}, timeout=5,
+     na_before="ran on past 60 s before (issue 50)")
 
 # --- resources (issue 21, section 3): what a command needs is checked before it starts, and what
 # runs out is named. OpenGL on llvmpipe does not check its allocations (it segfaulted or hung);

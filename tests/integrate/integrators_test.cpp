@@ -186,7 +186,8 @@ TEST(Trajectory, FixedStepMethodsLandOnTheirGrid) {
 
 // RK4 at dt = 0.01 takes exactly 100 steps per second, so the pace is known: an end at 1e4 s
 // needs 1e6 steps. With maxSteps 5e5 the run must fail at the first check past a hundredth of
-// the way (2^14 = 16384 steps, t = 163.84 s), not after 5e5 steps; with maxSteps 2e6 it runs on.
+// maxSteps at its steady pace (2^13 = 8192 steps, t = 81.92 s), not after 5e5 steps; with
+// maxSteps 2e6 it runs on.
 TEST(Trajectory, AnEndOutOfReachAtThePaceSoFarFailsEarly) {
   SolverConfig config{.method = Method::Rk4, .dt = 0.01, .maxSteps = 500'000, .endTime = 1e4};
   Trajectory hopeless(Oscillator{}, 0.0, V2(0, 1), config);
@@ -197,12 +198,41 @@ TEST(Trajectory, AnEndOutOfReachAtThePaceSoFarFailsEarly) {
         throw;
       },
       std::runtime_error);
-  EXPECT_EQ(hopeless.stats().acceptedSteps, 16'384);
+  EXPECT_EQ(hopeless.stats().acceptedSteps, 8'192);
 
   config.maxSteps = 2'000'000;
   Trajectory reachable(Oscillator{}, 0.0, V2(0, 1), config);
   ASSERT_TRUE(reachable.stateAt(1e4));
   EXPECT_EQ(reachable.stats().acceptedSteps, 1'000'000);
+}
+
+// Issue 50: an end so far that a hundredth of the way is itself out of reach (1e8 s: 1e10 steps)
+// is refused at a hundredth of maxSteps (2^13 steps, 82 s of 1e8), not run to maxSteps.
+TEST(Trajectory, AFarEndAtASteadyPaceFailsWithinAHundredthOfTheSteps) {
+  Trajectory hopeless(Oscillator{}, 0.0, V2(0, 1),
+                      SolverConfig{.method = Method::Rk4, .dt = 0.01, .maxSteps = 500'000, .endTime = 1e8});
+  try {
+    hopeless.stateAt(1e8);
+    ADD_FAILURE() << "ran to its end";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("would need about 1e+10 steps to reach t = 100000000 s"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_EQ(hopeless.stats().acceptedSteps, 8'192);
+}
+
+// A pace that keeps rising is how a coin approaches falling flat, and its event ends the run long
+// before a far end: no early refusal. Here an oscillator whose frequency 1 / (2 - t)^2 grows
+// without bound, stopped by an event at t = 1.9999 after about 1600 periods and thousands of
+// steps; the pace at the end, projected over the 1e6 s left, would be 10^10 steps.
+TEST(Trajectory, ARisingPaceIsNotProjectedOverAFarEnd) {
+  const auto chirp = [](double t, const V2& y) { return V2(y(1), -std::pow(2 - t, -4) * y(0)); };
+  std::vector<Event<2>> events = {{.name = "near", .g = [](double t, const V2&) { return t - 1.9999; }}};
+  Trajectory run(chirp, 0.0, V2(1, 0), SolverConfig{.maxSteps = 200'000, .endTime = 1e6}, events);
+  EXPECT_FALSE(run.stateAt(1e6));
+  ASSERT_TRUE(run.stoppedBy());
+  EXPECT_NEAR(run.stoppedBy()->t, 1.9999, 1e-9);
+  EXPECT_GT(run.stats().acceptedSteps, 4 * 2'000) << "past a hundredth of maxSteps at two checks";
 }
 
 TEST(Events, FallingZeroIsLocatedToATenthOfANanosecond) {

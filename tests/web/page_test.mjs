@@ -10,12 +10,18 @@
 //   writes, and which `coinroll simulate` reproduces;
 // - the coin's centre and contact point in a screenshot are where a pinhole camera puts the CSV's,
 //   and the coin where `coinroll still` draws it, within 2 px;
-// - a bad scene in the box, or a bad value in a control, shows the program's message beside it;
+// - a bad scene in the box, or a bad value in a control, shows the program's message beside it; a
+//   refused control is marked invalid, says the run on screen is the last one, goes back to it on
+//   Escape or its button, and does not make the next change refused too;
+// - no slider offers a value outside its key's range (the tilt's also inside the flat stop), on every
+//   example and a scene holding every key the page shows;
+// - the custom shape's moments and the flight keys have controls, shown by the schema's only_with,
+//   that fill what the choice needs (a disk made custom runs as the disk did; flight, its restitution);
 // - a run in progress shows its progress and gives way to a newer one; playback follows
 //   render.time_remap as `coinroll render --frame-times` reports it, in the air and at each impact too.
 // Exits 77 (ctest's skip), saying why, where Chromium or web/node_modules is missing.
 import { spawnSync } from 'node:child_process';
-import { existsSync, mkdtempSync, readFileSync, rmSync, statSync, writeFileSync } from 'node:fs';
+import { existsSync, mkdtempSync, readdirSync, readFileSync, rmSync, statSync, writeFileSync } from 'node:fs';
 import { createRequire } from 'node:module';
 import { tmpdir } from 'node:os';
 import { dirname, join, resolve } from 'node:path';
@@ -95,6 +101,37 @@ try {
 
   const hook = (name, ...args) => page.evaluate((n, a) => window.coinrollPage[n](...a), name, args);
   const settled = () => page.evaluate(() => window.coinrollPage.settled());
+  const ranScene = async () => JSON.parse((await hook('run')).text);
+  // What the control of `path` shows: shown or hidden, its inputs' values and marks, its messages.
+  const control = (path) => page.$eval(`.control[data-path="${path}"]`, (row) => {
+    const box = row.querySelector('input[type=number]'), slider = row.querySelector('input[type=range]');
+    const check = row.querySelector('input[type=checkbox]'), note = row.querySelector('.refusal-note');
+    return {
+      hidden: row.hidden, box: box && box.value, checked: check && check.checked, from: slider && Number(slider.dataset.from),
+      to: slider && Number(slider.dataset.to), invalid: [box, slider].filter(Boolean).map((e) => e.getAttribute('aria-invalid')),
+      error: row.querySelector('.error').textContent, note: note && !note.hidden ? note.textContent : '',
+    };
+  }).catch(() => null);
+  const shownErrors = () => page.$$eval('.error', (all) => all.map((e) => e.textContent).filter(Boolean));
+  async function runSceneText(text) {
+    await page.$eval('#scene-text', (e, t) => { e.value = t; }, text);
+    await page.click('#run-text');
+    await settled();
+  }
+  // A part that drives a control a page may lack fails as a check, not the whole test.
+  async function part(name, body) {
+    try {
+      await body();
+    } catch (e) {
+      check(`${name}: the part runs through`, false, e.message.split('\n')[0]);
+    }
+  }
+  async function keyOn(selector, key) {
+    await page.focus(selector);
+    await page.keyboard.press(key);
+    await new Promise((r) => setTimeout(r, 50));
+    await settled();
+  }
   await page.goto(pageUrl);
   await page.waitForFunction(() => window.coinrollPage && window.coinrollPage.run(), { timeout: 60000 });
   await settled();
@@ -220,6 +257,47 @@ try {
   const radiusRefusal = refusal(await page.$eval('#scene-text', (e) => e.value));
   check('a bad radius shows the program\'s message at the radius', radiusError === radiusRefusal, `page "${radiusError}", coinroll "${radiusRefusal}"`);
   check('the refused run leaves the last run playing', (await hook('run')).text === lastRun);
+  const radiusShown = await control('coin.radius');
+  const runningRadius = JSON.parse(lastRun).coin.radius;
+  check('the refused radius stays in its box, marked invalid, saying the run on screen is the last one', radiusShown.box === '-1' &&
+        radiusShown.invalid.every((v) => v === 'true') && radiusShown.note.includes(`still the last run's, with coin.radius = ${runningRadius} m`),
+        JSON.stringify(radiusShown));
+  await part('the radius\'s "Back to" button', async () => {
+    await page.click('.control[data-path="coin.radius"] .refusal-note button');
+    const radiusBack = await control('coin.radius');
+    check('its "Back to" button shows the running radius again, unmarked, and the scene box the running scene', radiusBack.box === String(runningRadius) &&
+          radiusBack.invalid.every((v) => v === null) && radiusBack.note === '' && radiusBack.error === '' &&
+          (await page.$eval('#scene-text', (e) => e.value)) === lastRun, JSON.stringify(radiusBack));
+  });
+
+  // A refused tilt typed into its box: the next change of another control runs the scene on screen
+  // with that change (the refused value no longer in it), and Escape goes back to the running value.
+  await part('a refused tilt', async () => {
+    const theta = '.control[data-path="initial.theta"] input[type=number]';
+    const runningTheta = (await ranScene()).initial.theta;
+    await page.click(theta, { clickCount: 3 });
+    await page.keyboard.type('95');
+    await page.keyboard.press('Enter');
+    await settled();
+    const refused = await control('initial.theta');
+    check('a refused tilt is marked invalid (aria-invalid) on its box and slider, with the program\'s message and the running value',
+          refused.box === '95' && refused.invalid.length === 2 && refused.invalid.every((v) => v === 'true') &&
+          refused.error.includes('initial.theta: must be in (-90, 90) degrees') && refused.note.includes(`initial.theta = ${runningTheta} degrees`),
+          JSON.stringify(refused));
+    await keyOn('.control[data-path="initial.omega_Z"] input[type=range]', 'ArrowRight');
+    const next = await ranScene(), errors = await shownErrors();
+    check('after a refusal, the next change of another control runs, on the scene on screen', errors.length === 0 &&
+          next.initial.theta === runningTheta && (await control('initial.theta')).invalid.every((v) => v === null),
+          `theta ${next.initial.theta}, errors ${JSON.stringify(errors)}`);
+    await page.click(theta, { clickCount: 3 });
+    await page.keyboard.type('95');
+    await page.keyboard.press('Enter');
+    await settled();
+    await page.keyboard.press('Escape');
+    const back = await control('initial.theta');
+    check('Escape in a refused box puts the running value back, unmarked', back.box === String(runningTheta) && back.invalid.every((v) => v === null) &&
+          back.note === '' && back.error === '' && (await page.$eval('#scene-text', (e) => e.value)) === (await hook('run')).text, JSON.stringify(back));
+  });
 
   // Bad scenes in the box, typed there.
   const badScenes = [
@@ -240,6 +318,125 @@ try {
     const expected = refusal(text);
     check(`the box shows the program's message for ${text.slice(0, 48)}...`, shown === expected, `page "${shown}", coinroll "${expected}"`);
   }
+
+  // Every slider's ends are values its key's range takes: strictly inside an excluded bound, and for a
+  // tilt inside +-89 degrees, where a start is refused for lying near flat (physics/validity.h
+  // kFlatTilt). On every example and a scene with every key the page shows, whatever its value.
+  await part('slider ends', async () => {
+    const schemaKeys = new Map(JSON.parse(coinroll(['schema']).stdout).keys.map((k) => [k.path, k]));
+    const everyKey = JSON.stringify({
+      coin: { shape: 'custom', radius: 0.02, mass: 0.01, I_X: 1e-6, I_Z: 2e-6, thickness: 0.002, edge_radius: 0.0005 },
+      initial: { theta: -30, omega_Z: 5, y: 0.1, v_y: 0.5, v_x: 0.1, v_z: -0.1 },
+      friction: 0.3, friction_static: 0.4, sliding: true, flight: true, restitution: 0.5, impact_friction: 0.2, duration: 1,
+      effects: [{ type: 'air_drag', model: 'boundary_layer' }, { type: 'rolling_resistance' }, { type: 'spin_friction' }],
+    });
+    const outside = [];
+    let sliders = 0;
+    const scenes = [...readdirSync(join(repo, 'examples')).filter((f) => f.endsWith('.json')).map((f) => readFileSync(join(repo, 'examples', f), 'utf8')), everyKey];
+    for (const text of scenes) {
+      await runSceneText(text);
+      const name = JSON.parse(text).name || 'every key';
+      if ((await hook('run')).text !== text) outside.push(`${name}: not run: ${await page.$eval('#scene-error', (e) => e.textContent)}`);
+      const ends = await page.$$eval('.control:not([hidden])', (rows) => rows.filter((r) => r.querySelector('input[type=range]'))
+        .map((r) => ({ path: r.dataset.path, from: Number(r.querySelector('input[type=range]').dataset.from), to: Number(r.querySelector('input[type=range]').dataset.to) })));
+      for (const { path, from, to } of ends) {
+        ++sliders;
+        const key = schemaKeys.get(path);
+        const tilt = /theta$/.test(path) ? 89 : Infinity;
+        const above = (v, b) => (b ? (b.inclusive ? v >= b.value : v > b.value) : true);
+        const below = (v, b) => (b ? (b.inclusive ? v <= b.value : v < b.value) : true);
+        for (const v of [from, to]) {
+          if (!(Number.isFinite(v) && above(v, key.minimum) && below(v, key.maximum) && Math.abs(v) < tilt)) outside.push(`${name}: ${path} end ${v}`);
+        }
+      }
+    }
+    check('every slider\'s ends lie in its key\'s range (inside excluded bounds, a tilt inside +-89 deg)', outside.length === 0 && sliders > 100,
+          `${sliders} sliders; ${outside.slice(0, 6).join('; ')}`);
+    await runSceneText(await hook('defaultScene'));
+    const tiltEnds = [];
+    for (const key of ['End', 'Home']) {
+      await keyOn('.control[data-path="initial.theta"] input[type=range]', key);
+      tiltEnds.push(`${(await ranScene()).initial.theta}: ${(await shownErrors()).join(' ') || 'ran'}`);
+    }
+    check('the tilt slider\'s two ends run', tiltEnds.every((t) => t.endsWith(': ran')) && (await shownErrors()).length === 0, tiltEnds.join('; '));
+  });
+
+  // The custom shape: its moments get controls, a disk made custom starts with its own moments and
+  // moves as it did, the moments' bound is the program's, and back to a disk they leave the scene.
+  await part('the custom shape', async () => {
+    await runSceneText(await hook('defaultScene'));
+    const disk = await ranScene();
+    const diskState = await hook('stateAt', 2);
+    await page.select('.control[data-path="coin.shape"] select', 'custom');
+    await settled();
+    const custom = await ranScene();
+    const [I_X, I_Z] = [await control('coin.I_X'), await control('coin.I_Z')];
+    check('shape custom shows I_X and I_Z, filled with the disk\'s moments, and runs', I_X && I_Z && !I_X.hidden && !I_Z.hidden &&
+          custom.coin.I_X === disk.coin.mass * disk.coin.radius ** 2 / 4 && custom.coin.I_Z === disk.coin.mass * disk.coin.radius ** 2 / 2 &&
+          Number(I_X.box) === custom.coin.I_X && Number(I_Z.box) === custom.coin.I_Z && (await shownErrors()).length === 0,
+          JSON.stringify({ coin: custom.coin, I_X, I_Z }));
+    const customState = await hook('stateAt', 2);
+    check('the disk made custom moves exactly as the disk did', ['theta', 'phi', 'psi', 'x', 'z', 'omega_Z'].every((k) => customState[k] === diskState[k]),
+          `theta ${customState.theta} and ${diskState.theta}`);
+    await page.click('.control[data-path="coin.I_Z"] input[type=number]', { clickCount: 3 });
+    await page.keyboard.type(String(3 * custom.coin.I_X));
+    await page.keyboard.press('Enter');
+    await settled();
+    const tooLarge = await control('coin.I_Z');
+    const expected = refusal(await page.$eval('#scene-text', (e) => e.value));
+    check('an I_Z above 2 I_X is refused at I_Z with the program\'s message', tooLarge.error === expected && tooLarge.invalid.every((v) => v === 'true'),
+          `page "${tooLarge.error}", coinroll "${expected}"`);
+    await page.keyboard.press('Escape');
+    await keyOn('.control[data-path="coin.I_X"] input[type=range]', 'ArrowRight');
+    const heavier = await ranScene();
+    check('the I_X slider runs a custom coin', heavier.coin.I_X > custom.coin.I_X && heavier.coin.I_Z === custom.coin.I_Z && (await shownErrors()).length === 0,
+          JSON.stringify(heavier.coin));
+    await page.select('.control[data-path="coin.shape"] select', 'disk');
+    await settled();
+    const back = await ranScene();
+    check('back to a disk, I_X and I_Z leave the scene and their controls hide', back.coin.I_X === undefined && back.coin.I_Z === undefined &&
+          (await control('coin.I_X')).hidden && (await shownErrors()).length === 0, JSON.stringify(back.coin));
+  });
+
+  // Flight: its group says what brings it; friction and sliding bring the flight box, which brings
+  // restitution (filled: flight needs it), impact friction, the height and the vertical velocity; a
+  // toss from a height runs; the coin toss example shows its values there; sliding off takes them out.
+  await part('flight', async () => {
+    await runSceneText(await hook('defaultScene'));
+    const flightKeys = ['flight', 'restitution', 'impact_friction', 'initial.y', 'initial.v_y'];
+    const hint = await page.$$eval('fieldset', (sets) => sets.filter((f) => f.querySelector('legend').textContent === 'Flight')
+      .map((f) => [...f.querySelectorAll('.hint')].filter((h) => !h.hidden).map((h) => h.textContent).join('')));
+    check('a Flight group, which without sliding says what shows it', hint.length === 1 && /friction.*sliding/.test(hint[0]) &&
+          (await control('flight')) !== null && (await control('flight')).hidden, JSON.stringify(hint));
+    await page.click('.control[data-path="friction"] input[type=checkbox]');
+    await settled();
+    await page.click('.control[data-path="sliding"] input[type=checkbox]');
+    await settled();
+    check('with friction and sliding the flight box shows, its settings not yet', !(await control('flight')).hidden &&
+          (await Promise.all(flightKeys.slice(1).map(control))).every((c) => c.hidden));
+    await page.click('.control[data-path="flight"] input[type=checkbox]');
+    await settled();
+    const flying = await ranScene();
+    const shown = await Promise.all(flightKeys.map(control));
+    check('ticking flight runs, with restitution filled, and shows the flight keys', flying.flight === true && flying.restitution === 0.5 &&
+          shown.every((c) => !c.hidden) && (await shownErrors()).length === 0 && (await page.$eval('#scene-error', (e) => e.textContent)) === '',
+          JSON.stringify({ flight: flying.flight, restitution: flying.restitution, errors: await shownErrors() }));
+    await page.click('.control[data-path="initial.y"] input[type=checkbox]');
+    await settled();
+    const tossed = await ranScene(), start = await hook('stateAt', 0);
+    check('a height ticked starts the coin in the air', tossed.initial.y > 0 && Math.abs(start.y - tossed.initial.y) < 1e-12 &&
+          (await shownErrors()).length === 0, `initial.y ${tossed.initial.y}, the page's y at 0: ${start.y}`);
+    await page.click('.control[data-path="sliding"] input[type=checkbox]');
+    await settled();
+    const grounded = await ranScene();
+    check('sliding off takes flight and its keys out of the scene, and runs', flightKeys.every((k) => (k.startsWith('initial.') ? grounded.initial[k.slice(8)] : grounded[k]) === undefined) &&
+          (await shownErrors()).length === 0 && (await page.$eval('#scene-error', (e) => e.textContent)) === '', JSON.stringify(grounded));
+    await page.select('#example', 'coin_toss');
+    await settled();
+    const toss = await Promise.all(flightKeys.map(control));
+    check('the coin toss shows its flight keys: flight on, restitution 0.4, y 0.3, v_y 1.2', toss[0].checked && toss[1].box === '0.4' &&
+          toss[3].box === '0.3' && toss[4].box === '1.2' && toss.every((c) => !c.hidden), JSON.stringify(toss.map((c) => [c.checked, c.box])));
+  });
 
   // Where the coin is drawn: the default scene's camera (render.camera eye, target, fov) at the
   // still's size, its overlay and trace off so that only the coin is brass-coloured.

@@ -7,16 +7,22 @@ import schema, { defaultOf, deletePath, getPath, hasEffect, onlyWithHolds, schem
 
 // What the page offers, in its groups; every range, default, unit and text comes from the schema.
 export const kGroups = [
-  ['Coin', ['coin.shape', 'coin.radius', 'coin.inner_radius', 'coin.thickness', 'coin.edge_radius', 'coin.mass']],
+  ['Coin', ['coin.shape', 'coin.radius', 'coin.inner_radius', 'coin.I_X', 'coin.I_Z', 'coin.thickness', 'coin.edge_radius', 'coin.mass']],
   ['Start', ['initial[steady].steady', 'initial.theta', 'initial.phi', 'initial.omega_X', 'initial.omega_Y', 'initial.omega_Z',
              'initial.x', 'initial.z', 'initial[steady].theta', 'initial[steady].omega_Z', 'initial[steady].branch']],
   ['Floor contact', ['friction', 'friction_static', 'sliding', 'initial.v_x', 'initial.v_z']],
+  ['Flight', ['flight', 'restitution', 'impact_friction', 'initial.y', 'initial.v_y', 'stop_when_decided']],
   ['Effects', ['effects[air_drag]', 'effects[air_drag].model', 'effects[air_drag].viscosity', 'effects[air_drag].density',
                'effects[rolling_resistance]', 'effects[rolling_resistance].length', 'effects[spin_friction]', 'effects[spin_friction].length']],
   ['Run', ['duration', 'gravity']],
 ];
 
 const kSliderSteps = 1000;
+
+// Keys a scene must hold once another has a value, which the schema's table does not mark (its docs
+// say "required there"): the page fills them when that value is chosen, so that the choice runs, and
+// shows them without a checkbox that could only leave them out.
+const kRequiredWith = new Map([['coin.I_X', 'coin.shape=custom'], ['coin.I_Z', 'coin.shape=custom'], ['restitution', 'flight=true']]);
 
 function rangeText(key) {
   const lo = key.minimum, hi = key.maximum;
@@ -34,31 +40,65 @@ function tooltip(key) {
   return parts.join('\n');
 }
 
-// The slider's span for a value: the schema's range where it is narrow enough to slide through; a
-// log scale where it is positive and spans decades (two decades either side of the value, inside
-// the range); else a linear window round the value that grows as the value does.
-function sliderScale(key, value) {
-  const lo = key.minimum ? key.minimum.value : -Infinity, hi = key.maximum ? key.maximum.value : Infinity;
-  const v = Number.isFinite(value) ? value : 0;
-  if (lo >= 0 && v > 0 && !(hi / Math.max(lo, Number.MIN_VALUE) < 100)) {
-    const from = Math.max(lo > 0 ? lo : v * 1e-2, v * 1e-2), to = Math.min(hi, v * 1e2);
-    return { log: true, from, to };
+// deg. The lowest tilt at which a start is refused for lying too near flat (physics/validity.h
+// kFlatTilt, the Euler angles' stop; the other formulations stop later). The page does not know which
+// formulation a scene runs in, so its tilt sliders stay inside this one: the box still takes more.
+const kStartTiltLimit = 89;
+const kTiltPaths = new Set(['initial.theta', 'initial[steady].theta']);
+
+// The values a slider may offer: the schema's range, for a tilt also inside the flat stop; `inclusive`
+// false where the bound itself is refused.
+function sliderBounds(key) {
+  const lo = Object.assign({ value: -Infinity, inclusive: false }, key.minimum);
+  const hi = Object.assign({ value: Infinity, inclusive: false }, key.maximum);
+  if (kTiltPaths.has(key.path)) {
+    if (lo.value <= -kStartTiltLimit) Object.assign(lo, { value: -kStartTiltLimit, inclusive: false });
+    if (hi.value >= kStartTiltLimit) Object.assign(hi, { value: kStartTiltLimit, inclusive: false });
   }
-  if (Number.isFinite(lo) && Number.isFinite(hi) && hi - lo <= 1000) return { log: false, from: lo, to: hi };
-  const half = Math.pow(10, Math.ceil(Math.log10(Math.max(Math.abs(v), 1e-9) * 4)));
-  const span = Math.max(half, lo >= 0 ? 1 : 10);
-  return { log: false, from: Math.max(lo, lo >= 0 ? 0 : v - span), to: Math.min(hi, v + span) };
+  return { lo, hi };
+}
+
+// The slider's span for a value: the range where it is narrow enough to slide through; a log scale
+// where it is positive and spans decades (two decades either side of the value, inside the range);
+// else a linear window round the value that grows as the value does.
+function sliderScale(key, value) {
+  const { lo, hi } = sliderBounds(key);
+  const v = Number.isFinite(value) ? value : 0;
+  let scale;
+  if (lo.value >= 0 && v > 0 && !(hi.value / Math.max(lo.value, Number.MIN_VALUE) < 100)) {
+    scale = { log: true, from: Math.max(lo.value > 0 ? lo.value : v * 1e-2, v * 1e-2), to: Math.min(hi.value, v * 1e2) };
+  } else if (Number.isFinite(lo.value) && Number.isFinite(hi.value) && hi.value - lo.value <= 1000) {
+    scale = { log: false, from: lo.value, to: hi.value };
+  } else {
+    const half = Math.pow(10, Math.ceil(Math.log10(Math.max(Math.abs(v), 1e-9) * 4)));
+    const span = Math.max(half, lo.value >= 0 ? 1 : 10);
+    scale = { log: false, from: Math.max(lo.value, lo.value >= 0 ? 0 : v - span), to: Math.min(hi.value, v + span) };
+  }
+  // An end on a bound the range excludes moves a slider step inside, rounded inwards to the three
+  // digits the slider writes, so that no position of the slider is a value the scene refuses.
+  const stepIn = (end, towards) => (scale.log ? end * Math.pow(towards / end, 1 / kSliderSteps) : end + (towards - end) / kSliderSteps);
+  if (!lo.inclusive && scale.from <= lo.value) scale.from = roundTowards(stepIn(scale.from, scale.to), +1);
+  if (!hi.inclusive && scale.to >= hi.value) scale.to = roundTowards(stepIn(scale.to, scale.from), -1);
+  return scale;
+}
+
+// `value` to three significant digits, rounded up (direction +1) or down (-1).
+function roundTowards(value, direction) {
+  if (value === 0) return 0;
+  const unit = Math.pow(10, Math.floor(Math.log10(Math.abs(value))) - 2);
+  return Number(((direction > 0 ? Math.ceil(value / unit) : Math.floor(value / unit)) * unit).toPrecision(3));
 }
 
 const toSlider = (scale, value) => {
   const f = scale.log ? Math.log(value / scale.from) / Math.log(scale.to / scale.from) : (value - scale.from) / (scale.to - scale.from);
   return Math.round(kSliderSteps * Math.min(1, Math.max(0, f)));
 };
-// Three significant digits off the slider, so that what it writes into the scene reads cleanly.
+// Three significant digits off the slider, so that what it writes into the scene reads cleanly, and
+// never past the span's ends: rounding the end's neighbours may not step onto an excluded bound.
 const fromSlider = (scale, position) => {
   const f = position / kSliderSteps;
   const value = scale.log ? scale.from * Math.pow(scale.to / scale.from, f) : scale.from + f * (scale.to - scale.from);
-  return value === 0 ? 0 : Number(value.toPrecision(3));
+  return value === 0 ? 0 : Math.min(scale.to, Math.max(scale.from, Number(value.toPrecision(3))));
 };
 
 // Small numbers in exponent form, which a narrow box shows whole (1.8e-5, not 0.000018).
@@ -81,7 +121,8 @@ class Control {
     const effect = /^effects\[(\w+)\]$/.exec(path);
     this.effect = effect ? effect[1] : null;
     this.key = schemaKey(this.effect ? `${path}.type` : path);
-    this.optional = !this.effect && this.key.type !== 'name' && this.key.default === undefined && !this.key.required;
+    this.optional = !this.effect && this.key.type !== 'name' && this.key.default === undefined && !this.key.required &&
+                    !kRequiredWith.has(path);
     this.row = element('div', { class: this.effect || this.key.type === 'boolean' ? 'control whole' : 'control', title: tooltip(this.key), 'data-path': path });
     const label = element('label', { class: 'name', text: this.effect ? this.effect.replace(/_/g, ' ') : path.replace(/^.*\./, '') });
     this.row.append(label);
@@ -120,18 +161,67 @@ class Control {
       this.box.addEventListener('change', () => this.commit(this.box.value === '' ? NaN : Number(this.box.value)));
       this.row.append(this.slider, this.box, element('span', { class: 'unit', text: this.key.unit || '' }));
     }
-    this.error = element('div', { class: 'error', role: 'alert' });
-    this.row.append(this.error);
+    const id = `control-${path.replace(/\W+/g, '-')}`;
+    this.error = element('div', { class: 'error', role: 'alert', id: `${id}-error` });
+    this.backButton = element('button', { type: 'button' });
+    this.backButton.addEventListener('click', () => this.backToRun());
+    this.refusalNote = element('div', { class: 'refusal-note', id: `${id}-note`, hidden: '' }, [element('span'), this.backButton]);
+    this.row.append(this.error, this.refusalNote);
+    this.inputs = [this.check, this.menu, this.slider, this.box].filter(Boolean);
+    for (const input of this.inputs) input.setAttribute('aria-describedby', `${this.error.id} ${this.refusalNote.id}`);
+    this.row.addEventListener('keydown', (event) => {
+      if (event.key === 'Escape' && this.refusal) this.backToRun();
+    });
   }
 
-  value() {
-    const v = getPath(this.page.scene, this.path);
+  // The value this control shows: the refused scene's while a refusal is shown, else the scene's.
+  value(scene = this.shownScene()) {
+    const v = getPath(scene, this.path);
     return v !== undefined ? v : this.key.default;
   }
 
-  // The scene's value into the control, and whether it applies to this scene.
-  refresh() {
-    const scene = this.page.scene;
+  shownScene() {
+    return this.refusal ? this.refusal.scene : this.page.scene;
+  }
+
+  // A change of this control was refused: the control keeps the refused value, marked invalid with
+  // the message, and says that the motion on screen is still the last run's, with its value and a
+  // way back to it. `refusedScene` is the scene that was refused (the page then edits the last run's).
+  refuse(message, refusedScene) {
+    this.refusal = { scene: refusedScene };
+    this.error.textContent = message;
+    const running = this.effect ? hasEffect(this.page.scene, this.effect) : this.value(this.page.scene);
+    const shown = running === undefined ? undefined : typeof running === 'boolean' ? (running ? 'on' : 'off')
+      : typeof running === 'number' ? `${numberText(running)}${this.key.unit ? ` ${this.key.unit}` : ''}` : String(running);
+    this.refusalNote.firstChild.textContent = `Not run: the motion on screen is still the last run's, ${
+      shown === undefined ? `without ${this.path}` : `with ${this.path} = ${shown}`}. `;
+    this.backButton.textContent = shown === undefined ? 'Back to the last run' : `Back to ${shown}`;
+    this.refresh();
+  }
+
+  clearRefusal(replaceTyped = false) {
+    this.error.textContent = '';
+    if (!this.refusal) return;
+    this.refusal = null;
+    this.refresh(replaceTyped);
+  }
+
+  // Escape or the button: the control shows the last run's value again, and the scene box its scene.
+  backToRun() {
+    this.clearRefusal(true);
+    this.page.showRunning();
+  }
+
+  // The scene's value into the control, and whether it applies to this scene; into a box being typed
+  // in only when `replaceTyped`.
+  refresh(replaceTyped = false) {
+    const scene = this.shownScene();
+    this.row.classList.toggle('refused', Boolean(this.refusal));
+    this.refusalNote.hidden = !this.refusal;
+    for (const input of this.inputs) {
+      if (this.refusal) input.setAttribute('aria-invalid', 'true');
+      else input.removeAttribute('aria-invalid');
+    }
     const present = this.effect ? hasEffect(scene, this.effect) : getPath(scene, this.path) !== undefined;
     let shown = onlyWithHolds(scene, this.key);
     if (this.path === 'initial[steady].steady' || this.effect) shown = true;
@@ -143,10 +233,10 @@ class Control {
       const value = this.value();
       const usable = value !== undefined && !(this.optional && !present);
       this.slider.disabled = this.box.disabled = !usable;
-      if (document.activeElement !== this.box) this.box.value = value !== undefined ? numberText(value) : '';
+      if (replaceTyped || document.activeElement !== this.box) this.box.value = value !== undefined ? numberText(value) : '';
       if (!this.held) {
         this.scale = sliderScale(this.key, Number(value));
-        if (value !== undefined) this.slider.value = toSlider(this.scale, value);
+        if (Number.isFinite(value)) this.slider.value = toSlider(this.scale, value);
       }
       this.slider.dataset.from = this.scale.from;
       this.slider.dataset.to = this.scale.to;
@@ -155,7 +245,9 @@ class Control {
 
   commit(value) {
     if (this.key.type === 'number' && !Number.isFinite(value)) {
-      this.error.textContent = `${this.path}: type a number${this.key.unit ? ` in ${this.key.unit}` : ''}, range ${rangeText(this.key)}`;
+      const typed = JSON.parse(JSON.stringify(this.page.scene));
+      setPath(typed, this.path, value);
+      this.refuse(`${this.path}: type a number${this.key.unit ? ` in ${this.key.unit}` : ''}, range ${rangeText(this.key)}`, typed);
       return;
     }
     setPath(this.page.scene, this.path, value);
@@ -186,36 +278,79 @@ class Control {
 }
 
 export class Controls {
-  // `page`: {scene, changed(path), suggestedValue(path)}.
+  // `page`: {scene, changed(path), suggestedValue(path), showRunning()}.
   constructor(container, page) {
     this.controls = [];
+    this.groups = [];
     for (const [title, paths] of kGroups) {
-      const group = element('fieldset', {}, [element('legend', { text: title })]);
-      for (const path of paths) {
-        const control = new Control(path, page);
-        this.controls.push(control);
-        group.append(control.row);
-      }
-      container.append(group);
+      const group = { controls: paths.map((path) => new Control(path, page)) };
+      group.hint = element('p', { class: 'hint', text: whatShows(group.controls[0].key) });
+      container.append(element('fieldset', {}, [element('legend', { text: title }), group.hint, ...group.controls.map((c) => c.row)]));
+      this.controls.push(...group.controls);
+      this.groups.push(group);
     }
   }
 
   refresh() {
     for (const c of this.controls) c.refresh();
+    // A group none of whose keys applies (Flight, before sliding is on) says what brings its first one.
+    for (const group of this.groups) group.hint.hidden = group.controls.some((c) => !c.row.hidden);
   }
 
   clearErrors() {
-    for (const c of this.controls) c.error.textContent = '';
+    for (const c of this.controls) c.clearRefusal();
   }
 
-  // Shows `message` at the control of `path` (or the nearest enclosing one); false where none is.
-  showError(path, message) {
-    const candidates = this.controls.filter((c) => !c.row.hidden && (path === c.path || path.startsWith(`${c.path}.`)));
-    const control = candidates.sort((a, b) => b.path.length - a.path.length)[0];
-    if (!control) return false;
-    control.error.textContent = message;
+  // Shows at the control of `path`, the one changed, that `refusedScene` was refused with `message`;
+  // false where no such control is shown.
+  refuse(path, message, refusedScene) {
+    const control = this.controls.find((c) => c.path === path);
+    if (!control || control.row.hidden) return false;
+    control.refuse(message, refusedScene);
     return true;
   }
+}
+
+// What a group whose keys all hide says: what the first key's only_with asks of the page's controls.
+function whatShows(key) {
+  const needs = (key.only_with || []).map((assignment) => {
+    const at = assignment.indexOf('=');
+    const path = assignment.slice(0, at);
+    return schemaKey(path).type === 'name' ? `${path} is ${assignment.slice(at + 1)}` : `${path} is ticked`;
+  });
+  return needs.length ? `Shown once ${needs.join(' and ')}.` : '';
+}
+
+// Keeps the scene a control changed one the loader takes: a key whose only_with no longer holds
+// leaves it (the loader refuses it: "restitution: only with "flight": true"), which can end another's
+// (sliding off ends flight's, and flight's restitution's); and a key kRequiredWith asks for comes in.
+// `running` is the scene on screen, whose coin's moments a coin made custom starts with.
+export function fitScene(scene, running) {
+  const paths = kGroups.flatMap(([, group]) => group).filter((path) => !/^(effects|initial)\[/.test(path));
+  for (let removed = true; removed;) {
+    removed = false;
+    for (const path of paths) {
+      if (getPath(scene, path) === undefined || onlyWithHolds(scene, schemaKey(path))) continue;
+      deletePath(scene, path);
+      removed = true;
+    }
+  }
+  for (const [path, assignment] of kRequiredWith) {
+    const [on, value] = assignment.split('=');
+    if (getPath(scene, path) !== undefined || String(getPath(scene, on)) !== value) continue;
+    setPath(scene, path, path.startsWith('coin.I_') ? momentsOf(running.coin)[path.slice(5)] : suggestedValue(path));
+  }
+}
+
+// A thin coin's moments, kg m^2, by coin.shape's doc in the loader's arithmetic (physics/coin_model.cpp),
+// so that a disk made custom runs bit for bit as it did. A coin with thickness has a solid's moments
+// (docs/rim_inertia.md), which the page does not compute: its custom copy moves a little differently.
+function momentsOf(coin) {
+  if (coin.shape === 'custom') return { I_X: coin.I_X, I_Z: coin.I_Z };
+  if (coin.shape !== 'ring') return { I_X: coin.mass * coin.radius * coin.radius / 4, I_Z: coin.mass * coin.radius * coin.radius / 2 };
+  const b = coin.inner_radius !== undefined ? coin.inner_radius : coin.radius;
+  const sumOfSquares = coin.radius * coin.radius + b * b;
+  return { I_X: coin.mass * sumOfSquares / 4, I_Z: coin.mass * sumOfSquares / 2 };
 }
 
 // What a ticked optional key starts at: its schema default, else the value the schema's own

@@ -4,9 +4,9 @@ import { coreSource, workerSource } from 'inline:worker';
 import examples from 'inline:examples';
 import { CameraRig } from './camera_rig.js';
 import { drawnCoinShape } from './coin_geometry.js';
-import { Controls, suggestedValue } from './controls.js';
+import { Controls, fitScene, suggestedValue } from './controls.js';
 import { Cancelled, Runner } from './runner.js';
-import { defaultOf, pathInMessage } from './schema.js';
+import { defaultOf } from './schema.js';
 import { Trajectory, traceInterval } from './trajectory.js';
 import { View } from './view.js';
 
@@ -53,6 +53,7 @@ const page = {
   t: 0, playing: true, speed: 1, holdUntil: 0,
   changed: (path) => onControl(path),
   suggestedValue,
+  showRunning: () => { if (page.run) showSceneText(page.run.text); },
 };
 
 const runner = new Runner(coreSource, workerSource);
@@ -74,6 +75,7 @@ function showSceneText(text) {
 }
 
 function onControl(path) {
+  if (page.run) fitScene(page.scene, JSON.parse(page.run.text));
   const text = JSON.stringify(page.scene, null, 2);
   showSceneText(text);
   controls.refresh();
@@ -108,8 +110,15 @@ async function start(text, sourceName, origin) {
   } catch (e) {
     if (e instanceof Cancelled || id !== request) return;
     const message = e.message;
-    const shown = origin.control && (controls.showError(pathInMessage(message, page.scene) || '', message) ||
-                                      controls.showError(origin.control, message));
+    // A control's change refused: the control keeps the refused value and says why, and the page goes
+    // on editing the scene on screen, so that the next change is not refused for this one.
+    let shown = false;
+    if (origin.control && page.run) {
+      const refused = page.scene;
+      page.scene = JSON.parse(page.run.text);
+      shown = controls.refuse(origin.control, message, refused);
+      controls.refresh();
+    }
     if (!shown) $('scene-error').textContent = message;
     settle();
   } finally {

@@ -96,15 +96,4 @@ export function onlyWithHolds(scene, key) {
   });
 }
 
-// The key path a message of the core names, in the schema's spelling: "scene.json: effects.0.length:
-// must be ..." -> "effects[rolling_resistance].length" for the scene whose first effect that is.
-export function pathInMessage(message, scene) {
-  const match = /^(?:.*?: )?([A-Za-z_][\w]*(?:\.[\w+-]+)*): /.exec(message);
-  if (!match) return undefined;
-  return match[1].replace(/^effects\.(\d+)/, (whole, index) => {
-    const entry = scene && Array.isArray(scene.effects) ? scene.effects[Number(index)] : undefined;
-    return entry && entry.type ? `effects[${entry.type}]` : whole;
-  });
-}
-
 export default schema;

@@ -117,7 +117,7 @@ struct Columns {
 using Trajectory = Columns;
 
 // Integrates the scene and samples it every `sampleDt` seconds (the CSV's --sample-dt). More than
-// the command's limit of rows (duration / sampleDt + 1 > 1e9) is refused before any work with an
+// the command's limit of rows (floor(duration / sampleDt) + 1 > 1e8) is refused before any work with an
 // ArgumentError naming sampleDt.
 Columns simulate(const Scene& scene, double sampleDt = 0.01, const std::atomic<bool>* cancel = nullptr);
 

@@ -27,7 +27,8 @@ void refuseTooManyRows(double duration, double sampleDt, long maxRows, std::stri
                                   ? std::string(sampleDtName)
                                   : fmt::format("{}, or the limit with {}", sampleDtName, maxRowsOption);
     const std::string cost = rowsCost.empty() ? std::string() : fmt::format(" ({})", rowsCost);
-    throw std::invalid_argument(fmt::format("{} {}: duration {} s gives {:.0f} rows{}, more than the limit {}; raise {}",
+    throw std::invalid_argument(fmt::format("{} {}: duration {} s gives {:.0f} rows{}, more than the limit {}; "
+                                            "raise {}",
                                             sampleDtName, sampleDt, duration, rows, cost, maxRows, raise));
   }
 }

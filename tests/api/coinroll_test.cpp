@@ -76,9 +76,9 @@ TEST(ApiRows, SimulateRefusesMoreRowsThanTheCommandsLimitBeforeAnyWork) {
     ADD_FAILURE() << "5e9 rows were accepted";
   } catch (const coinroll::ArgumentError& e) {
     EXPECT_EQ(std::string(e.what()),
-              "sampleDt 1e-10: duration 0.5 s gives 5e+09 rows, more than the limit 1000000000; raise sampleDt");
+              "sampleDt 1e-10: duration 0.5 s gives 5000000006 rows, more than the limit 100000000; raise sampleDt");
     EXPECT_EQ(e.naming("sample_dt"),
-              "sample_dt 1e-10: duration 0.5 s gives 5e+09 rows, more than the limit 1000000000; raise sample_dt");
+              "sample_dt 1e-10: duration 0.5 s gives 5000000006 rows, more than the limit 100000000; raise sample_dt");
   }
   EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(5));
 }

@@ -22,6 +22,7 @@ import math
 import os
 import platform
 import sys
+import warnings
 from collections.abc import Mapping
 
 from ._built_for import PYTHON as _BUILT_FOR, PYTHON_VERSION as _BUILT_FOR_VERSION
@@ -239,4 +240,11 @@ def sweep(scene, grid, threads=0, overrides=()):
         axes = [grid]
     else:
         axes = list(grid)
-    return SweepTable(*_coinroll.sweep(_scene(scene, overrides), axes, threads))
+    table = SweepTable(*_coinroll.sweep(_scene(scene, overrides), axes, threads))
+    # A failed point is a row like the others; the command's summary counts them, so a script that
+    # only reads the numbers is told here instead of averaging over NaNs unawares.
+    failed = [str(end) for end in table["end"] if str(end).startswith("error:")]
+    if failed:
+        warnings.warn(f"sweep: {len(failed)} of {len(table['end'])} points failed (first: {failed[0]}); "
+                      "their rows have end 'error: ...' and NaN numbers", RuntimeWarning, stacklevel=2)
+    return table

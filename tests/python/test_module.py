@@ -117,7 +117,9 @@ def test_sweep_gives_the_commands_table(tmp_path, run_cli):
 def test_sweep_refuses_a_misnamed_key_and_marks_failed_points():
     with pytest.raises(ValueError, match="initial.thta: not a scene field"):
         coinroll.sweep(TOY, {"initial.thta": "10:40:4"})
-    failing = coinroll.sweep(TOY, {"coin.radius": [0.03, -1]})
+    # The command's summary counts failed points; the module warns, naming how many and the first.
+    with pytest.warns(RuntimeWarning, match=r"sweep: 1 of 2 points failed \(first: error: .*coin.radius"):
+        failing = coinroll.sweep(TOY, {"coin.radius": [0.03, -1]})
     assert failing["end"][0] in ("duration", "coin-flat") and failing["end"][1].startswith("error: ")
     assert "coin.radius" in failing["end"][1] and np.isnan(failing["t_end"][1])
 

@@ -1,8 +1,9 @@
-// The core's entry point for JavaScript (docs/web.md): `coinroll simulate` as one call. It makes the
-// calls the command makes (cli/commands.cpp runSimulate, cli/command_support.cpp
-// loadSceneDocument), in the command's order, so the CSV is the command's CSV and a refused scene
-// the command's message; the columns are the rows the CSV writer prints (sampleTrajectory), kept as
-// numbers. src/wasm/core_api.js wraps it in the module's documented functions.
+// The core's entry point for JavaScript (docs/web.md): `coinroll simulate` and `coinroll steady` as
+// calls. Each makes the calls its command makes (cli/commands.cpp runSimulate and runSteady,
+// cli/command_support.cpp loadSceneDocument), in the command's order, so the CSV is the command's
+// CSV, the steady report the command's numbers and a refused scene the command's message; the
+// columns are the rows the CSV writer prints (sampleTrajectory), kept as numbers.
+// src/wasm/core_api.js wraps them in the module's documented functions.
 
 #include <emscripten/bind.h>
 #include <emscripten/val.h>
@@ -11,12 +12,15 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <exception>
 #include <new>
+#include <numbers>
+#include <optional>
 #include <span>
 #include <string_view>
 #include <ostream>
@@ -26,6 +30,7 @@
 #include <utility>
 #include <vector>
 
+#include "physics/steady.h"
 #include "physics/validity.h"
 #include "pipeline/cancelled.h"
 #include "pipeline/simulation.h"
@@ -40,6 +45,8 @@ namespace coinroll::wasm {
 namespace {
 
 using emscripten::val;
+
+constexpr double kDegreesPerRadian = 180 / std::numbers::pi;
 
 // A refusal of the request (sample step, row limit, a bad request the run finds), as the command's
 // UsageError: exit 2.
@@ -208,6 +215,22 @@ val failure(std::string_view kind, int exitCode, const std::string& message) {
   return out;
 }
 
+// The scene document as the command reads it (cli/command_support.cpp loadSceneDocument): the
+// file's text or the built-in scene, `initial` replaced where a steady state is asked for, then the
+// overrides. The name is the one messages give the scene.
+std::pair<nlohmann::json, std::string> sceneDocument(const std::string& scene, bool hasScene, val overrides,
+                                                     const std::string& sourceName,
+                                                     const std::optional<nlohmann::json>& initial = std::nullopt) {
+  nlohmann::json document = hasScene ? scene::parseSceneText(scene, sourceName) : scene::builtInDefaultScene();
+  if (initial && document.is_object()) document["initial"] = *initial;
+  for (const std::string& assignment : emscripten::vecFromJSArray<std::string>(overrides)) {
+    scene::applyOverride(document, assignment);
+  }
+  return {std::move(document), hasScene ? sourceName : "built-in default scene"};
+}
+
+val numberOrNull(const std::optional<double>& value) { return value ? val(*value) : val::null(); }
+
 // `scene`: the scene file's bytes (a JavaScript string arrives as UTF-8); `hasScene` false: the
 // built-in default scene, as the command without a scene file. `asColumns`: the rows as one
 // Float64Array per column (`names`, `columns`) instead of the CSV's text (`csvBytes`). The result
@@ -219,11 +242,8 @@ val simulate(const std::string& scene, bool hasScene, val overrides, const std::
     if (!(sampleDt > 0) || !std::isfinite(sampleDt)) {
       throw BadRequest(fmt::format("sampleDt: must be a finite number > 0 s, got {}", sampleDt));
     }
-    nlohmann::json document = hasScene ? scene::parseSceneText(scene, sourceName) : scene::builtInDefaultScene();
-    for (const std::string& assignment : emscripten::vecFromJSArray<std::string>(overrides)) {
-      scene::applyOverride(document, assignment);
-    }
-    const scene::SceneConfig config = scene::parseScene(document, hasScene ? sourceName : "built-in default scene");
+    const auto [document, name] = sceneDocument(scene, hasScene, std::move(overrides), sourceName);
+    const scene::SceneConfig config = scene::parseScene(document, name);
     if (const double rows = config.duration / sampleDt + 1; rows > maxRows) {
       throw BadRequest(
           fmt::format("sampleDt {}: duration {} s gives {:.4g} rows, more than the limit {}; raise sampleDt, "
@@ -283,12 +303,132 @@ val simulate(const std::string& scene, bool hasScene, val overrides, const std::
   }
 }
 
+// `coinroll steady` as a call: every number the command prints (cli/commands.cpp runSteady), from
+// the same physics::steadyReport, kept as numbers. `kind` "" takes the scene's own steady initial,
+// as the command without --kind; `thetaDegrees`, `omega_Z` (undefined: not given) and `branch` (""
+// not given) are its --theta, --omega-Z and --branch. Refusals as simulate's: `error`, never thrown.
+val steady(const std::string& scene, bool hasScene, val overrides, const std::string& sourceName,
+           const std::string& kind, val thetaDegrees, val omega_Z, const std::string& branch) {
+  try {
+    for (const auto& [option, value] : {std::pair{"theta", thetaDegrees}, std::pair{"omega_Z", omega_Z}}) {
+      // JSON has no NaN or infinity: passed on, they would come back as a null the scene names.
+      if (!value.isUndefined() && !std::isfinite(value.as<double>()))
+        throw BadRequest(fmt::format("{}: must be a finite number, got {}", option, value.as<double>()));
+    }
+    std::optional<nlohmann::json> initial;
+    if (!kind.empty()) {
+      initial = nlohmann::json{{"steady", kind}};
+      if (!thetaDegrees.isUndefined()) (*initial)["theta"] = thetaDegrees.as<double>();
+      if (!omega_Z.isUndefined()) (*initial)["omega_Z"] = omega_Z.as<double>();
+      if (!branch.empty()) (*initial)["branch"] = branch;
+    } else if (!thetaDegrees.isUndefined() || !omega_Z.isUndefined() || !branch.empty()) {
+      throw BadRequest("theta, omega_Z and branch describe a steady state: give kind too");
+    }
+    const auto [document, name] = sceneDocument(scene, hasScene, std::move(overrides), sourceName, initial);
+    const scene::SceneConfig config = scene::parseScene(document, name);
+    if (!std::holds_alternative<scene::SteadyInitial>(config.initial)) {
+      throw BadRequest("steady: give kind straight|circle|spin-in-place, or a scene whose initial names a steady state");
+    }
+    const pipeline::Simulation simulation = pipeline::buildSimulation(config);
+    const physics::CoinModel& m = simulation.model;
+    const physics::CoinState& s = simulation.initial;
+    const physics::SteadyReport report = physics::steadyReport(m, s);
+    const double rateUnit = report.naturalRate;
+
+    val out = val::object();
+    val coin = val::object();
+    coin.set("M", m.M);
+    coin.set("a", m.a);
+    coin.set("g", m.g);
+    coin.set("I_X", m.I_X);
+    coin.set("I_Z", m.I_Z);
+    out.set("coin", coin);
+    if (m.rim.thin()) {
+      out.set("rim", val::null());
+    } else {
+      val rim = val::object();
+      rim.set("thickness", m.rim.thickness);
+      rim.set("edgeRadius", m.rim.edgeRadius);
+      rim.set("cornered", !m.rim.fullyRounded());
+      rim.set("cornerOffset", m.rim.cornerOffset());
+      rim.set("inertia", std::string(config.coin.shape == scene::Shape::Custom ? "custom" : "solid"));
+      out.set("rim", rim);
+    }
+    out.set("naturalRate", rateUnit);
+    out.set("criticalSpin", numberOrNull(report.criticalSpin));
+    out.set("criticalSpinInNaturalUnits",
+            numberOrNull(report.criticalSpin ? std::optional(*report.criticalSpin / rateUnit) : std::nullopt));
+    // In scene units, ready to paste into a scene: angles in degrees.
+    val state = val::object();
+    state.set("theta", s.theta * kDegreesPerRadian);
+    state.set("phi", s.phi * kDegreesPerRadian);
+    state.set("psi", s.psi * kDegreesPerRadian);
+    state.set("omega_X", s.omega_X);
+    state.set("omega_Y", s.omega_Y);
+    state.set("omega_Z", s.omega_Z);
+    state.set("x", s.x);
+    state.set("z", s.z);
+    out.set("initial", state);
+    val natural = val::object();
+    natural.set("omega_Y", s.omega_Y / rateUnit);
+    natural.set("omega_Z", s.omega_Z / rateUnit);
+    out.set("initialInNaturalUnits", natural);
+    out.set("precessionRate", report.precessionRate);
+    out.set("spinRate", report.spinRate);
+    val radii = val::object();
+    radii.set("centreOfMass", report.radii.centreOfMass);
+    radii.set("contact", report.radii.contact);
+    out.set("radii", radii);
+    val reaction = val::object();
+    reaction.set("N", report.reaction.N);
+    reaction.set("F", report.reaction.F);
+    out.set("reaction", reaction);
+    out.set("frictionNeeded", report.reaction.N > 0 ? report.reaction.F / report.reaction.N : INFINITY);
+    out.set("stiffness", report.stiffness);
+    out.set("stiffnessInNaturalUnits", report.stiffness / (rateUnit * rateUnit));
+
+    // Small tilt perturbations obey d(theta)'' = -K d(theta): the two eigenvalues are the roots of
+    // lambda^2 = -K, +-i sqrt(K) for a wobble, +-sqrt(-K) for a growth.
+    constexpr std::array<const char*, 3> kVerdicts = {"stable", "unstable", "marginal"};  // TiltStability::Kind's order
+    const physics::TiltStability& stability = report.stability;
+    val verdict = val::object();
+    verdict.set("verdict", std::string(kVerdicts[static_cast<std::size_t>(stability.kind)]));
+    verdict.set("rate", stability.rate);
+    verdict.set("time", stability.time);
+    out.set("stability", verdict);
+    const bool wobbles = stability.kind == physics::TiltStability::Kind::Stable;
+    val eigenvalues = val::array();
+    for (const double sign : {1.0, -1.0}) {
+      val lambda = val::object();
+      lambda.set("re", wobbles ? 0.0 : sign * stability.rate);
+      lambda.set("im", wobbles ? sign * stability.rate : 0.0);
+      eigenvalues.call<void>("push", lambda);
+    }
+    out.set("eigenvalues", eigenvalues);
+
+    std::vector<std::string> notes;
+    if (!config.effects.empty()) {
+      notes.push_back("coinroll: note: the steady state and its stability below are those of the ideal model; the "
+                      "scene's effects dissipate energy, so with them this state is only where a slowing motion starts");
+    }
+    out.set("notes", stringArray(notes));
+    return out;
+  } catch (const scene::SceneError& e) {
+    return failure("scene", 2, e.what());
+  } catch (const BadRequest& e) {
+    return failure("request", 2, e.what());
+  } catch (const std::exception& e) {
+    return failure("failure", 1, e.what());
+  }
+}
+
 std::string defaultSceneJson() { return scene::builtInDefaultScene().dump(2) + "\n"; }
 
 }  // namespace
 
 EMSCRIPTEN_BINDINGS(coinroll_core) {
   emscripten::function("coreSimulate", &simulate);
+  emscripten::function("coreSteady", &steady);
   emscripten::function("coreDefaultSceneJson", &defaultSceneJson);
   emscripten::constant("coreVersion", std::string(COINROLL_VERSION));
 }

@@ -10,7 +10,7 @@
       super(message);
       this.name = 'CoinrollError';
       this.kind = kind;          // "scene", "request", "cancelled" or "failure"
-      this.exitCode = exitCode;  // what `coinroll simulate` exits with for the same input
+      this.exitCode = exitCode;  // what `coinroll simulate` (or `steady`) exits with for the same input
     }
   }
 
@@ -88,10 +88,40 @@
     return result;
   }
 
+  const kSteadyOptions = ['kind', 'theta', 'omega_Z', 'branch', 'sourceName'];
+
+  // `coinroll steady`'s --kind, --theta (degrees), --omega-Z (rad/s) and --branch, each optional as there.
+  function steadyOptions(options) {
+    if (options === undefined || options === null) options = {};
+    if (typeof options !== 'object') throw new TypeError(`options: expected an object; got ${describeValue(options)}`);
+    const unknown = Object.keys(options).filter((key) => !kSteadyOptions.includes(key));
+    if (unknown.length) throw new TypeError(`options: unknown ${unknown.join(', ')}; the options are ${kSteadyOptions.join(', ')}`);
+    const { kind, theta, omega_Z, branch, sourceName = 'scene JSON' } = options;
+    if (kind !== undefined && !['straight', 'circle', 'spin-in-place'].includes(kind)) {
+      throw new TypeError(`options.kind: expected "straight", "circle" or "spin-in-place"; got ${describeValue(kind)}`);
+    }
+    for (const [name, value] of [['theta', theta], ['omega_Z', omega_Z]]) {
+      if (value !== undefined && typeof value !== 'number') throw new TypeError(`options.${name}: expected a number; got ${describeValue(value)}`);
+    }
+    if (branch !== undefined && branch !== '+' && branch !== '-') throw new TypeError(`options.branch: expected "+" or "-"; got ${describeValue(branch)}`);
+    if (typeof sourceName !== 'string') throw new TypeError(`options.sourceName: expected a string; got ${describeValue(sourceName)}`);
+    return { kind: kind || '', theta, omega_Z, branch: branch || '', sourceName };
+  }
+
+  function steady(scene, overrides, options) {
+    const [sceneText, hasScene] = sceneArgument(scene);
+    const list = overridesArgument(overrides);
+    const { kind, theta, omega_Z, branch, sourceName } = steadyOptions(options);
+    const result = Module['coreSteady'](sceneText, hasScene, list, sourceName, kind, theta, omega_Z, branch);
+    if (result.error) throw new CoinrollError(result.error.kind, result.error.exitCode, result.error.message);
+    return result;
+  }
+
   Module['CoinrollError'] = CoinrollError;
   // The bindings (core.cpp) exist once the WebAssembly has started, after this file ran: looked up when called.
   Module['version'] = () => Module['coreVersion'];
   Module['defaultSceneJson'] = () => Module['coreDefaultSceneJson']();
   Module['simulateCsv'] = (scene, overrides, options) => simulateRun(scene, overrides, options, false);
   Module['simulate'] = (scene, overrides, options) => simulateRun(scene, overrides, options, true);
+  Module['steady'] = steady;
 })();

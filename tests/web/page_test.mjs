@@ -18,7 +18,9 @@
 // - the custom shape's moments and the flight keys have controls, shown by the schema's only_with,
 //   that fill what the choice needs (a disk made custom runs as the disk did; flight, its restitution);
 // - a run in progress shows its progress and gives way to a newer one; playback follows
-//   render.time_remap as `coinroll render --frame-times` reports it, in the air and at each impact too.
+//   render.time_remap as `coinroll render --frame-times` reports it, in the air and at each impact too;
+// - the steady-motion panel shows, for the run's coin and tilt, every number `coinroll steady` prints
+//   for each motion it lists, follows a change of tilt or coin, and its buttons start those motions.
 // Exits 77 (ctest's skip), saying why, where Chromium or web/node_modules is missing.
 import { spawnSync } from 'node:child_process';
 import { existsSync, mkdtempSync, readdirSync, readFileSync, rmSync, statSync, writeFileSync } from 'node:fs';
@@ -75,6 +77,47 @@ function refusal(sceneText) {
   const result = coinroll(['simulate', 'scene.json', '--csv', '/dev/null'], sceneText);
   const match = /^coinroll: error: (.*)$/m.exec(result.stderr);
   return match ? match[1] : `(no refusal: exit ${result.status}, ${result.stderr.trim()})`;
+}
+
+// `coinroll steady`'s numbers for a request ({kind, theta, omega_Z, branch}) on a scene: each as
+// printed, by the names the page's steady panel gives them (data-quantity); or its refusal.
+function steadyReport(sceneText, { kind, theta, omega_Z: omegaZ, branch }) {
+  const args = ['steady', 'scene.json', '--kind', kind];
+  if (theta !== undefined) args.push('--theta', String(theta));
+  if (omegaZ !== undefined) args.push('--omega-Z', String(omegaZ));
+  if (branch !== undefined) args.push('--branch', branch);
+  const result = coinroll(args, sceneText);
+  if (result.status !== 0) return { error: (/^coinroll: error: (.*)$/m.exec(result.stderr) || [, result.stderr.trim()])[1] };
+  const out = result.stdout, numbers = {};
+  const n = '(-?(?:inf|[\\d.]+(?:e[-+]?\\d+)?))';
+  const grab = (pattern, names) => {
+    const match = new RegExp(pattern).exec(out);
+    if (match) names.forEach((name, i) => { numbers[name] = match[i + 1]; });
+  };
+  grab(`coin: M = ${n} kg, a = ${n} m, g = ${n} m/s\\^2, I_X = ${n} kg m\\^2, I_Z = ${n} kg m\\^2`, ['M', 'a', 'g', 'I_X', 'I_Z']);
+  grab(`natural rate sqrt\\(g/a\\) = ${n} rad/s`, ['naturalRate']);
+  grab(`omega_c = ${n} rad/s \\(${n} sqrt\\(g/a\\)`, ['criticalSpin', 'criticalSpinInNaturalUnits']);
+  for (const key of ['theta', 'omega_Y', 'omega_Z']) grab(`"${key}": ${n}`, [key]);
+  grab(`phi-dot = ${n} rad/s, psi-dot = ${n} rad/s`, ['precessionRate', 'spinRate']);
+  grab(`R_G = ${n} m, contact point R_C = ${n} m`, ['radiusCentreOfMass', 'radiusContact']);
+  grab(`N = ${n} N, F = ${n} N \\(needs mu >= ${n}\\)`, ['N', 'F', 'frictionNeeded']);
+  grab(`K = ${n} 1/s\\^2`, ['K']);
+  grab(`(?:wobbles at ${n} rad/s \\(period|grows like exp\\(${n} t / s\\) \\(e-folding time) ${n} s`, ['rate', 'rate2', 'time']);
+  if (numbers.rate === undefined) numbers.rate = numbers.rate2;
+  delete numbers.rate2;
+  numbers.verdict = (/^verdict: (\w+)/m.exec(out) || [])[1];
+  return { numbers };
+}
+// A number the page shows against the program's printed one, to the digits the page shows: equal,
+// or one unit of the last shown digit apart where the module's libm and the program's round apart
+// (docs/web.md "Tolerance").
+function agreesToShownDigits(shown, printed) {
+  const value = (text) => (text === '∞' || text === 'inf' ? Infinity : text === '-inf' ? -Infinity : Number(text));
+  const a = value(shown), b = value(printed);
+  if (a === b) return true;
+  const [mantissa, exponent = '0'] = shown.split('e');
+  const decimals = mantissa.includes('.') ? mantissa.split('.')[1].length : 0;
+  return Number.isFinite(a) && Math.abs(a - b) <= Math.pow(10, Number(exponent) - decimals) * (1 + 1e-9);
 }
 
 const browser = await puppeteer.launch({
@@ -218,6 +261,8 @@ try {
   {
     const slider = '.control[data-path="initial.omega_Z"] input[type=range]';
     const box = '.control[data-path="initial.omega_Z"] input[type=number]';
+    // In view first, as a student scrolls to it: the panel may have scrolled down to the scene box.
+    await page.$eval(slider, (e) => e.scrollIntoView({ block: 'center' }));
     const span = await page.$eval(slider, (e) => {
       const r = e.getBoundingClientRect();
       return { left: r.left, width: r.width, y: r.top + r.height / 2, position: Number(e.value), from: Number(e.dataset.from), to: Number(e.dataset.to) };
@@ -537,6 +582,90 @@ try {
   }
   check('playback slows down in the air and at each impact as coinroll render does', worstToss.error <= 1 &&
         tossFrames.playback_rate.some((r) => Math.abs(r - 0.05) < 1e-3), `worst ${worstToss.error.toFixed(2)} of the tolerance, ${worstToss.detail}`);
+
+  // The steady-motion panel: for the run on screen, every number it shows is `coinroll steady`'s for
+  // the same scene and request, and a motion's button starts that motion.
+  const steadyPanel = () => page.evaluate(() => ({
+    coin: Object.fromEntries([...document.querySelectorAll('.steady-coin [data-quantity]')].map((e) => [e.dataset.quantity, e.textContent])),
+    cards: [...document.querySelectorAll('.steady-motion')].map((card) => ({
+      request: JSON.parse(card.dataset.request || 'null'), branch: card.dataset.branch,
+      verdict: card.querySelector('.verdict').textContent,
+      error: card.querySelector('.steady-refusal').textContent.replace(/^No such motion here: /, ''),
+      disabled: card.querySelector('button').disabled,
+      numbers: Object.fromEntries([...card.querySelectorAll('dl [data-quantity]')].map((e) => [e.dataset.quantity, e.textContent])),
+    })),
+  }));
+  const kCardQuantities = ['theta', 'omega_Z', 'omega_Y', 'K', 'precessionRate', 'spinRate', 'radiusCentreOfMass', 'radiusContact',
+                           'N', 'F', 'frictionNeeded', 'rate', 'time'];
+  async function compareSteadyPanel(label) {
+    const ran = await hook('run'), panel = await steadyPanel();
+    const mismatches = [];
+    let compared = 0, identical = 0;
+    for (const card of panel.cards) {
+      const name = `${card.request.kind}${card.branch}`;
+      const program = steadyReport(ran.text, card.request);
+      if (program.error || card.error) {
+        if (program.error !== card.error || !card.disabled) mismatches.push(`${name}: page refuses "${card.error}", coinroll "${program.error}"`);
+        continue;
+      }
+      if (card.verdict !== program.numbers.verdict) mismatches.push(`${name}: verdict ${card.verdict}, coinroll ${program.numbers.verdict}`);
+      const missing = kCardQuantities.filter((q) => card.numbers[q] === undefined);
+      if (missing.length) mismatches.push(`${name}: the panel shows no ${missing.join(', ')}`);
+      for (const [quantity, shown] of Object.entries(Object.assign({}, panel.coin, card.numbers))) {
+        ++compared;
+        if (program.numbers[quantity] === undefined) mismatches.push(`${name}: ${quantity} ${shown}, not in coinroll steady's output`);
+        else if (!agreesToShownDigits(shown, program.numbers[quantity])) mismatches.push(`${name}: ${quantity} ${shown}, coinroll ${program.numbers[quantity]}`);
+        else if (shown.replace('∞', 'inf') === program.numbers[quantity] || Number(shown) === Number(program.numbers[quantity])) ++identical;
+      }
+    }
+    check(`${label}: the steady panel shows coinroll steady's numbers, every one to its digits (${compared} compared, ${identical} identical)`,
+          mismatches.length === 0 && compared > 40, mismatches.slice(0, 6).join('; '));
+    return panel;
+  }
+  await part('steady motions', async () => {
+    await runSceneText(await hook('defaultScene'));
+    const before = await compareSteadyPanel('the default scene');
+    const ranTheta = JSON.parse((await hook('run')).text).initial.theta;
+    check('the steady panel takes the run\'s tilt', before.cards.filter((c) => c.request.theta !== undefined).every((c) => c.request.theta === ranTheta),
+          JSON.stringify(before.cards.map((c) => c.request)));
+    await keyOn('.control[data-path="initial.theta"] input[type=range]', 'ArrowRight');
+    const tilted = await compareSteadyPanel('after the theta slider');
+    const newTheta = JSON.parse((await hook('run')).text).initial.theta;
+    check('the steady panel follows a tilt change', newTheta !== ranTheta && tilted.cards[1].request.theta === newTheta,
+          `${ranTheta} -> ${newTheta}, panel ${tilted.cards[1].request.theta}`);
+    await page.click('.control[data-path="coin.thickness"] input[type=checkbox]');
+    await settled();
+    const thick = await compareSteadyPanel('a coin with thickness');
+    check('the steady panel follows a coin change', thick.coin.I_X !== tilted.coin.I_X, `I_X ${tilted.coin.I_X} -> ${thick.coin.I_X}`);
+
+    // With friction 0.5 the f- circle, which needs mu >= 20 or so, does not exist: the panel says so
+    // in the program's words, and offers no button for it.
+    await page.click('.control[data-path="friction"] input[type=checkbox]');
+    await settled();
+    const rough = await compareSteadyPanel('with friction');
+    const refused = rough.cards.filter((c) => c.error);
+    check('with friction 0.5 the f- circle is refused as coinroll steady refuses it, its button disabled',
+          refused.length === 1 && refused[0].branch === '-' && refused[0].disabled && /needs friction/.test(refused[0].error) &&
+          (await shownErrors()).length === 0, JSON.stringify(refused));
+    await page.click('.control[data-path="friction"] input[type=checkbox]');
+    await settled();
+
+    // circle on the f- root: the button starts it, as the start menu would with the branch set.
+    const card = thick.cards.find((c) => c.request.kind === 'circle' && c.branch === '-');
+    await page.click('.steady-motion[data-kind="circle"][data-branch="-"] button');
+    await settled();
+    const started = await hook('run');
+    const initial = JSON.parse(started.text).initial;
+    check('circle f-\'s button runs that steady start', JSON.stringify(initial) === JSON.stringify(Object.assign({ steady: 'circle' }, card.request, { kind: undefined })) &&
+          (await page.$eval('.control[data-path="initial[steady].steady"] select', (e) => e.value)) === 'circle' && (await shownErrors()).length === 0,
+          JSON.stringify(initial));
+    const start = await hook('stateAt', 0);
+    check('the started run begins in the panel\'s steady state (omega_Y, omega_Z)', agreesToShownDigits(card.numbers.omega_Y, String(start.omega_Y)) &&
+          agreesToShownDigits(card.numbers.omega_Z, String(start.omega_Z)), `panel ${card.numbers.omega_Y}, ${card.numbers.omega_Z}; run ${start.omega_Y}, ${start.omega_Z}`);
+    const startedCsv = simulate(started.text, started.sampleDt);
+    await compareWithCsv('the started steady circle', startedCsv, [0, Math.floor(startedCsv.rows / 2), startedCsv.rows - 1]);
+    await compareSteadyPanel('the started steady circle');
+  });
 
   // coinroll export: the built page with a scene in it opens on that scene and runs it as the program does.
   const exported = join(scratch, 'ring.html');

@@ -358,6 +358,32 @@ function api(core, checks) {
               (e) => e.kind === 'scene' && e.message.startsWith('built-in default scene: initial.thta: unknown key'));
   expectThrow('sourceName names the scene in messages', () => core.simulateCsv('{', [], { sourceName: 'my.json' }),
               (e) => e.kind === 'scene' && e.message.startsWith('my.json: invalid JSON at line 1, column 2'));
+
+  // steady(): `coinroll steady` as a call (the page's panel checks its numbers against the program's).
+  const circle = core.steady(null, [], { kind: 'circle', theta: 20, omega_Z: 10 });
+  checks.record('steady() solves the circle asked for, with its stability and eigenvalues', circle.initial.theta === 20 &&
+                circle.initial.omega_Z === 10 && circle.initial.omega_X === 0 && ['stable', 'unstable'].includes(circle.stability.verdict) &&
+                circle.eigenvalues.length === 2 && circle.eigenvalues[0].re === -circle.eigenvalues[1].re &&
+                circle.eigenvalues[0].im === -circle.eigenvalues[1].im &&
+                Math.hypot(circle.eigenvalues[0].re, circle.eigenvalues[0].im) === circle.stability.rate ? [] : [JSON.stringify(circle)]);
+  // seed §5: the thin disk's critical spin is 1/sqrt(3) in units of sqrt(g/a).
+  checks.record('steady() gives the thin disk\'s omega_c = 1/sqrt(3) sqrt(g/a)',
+                Math.abs(circle.criticalSpinInNaturalUnits - 1 / Math.sqrt(3)) < 1e-15 && circle.rim === null ? [] : [
+                  `${circle.criticalSpinInNaturalUnits}`]);
+  const straight = core.steady(null, [], { kind: 'straight', omega_Z: 1 });
+  checks.record('slow straight rolling is unstable, its eigenvalues real, its radii infinite', straight.stability.verdict === 'unstable' &&
+                straight.eigenvalues[0].im === 0 && straight.radii.contact === Infinity ? [] : [JSON.stringify(straight)]);
+  expectThrow('steady() refuses what the scene refuses, with the program\'s message',
+              () => core.steady(null, [], { kind: 'straight', theta: 10, omega_Z: 5 }),
+              (e) => e.kind === 'scene' && e.exitCode === 2 && /theta: not allowed for steady "straight"/.test(e.message));
+  expectThrow('steady() without kind needs a scene that names a steady state', () => core.steady(null, []),
+              (e) => e.kind === 'request' && e.exitCode === 2 && /give kind straight\|circle\|spin-in-place/.test(e.message));
+  expectThrow('steady()\'s theta without kind is refused', () => core.steady(null, [], { theta: 10 }),
+              (e) => e.kind === 'request' && /give kind too/.test(e.message));
+  expectThrow('steady()\'s theta must be finite', () => core.steady(null, [], { kind: 'spin-in-place', theta: NaN }),
+              (e) => e.kind === 'request' && e.message === 'theta: must be a finite number, got nan');
+  expectThrow('steady()\'s kind is one of the three', () => core.steady(null, [], { kind: 'wobble' }),
+              (e) => e instanceof TypeError && /options.kind/.test(e.message));
   checks.record('version() is the project\'s', /^\d+\.\d+\.\d+$/.test(core.version()) ? [] : [`got ${core.version()}`]);
 }
 

@@ -263,18 +263,23 @@ class Control {
     this.page.changed(this.path);
   }
 
-  // From rates to a steady motion and back: the tilt and the rolling rate carry over where the new
-  // start takes them (docs/scene.md initial[steady]).
   onStart() {
-    const old = this.page.scene.initial || {};
-    const kind = this.menu.value;
-    const theta = old.theta !== undefined ? old.theta : 20, omegaZ = old.omega_Z !== undefined ? old.omega_Z : 10;
-    const initial = kind === '(rates)' ? { theta, omega_Z: omegaZ } : { steady: kind };
-    if (kind === 'circle' || kind === 'spin-in-place') initial.theta = theta;
-    if (kind === 'circle' || kind === 'straight') initial.omega_Z = omegaZ;
-    this.page.scene.initial = initial;
+    this.page.scene.initial = startFrom(this.page.scene.initial, this.menu.value);
     this.page.changed(this.path);
   }
+}
+
+// From rates to a steady motion and back: the tilt and the rolling rate carry over where the new
+// start takes them (docs/scene.md initial[steady]); `kind` '(rates)' is an explicit start. The start
+// menu and the steady-motion panel's buttons both start this way, so the panel's numbers are those
+// of the motion its button starts.
+export function startFrom(old = {}, kind, branch) {
+  const theta = old.theta !== undefined ? old.theta : 20, omegaZ = old.omega_Z !== undefined ? old.omega_Z : 10;
+  const initial = kind === '(rates)' ? { theta, omega_Z: omegaZ } : { steady: kind };
+  if (kind === 'circle' || kind === 'spin-in-place') initial.theta = theta;
+  if (kind === 'circle' || kind === 'straight') initial.omega_Z = omegaZ;
+  if (kind === 'circle' && branch !== undefined) initial.branch = branch;
+  return initial;
 }
 
 export class Controls {

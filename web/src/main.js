@@ -7,6 +7,7 @@ import { drawnCoinShape } from './coin_geometry.js';
 import { Controls, fitScene, suggestedValue } from './controls.js';
 import { Cancelled, Runner } from './runner.js';
 import { defaultOf } from './schema.js';
+import { SteadyPanel, steadyRequests } from './steady_panel.js';
 import { Trajectory, traceInterval } from './trajectory.js';
 import { View } from './view.js';
 
@@ -34,6 +35,17 @@ function renderSpec(scene) {
   };
 }
 
+// What the steady-motion panel asks the core of a scene's text: none where it is no scene with a
+// start (the core then refuses the run and says why).
+function steadyRequestsOf(text) {
+  try {
+    const initial = JSON.parse(text).initial;
+    return initial !== null && typeof initial === 'object' && !Array.isArray(initial) ? steadyRequests(initial) : [];
+  } catch (e) {
+    return [];
+  }
+}
+
 // The step the page samples a scene at (the renderer's trace interval); 0.01 s, the program's
 // default, where the text is not a scene with a duration (the core then says what is wrong).
 function sampleDtOf(text) {
@@ -59,6 +71,11 @@ const page = {
 const runner = new Runner(coreSource, workerSource);
 const view = new View($('canvas'));
 const controls = new Controls($('controls'), page);
+// A steady motion's button starts it as the start menu does, and a refusal shows at that menu.
+const steadyPanel = new SteadyPanel($('steady'), (initial) => {
+  page.scene.initial = initial;
+  onControl('initial[steady].steady');
+});
 let rig = null, fixedSize = null, lastFrameTime, request = 0;
 // Whether the latest request is still to be drawn (or refused), and who waits for it (the test hook).
 let pending = true;
@@ -97,7 +114,7 @@ async function start(text, sourceName, origin) {
   };
   progress(0, 0);
   try {
-    const result = await runner.run(text, sampleDt, sourceName, progress);
+    const result = await runner.run(text, sampleDt, sourceName, progress, steadyRequestsOf(text));
     if (id !== request) return;
     const scene = JSON.parse(text);
     if (origin.box) page.scene = scene;
@@ -136,6 +153,7 @@ function newRun(result) {
   view.setRun(trajectory, drawnCoinShape(trajectory.scene.coin), spec.trace);
   makeRig();
   controls.refresh();
+  steadyPanel.show(trajectory.scene.initial, result.steady);
   page.t = 0;
   page.playing = true;
   page.holdUntil = 0;

@@ -35,8 +35,9 @@ export class Runner {
   }
 
   // The run of `sceneText` sampled every sampleDt s: resolves to the worker's result, rejects with
-  // RunError for a refusal, Cancelled when a later run() took over.
-  async run(sceneText, sampleDt, sourceName, onProgress) {
+  // RunError for a refusal, Cancelled when a later run() took over. `steady`: `coinroll steady`'s
+  // requests ({kind, theta, omega_Z, branch}) of the same scene, answered in the result's `steady`.
+  async run(sceneText, sampleDt, sourceName, onProgress, steady = []) {
     const id = (this.nextId = (this.nextId || 0) + 1);
     if (this.busy) {
       this.busy.worker.terminate();
@@ -67,7 +68,7 @@ export class Runner {
         if (data.type === 'result') resolve(data);
         else reject(new RunError(data));
       };
-      slot.worker.postMessage({ id, sceneText, sampleDt, sourceName });
+      slot.worker.postMessage({ id, sceneText, sampleDt, sourceName, steady });
     });
   }
 }

@@ -1,7 +1,8 @@
 // The page's Web Worker: runs coinroll's core (the WebAssembly module, whose script precedes this one
 // in the worker's Blob, so createCoinrollCore is a global here) off the page's thread. One message
-// in, {id, sceneText, sampleDt, sourceName}: one run; out, its progress, then its columns (their
-// buffers transferred, not copied) or the core's refusal with the program's message.
+// in, {id, sceneText, sampleDt, sourceName, steady}: one run, and `coinroll steady` for each of the
+// `steady` requests on the same scene; out, its progress, then its columns (their buffers
+// transferred, not copied) with the steady reports, or the core's refusal with the program's message.
 /* global createCoinrollCore */
 import wasmGzipBase64 from 'inline:wasm';
 
@@ -21,15 +22,24 @@ ready.catch((e) => postMessage({ type: 'failed', message: `the WebAssembly core 
 
 onmessage = async (event) => {
   const core = await ready;
-  const { id, sceneText, sampleDt, sourceName } = event.data;
+  const { id, sceneText, sampleDt, sourceName, steady: requests } = event.data;
   const start = performance.now();
   try {
+    // Before the run, so that a refused steady start does not wait for a long run; each answered
+    // alone, since one motion refused (no spin in place upright) leaves the others.
+    const steady = requests.map((request) => {
+      try {
+        return { report: core.steady(sceneText, [], Object.assign({ sourceName }, request)) };
+      } catch (e) {
+        return { error: { message: e.message, kind: e.kind } };
+      }
+    });
     const result = core.simulate(sceneText, [], {
       sampleDt, sourceName,
       onProgress: (rows, expected) => { postMessage({ type: 'progress', id, rows, expected }); return true; },
     });
     const { names, columns, rows, end, events, impacts, report, stats } = result;
-    postMessage({ type: 'result', id, names, columns, rows, end, events, impacts, report, stats, ms: performance.now() - start },
+    postMessage({ type: 'result', id, names, columns, rows, end, events, impacts, report, stats, steady, ms: performance.now() - start },
                 Object.values(columns).map((column) => column.buffer));
   } catch (e) {
     postMessage({ type: 'error', id, message: e.message, kind: e.kind, exitCode: e.exitCode });

@@ -1,0 +1,156 @@
+// The seed's steady motions beside the motion (issue 52 §2): for the coin and the tilt of the run on
+// screen, each steady motion `coinroll steady` reports (straight, circle on either root, spin in
+// place), with its linear stability, and a button that starts it. The numbers are the WebAssembly
+// core's (core.steady in the worker, with the run), shown with the digits the command prints them
+// with, so that a student can hold the page against `coinroll steady`.
+import { startFrom } from './controls.js';
+
+// The panel's motions: the kind and circle root, as `coinroll steady --kind K --branch B` takes them.
+export const kSteadyMotions = [
+  { kind: 'straight', title: 'Straight rolling', about: 'upright, rolling along a line' },
+  { kind: 'circle', branch: '+', title: 'Circle, root f+', about: 'tilted, rolling round a circle; ω_Y the root f+ of the seed\'s quadratic (docs/seed.md §5)' },
+  { kind: 'circle', branch: '-', title: 'Circle, root f−', about: 'tilted, rolling round a circle; ω_Y the root f− of the seed\'s quadratic (docs/seed.md §5)' },
+  { kind: 'spin-in-place', title: 'Spin in place', about: 'centre of mass at rest, the coin rolling round on its rim' },
+];
+
+// `coinroll steady`'s requests for the scene's start: each motion from the scene's tilt and spin, as
+// its button would start it.
+export function steadyRequests(initial) {
+  return kSteadyMotions.map(({ kind, branch }) => {
+    const start = startFrom(initial, kind, branch);
+    const request = { kind };
+    if (start.theta !== undefined) request.theta = start.theta;
+    if (start.omega_Z !== undefined) request.omega_Z = start.omega_Z;
+    if (branch !== undefined) request.branch = branch;
+    return request;
+  });
+}
+
+// C's %.Ng (as fmt's {:.Ng}), the form the command prints: N significant digits, trailing zeros
+// dropped, an exponent below 1e-4 and from 10^N.
+export function formatG(value, digits) {
+  if (value === Infinity) return '∞';
+  if (value === 0) return '0';
+  const exponent = Number(value.toExponential(digits - 1).split('e')[1]);
+  const trim = (text) => (text.includes('.') ? text.replace(/\.?0+$/, '') : text);
+  if (exponent < -4 || exponent >= digits) {
+    const [mantissa, power] = value.toExponential(digits - 1).split('e');
+    return `${trim(mantissa)}e${power.replace('+', '')}`;
+  }
+  return trim(value.toFixed(digits - 1 - exponent));
+}
+
+function element(tag, attributes = {}, children = []) {
+  const node = document.createElement(tag);
+  for (const [name, value] of Object.entries(attributes)) {
+    if (name === 'text') node.textContent = value;
+    else node.setAttribute(name, value);
+  }
+  for (const c of children) node.append(c);
+  return node;
+}
+
+// One number: `quantity` names it for the test (tests/web/page_test.mjs), `digits` the command's
+// format for it ('6g', '9g', '12g', '6f').
+function number(quantity, value, digits, unit) {
+  const precision = Number(digits.slice(0, -1));
+  const text = digits.endsWith('f') ? value.toFixed(precision) : formatG(value, precision);
+  return element('span', { class: 'value' }, [element('span', { class: 'number', 'data-quantity': quantity, text }),
+                                               unit ? ` ${unit}` : '']);
+}
+
+// A symbol as the seed writes it: ω_Z with its index set below.
+function symbol(text) {
+  return text.split(/_(\w)/).map((part, i) => (i % 2 ? element('sub', { text: part }) : part));
+}
+
+// A labelled number: the symbol, its tooltip saying what it is, the value with its unit; `wide`
+// takes the rest of the row.
+function entry(name, about, value, wide = false) {
+  const attributes = Object.assign({ title: about }, wide ? { class: 'wide' } : {});
+  return [element('dt', attributes, symbol(name)), element('dd', attributes, [value])];
+}
+
+export class SteadyPanel {
+  // `start(initial)`: runs the scene on screen with this start.
+  constructor(container, start) {
+    this.start = start;
+    this.intro = element('p', { class: 'hint' });
+    this.coin = element('p', { class: 'steady-coin' });
+    this.cards = kSteadyMotions.map((motion) => {
+      const button = element('button', { type: 'button', text: 'Start' });
+      button.addEventListener('click', () => this.start(startFrom(this.initial, motion.kind, motion.branch)));
+      const card = element('div', { class: 'steady-motion', 'data-kind': motion.kind, 'data-branch': motion.branch || '' }, [
+        element('div', { class: 'steady-head' }, [element('strong', { text: motion.title, title: motion.about }),
+                                                  element('span', { class: 'verdict' }), button]),
+        // Not an .error: nothing the student typed is refused, this coin has no such motion here.
+        element('dl'), element('div', { class: 'steady-refusal' }),
+      ]);
+      return { motion, card, button };
+    });
+    container.append(element('legend', { text: 'Steady motions' }), this.intro, this.coin, ...this.cards.map((c) => c.card));
+  }
+
+  // The steady motions of the run on screen: `initial` its scene's start, `results` the core's answer
+  // to steadyRequests(initial), in order, each {report} or {error}.
+  show(initial, results) {
+    this.initial = initial;
+    const requests = steadyRequests(initial);
+    const { theta, omega_Z: omegaZ } = requests[1];
+    this.intro.replaceChildren(...symbol(`The seed's steady motions of this coin at the run's tilt θ = ${theta}° and spin ω_Z = ${omegaZ} rad/s, ` +
+      'as coinroll steady reports them. A small tilt perturbation obeys δθ″ = −K δθ: eigenvalues λ = ±√−K, a wobble where K > 0. ' +
+      'Start one to watch it.'));
+    const shared = results.find((r) => r.report);
+    this.coin.replaceChildren();
+    if (shared) {
+      const { coin, naturalRate, criticalSpin, criticalSpinInNaturalUnits, rim } = shared.report;
+      this.coin.append('Coin: M = ', number('M', coin.M, '6g', 'kg'), ', a = ', number('a', coin.a, '6g', 'm'),
+                       ', g = ', number('g', coin.g, '6g', 'm/s²'), ', I', element('sub', { text: 'X' }), ' = ',
+                       number('I_X', coin.I_X, '6g', 'kg m²'), ', I', element('sub', { text: 'Z' }), ' = ',
+                       number('I_Z', coin.I_Z, '6g', 'kg m²'), '; natural rate √(g/a) = ',
+                       number('naturalRate', naturalRate, '6g', 'rad/s'), '. ');
+      if (criticalSpin === null) {
+        this.coin.append('No critical spin: a rim with corners switches corners at upright, so it has no straight rolling.');
+      } else {
+        this.coin.append(element('span', { title: 'the spin below which straight (upright) rolling is unstable' }, [
+          'Critical spin of the upright coin ω', element('sub', { text: 'c' }), ' = ', number('criticalSpin', criticalSpin, '6g', 'rad/s'), ' (',
+          number('criticalSpinInNaturalUnits', criticalSpinInNaturalUnits, '6f', '√(g/a)'),
+          rim ? '' : '; 1/√3 for the thin disk', ').']));
+      }
+    }
+    this.cards.forEach(({ card, button }, i) => {
+      const { report, error } = results[i];
+      const verdict = card.querySelector('.verdict');
+      const list = card.querySelector('dl');
+      card.dataset.request = JSON.stringify(requests[i]);
+      card.querySelector('.steady-refusal').textContent = error ? `No such motion here: ${error.message}` : '';
+      button.disabled = Boolean(error);
+      button.title = error ? 'coinroll refuses this start (below)' : `runs this steady motion: initial ${JSON.stringify(startFrom(initial, requests[i].kind, requests[i].branch))}`;
+      list.replaceChildren();
+      verdict.className = 'verdict';
+      verdict.textContent = '';
+      if (!report) return;
+      const { stability } = report;
+      verdict.classList.add(stability.verdict);
+      verdict.textContent = stability.verdict.toUpperCase();
+      const eigenvalues = stability.verdict === 'marginal' ? element('span', { text: '0 (twice)' })
+        : element('span', {}, ['±', number('rate', stability.rate, '9g'), stability.verdict === 'stable' ? ' i' : '', ' 1/s']);
+      const time = stability.verdict === 'stable' ? [' · period ', number('time', stability.time, '9g', 's')]
+        : stability.verdict === 'unstable' ? [' · e-folding time ', number('time', stability.time, '9g', 's')] : [];
+      list.append(
+        ...entry('θ', 'tilt from upright', number('theta', report.initial.theta, '12g', '°')),
+        ...entry('ω_Z', 'rolling rate: ω_Z = ψ̇ − φ̇ sin θ (seed eq. 11)', number('omega_Z', report.initial.omega_Z, '12g', 'rad/s')),
+        ...entry('ω_Y', 'ω_Y = φ̇ cos θ (seed eq. 11)', number('omega_Y', report.initial.omega_Y, '12g', 'rad/s')),
+        ...entry('K', 'stiffness of the tilt: δθ″ = −K δθ', number('K', report.stiffness, '9g', '1/s²')),
+        ...entry('φ̇', 'precession rate: how fast the heading turns', number('precessionRate', report.precessionRate, '9g', 'rad/s')),
+        ...entry('ψ̇', 'spin rate of the face', number('spinRate', report.spinRate, '9g', 'rad/s')),
+        ...entry('R_G', 'radius of the circle the centre of mass traces', number('radiusCentreOfMass', report.radii.centreOfMass, '9g', 'm')),
+        ...entry('R_C', 'radius of the circle the contact point traces', number('radiusContact', report.radii.contact, '9g', 'm')),
+        ...entry('N', 'the floor\'s normal force', number('N', report.reaction.N, '6g', 'N')),
+        ...entry('F', 'the friction force that holds it', number('F', report.reaction.F, '6g', 'N')),
+        ...entry('μ ≥', 'the least friction coefficient that holds it, F/N', number('frictionNeeded', report.frictionNeeded, '4g')),
+        ...entry('λ', 'the linearised eigenvalues of a small tilt perturbation, ±√−K, and the wobble\'s period 2π/√K or the ' +
+                 'growth\'s e-folding time 1/√−K', element('span', {}, [eigenvalues, ...time]), true));
+    });
+  }
+}

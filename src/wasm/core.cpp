@@ -327,7 +327,8 @@ val steady(const std::string& scene, bool hasScene, val overrides, const std::st
     const auto [document, name] = sceneDocument(scene, hasScene, std::move(overrides), sourceName, initial);
     const scene::SceneConfig config = scene::parseScene(document, name);
     if (!std::holds_alternative<scene::SteadyInitial>(config.initial)) {
-      throw BadRequest("steady: give kind straight|circle|spin-in-place, or a scene whose initial names a steady state");
+      throw BadRequest(
+          "steady: give kind straight|circle|spin-in-place, or a scene whose initial names a steady state");
     }
     const pipeline::Simulation simulation = pipeline::buildSimulation(config);
     const physics::CoinModel& m = simulation.model;
@@ -408,8 +409,9 @@ val steady(const std::string& scene, bool hasScene, val overrides, const std::st
 
     std::vector<std::string> notes;
     if (!config.effects.empty()) {
-      notes.push_back("coinroll: note: the steady state and its stability below are those of the ideal model; the "
-                      "scene's effects dissipate energy, so with them this state is only where a slowing motion starts");
+      notes.push_back(
+          "coinroll: note: the steady state and its stability below are those of the ideal model; the scene's "
+          "effects dissipate energy, so with them this state is only where a slowing motion starts");
     }
     out.set("notes", stringArray(notes));
     return out;

@@ -259,8 +259,8 @@ CLI::App* addStillCommand(CLI::App& app, StillOptions& options) {
                            "Simulated time of the first copy, s (default 0): e.g. the last second of a spin-down");
   command->add_flag("--panels", options.panels,
                     "With --strobe N: N + 1 panels side by side (the copies' times and --time, each the whole picture "
-                    "labelled with its time, tilt and contact rate) instead of copies over one picture, which pile up "
-                    "where the coin stays in place");
+                    "labelled with its time, tilt and contact rate, or rim height in the air) instead of copies over "
+                    "one picture, which pile up where the coin stays in place");
   addSizeOption(*command, options.size);
   addQuietFlag(*command, options.quiet, "No notes and no summary on stderr");
   command->footer(

@@ -1,8 +1,10 @@
 // The overlay's contact rate against the motion it names: a precessing coin's Omega in Hz, and no
-// number for a coin that rocks through flat (whose phi-dot is a kHz whip of its heading).
+// number for a coin that rocks through flat (whose phi-dot is a kHz whip of its heading); in the air,
+// no contact at all but the rim's height, and the tilt of a tumbling coin from its axis.
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -54,5 +56,86 @@ TEST(Overlay, ACoinRockingThroughFlatShowsNoContactRate) {
                               {"solver", {{"formulation", "quaternion"}}}};
   for (const double t : {0.04, 0.08, 0.12, 0.16}) {
     EXPECT_EQ(contactLine(doc, t), "contact         -- rocking, not going round") << "t = " << t;
+  }
+}
+
+namespace {
+
+// The coin toss's first 0.2 s, all in the air (examples/coin_toss.json): launched at theta = -89 deg,
+// nearly flat, it turns over about its diameter at 6 turns a second.
+struct Toss {
+  scene::SceneConfig scene = scene::loadScene(std::string(COINROLL_SOURCE_DIR) + "/examples/coin_toss.json", {});
+  pipeline::Simulation sim = pipeline::buildSimulation(scene);
+  pipeline::FixedFrameTimes times{{0, 0.05, 0.1, 0.15, 0.2}};
+  pipeline::RunRecord record = pipeline::recordRun(sim, times);
+};
+
+// Degrees, the coin's plane above the floor from the drawn attitude, and the height of its lowest
+// point (mm) from the flight's own geometry: not the numbers the overlay reads.
+double tiltDegrees(const pipeline::FrameState& frame) {
+  const glm::vec3 axis = frame.attitude * glm::vec3(0, 0, 1);
+  return std::acos(std::min(1.0, std::abs(static_cast<double>(axis.y)))) * 180 / std::numbers::pi;
+}
+// The toss's coin (radius a, thickness h, edge radius rho) is a disk of radius a - rho and thickness
+// h - 2 rho swollen by a ball of radius rho: at a tilt alpha its lowest point lies
+// (a - rho) sin(alpha) + (h / 2 - rho) cos(alpha) + rho below the centre.
+double rimMillimetres(const pipeline::FrameState& frame) {
+  constexpr double a = 0.01213, h = 0.00175, rho = 0.0003;  // m, examples/coin_toss.json
+  const double alpha = tiltDegrees(frame) * std::numbers::pi / 180;
+  return 1e3 * (frame.centre.y() - ((a - rho) * std::sin(alpha) + (h / 2 - rho) * std::cos(alpha) + rho));
+}
+
+// The number after `label` in `line`.
+double numberAfter(const std::string& line, std::string_view label) {
+  return line.starts_with(label) ? std::stod(line.substr(label.size())) : std::nan("");
+}
+
+}  // namespace
+
+TEST(Overlay, ACoinInTheAirShowsItsTiltAndRimHeightAndNoContact) {
+  const Toss toss;
+  for (const pipeline::FrameState& frame : toss.record.frames) {
+    ASSERT_TRUE(frame.flying) << "t = " << frame.time;
+    pipeline::SnapshotMaker maker(toss.scene, toss.sim.model, toss.record);
+    const std::vector<std::string> hud = maker.makeSnapshot(frame).hudLines;
+    const auto lineStarting = [&](std::string_view start) {
+      const auto found = std::ranges::find_if(hud, [&](const std::string& l) { return l.starts_with(start); });
+      return found == hud.end() ? std::string() : *found;
+    };
+    EXPECT_EQ(lineStarting("contact"), "") << "t = " << frame.time;
+    EXPECT_EQ(lineStarting("tilt"), fmt::format("tilt     {:9.2f}° above the floor", tiltDegrees(frame)))
+        << "t = " << frame.time;
+    const std::string rim = lineStarting("rim");
+    EXPECT_TRUE(rim.ends_with(" mm above the floor, in the air")) << rim;
+    EXPECT_NEAR(numberAfter(rim, "rim"), rimMillimetres(frame), 0.006) << "t = " << frame.time;
+  }
+}
+
+TEST(Overlay, AStrobePanelOfACoinInTheAirShowsItsTiltAndRimHeight) {
+  const Toss toss;
+  for (const pipeline::FrameState& frame : toss.record.frames) {
+    const std::vector<std::string> label = pipeline::panelLabel(toss.sim.model, frame);
+    ASSERT_EQ(label.size(), 3u);
+    EXPECT_EQ(label[1], fmt::format("{:.2f}° above the floor", tiltDegrees(frame))) << "t = " << frame.time;
+    EXPECT_TRUE(label[2].ends_with(" mm up, in the air")) << label[2];
+    EXPECT_NEAR(numberAfter(label[2], "rim"), rimMillimetres(frame), 0.06) << "t = " << frame.time;
+  }
+}
+
+TEST(Overlay, AStrobePanelOfACoinOnTheFloorShowsItsTiltAndContactRate) {
+  // Leaning either way, theta = +-20 deg is 70 deg above the floor.
+  for (const int theta : {20, -20}) {
+    const nlohmann::json doc = {{"coin", {{"radius", 0.0375}, {"mass", 0.4}}},
+                                {"initial", {{"steady", "spin-in-place"}, {"theta", theta}}},
+                                {"duration", 0.5}};
+    const scene::SceneConfig scene = scene::parseScene(doc, "test");
+    pipeline::FixedFrameTimes at({0.25});
+    const pipeline::RunRecord record = pipeline::recordRun(pipeline::buildSimulation(scene), at);
+    const pipeline::FrameState& frame = record.frames.at(0);
+    EXPECT_EQ(pipeline::panelLabel(pipeline::buildSimulation(scene).model, frame),
+              (std::vector<std::string>{"t = 0.250 s", "70.00° above the floor",
+                                        fmt::format("contact {:.1f} Hz",
+                                                    std::abs(frame.precessionRate) / (2 * std::numbers::pi))}))
+        << "theta = " << theta;
   }
 }

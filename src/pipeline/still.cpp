@@ -113,19 +113,24 @@ StillPicture drawStill(const scene::SceneConfig& scene, const StillRequest& requ
   }
   const double from = std::min(request.ghostsFrom, result.shownTime);
   SnapshotMaker snapshots(scene, simulation.model, record);
+  StillPicture picture;
   if (request.panels) {
-    return {.image = drawPanels(scene, simulation.model, renderer, snapshots, record.frames, request.cancel),
-            .result = result};
+    picture.image = drawPanels(scene, simulation.model, renderer, snapshots, record.frames, request.cancel);
+  } else {
+    for (int i = 0; i < request.ghosts; ++i) snapshots.addGhost(record.frames[static_cast<std::size_t>(i)]);
+    // A strobe still is a figure: its overlay says how to read the copies and gives the scale.
+    std::vector<std::string> legend;
+    if (request.ghosts > 0) {
+      legend = {fmt::format("copies   {:5d} every {:.4g} ms from t = {:.3f} s, blue first, yellow last",
+                            request.ghosts, 1e3 * (result.shownTime - from) / request.ghosts, from),
+                fmt::format("grid     {:5g} mm squares", 1e3 * render::kFloorGridMetres)};
+    }
+    picture.image = renderer.draw(snapshots.makeSnapshot(record.frames.back(), legend));
   }
-  for (int i = 0; i < request.ghosts; ++i) snapshots.addGhost(record.frames[static_cast<std::size_t>(i)]);
-  // A strobe still is a figure: its overlay says how to read the copies and gives the scale.
-  std::vector<std::string> legend;
-  if (request.ghosts > 0) {
-    legend = {fmt::format("copies   {:5d} every {:.4g} ms from t = {:.3f} s, blue first, yellow last", request.ghosts,
-                          1e3 * (result.shownTime - from) / request.ghosts, from),
-              fmt::format("grid     {:5g} mm squares", 1e3 * render::kFloorGridMetres)};
-  }
-  return {.image = renderer.draw(snapshots.makeSnapshot(record.frames.back(), legend)), .result = result};
+  result.width = picture.image.width;
+  result.height = picture.image.height;
+  picture.result = result;
+  return picture;
 }
 
 }  // namespace coinroll::pipeline

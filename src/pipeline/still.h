@@ -28,6 +28,8 @@ struct StillRequest {
 struct StillResult {
   double shownTime = 0;  // s; earlier than asked when a validity event ended the run first
   std::optional<std::string> stopDescription;
+  // pixels, the picture's: a panels figure is wider (and taller) than render's width x height
+  int width = 0, height = 0;
 };
 
 // Throws std::invalid_argument naming the option for a bad request, scene::SceneError for a bad

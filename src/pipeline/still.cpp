@@ -124,6 +124,8 @@ StillPicture drawStill(const scene::SceneConfig& scene, const StillRequest& requ
       legend = {fmt::format("copies   {:5d} every {:.4g} ms from t = {:.3f} s, blue first, yellow last",
                             request.ghosts, 1e3 * (result.shownTime - from) / request.ghosts, from),
                 fmt::format("grid     {:5g} mm squares", 1e3 * render::kFloorGridMetres)};
+      // A camera that moves looks at one time: the figure is seen from one place that holds all of it.
+      if (scene.render.camera.mode != scene::CameraMode::Fixed) snapshots.frameCopies(record.frames, legend);
     }
     picture.image = renderer.draw(snapshots.makeSnapshot(record.frames.back(), legend));
   }

@@ -16,6 +16,8 @@
 #include "pipeline/run_record.h"
 #include "pipeline/simulation.h"
 #include "pipeline/snapshot.h"
+#include "render/camera.h"
+#include "render/overlay_text.h"
 #include "scene/scene_loader.h"
 
 namespace {
@@ -137,5 +139,42 @@ TEST(Overlay, AStrobePanelOfACoinOnTheFloorShowsItsTiltAndContactRate) {
                                         fmt::format("contact {:.1f} Hz",
                                                     std::abs(frame.precessionRate) / (2 * std::numbers::pi))}))
         << "theta = " << theta;
+  }
+}
+
+TEST(StrobeFraming, AFollowedTossIsSeenWholeBelowTheOverlay) {
+  // still examples/coin_toss.json --time 0.5 --strobe 20: the follow camera looks at the last copy
+  // only, back on the floor after the first bounces, and the arc (up to 0.37 m: 0.3 m + v_y^2 / 2g)
+  // is out of its picture.
+  scene::SceneConfig scene = scene::loadScene(std::string(COINROLL_SOURCE_DIR) + "/examples/coin_toss.json", {});
+  constexpr int kWidth = 854, kHeight = 480;
+  scene.render.picture.width = kWidth;
+  scene.render.picture.height = kHeight;
+  const pipeline::Simulation sim = pipeline::buildSimulation(scene);
+  std::vector<double> times;
+  for (int i = 0; i <= 20; ++i) times.push_back(0.025 * i);
+  pipeline::FixedFrameTimes at(times);
+  const pipeline::RunRecord record = pipeline::recordRun(sim, at);
+  const std::vector<std::string> legend = {"copies      20 every 25 ms", "grid        10 mm squares"};
+  pipeline::SnapshotMaker maker(scene, sim.model, record);
+  maker.frameCopies(record.frames, legend);
+  const render::FrameSnapshot& shown = maker.makeSnapshot(record.frames.back(), legend);
+  // The overlay's box as the renderer lays it out: half a line's margin, then the text panel.
+  const render::GlyphAtlas atlas(render::overlayTextPixels(kHeight));
+  const float overlayBottom = std::round(0.5f * atlas.lineHeight()) + render::textPanelSize(atlas, shown.hudLines).y;
+  // Each copy's disk reaches a radius from its centre, whichever way it faces: the points a radius
+  // along the view's right and up (and down and left) must be in the picture and below the overlay.
+  const glm::vec3 forward = glm::normalize(shown.camera.target - shown.camera.eye);
+  const glm::vec3 right = glm::normalize(glm::cross(forward, glm::vec3(0, 1, 0)));
+  const glm::vec3 up = glm::cross(right, forward);
+  const float a = static_cast<float>(sim.model.a);
+  for (const pipeline::FrameState& frame : record.frames) {
+    const glm::vec3 centre(frame.centre.x(), frame.centre.y(), frame.centre.z());
+    for (const glm::vec3& reach : {a * right, -a * right, a * up, -a * up}) {
+      const glm::vec2 pixel = render::pixelFromWorld(shown.camera, kWidth, kHeight, centre + reach);
+      EXPECT_TRUE(pixel.x >= 0 && pixel.x <= kWidth && pixel.y >= overlayBottom && pixel.y <= kHeight)
+          << "t = " << frame.time << " s: the coin's edge at pixel (" << pixel.x << ", " << pixel.y
+          << "), the overlay down to " << overlayBottom;
+    }
   }
 }

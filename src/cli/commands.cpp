@@ -375,7 +375,7 @@ void runStill(const StillOptions& options) {
   }
   if (!options.quiet) {
     std::cerr << fmt::format("coinroll: wrote {} ({}x{}, t = {:.6g} s)\n", scene::printable(output.string()),
-                             scene.render.picture.width, scene.render.picture.height, result.shownTime);
+                             result.width, result.height, result.shownTime);
   }
 }
 

@@ -253,14 +253,15 @@ CLI::App* addStillCommand(CLI::App& app, StillOptions& options) {
   command->add_option("--time", options.time, "Simulated time to show, s (0 to the scene's duration)")->required();
   addOutputOptions(*command, options.output, options.force, "Output PNG path (written atomically)");
   command->add_option("--strobe", options.strobe,
-                           "Overlay N semi-transparent copies of the coin at evenly spaced earlier times (a figure)")
+                           "Overlay N semi-transparent copies of the coin at evenly spaced earlier times (a figure); a "
+                           "follow or orbit camera gives way to a fixed one that frames them all")
       ->capture_default_str();
   command->add_option("--strobe-from", options.strobeFrom,
                            "Simulated time of the first copy, s (default 0): e.g. the last second of a spin-down");
   command->add_flag("--panels", options.panels,
                     "With --strobe N: N + 1 panels side by side (the copies' times and --time, each the whole picture "
-                    "labelled with its time, tilt and contact rate) instead of copies over one picture, which pile up "
-                    "where the coin stays in place");
+                    "labelled with its time, tilt and contact rate, or rim height in the air) instead of copies over "
+                    "one picture, which pile up where the coin stays in place");
   addSizeOption(*command, options.size);
   addQuietFlag(*command, options.quiet, "No notes and no summary on stderr");
   command->footer(

@@ -46,8 +46,10 @@ double fittingDistance(const Eigen::Vector3d& lower, const Eigen::Vector3d& uppe
 }  // namespace
 
 CameraRig::CameraRig(const scene::CameraSpec& spec, const MotionSurvey& survey, const physics::CoinModel& model,
-                     int width, int height)
-    : spec_(spec) {
+                     int width, int height, const std::optional<Eigen::Vector3d>& towardsEye)
+    : spec_(spec),
+      towardsEye_(towardsEye.value_or(
+          viewDirection(radians(kDefaultAzimuthDegrees), radians(spec.elevationDegrees)))) {
   // The box of all centres and contact points, widened by the coin itself, from the floor up.
   const Eigen::Vector3d margin(model.a, 0, model.a);
   Eigen::Vector3d lower = survey.lower - margin, upper = survey.upper + margin;
@@ -59,12 +61,15 @@ CameraRig::CameraRig(const scene::CameraSpec& spec, const MotionSurvey& survey, 
   const double tanHalfX = tanHalfY * width / height;
   const double elevation = radians(spec.elevationDegrees);
   // An orbit sees the box from every side: fit it from 16 azimuths and keep the farthest.
-  const int azimuths = spec.mode == scene::CameraMode::Orbit ? 16 : 1;
-  distance_ = 0;
-  for (int i = 0; i < azimuths; ++i) {
-    const double azimuth = radians(kDefaultAzimuthDegrees) + 2 * std::numbers::pi * i / azimuths;
-    distance_ = std::max(distance_,
-                         fittingDistance(lower, upper, target_, viewDirection(azimuth, elevation), tanHalfX, tanHalfY));
+  if (spec.mode == scene::CameraMode::Orbit) {
+    distance_ = 0;
+    for (int i = 0; i < 16; ++i) {
+      const double azimuth = radians(kDefaultAzimuthDegrees) + 2 * std::numbers::pi * i / 16;
+      distance_ = std::max(
+          distance_, fittingDistance(lower, upper, target_, viewDirection(azimuth, elevation), tanHalfX, tanHalfY));
+    }
+  } else {
+    distance_ = fittingDistance(lower, upper, target_, towardsEye_, tanHalfX, tanHalfY);
   }
   distance_ =
       std::max(distance_, 2.5 * model.a / tanHalfY);  // a coin spinning in place still gets some floor around it
@@ -102,7 +107,7 @@ render::CameraView CameraRig::at(double time, const Eigen::Vector3d& centre) con
     return view;
   }
   view.eye = spec_.eye ? glm::vec3(spec_.eye->at(0), spec_.eye->at(1), spec_.eye->at(2))
-                       : toGlm(target_ + distance_ * viewDirection(azimuth, elevation));
+                       : toGlm(target_ + distance_ * towardsEye_);
   return view;
 }
 

@@ -14,6 +14,11 @@
 
 namespace coinroll::pipeline {
 
+// A strobe panel's short overlay (still --panels), instead of the full HUD that would cover a third
+// of a small panel: the time, the tilt above the floor, and on the floor the contact point's rate,
+// in the air the rim's height (hudLines says the same in its longer form).
+std::vector<std::string> panelLabel(const physics::CoinModel& model, const FrameState& frame);
+
 // Snapshots of one run in time order, read from its record (run_record.h): the trace (the contact
 // point every traceInterval up to the frame's time, then the contact point now), stroboscopic
 // ghosts, the coin's pose, the camera from render.camera and the survey, the overlay.
@@ -24,6 +29,13 @@ class SnapshotMaker {
 
   // Adds a semi-transparent copy of the coin as it is at `frame` to every later snapshot.
   void addGhost(const FrameState& frame);
+
+  // Replaces the scene's camera by a fixed one, looking the way it does (along its eye - target,
+  // else from its elevation) with its field of view, that frames the coin at every one of `frames`
+  // (the box of their centres widened by the coin's radius, from the floor up) below the overlay
+  // the last of them will show with `extraHudLines`: a strobe seen by a camera that moves (follow,
+  // orbit) would leave the copies it strobes out of the picture.
+  void frameCopies(const std::vector<FrameState>& frames, const std::vector<std::string>& extraHudLines);
 
   // Draws `plot` (render --inset) in every later snapshot, its marker at `now` in [0, 1] and its
   // curves' labels as given; a later call moves the marker and changes the labels only.
@@ -41,12 +53,13 @@ class SnapshotMaker {
 
   physics::CoinModel model_;
   const RunRecord& record_;
+  scene::CameraSpec camera_;  // the scene's, whose elevation and field of view frameCopies keeps
   CameraRig rig_;
   double traceDt_;       // s, traceInterval(duration)
   std::size_t nextTracePoint_ = 0;
   bool traceEndsWithNow_ = false;  // the trace's last point is the last snapshot's contact point
   bool showTrace_, showHud_;
-  int height_;           // pixels, for the trace's width on screen
+  int width_, height_;   // pixels, of the picture: the framing's aspect, the trace's width on screen
   render::FrameSnapshot snapshot_;
 };
 

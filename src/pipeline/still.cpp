@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -46,11 +45,11 @@ std::vector<double> ghostAndStillTimes(const StillRequest& request, double shown
 constexpr int kMaxPanelColumns = 4;
 
 // `frames` (the ghosts' times, then the still's) drawn one by one and laid out in a grid, left to
-// right, top to bottom, with a gutter of the background between them. Each panel's overlay is a
-// short label (time, tilt above the floor, the contact point's rate) instead of the full HUD, which
-// would cover a third of a small panel; render.hud: false leaves it out.
-image::Image drawPanels(const scene::SceneConfig& scene, render::Renderer& renderer, SnapshotMaker& snapshots,
-                        const std::vector<FrameState>& frames, const std::atomic<bool>* cancel) {
+// right, top to bottom, with a gutter of the background between them. Each panel's overlay is its
+// panelLabel; render.hud: false leaves it out.
+image::Image drawPanels(const scene::SceneConfig& scene, const physics::CoinModel& model, render::Renderer& renderer,
+                        SnapshotMaker& snapshots, const std::vector<FrameState>& frames,
+                        const std::atomic<bool>* cancel) {
   const int count = static_cast<int>(frames.size());
   const int rows = (count + kMaxPanelColumns - 1) / kMaxPanelColumns;
   const int columns = (count + rows - 1) / rows;
@@ -65,9 +64,7 @@ image::Image drawPanels(const scene::SceneConfig& scene, render::Renderer& rende
     const FrameState& frame = frames[static_cast<std::size_t>(i)];
     render::FrameSnapshot snapshot = snapshots.makeSnapshot(frame);
     if (scene.render.hud) {
-      snapshot.hudLines = {fmt::format("t = {:.3f} s", frame.time),
-                           fmt::format("{:.2f}° above the floor", 90 - frame.theta * 180 / std::numbers::pi),
-                           fmt::format("contact {:.1f} Hz", std::abs(frame.precessionRate) / (2 * std::numbers::pi))};
+      snapshot.hudLines = panelLabel(model, frame);
       if (i == 0) snapshot.hudLines.push_back(fmt::format("grid {:g} mm", 1e3 * render::kFloorGridMetres));
     }
     renderer.draw(snapshot, panel);
@@ -116,18 +113,26 @@ StillPicture drawStill(const scene::SceneConfig& scene, const StillRequest& requ
   }
   const double from = std::min(request.ghostsFrom, result.shownTime);
   SnapshotMaker snapshots(scene, simulation.model, record);
+  StillPicture picture;
   if (request.panels) {
-    return {.image = drawPanels(scene, renderer, snapshots, record.frames, request.cancel), .result = result};
+    picture.image = drawPanels(scene, simulation.model, renderer, snapshots, record.frames, request.cancel);
+  } else {
+    for (int i = 0; i < request.ghosts; ++i) snapshots.addGhost(record.frames[static_cast<std::size_t>(i)]);
+    // A strobe still is a figure: its overlay says how to read the copies and gives the scale.
+    std::vector<std::string> legend;
+    if (request.ghosts > 0) {
+      legend = {fmt::format("copies   {:5d} every {:.4g} ms from t = {:.3f} s, blue first, yellow last",
+                            request.ghosts, 1e3 * (result.shownTime - from) / request.ghosts, from),
+                fmt::format("grid     {:5g} mm squares", 1e3 * render::kFloorGridMetres)};
+      // A camera that moves looks at one time: the figure is seen from one place that holds all of it.
+      if (scene.render.camera.mode != scene::CameraMode::Fixed) snapshots.frameCopies(record.frames, legend);
+    }
+    picture.image = renderer.draw(snapshots.makeSnapshot(record.frames.back(), legend));
   }
-  for (int i = 0; i < request.ghosts; ++i) snapshots.addGhost(record.frames[static_cast<std::size_t>(i)]);
-  // A strobe still is a figure: its overlay says how to read the copies and gives the scale.
-  std::vector<std::string> legend;
-  if (request.ghosts > 0) {
-    legend = {fmt::format("copies   {:5d} every {:.4g} ms from t = {:.3f} s, blue first, yellow last", request.ghosts,
-                          1e3 * (result.shownTime - from) / request.ghosts, from),
-              fmt::format("grid     {:5g} mm squares", 1e3 * render::kFloorGridMetres)};
-  }
-  return {.image = renderer.draw(snapshots.makeSnapshot(record.frames.back(), legend)), .result = result};
+  result.width = picture.image.width;
+  result.height = picture.image.height;
+  picture.result = result;
+  return picture;
 }
 
 }  // namespace coinroll::pipeline

@@ -17,8 +17,8 @@ struct StillRequest {
   int ghosts = 0;                  // > 0: this many earlier poses, evenly spaced over [ghostsFrom, time)
   double ghostsFrom = 0;           // s, the first ghost's time, in [0, time)
   // The ghosts' times and `time` as panels side by side (a grid of ghosts + 1 pictures, each the
-  // scene's full picture, labelled with its time, tilt and contact rate) instead of copies drawn
-  // over one picture, which pile up where the coin stays in place.
+  // scene's full picture, labelled by panelLabel) instead of copies drawn over one picture, which
+  // pile up where the coin stays in place.
   bool panels = false;
   std::filesystem::path output;    // .png, written atomically
   image::PngText text = {};        // tEXt chunks of the PNG (its provenance)
@@ -28,6 +28,8 @@ struct StillRequest {
 struct StillResult {
   double shownTime = 0;  // s; earlier than asked when a validity event ended the run first
   std::optional<std::string> stopDescription;
+  // pixels, the picture's: a panels figure is wider (and taller) than render's width x height
+  int width = 0, height = 0;
 };
 
 // Throws std::invalid_argument naming the option for a bad request, scene::SceneError for a bad

@@ -588,6 +588,12 @@ TEST_F(CliTest, AStrobesPanelsAreTheStillsAtItsTimesSideBySide) {
   }
   EXPECT_EQ(figure.pixel(kWidth, 0)[0], 255) << "the gutter is white";
   EXPECT_EQ(figure.pixel(figure.width - 1, figure.height - 1)[0], 255) << "the empty eighth cell is white";
+  // The summary gives the figure's size, not one panel's (issue 50).
+  const RunResult told = run("still s.json --time 0.6 --strobe 6 --strobe-from 0.3 --panels -o told.png", in);
+  ASSERT_EQ(told.exitCode, 0) << told.output;
+  const std::string size = std::to_string(figure.width) + "x" + std::to_string(figure.height);
+  EXPECT_NE(told.output.find("wrote told.png (" + size + ", t = 0.6 s)"), std::string::npos)
+      << told.output;
   // Panels lay out the copies: without --strobe there are none.
   const RunResult alone = run("still s.json --time 0.6 --panels -q -o p.png", in);
   EXPECT_EQ(alone.exitCode, 2) << alone.output;

@@ -104,7 +104,8 @@ const fromSlider = (scale, position) => {
 // Small numbers in exponent form, which a narrow box shows whole (1.8e-5, not 0.000018).
 const numberText = (value) => (value !== 0 && Math.abs(value) < 1e-3 ? value.toExponential() : String(value));
 
-function element(tag, attributes = {}, children = []) {
+// A DOM element with its attributes ('text': its text) and children; the page's panels share it.
+export function element(tag, attributes = {}, children = []) {
   const node = document.createElement(tag);
   for (const [name, value] of Object.entries(attributes)) {
     if (name === 'text') node.textContent = value;

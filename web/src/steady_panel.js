@@ -3,7 +3,7 @@
 // place), with its linear stability, and a button that starts it. The numbers are the WebAssembly
 // core's (core.steady in the worker, with the run), shown with the digits the command prints them
 // with, so that a student can hold the page against `coinroll steady`.
-import { startFrom } from './controls.js';
+import { element, startFrom } from './controls.js';
 
 // The panel's motions: the kind and circle root, as `coinroll steady --kind K --branch B` takes them.
 export const kSteadyMotions = [
@@ -40,15 +40,6 @@ export function formatG(value, digits) {
   return trim(value.toFixed(digits - 1 - exponent));
 }
 
-function element(tag, attributes = {}, children = []) {
-  const node = document.createElement(tag);
-  for (const [name, value] of Object.entries(attributes)) {
-    if (name === 'text') node.textContent = value;
-    else node.setAttribute(name, value);
-  }
-  for (const c of children) node.append(c);
-  return node;
-}
 
 // One number: `quantity` names it for the test (tests/web/page_test.mjs), `digits` the command's
 // format for it ('6g', '9g', '12g', '6f').

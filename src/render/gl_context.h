@@ -4,6 +4,7 @@
 // drawable surface.
 
 #include <memory>
+#include <stdexcept>
 
 #include "render/gl.h"
 #include "render/gl_backend.h"
@@ -35,7 +36,19 @@ class GlContext {
 
 // Creates a context on `backend` and makes it current. Throws std::invalid_argument if this build
 // lacks the back end, std::runtime_error if this machine cannot give the context (naming the back
-// end and why). Never substitutes another back end.
+// end and why), and GlAfterForkError in a child forked after its parent drew. Never substitutes
+// another back end.
 std::unique_ptr<GlContext> makeGlContext(GlBackend backend);
+
+// Mesa starts llvmpipe's rasterizer threads with the first context and keeps them, with the rest
+// of its screen, for the life of the process; no back end lets coinroll make a new screen. A child
+// forked after that inherits the screen but not its threads, so its first draw would wait on them
+// for ever (a multiprocessing "fork" pool after a render in the parent). The child is refused
+// instead. Not when LP_NUM_THREADS=0 held at the parent's first context: then llvmpipe draws on the
+// calling thread and a child draws too.
+class GlAfterForkError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
 
 }  // namespace coinroll::render

@@ -112,3 +112,44 @@ def test_an_interpreter_without_numpy_is_told_what_the_package_was_built_for():
     last = result.stderr.strip().splitlines()[-1]
     assert last.startswith(f"ImportError: coinroll cannot be imported by {sys.executable} (Python "), last
     assert "No module named 'numpy'; coinroll was built for /" in last and "-m pip install numpy" in last, last
+
+
+# A multiprocessing "fork" pool, as a researcher's sweep would use one. Each case runs in a fresh
+# interpreter, because what a child may do depends on what its parent drew before the fork.
+FORK_POOL = """
+import multiprocessing, sys
+import coinroll
+S = %r
+def draw(_):
+    try:
+        return int(coinroll.still(S, 0.2).sum())
+    except RuntimeError as error:
+        return str(error)
+if sys.argv[1] == 'after':
+    coinroll.still(S, 0.2)
+with multiprocessing.get_context('fork').Pool(2) as pool:
+    print(repr(pool.map_async(draw, range(2)).get(timeout=60)))
+"""
+
+
+def fork_pool(when, **environment):
+    result = subprocess.run([sys.executable, "-c", FORK_POOL % S, when], capture_output=True, text=True,
+                            timeout=120, env={**os.environ, **environment})
+    assert result.returncode == 0, result.stderr
+    return eval(result.stdout)
+
+
+def test_a_child_forked_after_a_draw_is_refused_naming_the_fix_not_left_waiting():
+    # Before, the pool's children waited for ever on the parent's llvmpipe threads: a TimeoutError.
+    for answer in fork_pool("after"):
+        assert "forked from process" in answer and "multiprocessing.get_context('spawn')" in answer, answer
+
+
+def test_a_child_forked_before_any_draw_draws_what_the_parent_draws():
+    expected = int(coinroll.still(S, 0.2).sum())
+    assert fork_pool("before") == [expected, expected]
+
+
+def test_a_child_forked_after_a_draw_on_one_thread_draws_too():
+    expected = int(coinroll.still(S, 0.2).sum())
+    assert fork_pool("after", LP_NUM_THREADS="0") == [expected, expected]

@@ -4,6 +4,8 @@
 // once per back end (tests/CMakeLists.txt registers them again under COINROLL_GL=egl).
 
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -14,6 +16,7 @@
 #include <string>
 
 #include "render/gl_backend.h"
+#include "render/gl_context.h"
 #include "image_compare.h"
 #include "render/renderer.h"
 
@@ -190,6 +193,44 @@ TEST(GlBackends, EglDeviceWithoutAGpuFailsSayingSoAndNeverFallsBack) {
   EXPECT_NE(message.find("COINROLL_GL=egl-device: no GPU"), std::string::npos) << message;
   EXPECT_NE(message.find("never falls back"), std::string::npos) << message;
   EXPECT_NE(message.find("untested on GPU hardware"), std::string::npos) << message;
+}
+
+// Issue 50: a multiprocessing "fork" pool's child, forked after its parent drew, waited for ever on
+// llvmpipe's threads, which stayed in the parent. It is refused now, within the child's alarm (on
+// the old code the alarm kills it). Where the parent's Mesa draws on one thread there is nothing to
+// refuse, and the child must draw; that case needs a process whose first draw is under
+// LP_NUM_THREADS=0, so it lives in tests/python/test_doors.py.
+TEST(GlBackends, AChildForkedAfterADrawIsRefusedNotLeftWaiting) {
+  if (const char* threads = std::getenv("LP_NUM_THREADS"); threads != nullptr && std::string(threads) == "0") {
+    GTEST_SKIP() << "LP_NUM_THREADS=0: llvmpipe starts no threads, so a forked child may draw";
+  }
+  Renderer parent(smallSettings(Antialiasing::Msaa), selectedGlBackend());
+  ASSERT_EQ(parent.draw(busySnapshot(0)).width, 320);
+  enum ChildEnd { Refused = 0, RefusedWithoutNamingTheFix = 1, OtherError = 2, Drew = 3 };
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0) << "fork failed";
+  if (child == 0) {
+    ::alarm(30);
+    try {
+      Renderer inChild(smallSettings(Antialiasing::Msaa), selectedGlBackend());
+      inChild.draw(busySnapshot(0));
+      ::_exit(Drew);
+    } catch (const GlAfterForkError& e) {
+      const std::string message = e.what();
+      const bool namesTheFix = message.find("'spawn'") != std::string::npos &&
+                               message.find("LP_NUM_THREADS=0") != std::string::npos;
+      ::_exit(namesTheFix ? Refused : RefusedWithoutNamingTheFix);
+    } catch (...) {
+      ::_exit(OtherError);
+    }
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  const bool alarmed = WIFSIGNALED(status) && WTERMSIG(status) == SIGALRM;
+  ASSERT_TRUE(WIFEXITED(status)) << "the child was killed by signal " << WTERMSIG(status)
+                                 << (alarmed ? " (the alarm: it waited on its parent's threads)" : "");
+  EXPECT_EQ(WEXITSTATUS(status), Refused) << "0 refused, 1 refused without naming the fix, 2 another error, 3 drew";
+  EXPECT_EQ(parent.draw(busySnapshot(0)).width, 320) << "the parent draws on";
 }
 
 }  // namespace

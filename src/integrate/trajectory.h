@@ -17,6 +17,7 @@
 #include "integrate/event_location.h"
 #include "integrate/events.h"
 #include "integrate/gauss_legendre.h"
+#include "integrate/pace.h"
 #include "integrate/solver_config.h"
 #include "integrate/steppers.h"
 
@@ -26,7 +27,12 @@ template <int N, class Rhs>
 class Trajectory {
  public:
   Trajectory(Rhs f, double t0, const Vec<N>& y0, const SolverConfig& config, std::vector<Event<N>> events = {})
-      : f_(std::move(f)), config_(config), events_(std::move(events)), t0_(t0), t_(t0), y_(y0) {
+      : f_(std::move(f)),
+        config_(config),
+        events_(std::move(events)),
+        t_(t0),
+        pace_(t0, config.endTime, config.maxSteps),
+        y_(y0) {
     validate();
     f0_ = evaluate(t_, y_);
     for (const Event<N>& e : events_) {
@@ -211,44 +217,7 @@ class Trajectory {
           fmt::format("integration needs more than {} steps: stopped at t = {} s, h = {} s, state ({})",
                       config_.maxSteps, t_, t1 - previousT, describe(y_)));
     }
-    refuseHopelessPace();
-  }
-
-  // Whether the steps to endTime would pass maxSteps, decided at 2^k steps (k >= 10) so the check
-  // costs nothing, on either of two grounds:
-  // - a hundredth of the run done: its average pace so far, projected, needs more (a short start-up
-  //   transient does not decide);
-  // - a hundredth of maxSteps taken, at a pace that is not rising: the last 2^(k-1) steps' pace,
-  //   projected over what is left, needs more. This decides within a second or two of wall time
-  //   however long the run (the 1 % above takes minutes when the end is far: 1000 s of a ring at
-  //   1e6 rad/s). A rising pace is left to the first ground: it is how a coin approaches falling
-  //   flat or a spin-down's singular time, whose event ends the run long before a far endTime, so
-  //   projecting it would refuse runs that finish. The pace of the 2^(k-2) steps before counts as
-  //   rising past 5 %: round-off and wobbles move it by less.
-  void refuseHopelessPace() {
-    const long steps = stats_.acceptedSteps;
-    if ((steps & (steps - 1)) != 0) return;
-    const double tHalf = tAtHalfSteps_, tQuarter = tAtQuarterSteps_;  // s, at steps / 2 and steps / 4
-    tAtQuarterSteps_ = tAtHalfSteps_;
-    tAtHalfSteps_ = t_;
-    if (!std::isfinite(config_.endTime) || steps < 1024) return;
-    const double done = t_ - t0_, whole = config_.endTime - t0_, left = config_.endTime - t_;
-    const double maxSteps = static_cast<double>(config_.maxSteps);
-    double projected = 0;
-    if (done >= 0.01 * whole) {
-      projected = static_cast<double>(steps) * whole / done;
-    } else if (static_cast<double>(steps) >= 0.01 * maxSteps && t_ > tHalf && tHalf > tQuarter) {
-      const double pace = 0.5 * static_cast<double>(steps) / (t_ - tHalf);         // steps per s
-      const double earlierPace = 0.25 * static_cast<double>(steps) / (tHalf - tQuarter);
-      if (pace <= 1.05 * earlierPace) projected = static_cast<double>(steps) + pace * left;
-    }
-    if (projected > maxSteps) {
-      throw std::runtime_error(fmt::format(
-          "integration would need about {:.2g} steps to reach t = {} s at its pace so far ({} steps for the first "
-          "{:.6g} "
-          "s), more than the {} a run may take; shorten the duration, or loosen solver.rtol and solver.atol",
-          projected, config_.endTime, steps, done, config_.maxSteps));
-    }
+    pace_.afterSteps(stats_.acceptedSteps, t_);
   }
 
   static bool crosses(const Event<N>& e, double gFrom, double gTo) {
@@ -327,10 +296,8 @@ class Trajectory {
   std::vector<Event<N>> events_;
   std::vector<double> gAtStart_;  // each event's g at the start of the current step
   std::vector<double> rateAtStart_;  // and its rate, for the events that give one
-  double t0_;                     // s, where the run started (the pace is measured from here)
   double t_;                      // s, end of the last accepted step
-  double tAtHalfSteps_ = t0_;     // s, t_ at the last power of two of accepted steps (refuseHopelessPace)
-  double tAtQuarterSteps_ = t0_;  // s, and at the one before
+  PaceWatch pace_;                // measured from the run's start
   Vec<N> y_, f0_;                 // state and slope at t_
   double gridOrigin_ = t_;        // s, origin of the fixed-step grid
   double h_ = 0;                  // s, next step to try

@@ -301,7 +301,8 @@ bool belowUpright(const physics::CoinModel& model, const physics::FlightState& s
 
 }  // namespace
 
-HybridRun::HybridRun(const Simulation& simulation) : simulation_(simulation) {
+HybridRun::HybridRun(const Simulation& simulation)
+    : simulation_(simulation), pace_(0, simulation.solver.endTime, simulation.solver.maxSteps) {
   const physics::QuaternionState start = physics::fromEulerState(simulation.initial);
   const physics::Forward rolling = physics::forward(simulation_.model, start);
   const std::optional<physics::FlightState> flying = flightStart(simulation);
@@ -491,11 +492,13 @@ bool HybridRun::land(double t, const physics::FlightState& atTouch, double dissi
 bool HybridRun::switchIfDue() {
   const std::optional<Handover> handover = segment_->handover();
   if (!handover) return false;
-  // The finished segment's crossings gone past and its work, kept before it is replaced.
-  const auto retire = [this] {
+  // The finished segment's crossings gone past and its work, kept before it is replaced; the run's
+  // pace is judged on all its segments' steps.
+  const auto retire = [this, &handover] {
     const std::vector<RunEvent> crossings = segment_->warnings();
     warnings_.insert(warnings_.end(), crossings.begin(), crossings.end());
     finishedStats_ += segment_->stats();
+    pace_.afterSteps(finishedStats_.acceptedSteps, handover->t);
   };
   const auto tooManySwitches = [this](double t) {
     std::size_t recent = 0;

@@ -9,6 +9,7 @@
 #include <optional>
 #include <vector>
 
+#include "integrate/pace.h"
 #include "integrate/solver_config.h"
 #include "physics/coin_state.h"
 #include "physics/flight.h"
@@ -70,6 +71,7 @@ class HybridRun final : public Motion {
   // the run there. Any other switch the segment ended in is the next sample's to take, not a stop.
   bool switchRefused_ = false;
   integrate::Stats finishedStats_;  // of the segments before the current one
+  integrate::PaceWatch pace_;       // of all the segments' steps
 };
 
 }  // namespace coinroll::pipeline

@@ -152,10 +152,16 @@ nlohmann::json readSceneDocument(const std::filesystem::path& file) {
 nlohmann::json readSceneDocument(std::istream& in, std::string_view sourceName) {
   // Scenes are a few hundred bytes. The read stops past this, so a huge file given by mistake, or
   // a device that never ends (/dev/zero), is refused instead of filling memory; pipes still work.
+  // Read in chunks, so a scene of a few hundred bytes takes a few kilobytes, not the limit.
   constexpr std::size_t kMaxSceneBytes = 16 << 20;
-  std::string text(kMaxSceneBytes + 1, '\0');
-  in.read(text.data(), static_cast<std::streamsize>(text.size()));
-  text.resize(static_cast<std::size_t>(in.gcount()));
+  constexpr std::size_t kChunkBytes = 64 << 10;
+  std::string text;
+  while (in && text.size() <= kMaxSceneBytes) {
+    const std::size_t before = text.size();
+    text.resize(before + std::min(kChunkBytes, kMaxSceneBytes + 1 - before));
+    in.read(text.data() + before, static_cast<std::streamsize>(text.size() - before));
+    text.resize(before + static_cast<std::size_t>(in.gcount()));
+  }
   if (text.size() > kMaxSceneBytes) {
     throw SceneError(
         fmt::format("{}: more than {} bytes; a scene file is a small JSON document", sourceName, kMaxSceneBytes));

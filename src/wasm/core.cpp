@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <cstring>
 #include <exception>
+#include <limits>
 #include <new>
 #include <numbers>
 #include <optional>
@@ -244,11 +245,11 @@ val simulate(const std::string& scene, bool hasScene, val overrides, const std::
     }
     const auto [document, name] = sceneDocument(scene, hasScene, std::move(overrides), sourceName);
     const scene::SceneConfig config = scene::parseScene(document, name);
-    if (const double rows = config.duration / sampleDt + 1; rows > maxRows) {
-      throw BadRequest(
-          fmt::format("sampleDt {}: duration {} s gives {:.4g} rows, more than the limit {}; raise sampleDt, "
-                      "or the limit with maxRows",
-                      sampleDt, config.duration, rows, maxRows));
+    try {  // the command's and the library's rule: whole rows, as the run writes them
+      const double limit = std::min(std::floor(maxRows), static_cast<double>(std::numeric_limits<long>::max() / 2));
+      pipeline::refuseTooManyRows(config.duration, sampleDt, static_cast<long>(limit), "sampleDt", "maxRows");
+    } catch (const std::invalid_argument& e) {
+      throw BadRequest(e.what());
     }
     pipeline::Simulation simulation = pipeline::buildSimulation(config);
     std::atomic<bool> cancel = false;

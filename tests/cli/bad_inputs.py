@@ -1858,6 +1858,12 @@ case("toss-no-effects-1e6", C, "the toss without effects for 1e6 s at the defaul
      "--sample-dt 0.01: duration 1000000 s gives 100000001 rows", key="rows",
      files={"coin_toss.json": (EXAMPLES / "coin_toss.json").read_text()}, timeout=5,
      na_before="ran on past 60 s before (issue 50)")
+case("toss-no-effects-1e6-coarse", C, "the same toss sampled every 1000 s: 2.6e8 steps over thousands of segments",
+     "simulate coin_toss.json --set effects=[] --set duration=1e6 --sample-dt 1000 --csv o.csv", 1,
+     "steps to reach t = 1000000 s at its pace so far", key="steps",
+     files={"coin_toss.json": (EXAMPLES / "coin_toss.json").read_text()}, timeout=20,
+     na_before="ran on past 5 minutes before: each segment's pace was judged alone (issue 50)",
+     unsanitized="the check is the time, and the sanitizers run the integration several times slower")
 
 # --- resources (issue 21, section 3): what a command needs is checked before it starts, and what
 # runs out is named. OpenGL on llvmpipe does not check its allocations (it segfaulted or hung);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -12,6 +13,7 @@
 #include "integrate/event_location.h"
 #include "integrate/gauss_legendre.h"
 #include "integrate/steppers.h"
+#include "integrate/pace.h"
 #include "integrate/trajectory.h"
 #include "tolerance.h"
 
@@ -233,6 +235,46 @@ TEST(Trajectory, ARisingPaceIsNotProjectedOverAFarEnd) {
   ASSERT_TRUE(run.stoppedBy());
   EXPECT_NEAR(run.stoppedBy()->t, 1.9999, 1e-9);
   EXPECT_GT(run.stats().acceptedSteps, 4 * 2'000) << "past a hundredth of maxSteps at two checks";
+}
+
+// A run of many short integrations (a toss rolling on its edge for 1e6 s makes thousands of
+// segments, none hopeless alone) reports its steps in lumps. At a steady 100 steps per second, in
+// lumps of 37 steps, an end at 1e4 s (1e6 steps) is refused at the first lump past a hundredth of
+// maxSteps (5e5); the same lumps run on under maxSteps 2e6. Before, the hybrid run never judged
+// its steps as a whole and ran on for minutes (issue 50).
+TEST(PaceWatch, StepsReportedInLumpsAreJudgedAsOneRun) {
+  const auto lumpsUntilRefused = [](long maxSteps) -> std::optional<long> {
+    PaceWatch pace(0, 1e4, maxSteps);
+    for (long steps = 37; steps <= 1'000'000; steps += 37) {
+      try {
+        pace.afterSteps(steps, 0.01 * static_cast<double>(steps));
+      } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("would need about 1e+06 steps to reach t = 10000 s"), std::string::npos)
+            << e.what();
+        return steps;
+      }
+    }
+    return std::nullopt;
+  };
+  const std::optional<long> refusedAt = lumpsUntilRefused(500'000);
+  ASSERT_TRUE(refusedAt);
+  EXPECT_GE(*refusedAt, 5'000);
+  EXPECT_LT(*refusedAt, 8'192 + 37);
+  EXPECT_FALSE(lumpsUntilRefused(2'000'000));
+}
+
+// Lumps whose pace doubles from one to the next (a coin nearing a singular time, in segments) are
+// not projected over a far end; their total past maxSteps still is refused.
+TEST(PaceWatch, ARisingPaceInLumpsIsNotProjectedButTheLimitHolds) {
+  PaceWatch pace(0, 1e6, 200'000);
+  long steps = 0;
+  double t = 0;
+  for (long lump = 64; steps + lump <= 200'000; lump *= 2) {
+    steps += lump;
+    t += 1;
+    EXPECT_NO_THROW(pace.afterSteps(steps, t)) << steps << " steps at t = " << t;
+  }
+  EXPECT_THROW(pace.afterSteps(200'001, t + 1), std::runtime_error);
 }
 
 TEST(Events, FallingZeroIsLocatedToATenthOfANanosecond) {

@@ -24,7 +24,9 @@
 // - in the seed's units (M = a = g = 1) the panel, the controls and the overlay show the program's
 //   numbers over their units' sizes (ω_c = 1/√3 for the thin disk), and a value typed or slid there
 //   reaches the core in SI;
-// - a legend says what the picture draws; every control has a readable name and a tooltip naming its key.
+// - a legend says what the picture draws; every control has a readable name and a tooltip naming its key;
+// - at 360 px, in an 800x600 iframe and at 1600 px nothing lies past the window's sides, the view takes
+//   the phone's width (the coin in it) and at least half the wider windows'.
 // Exits 77 (ctest's skip), saying why, where Chromium or web/node_modules is missing.
 import { spawnSync } from 'node:child_process';
 import { existsSync, mkdtempSync, readdirSync, readFileSync, rmSync, statSync, writeFileSync } from 'node:fs';
@@ -813,6 +815,65 @@ try {
   const ringCsv = simulate(ringText, ring.sampleDt);
   await compareWithCsv('the exported ring', ringCsv, [0, Math.floor(ringCsv.rows / 2), ringCsv.rows - 1]);
 
+  // The layout from a phone to a wide screen: nothing past the window's sides, the view as wide as a
+  // phone (with the coin in it) and at least half of an 800 px iframe and of a 1600 px window, whose
+  // pages fit their height (the panel scrolls).
+  await part('layout', async () => {
+    const measure = (frame) => frame.evaluate(() => {
+      const outside = [...document.querySelectorAll('body *')].filter((e) => {
+        const r = e.getBoundingClientRect();
+        return r.width > 0 && r.height > 0 && (r.left < -0.5 || r.right > innerWidth + 0.5);
+      }).map((e) => `${e.tagName.toLowerCase()}#${e.id}.${e.className} ends at ${e.getBoundingClientRect().right}`);
+      const view = document.getElementById('view').getBoundingClientRect();
+      const { scrollWidth, scrollHeight } = document.documentElement;
+      return { innerWidth, innerHeight, scrollWidth, scrollHeight, outside: outside.slice(0, 4),
+               view: [view.width, view.height] };
+    });
+    const fits = (m) => m.scrollWidth <= m.innerWidth && m.outside.length === 0;
+    const open = async (frame) => {
+      await frame.waitForFunction(() => window.coinrollPage && window.coinrollPage.run(), { timeout: 60000 });
+      await frame.evaluate(() => window.coinrollPage.settled());
+    };
+    await page.setViewport({ width: 360, height: 740 });
+    await page.goto(pageUrl);
+    await open(page);
+    const phone = await measure(page);
+    check('at 360 px nothing lies past the window\'s sides, and the view is as wide as the window', fits(phone) &&
+          phone.view[0] >= phone.innerWidth - 1 && phone.view[1] >= 200, JSON.stringify(phone));
+    // The default scene's camera frames its whole circle in the program's 16:9 picture, which the
+    // phone's narrower view must not cut: the coin's centre mark is in the picture all round.
+    await hook('showTestMarks', true);
+    const times = Array.from({ length: 13 }, (_, k) => 0.5 * k), missed = [];
+    for (const t of times) {
+      await hook('seek', t);
+      const shot = readPng(Buffer.from(await (await page.$('#canvas')).screenshot({ type: 'png' })));
+      if (!centroid(shot, (r, g, b) => r > 200 && g < 60 && b > 200)) missed.push(t);
+    }
+    check('at 360 px the scene\'s camera keeps the coin in the picture all round its circle', missed.length === 0,
+          missed.length ? `no coin at t = ${missed.join(', ')} s` : `in all ${times.length} pictures, 0 to 6 s`);
+    await hook('showTestMarks', false);
+
+    const frameUrl = pathToFileURL(join(scratch, 'embedded.html')).href;
+    writeFileSync(join(scratch, 'embedded.html'), '<!DOCTYPE html><title>embedded</title><body style="margin:0">' +
+                  `<iframe src="${pageUrl}" width="800" height="600" style="border:0"></iframe></body>`);
+    pagesOpened.add(frameUrl);
+    await page.setViewport({ width: 1000, height: 800 });
+    await page.goto(frameUrl);
+    const frame = page.frames().find((f) => f !== page.mainFrame());
+    await open(frame);
+    const embedded = await measure(frame);
+    check('in an 800x600 iframe nothing lies past its sides or below it, and the view takes at least half its width',
+          embedded.innerWidth === 800 && fits(embedded) && embedded.scrollHeight <= embedded.innerHeight &&
+          embedded.view[0] >= 400,
+          JSON.stringify(embedded));
+
+    await page.setViewport({ width: 1600, height: 900 });
+    await page.goto(pageUrl);
+    await open(page);
+    const wide = await measure(page);
+    check('at 1600 px nothing lies past the window, and the view takes at least half its width', fits(wide) &&
+          wide.scrollHeight <= wide.innerHeight && wide.view[0] >= 800, JSON.stringify(wide));
+  });
   check('no console error, no network request', problems.length === 0, problems.slice(0, 5).join('; '));
 } finally {
   await browser.close();

@@ -32,6 +32,7 @@ function renderSpec(scene) {
     hud: or(render.hud, 'render.hud'),
     camera: {
       mode: or(camera.mode, 'render.camera.mode'), eye: camera.eye, target: camera.target, fov: or(camera.fov, 'render.camera.fov'),
+      aspect: or(render.width, 'render.width') / or(render.height, 'render.height'),
       orbit_period: or(camera.orbit_period, 'render.camera.orbit_period'), elevation: or(camera.elevation, 'render.camera.elevation'),
     },
   };

@@ -20,7 +20,13 @@
 // - a run in progress shows its progress and gives way to a newer one; playback follows
 //   render.time_remap as `coinroll render --frame-times` reports it, in the air and at each impact too;
 // - the steady-motion panel shows, for the run's coin and tilt, every number `coinroll steady` prints
-//   for each motion it lists, follows a change of tilt or coin, and its buttons start those motions.
+//   for each motion it lists, follows a change of tilt or coin, and its buttons start those motions;
+// - in the seed's units (M = a = g = 1) the panel, the controls and the overlay show the program's
+//   numbers over their units' sizes (ω_c = 1/√3 for the thin disk), and a value typed or slid there
+//   reaches the core in SI;
+// - a legend says what the picture draws; every control has a readable name and a tooltip naming its key;
+// - at 360 px, in an 800x600 iframe and at 1600 px nothing lies past the window's sides, the view takes
+//   the phone's width (the coin in it) and at least half the wider windows'.
 // Exits 77 (ctest's skip), saying why, where Chromium or web/node_modules is missing.
 import { spawnSync } from 'node:child_process';
 import { existsSync, mkdtempSync, readdirSync, readFileSync, rmSync, statSync, writeFileSync } from 'node:fs';
@@ -587,12 +593,16 @@ try {
   // the same scene and request, and a motion's button starts that motion.
   const steadyPanel = () => page.evaluate(() => ({
     coin: Object.fromEntries([...document.querySelectorAll('.steady-coin [data-quantity]')].map((e) => [e.dataset.quantity, e.textContent])),
+    coinUnits: Object.fromEntries([...document.querySelectorAll('.steady-coin [data-quantity]')]
+      .map((e) => [e.dataset.quantity, e.dataset.unit])),
     cards: [...document.querySelectorAll('.steady-motion')].map((card) => ({
       request: JSON.parse(card.dataset.request || 'null'), branch: card.dataset.branch,
       verdict: card.querySelector('.verdict').textContent,
       error: card.querySelector('.steady-refusal').textContent.replace(/^No such motion here: /, ''),
       disabled: card.querySelector('button').disabled,
       numbers: Object.fromEntries([...card.querySelectorAll('dl [data-quantity]')].map((e) => [e.dataset.quantity, e.textContent])),
+      units: Object.fromEntries([...card.querySelectorAll('dl [data-quantity]')]
+        .map((e) => [e.dataset.quantity, e.dataset.unit])),
     })),
   }));
   const kCardQuantities = ['theta', 'omega_Z', 'omega_Y', 'K', 'precessionRate', 'spinRate', 'radiusCentreOfMass', 'radiusContact',
@@ -667,6 +677,127 @@ try {
     await compareSteadyPanel('the started steady circle');
   });
 
+  // The seed's units (M = a = g = 1, docs/web.md "Units"): the switch shows the steady panel, the
+  // controls and the overlay in them, each number the program's SI one over its unit's size, runs
+  // nothing, and a number typed or slid in them reaches the core in SI.
+  await part('the seed\'s units', async () => {
+    await runSceneText(await hook('defaultScene'));
+    const ran = await hook('run'), scene = JSON.parse(ran.text);
+    const gravity = JSON.parse(coinroll(['schema']).stdout).keys.find((k) => k.path === 'gravity').default;
+    const M = scene.coin.mass, a = scene.coin.radius, g = scene.gravity !== undefined ? scene.gravity : gravity;
+    const rate = Math.sqrt(g / a);
+    // Each unit's size in SI, written out here rather than read from the page; SI's own are 1.
+    const sizes = { 'M': M, 'a': a, '√(a/g)': 1 / rate, '√(g/a)': rate, 'g/a': g / a, 'Ma²': M * a * a, 'Mg': M * g,
+                    'kg': 1, 'm': 1, 'm/s²': 1, 'rad/s': 1, '°': 1, '': 1 };
+    const criticalSpin = () => page.$eval('.steady-coin [data-quantity="criticalSpin"]',
+                                          (e) => ({ text: e.textContent, unit: e.dataset.unit }));
+    const unitOf = (path) => page.$eval(`.control[data-path="${path}"] .unit`, (e) => e.textContent);
+    const si = await criticalSpin();
+    check('in SI the steady panel shows the thin disk\'s ω_c = √(g/a)/√3 in rad/s', si.unit === 'rad/s' &&
+          agreesToShownDigits(si.text, String(rate / Math.sqrt(3))), `${si.text} ${si.unit}`);
+    await page.click('input[name=units][value=seed]');
+    const seed = await criticalSpin();
+    check('in the seed\'s units the steady panel shows the thin disk\'s ω_c = 1/√3 = 0.577 √(g/a)',
+          seed.unit === '√(g/a)' && Number(seed.text).toFixed(3) === '0.577' &&
+          agreesToShownDigits(seed.text, String(1 / Math.sqrt(3))), `${seed.text} ${seed.unit}`);
+    check('the switch runs nothing: the scene stays as it ran, in SI', (await hook('run')).text === ran.text &&
+          (await page.$eval('#scene-text', (e) => e.value)) === ran.text);
+
+    // Every number of the panel, times its unit's size, is coinroll steady's (one unit of the last
+    // digit of each apart at most), and the motions' own are in the seed's units.
+    const panel = await steadyPanel(), mismatches = [];
+    const lastDigit = (text) => {
+      const [mantissa, exponent = '0'] = text.split('e');
+      return Math.pow(10, Number(exponent) - (mantissa.includes('.') ? mantissa.split('.')[1].length : 0));
+    };
+    const agrees = (text, size, printed) => (text === '∞' ? printed === 'inf'
+      : Math.abs(Number(text) * size - Number(printed)) <= (lastDigit(text) * size + lastDigit(printed)) * (1 + 1e-9));
+    const kSeedUnits = {
+      I_X: 'Ma²', I_Z: 'Ma²', criticalSpin: '√(g/a)', omega_Z: '√(g/a)', omega_Y: '√(g/a)', K: 'g/a',
+      precessionRate: '√(g/a)', spinRate: '√(g/a)', radiusCentreOfMass: 'a', radiusContact: 'a', N: 'Mg', F: 'Mg',
+      rate: '√(g/a)', time: '√(a/g)',
+    };
+    let compared = 0;
+    for (const card of panel.cards) {
+      const program = steadyReport(ran.text, card.request);
+      if (program.error) continue;
+      const shown = Object.assign({}, panel.coin, card.numbers), units = Object.assign({}, panel.coinUnits, card.units);
+      for (const [quantity, text] of Object.entries(shown)) {
+        const unit = units[quantity], size = sizes[unit];
+        const printed = program.numbers[quantity === 'criticalSpinSI' ? 'criticalSpin' : quantity];
+        ++compared;
+        const name = `${card.request.kind}${card.branch} ${quantity}`;
+        if (kSeedUnits[quantity] !== undefined && unit !== kSeedUnits[quantity]) mismatches.push(`${name} in ${unit}`);
+        else if (printed === undefined || size === undefined || !agrees(text, size, printed)) {
+          mismatches.push(`${name}: ${text} ${unit} (${Number(text) * size} in SI), coinroll ${printed}`);
+        }
+      }
+    }
+    check(`in the seed's units every steady-panel number is coinroll steady's over its unit (${compared} compared)`,
+          mismatches.length === 0 && compared > 40, mismatches.slice(0, 6).join('; '));
+
+    const omegaZ = await control('initial.omega_Z');
+    const unitPaths = ['initial.omega_Z', 'initial.x', 'duration', 'coin.radius', 'coin.mass', 'gravity'];
+    const shownUnits = await Promise.all(unitPaths.map(unitOf));
+    check('the controls show rates in √(g/a), lengths in a, times in √(a/g), M, a and g in SI, and ω_Z as ω_Z / √(g/a)',
+          shownUnits.join(' ') === '√(g/a) a √(a/g) m kg m/s²' &&
+          agreesToShownDigits(omegaZ.box, String(scene.initial.omega_Z / rate)),
+          `units ${shownUnits.join(', ')}; ω_Z box ${omegaZ.box}`);
+    const hud = (await hook('seek', 1)).split('\n'), state = await hook('stateAt', 1);
+    const numberIn = (line) => Number(((line || '').match(/-?\d+\.\d+/) || [])[0]);
+    const timeText = await page.$eval('#time-text', (e) => e.textContent);
+    check('the overlay and the time readout show t in √(a/g), ω_Z in √(g/a) and E in Mga',
+          hud[0].endsWith(' √(a/g)') && Math.abs(numberIn(hud[0]) - rate) <= 5e-4 + 1e-9 &&
+          hud[3].includes(' √(g/a) ') && Math.abs(numberIn(hud[3]) - state.omega_Z / rate) <= 5e-4 + 1e-9 &&
+          hud[4].endsWith(' Mga') && Math.abs(numberIn(hud[4]) - state.energy / (M * g * a)) <= 5e-6 + 1e-9 &&
+          timeText.endsWith(' √(a/g)') && Math.abs(numberIn(timeText) - rate) <= 5e-4 + 1e-9,
+          `${hud.join(' | ')}; ${timeText}`);
+
+    await page.click('.control[data-path="initial.omega_Z"] input[type=number]', { clickCount: 3 });
+    await page.keyboard.type('2');
+    await page.keyboard.press('Enter');
+    await settled();
+    const typed = await ranScene();
+    check('ω_Z = 2 typed in the seed\'s units runs the scene with ω_Z = 2 √(g/a) rad/s',
+          Math.abs(typed.initial.omega_Z / (2 * rate) - 1) <= 1e-12 && (await control('initial.omega_Z')).box === '2' &&
+          (await shownErrors()).length === 0, `initial.omega_Z ${typed.initial.omega_Z}, 2 √(g/a) = ${2 * rate}`);
+    await keyOn('.control[data-path="initial.omega_Z"] input[type=range]', 'ArrowRight');
+    const slid = await ranScene(), slidBox = Number((await control('initial.omega_Z')).box);
+    check('the ω_Z slider in the seed\'s units writes three digits of √(g/a), run as that many rad/s',
+          slidBox > 2 && Number(slidBox.toPrecision(3)) === slidBox &&
+          Math.abs(slid.initial.omega_Z / (slidBox * rate) - 1) <= 1e-12 &&
+          (await shownErrors()).length === 0, `box ${slidBox}, initial.omega_Z ${slid.initial.omega_Z}`);
+
+    await page.click('input[name=units][value=si]');
+    const back = await control('initial.omega_Z');
+    check('back in SI the panel, the controls and the overlay show SI', (await criticalSpin()).unit === 'rad/s' &&
+          (await unitOf('initial.omega_Z')) === 'rad/s' && back.box === String(slid.initial.omega_Z) &&
+          (await hook('seek', 1)).split('\n')[0].endsWith(' s'), `ω_Z box ${back.box}`);
+  });
+
+  // The legend says what the picture draws, and every control has a readable name and names its key.
+  await part('the legend and the controls\' names', async () => {
+    const legend = await page.$eval('#legend', (e) => ({ summary: e.querySelector('summary').textContent,
+                                                         text: e.textContent })).catch(() => null);
+    const kLegendWords = ['Trace', 'path of the contact point', 'orange-red', 'blue', 'slid', 'Marker', 'every 1 cm',
+                          'every 10 cm', 'heads'];
+    check('a legend names the trace (the contact point\'s path), its colours, the marker, the grid and the faces',
+          legend !== null && legend.summary === 'Legend' && kLegendWords.every((words) => legend.text.includes(words)),
+          legend && legend.text);
+    const schemaUnits = new Map(JSON.parse(coinroll(['schema']).stdout).keys.map((k) => [k.path, k.unit]));
+    const rows = await page.$$eval('.control', (all) => all.map((row) => ({
+      path: row.dataset.path, title: row.title, name: row.querySelector('.name').textContent.trim(),
+      unit: row.querySelector('.unit') && row.querySelector('.unit').textContent,
+    })));
+    const unnamed = rows.filter((r) => !r.title.startsWith(r.path) || r.name === '' || r.name.includes('_') ||
+                                       (r.unit !== null && Boolean(schemaUnits.get(r.path)) !== Boolean(r.unit)));
+    const names = Object.fromEntries(rows.map((r) => [r.path, r.name]));
+    check(`every control (${rows.length}) has a name without the key's underscores, its unit, a tooltip naming the key`,
+          rows.length > 30 && unnamed.length === 0 && names['initial.theta'] === 'tilt θ' &&
+          names['initial.omega_Z'] === 'spin ωZ' && names['coin.radius'] === 'radius a',
+          JSON.stringify(unnamed.slice(0, 4)));
+  });
+
   // coinroll export: the built page with a scene in it opens on that scene and runs it as the program does.
   const exported = join(scratch, 'ring.html');
   const ringText = readFileSync(join(repo, 'examples/ring.json'), 'utf8');
@@ -683,6 +814,66 @@ try {
         ring.sourceName);
   const ringCsv = simulate(ringText, ring.sampleDt);
   await compareWithCsv('the exported ring', ringCsv, [0, Math.floor(ringCsv.rows / 2), ringCsv.rows - 1]);
+
+  // The layout from a phone to a wide screen: nothing past the window's sides, the view as wide as a
+  // phone (with the coin in it) and at least half of an 800 px iframe and of a 1600 px window, whose
+  // pages fit their height (the panel scrolls).
+  await part('layout', async () => {
+    const measure = (frame) => frame.evaluate(() => {
+      const outside = [...document.querySelectorAll('body *')].filter((e) => {
+        const r = e.getBoundingClientRect();
+        return r.width > 0 && r.height > 0 && (r.left < -0.5 || r.right > innerWidth + 0.5);
+      }).map((e) => `${e.tagName.toLowerCase()}#${e.id}.${e.className} ends at ${e.getBoundingClientRect().right}`);
+      const view = document.getElementById('view').getBoundingClientRect();
+      const { scrollWidth, scrollHeight } = document.documentElement;
+      return { innerWidth, innerHeight, scrollWidth, scrollHeight, outside: outside.slice(0, 4),
+               view: [view.width, view.height] };
+    });
+    const fits = (m) => m.scrollWidth <= m.innerWidth && m.outside.length === 0;
+    const open = async (frame) => {
+      await frame.waitForFunction(() => window.coinrollPage && window.coinrollPage.run(), { timeout: 60000 });
+      await frame.evaluate(() => window.coinrollPage.settled());
+    };
+    await page.setViewport({ width: 360, height: 740 });
+    await page.goto(pageUrl);
+    await open(page);
+    const phone = await measure(page);
+    check('at 360 px nothing lies past the window\'s sides, and the view is as wide as the window', fits(phone) &&
+          phone.view[0] >= phone.innerWidth - 1 && phone.view[1] >= 200, JSON.stringify(phone));
+    // The default scene's camera frames its whole circle in the program's 16:9 picture, which the
+    // phone's narrower view must not cut: the coin's centre mark is in the picture all round.
+    await hook('showTestMarks', true);
+    const times = Array.from({ length: 13 }, (_, k) => 0.5 * k), missed = [];
+    for (const t of times) {
+      await hook('seek', t);
+      const shot = readPng(Buffer.from(await (await page.$('#canvas')).screenshot({ type: 'png' })));
+      if (!centroid(shot, (r, g, b) => r > 200 && g < 60 && b > 200)) missed.push(t);
+    }
+    check('at 360 px the scene\'s camera keeps the coin in the picture all round its circle', missed.length === 0,
+          missed.length ? `no coin at t = ${missed.join(', ')} s` : `in all ${times.length} pictures, 0 to 6 s`);
+    await hook('showTestMarks', false);
+
+    const frameUrl = pathToFileURL(join(scratch, 'embedded.html')).href;
+    writeFileSync(join(scratch, 'embedded.html'), '<!DOCTYPE html><title>embedded</title><body style="margin:0">' +
+                  `<iframe src="${pageUrl}" width="800" height="600" style="border:0"></iframe></body>`);
+    pagesOpened.add(frameUrl);
+    await page.setViewport({ width: 1000, height: 800 });
+    await page.goto(frameUrl);
+    const frame = page.frames().find((f) => f !== page.mainFrame());
+    await open(frame);
+    const embedded = await measure(frame);
+    check('in an 800x600 iframe nothing lies past its sides or below it, and the view takes at least half its width',
+          embedded.innerWidth === 800 && fits(embedded) && embedded.scrollHeight <= embedded.innerHeight &&
+          embedded.view[0] >= 400,
+          JSON.stringify(embedded));
+
+    await page.setViewport({ width: 1600, height: 900 });
+    await page.goto(pageUrl);
+    await open(page);
+    const wide = await measure(page);
+    check('at 1600 px nothing lies past the window, and the view takes at least half its width', fits(wide) &&
+          wide.scrollHeight <= wide.innerHeight && wide.view[0] >= 800, JSON.stringify(wide));
+  });
   check('no console error, no network request', problems.length === 0, problems.slice(0, 5).join('; '));
 } finally {
   await browser.close();

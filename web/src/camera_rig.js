@@ -30,10 +30,17 @@ function fittingDistance(lower, upper, target, towardsEye, tanHalfX, tanHalfY) {
 }
 
 // spec: the scene's render.camera with the schema's defaults filled in ({mode, eye, target, fov,
-// orbit_period, elevation}); survey: {lower, upper}; radius: the coin's, m; width, height: pixels.
+// orbit_period, elevation}) and `aspect`, render.width / render.height; survey: {lower, upper};
+// radius: the coin's, m; width, height: the view's pixels.
 export class CameraRig {
   constructor(spec, survey, radius, width, height) {
     this.spec = spec;
+    // fov is vertical: a view narrower than the program's picture (a phone held upright) would cut the
+    // sides off a camera the scene places, so its field widens until the picture's width fits. A
+    // framed camera fits the run to the view's own shape below.
+    const narrowing = spec.aspect / (width / height);
+    this.fov = spec.eye && narrowing > 1 ? 2 * Math.atan(Math.tan(0.5 * radians(spec.fov)) * narrowing) * 180 / Math.PI
+      : spec.fov;
     const lower = [survey.lower[0] - radius, 0, survey.lower[2] - radius];
     const upper = [survey.upper[0] + radius, Math.max(survey.upper[1], radius) + 0.2 * radius, survey.upper[2] + radius];
     this.target = spec.target ? spec.target.slice() : scale(add(lower, upper), 0.5);
@@ -56,7 +63,7 @@ export class CameraRig {
     const elevation = radians(spec.elevation), azimuth = radians(kDefaultAzimuthDegrees);
     if (spec.mode === 'follow') {
       const offset = spec.eye && spec.target ? sub(spec.eye, spec.target) : scale(viewDirection(azimuth, elevation), this.followDistance);
-      return { eye: add(centre, offset), target: centre.slice(), fov: spec.fov };
+      return { eye: add(centre, offset), target: centre.slice(), fov: this.fov };
     }
     if (spec.mode === 'orbit') {
       const turn = 2 * Math.PI * time / spec.orbit_period;
@@ -67,10 +74,11 @@ export class CameraRig {
         height = d[1];
         start = Math.atan2(d[0], d[2]);
       }
-      return { eye: add(this.target, [radius * Math.sin(start + turn), height, radius * Math.cos(start + turn)]), target: this.target.slice(), fov: spec.fov };
+      const eye = add(this.target, [radius * Math.sin(start + turn), height, radius * Math.cos(start + turn)]);
+      return { eye, target: this.target.slice(), fov: this.fov };
     }
     const eye = spec.eye ? spec.eye.slice() : add(this.target, scale(viewDirection(azimuth, elevation), this.distance));
-    return { eye, target: this.target.slice(), fov: spec.fov };
+    return { eye, target: this.target.slice(), fov: this.fov };
   }
 }
 

@@ -1,9 +1,11 @@
 // The page's controls, each built from its key in the scene schema (`coinroll schema`): the label is
-// the key, the tooltip its doc, range and default, the unit its unit; a number gets a slider (on a
-// log scale where its range spans decades) and a box for the exact value, a name a menu, a boolean
-// a checkbox; a key without a default that may be absent (thickness, friction) gets a checkbox that
-// puts it in the scene or takes it out. A control is shown only where its only_with assignments hold.
+// the quantity's name and symbol, the tooltip the key with its doc, range and default, the unit its
+// unit in the units chosen (units.js); a number gets a slider (on a log scale where its range spans
+// decades) and a box for the exact value, a name a menu, a boolean a checkbox; a key without a default
+// that may be absent (thickness, friction) gets a checkbox that puts it in the scene or takes it out.
+// A control is shown only where its only_with assignments hold.
 import schema, { defaultOf, deletePath, getPath, hasEffect, onlyWithHolds, schemaKey, setEffect, setPath } from './schema.js';
+import { formatG, kUnitKeys, Units } from './units.js';
 
 // What the page offers, in its groups; every range, default, unit and text comes from the schema.
 export const kGroups = [
@@ -17,6 +19,27 @@ export const kGroups = [
   ['Run', ['duration', 'gravity']],
 ];
 
+// Each control's name as a student reads it, with the seed's symbol where it has one (docs/seed.md,
+// docs/rim.md); the key itself is in the tooltip.
+const kNames = new Map([
+  ['coin.shape', 'shape'], ['coin.radius', 'radius a'], ['coin.inner_radius', 'hole radius b'],
+  ['coin.I_X', 'moment I_X'], ['coin.I_Z', 'moment I_Z'], ['coin.thickness', 'thickness h'],
+  ['coin.edge_radius', 'edge radius ρ'], ['coin.mass', 'mass M'],
+  ['initial[steady].steady', 'start'], ['initial.theta', 'tilt θ'], ['initial.phi', 'heading φ'],
+  ['initial.omega_X', 'tilt rate ω_X'], ['initial.omega_Y', 'rate ω_Y'], ['initial.omega_Z', 'spin ω_Z'],
+  ['initial.x', 'centre x'], ['initial.z', 'centre z'],
+  ['initial[steady].theta', 'tilt θ'], ['initial[steady].omega_Z', 'spin ω_Z'], ['initial[steady].branch', 'root f±'],
+  ['friction', 'friction μ'], ['friction_static', 'static μ_s'], ['sliding', 'sliding'],
+  ['initial.v_x', 'velocity v_x'], ['initial.v_z', 'velocity v_z'],
+  ['flight', 'flight'], ['restitution', 'restitution e'], ['impact_friction', 'impact μ'], ['initial.y', 'height y'],
+  ['initial.v_y', 'velocity v_y'], ['stop_when_decided', 'stop once decided'],
+  ['effects[air_drag]', 'air drag'], ['effects[air_drag].model', 'model'],
+  ['effects[air_drag].viscosity', 'air viscosity'], ['effects[air_drag].density', 'air density'],
+  ['effects[rolling_resistance]', 'rolling resistance'], ['effects[rolling_resistance].length', 'length'],
+  ['effects[spin_friction]', 'spin friction'], ['effects[spin_friction].length', 'length'],
+  ['duration', 'duration'], ['gravity', 'gravity g'],
+]);
+
 const kSliderSteps = 1000;
 
 // Keys a scene must hold once another has a value, which the schema's table does not mark (its docs
@@ -24,19 +47,25 @@ const kSliderSteps = 1000;
 // shows them without a checkbox that could only leave them out.
 const kRequiredWith = new Map([['coin.I_X', 'coin.shape=custom'], ['coin.I_Z', 'coin.shape=custom'], ['restitution', 'flight=true']]);
 
-function rangeText(key) {
+// The key's range, in `units` (the scene's SI where not given).
+function rangeText(key, units = new Units('si')) {
   const lo = key.minimum, hi = key.maximum;
-  if (lo && hi) return `${lo.inclusive ? '[' : '('}${lo.value}, ${hi.value}${hi.inclusive ? ']' : ')'}`;
-  if (lo) return `${lo.inclusive ? '≥' : '>'} ${lo.value}`;
-  if (hi) return `${hi.inclusive ? '≤' : '<'} ${hi.value}`;
+  const bound = (b) => shownNumber(units.shown(b.value, key.unit), units.scale(key.unit) !== 1);
+  if (lo && hi) return `${lo.inclusive ? '[' : '('}${bound(lo)}, ${bound(hi)}${hi.inclusive ? ']' : ')'}`;
+  if (lo) return `${lo.inclusive ? '≥' : '>'} ${bound(lo)}`;
+  if (hi) return `${hi.inclusive ? '≤' : '<'} ${bound(hi)}`;
   return 'any';
 }
 
-function tooltip(key) {
+// The key, its doc, range and default as the scene file has them, and the seed's unit where shown in it.
+function tooltip(key, units) {
   const parts = [`${key.path}: ${key.doc}`, `range ${rangeText(key)}${key.unit ? ` ${key.unit}` : ''}`];
   if (key.default !== undefined) parts.push(`default ${JSON.stringify(key.default)}`);
   else if (key.required) parts.push('required');
   else parts.push('optional: unticked, the key is left out of the scene');
+  const scale = units.scale(key.unit);
+  if (scale !== 1) parts.push(`shown in units of ${units.label(key.unit)} = ${formatG(scale, 6)} ${key.unit}`);
+  else if (units.seed && kUnitKeys.has(key.path)) parts.push('shown in SI: this is one of the seed\'s units M, a, g');
   return parts.join('\n');
 }
 
@@ -46,11 +75,13 @@ function tooltip(key) {
 const kStartTiltLimit = 89;
 const kTiltPaths = new Set(['initial.theta', 'initial[steady].theta']);
 
-// The values a slider may offer: the schema's range, for a tilt also inside the flat stop; `inclusive`
-// false where the bound itself is refused.
-function sliderBounds(key) {
+// The values a slider may offer, in the units shown (`scale` SI units per shown unit): the schema's
+// range, for a tilt also inside the flat stop; `inclusive` false where the bound itself is refused.
+function sliderBounds(key, scale) {
   const lo = Object.assign({ value: -Infinity, inclusive: false }, key.minimum);
   const hi = Object.assign({ value: Infinity, inclusive: false }, key.maximum);
+  lo.value /= scale;
+  hi.value /= scale;
   if (kTiltPaths.has(key.path)) {
     if (lo.value <= -kStartTiltLimit) Object.assign(lo, { value: -kStartTiltLimit, inclusive: false });
     if (hi.value >= kStartTiltLimit) Object.assign(hi, { value: kStartTiltLimit, inclusive: false });
@@ -61,25 +92,26 @@ function sliderBounds(key) {
 // The slider's span for a value: the range where it is narrow enough to slide through; a log scale
 // where it is positive and spans decades (two decades either side of the value, inside the range);
 // else a linear window round the value that grows as the value does.
-function sliderScale(key, value) {
-  const { lo, hi } = sliderBounds(key);
+function sliderScale(key, value, scale) {
+  const { lo, hi } = sliderBounds(key, scale);
   const v = Number.isFinite(value) ? value : 0;
-  let scale;
+  let span;
   if (lo.value >= 0 && v > 0 && !(hi.value / Math.max(lo.value, Number.MIN_VALUE) < 100)) {
-    scale = { log: true, from: Math.max(lo.value > 0 ? lo.value : v * 1e-2, v * 1e-2), to: Math.min(hi.value, v * 1e2) };
+    span = { log: true, from: Math.max(lo.value > 0 ? lo.value : v * 1e-2, v * 1e-2), to: Math.min(hi.value, v * 1e2) };
   } else if (Number.isFinite(lo.value) && Number.isFinite(hi.value) && hi.value - lo.value <= 1000) {
-    scale = { log: false, from: lo.value, to: hi.value };
+    span = { log: false, from: lo.value, to: hi.value };
   } else {
     const half = Math.pow(10, Math.ceil(Math.log10(Math.max(Math.abs(v), 1e-9) * 4)));
-    const span = Math.max(half, lo.value >= 0 ? 1 : 10);
-    scale = { log: false, from: Math.max(lo.value, lo.value >= 0 ? 0 : v - span), to: Math.min(hi.value, v + span) };
+    const width = Math.max(half, lo.value >= 0 ? 1 : 10);
+    span = { log: false, from: Math.max(lo.value, lo.value >= 0 ? 0 : v - width), to: Math.min(hi.value, v + width) };
   }
   // An end on a bound the range excludes moves a slider step inside, rounded inwards to the three
   // digits the slider writes, so that no position of the slider is a value the scene refuses.
-  const stepIn = (end, towards) => (scale.log ? end * Math.pow(towards / end, 1 / kSliderSteps) : end + (towards - end) / kSliderSteps);
-  if (!lo.inclusive && scale.from <= lo.value) scale.from = roundTowards(stepIn(scale.from, scale.to), +1);
-  if (!hi.inclusive && scale.to >= hi.value) scale.to = roundTowards(stepIn(scale.to, scale.from), -1);
-  return scale;
+  const stepIn = (end, towards) => (span.log ? end * Math.pow(towards / end, 1 / kSliderSteps)
+    : end + (towards - end) / kSliderSteps);
+  if (!lo.inclusive && span.from <= lo.value) span.from = roundTowards(stepIn(span.from, span.to), +1);
+  if (!hi.inclusive && span.to >= hi.value) span.to = roundTowards(stepIn(span.to, span.from), -1);
+  return span;
 }
 
 // `value` to three significant digits, rounded up (direction +1) or down (-1).
@@ -103,6 +135,15 @@ const fromSlider = (scale, position) => {
 
 // Small numbers in exponent form, which a narrow box shows whole (1.8e-5, not 0.000018).
 const numberText = (value) => (value !== 0 && Math.abs(value) < 1e-3 ? value.toExponential() : String(value));
+// A number as a control shows it: as it is in the scene, or converted to the seed's units to six
+// digits, which hides the conversion's round-off (1.2 s / s = 1.2000000000000002).
+const shownNumber = (value, converted) =>
+  numberText(converted && Number.isFinite(value) ? Number(value.toPrecision(6)) : value);
+
+// A symbol as the seed writes it: ω_Z with its index set below.
+export function symbol(text) {
+  return text.split(/_(\w)/).map((part, i) => (i % 2 ? element('sub', { text: part }) : part));
+}
 
 // A DOM element with its attributes ('text': its text) and children; the page's panels share it.
 export function element(tag, attributes = {}, children = []) {
@@ -124,28 +165,35 @@ class Control {
     this.key = schemaKey(this.effect ? `${path}.type` : path);
     this.optional = !this.effect && this.key.type !== 'name' && this.key.default === undefined && !this.key.required &&
                     !kRequiredWith.has(path);
-    this.row = element('div', { class: this.effect || this.key.type === 'boolean' ? 'control whole' : 'control', title: tooltip(this.key), 'data-path': path });
-    const label = element('label', { class: 'name', text: this.effect ? this.effect.replace(/_/g, ' ') : path.replace(/^.*\./, '') });
+    const whole = this.effect || this.key.type === 'boolean';
+    this.row = element('div', { class: whole ? 'control whole' : 'control', 'data-path': path });
+    const name = kNames.get(path);
+    const label = element('label', { class: 'name' }, symbol(name));
     this.row.append(label);
+    const spoken = `${name} (${path})`;
     if (this.effect || this.optional || this.key.type === 'boolean') {
-      this.check = element('input', { type: 'checkbox', 'aria-label': `${path} on` });
+      this.check = element('input', { type: 'checkbox', 'aria-label': `${spoken} on` });
       this.check.addEventListener('change', () => this.onCheck());
       label.prepend(this.check);
     }
     if (this.key.path === 'initial[steady].steady') {
-      this.menu = element('select', { 'aria-label': path }, ['(rates)', ...this.key.names].map((n) => element('option', { value: n, text: n })));
+      const starts = ['(rates)', ...this.key.names];
+      const options = starts.map((n) => element('option', { value: n, text: n }));
+      this.menu = element('select', { 'aria-label': spoken }, options);
       this.menu.addEventListener('change', () => this.onStart());
       this.row.append(this.menu);
     } else if (this.key.type === 'name' && !this.effect) {
-      this.menu = element('select', { 'aria-label': path }, this.key.names.map((n) => element('option', { value: n, text: n })));
+      const names = this.key.names.map((n) => element('option', { value: n, text: n }));
+      this.menu = element('select', { 'aria-label': spoken }, names);
       this.menu.addEventListener('change', () => this.commit(this.menu.value));
       this.row.append(this.menu);
     } else if (this.key.type === 'number') {
-      this.slider = element('input', { type: 'range', min: 0, max: kSliderSteps, step: 1, 'aria-label': `${path} slider` });
-      this.box = element('input', { type: 'number', step: 'any', 'aria-label': path });
-      if (this.key.minimum) this.box.min = this.key.minimum.value;
-      if (this.key.maximum) this.box.max = this.key.maximum.value;
-      this.slider.addEventListener('input', () => this.commit(fromSlider(this.scale, Number(this.slider.value))));
+      this.slider = element('input', { type: 'range', min: 0, max: kSliderSteps, step: 1,
+                                       'aria-label': `${spoken} slider` });
+      this.box = element('input', { type: 'number', step: 'any', 'aria-label': spoken });
+      this.slider.addEventListener('input', () => {
+        this.commit(this.toScene(fromSlider(this.span, Number(this.slider.value))));
+      });
       // A drag keeps the span it started on until the pointer lets go: re-centring the span on each
       // value the drag writes would move the value under a still pointer, and compound on every move.
       this.slider.addEventListener('pointerdown', () => {
@@ -159,8 +207,11 @@ class Control {
         window.addEventListener('pointerup', release, true);
         window.addEventListener('pointercancel', release, true);
       });
-      this.box.addEventListener('change', () => this.commit(this.box.value === '' ? NaN : Number(this.box.value)));
-      this.row.append(this.slider, this.box, element('span', { class: 'unit', text: this.key.unit || '' }));
+      this.box.addEventListener('change', () => {
+        this.commit(this.box.value === '' ? NaN : this.toScene(Number(this.box.value)));
+      });
+      this.unit = element('span', { class: 'unit' });
+      this.row.append(this.slider, this.box, this.unit);
     }
     const id = `control-${path.replace(/\W+/g, '-')}`;
     this.error = element('div', { class: 'error', role: 'alert', id: `${id}-error` });
@@ -185,6 +236,23 @@ class Control {
     return this.refusal ? this.refusal.scene : this.page.scene;
   }
 
+  // The units this control shows its number in: the page's, but SI for the keys that fix the seed's.
+  units() {
+    return kUnitKeys.has(this.path) ? new Units('si') : this.page.units(this.shownScene());
+  }
+
+  // A number as this control shows it, with its unit.
+  shownWithUnit(value) {
+    const units = this.units(), unit = this.key.unit;
+    const label = units.label(unit);
+    return `${shownNumber(units.shown(value, unit), units.scale(unit) !== 1)}${label ? ` ${label}` : ''}`;
+  }
+
+  // A number typed or slid in the units shown, in the scene's SI.
+  toScene(value) {
+    return this.units().toSI(value, this.key.unit);
+  }
+
   // A change of this control was refused: the control keeps the refused value, marked invalid with
   // the message, and says that the motion on screen is still the last run's, with its value and a
   // way back to it. `refusedScene` is the scene that was refused (the page then edits the last run's).
@@ -193,7 +261,7 @@ class Control {
     this.error.textContent = message;
     const running = this.effect ? hasEffect(this.page.scene, this.effect) : this.value(this.page.scene);
     const shown = running === undefined ? undefined : typeof running === 'boolean' ? (running ? 'on' : 'off')
-      : typeof running === 'number' ? `${numberText(running)}${this.key.unit ? ` ${this.key.unit}` : ''}` : String(running);
+      : typeof running === 'number' ? this.shownWithUnit(running) : String(running);
     this.refusalNote.firstChild.textContent = `Not run: the motion on screen is still the last run's, ${
       shown === undefined ? `without ${this.path}` : `with ${this.path} = ${shown}`}. `;
     this.backButton.textContent = shown === undefined ? 'Back to the last run' : `Back to ${shown}`;
@@ -223,6 +291,8 @@ class Control {
       if (this.refusal) input.setAttribute('aria-invalid', 'true');
       else input.removeAttribute('aria-invalid');
     }
+    const units = this.units();
+    this.row.title = tooltip(this.key, units);
     const present = this.effect ? hasEffect(scene, this.effect) : getPath(scene, this.path) !== undefined;
     let shown = onlyWithHolds(scene, this.key);
     if (this.path === 'initial[steady].steady' || this.effect) shown = true;
@@ -231,16 +301,23 @@ class Control {
     if (this.check) this.check.checked = this.key.type === 'boolean' ? this.value() === true : present;
     if (this.menu) this.menu.value = this.path === 'initial[steady].steady' ? (this.value() || '(rates)') : this.value();
     if (this.slider) {
-      const value = this.value();
+      const value = this.value(), unit = this.key.unit, scale = units.scale(unit);
+      const shownValue = value !== undefined ? units.shown(value, unit) : NaN;
       const usable = value !== undefined && !(this.optional && !present);
       this.slider.disabled = this.box.disabled = !usable;
-      if (replaceTyped || document.activeElement !== this.box) this.box.value = value !== undefined ? numberText(value) : '';
-      if (!this.held) {
-        this.scale = sliderScale(this.key, Number(value));
-        if (Number.isFinite(value)) this.slider.value = toSlider(this.scale, value);
+      if (replaceTyped || document.activeElement !== this.box) {
+        this.box.value = value !== undefined ? shownNumber(shownValue, scale !== 1) : '';
       }
-      this.slider.dataset.from = this.scale.from;
-      this.slider.dataset.to = this.scale.to;
+      if (this.key.minimum) this.box.min = this.key.minimum.value / scale;
+      if (this.key.maximum) this.box.max = this.key.maximum.value / scale;
+      this.unit.textContent = units.label(unit);
+      // The slider's span is in the units shown, so that its three digits are the seed's where shown.
+      if (!this.held) {
+        this.span = sliderScale(this.key, shownValue, scale);
+        if (Number.isFinite(shownValue)) this.slider.value = toSlider(this.span, shownValue);
+      }
+      this.slider.dataset.from = this.span.from;
+      this.slider.dataset.to = this.span.to;
     }
   }
 
@@ -248,7 +325,9 @@ class Control {
     if (this.key.type === 'number' && !Number.isFinite(value)) {
       const typed = JSON.parse(JSON.stringify(this.page.scene));
       setPath(typed, this.path, value);
-      this.refuse(`${this.path}: type a number${this.key.unit ? ` in ${this.key.unit}` : ''}, range ${rangeText(this.key)}`, typed);
+      const units = this.units(), label = units.label(this.key.unit);
+      const range = rangeText(this.key, units);
+      this.refuse(`${this.path}: type a number${label ? ` in ${label}` : ''}, range ${range}`, typed);
       return;
     }
     setPath(this.page.scene, this.path, value);

@@ -3,7 +3,8 @@
 // lit and in sRGB, repeated and mipmapped by the sampler.
 
 export const kFloorTileMetres = 0.10;
-const kFloorGridMetres = 0.01, kMinorWidth = 0.0005, kMajorWidth = 0.0012;
+export const kFloorGridMetres = 0.01;
+const kMinorWidth = 0.0005, kMajorWidth = 0.0012;
 
 export const kClassic = {
   backgroundSrgb: [0.86, 0.89, 0.93],
@@ -12,7 +13,7 @@ export const kClassic = {
            oldSliding: [0.55, 0.90, 0.55], opacity: [0.95, 0.25] },
 };
 
-const toSrgb = (linear) => (linear <= 0.0031308 ? 12.92 * linear : 1.055 * Math.pow(linear, 1 / 2.4) - 0.055);
+export const toSrgb = (linear) => (linear <= 0.0031308 ? 12.92 * linear : 1.055 * Math.pow(linear, 1 / 2.4) - 0.055);
 
 function lineCoverage(x0, step, spacing, width) {
   const nearest = Math.round((x0 + 0.5 * step) / spacing) * spacing;

@@ -5,10 +5,12 @@ import examples from 'inline:examples';
 import { CameraRig } from './camera_rig.js';
 import { drawnCoinShape } from './coin_geometry.js';
 import { Controls, fitScene, suggestedValue } from './controls.js';
+import { Legend } from './legend.js';
 import { Cancelled, Runner } from './runner.js';
 import { defaultOf } from './schema.js';
 import { SteadyPanel, steadyRequests } from './steady_panel.js';
 import { Trajectory, traceInterval } from './trajectory.js';
+import { basisOf, formatG, Units } from './units.js';
 import { View } from './view.js';
 
 const $ = (id) => document.getElementById(id);
@@ -30,6 +32,7 @@ function renderSpec(scene) {
     hud: or(render.hud, 'render.hud'),
     camera: {
       mode: or(camera.mode, 'render.camera.mode'), eye: camera.eye, target: camera.target, fov: or(camera.fov, 'render.camera.fov'),
+      aspect: or(render.width, 'render.width') / or(render.height, 'render.height'),
       orbit_period: or(camera.orbit_period, 'render.camera.orbit_period'), elevation: or(camera.elevation, 'render.camera.elevation'),
     },
   };
@@ -63,6 +66,8 @@ const page = {
   run: null,            // {text, sourceName, sampleDt} of that run, what "download scene" writes
   runRequest: 0,        // the request that made it
   t: 0, playing: true, speed: 1, holdUntil: 0,
+  system: 'si',         // the units numbers show in: 'si' or 'seed' (units.js)
+  units: (scene) => new Units(page.system, basisOf(scene)),
   changed: (path) => onControl(path),
   suggestedValue,
   showRunning: () => { if (page.run) showSceneText(page.run.text); },
@@ -76,6 +81,7 @@ const steadyPanel = new SteadyPanel($('steady'), (initial) => {
   page.scene.initial = initial;
   onControl('initial[steady].steady');
 });
+const legend = new Legend($('legend'));
 let rig = null, fixedSize = null, lastFrameTime, request = 0;
 // Whether the latest request is still to be drawn (or refused), and who waits for it (the test hook).
 let pending = true;
@@ -153,7 +159,9 @@ function newRun(result) {
   view.setRun(trajectory, drawnCoinShape(trajectory.scene.coin), spec.trace);
   makeRig();
   controls.refresh();
-  steadyPanel.show(trajectory.scene.initial, result.steady);
+  const units = page.units(trajectory.scene);
+  steadyPanel.show(trajectory.scene.initial, result.steady, units);
+  showKeys(units);
   page.t = 0;
   page.playing = true;
   page.holdUntil = 0;
@@ -193,9 +201,10 @@ function draw() {
   const camera = rig.at(state.t, [state.x, state.y, state.z]);
   camera.follows = rig.spec.mode === 'follow';
   view.draw(state, camera, trajectory);
-  $('hud').textContent = renderSpec(trajectory.scene).hud ? state.hudLines.join('\n') : '';
+  const units = page.units(trajectory.scene), time = (t) => units.shown(t, 's').toFixed(3);
+  $('hud').textContent = renderSpec(trajectory.scene).hud ? trajectory.hudLines(state, units).join('\n') : '';
   $('time').value = page.t;
-  $('time-text').textContent = `${state.t.toFixed(3)} / ${trajectory.endTime.toFixed(3)} s`;
+  $('time-text').textContent = `${time(state.t)} / ${time(trajectory.endTime)} ${units.label('s')}`;
   if (timing.firstFrameAt === undefined) timing.firstFrameAt = performance.now();
   if (timing.last && timing.last.firstFrameAt === undefined) timing.last.firstFrameAt = performance.now();
   if (page.runRequest === request) settle();
@@ -225,12 +234,34 @@ function frame(now) {
   if (view.dirty) draw();
 }
 
+// The legend's grid against the coin on screen, and the key to the seed's units with their sizes.
+function showKeys(units) {
+  legend.show(page.trajectory.scene, units);
+  const si = new Units('si');
+  const size = (unit) => `${units.label(unit)} = ${formatG(units.scale(unit), 4)} ${si.label(unit)}`;
+  $('units-key').textContent = units.seed ? `Lengths in ${size('m')}, times in ${size('s')}, ` +
+    `rates in ${size('rad/s')}, velocities in ${size('m/s')}, energies in ${size('J')}, forces in ${size('N')}, ` +
+    `moments of inertia in ${size('kg m^2')}: those of the run on screen. Angles stay in degrees; ` +
+    'the coin\'s M and a and the gravity g, the units themselves, in SI.' : '';
+}
+
 function setPlaying(on) {
   page.playing = on;
   $('play').textContent = on ? 'Pause' : 'Play';
 }
 
 $('play').addEventListener('click', () => setPlaying(!page.playing));
+for (const radio of document.querySelectorAll('input[name=units]')) {
+  radio.addEventListener('change', () => {
+    page.system = radio.value;
+    controls.refresh();
+    if (!page.trajectory) return;
+    const units = page.units(page.trajectory.scene);
+    steadyPanel.setUnits(units);
+    showKeys(units);
+    view.dirty = true;
+  });
+}
 $('time').addEventListener('input', () => { page.t = Number($('time').value); page.holdUntil = 0; view.dirty = true; });
 $('speed').addEventListener('change', () => { page.speed = Number($('speed').value); });
 $('reset-view').addEventListener('click', () => { view.userCamera = false; view.dirty = true; });

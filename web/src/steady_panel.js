@@ -2,8 +2,9 @@
 // screen, each steady motion `coinroll steady` reports (straight, circle on either root, spin in
 // place), with its linear stability, and a button that starts it. The numbers are the WebAssembly
 // core's (core.steady in the worker, with the run), shown with the digits the command prints them
-// with, so that a student can hold the page against `coinroll steady`.
-import { element, startFrom } from './controls.js';
+// with, so that a student can hold the page against `coinroll steady`, in SI or in the seed's units.
+import { element, startFrom, symbol } from './controls.js';
+import { formatG, Units } from './units.js';
 
 // The panel's motions: the kind and circle root, as `coinroll steady --kind K --branch B` takes them.
 export const kSteadyMotions = [
@@ -26,33 +27,22 @@ export function steadyRequests(initial) {
   });
 }
 
-// C's %.Ng (as fmt's {:.Ng}), the form the command prints: N significant digits, trailing zeros
-// dropped, an exponent below 1e-4 and from 10^N.
-export function formatG(value, digits) {
-  if (value === Infinity) return '∞';
-  if (value === 0) return '0';
-  const exponent = Number(value.toExponential(digits - 1).split('e')[1]);
-  const trim = (text) => (text.includes('.') ? text.replace(/\.?0+$/, '') : text);
-  if (exponent < -4 || exponent >= digits) {
-    const [mantissa, power] = value.toExponential(digits - 1).split('e');
-    return `${trim(mantissa)}e${power.replace('+', '')}`;
-  }
-  return trim(value.toFixed(digits - 1 - exponent));
+const kSI = new Units('si');
+
+// One number, given in the SI `unit` and shown in `units`: `quantity` names it for the test
+// (tests/web/page_test.mjs), `digits` the command's format for it ('6g', '9g', '12g', '6f'), kept in
+// the seed's units too.
+function number(quantity, value, digits, unit, units = kSI) {
+  const label = units.label(unit);
+  return element('span', { class: 'value' }, [bareNumber(quantity, value, digits, unit, units),
+                                               label ? ` ${label}` : '']);
 }
 
-
-// One number: `quantity` names it for the test (tests/web/page_test.mjs), `digits` the command's
-// format for it ('6g', '9g', '12g', '6f').
-function number(quantity, value, digits, unit) {
-  const precision = Number(digits.slice(0, -1));
-  const text = digits.endsWith('f') ? value.toFixed(precision) : formatG(value, precision);
-  return element('span', { class: 'value' }, [element('span', { class: 'number', 'data-quantity': quantity, text }),
-                                               unit ? ` ${unit}` : '']);
-}
-
-// A symbol as the seed writes it: ω_Z with its index set below.
-function symbol(text) {
-  return text.split(/_(\w)/).map((part, i) => (i % 2 ? element('sub', { text: part }) : part));
+// The number alone, for a unit that follows other text (±λ i 1/s).
+function bareNumber(quantity, value, digits, unit, units = kSI) {
+  const precision = Number(digits.slice(0, -1)), shown = units.shown(value, unit);
+  const text = digits.endsWith('f') ? shown.toFixed(precision) : formatG(shown, precision);
+  return element('span', { class: 'number', 'data-quantity': quantity, 'data-unit': units.label(unit), text });
 }
 
 // A labelled number: the symbol, its tooltip saying what it is, the value with its unit; `wide`
@@ -82,30 +72,41 @@ export class SteadyPanel {
     container.append(element('legend', { text: 'Steady motions' }), this.intro, this.coin, ...this.cards.map((c) => c.card));
   }
 
+  // The same motions in other units.
+  setUnits(units) {
+    if (this.results) this.show(this.initial, this.results, units);
+  }
+
   // The steady motions of the run on screen: `initial` its scene's start, `results` the core's answer
-  // to steadyRequests(initial), in order, each {report} or {error}.
-  show(initial, results) {
-    this.initial = initial;
+  // to steadyRequests(initial), in order, each {report} or {error}; `units` those of the numbers shown.
+  show(initial, results, units) {
+    Object.assign(this, { initial, results });
     const requests = steadyRequests(initial);
     const { theta, omega_Z: omegaZ } = requests[1];
-    this.intro.replaceChildren(...symbol(`The seed's steady motions of this coin at the run's tilt θ = ${theta}° and spin ω_Z = ${omegaZ} rad/s, ` +
-      'as coinroll steady reports them. A small tilt perturbation obeys δθ″ = −K δθ: eigenvalues λ = ±√−K, a wobble where K > 0. ' +
-      'Start one to watch it.'));
+    const spin = units.seed ? `${formatG(units.shown(omegaZ, 'rad/s'), 6)} ${units.label('rad/s')}` : `${omegaZ} rad/s`;
+    this.intro.replaceChildren(...symbol(`The seed's steady motions of this coin at the run's tilt θ = ${theta}° ` +
+      `and spin ω_Z = ${spin}, as coinroll steady reports them. A small tilt perturbation obeys δθ″ = −K δθ: ` +
+      'eigenvalues λ = ±√−K, a wobble where K > 0. Start one to watch it.'));
     const shared = results.find((r) => r.report);
     this.coin.replaceChildren();
     if (shared) {
+      // M, a and g are the seed's units, and √(g/a) its unit of rate: they show in SI in either system.
       const { coin, naturalRate, criticalSpin, criticalSpinInNaturalUnits, rim } = shared.report;
       this.coin.append('Coin: M = ', number('M', coin.M, '6g', 'kg'), ', a = ', number('a', coin.a, '6g', 'm'),
-                       ', g = ', number('g', coin.g, '6g', 'm/s²'), ', I', element('sub', { text: 'X' }), ' = ',
-                       number('I_X', coin.I_X, '6g', 'kg m²'), ', I', element('sub', { text: 'Z' }), ' = ',
-                       number('I_Z', coin.I_Z, '6g', 'kg m²'), '; natural rate √(g/a) = ',
-                       number('naturalRate', naturalRate, '6g', 'rad/s'), '. ');
+                       ', g = ', number('g', coin.g, '6g', 'm/s^2'), units.seed ? ' (the units: each is 1 here)' : '',
+                       ', I', element('sub', { text: 'X' }), ' = ', number('I_X', coin.I_X, '6g', 'kg m^2', units),
+                       ', I', element('sub', { text: 'Z' }), ' = ', number('I_Z', coin.I_Z, '6g', 'kg m^2', units),
+                       '; natural rate √(g/a) = ', number('naturalRate', naturalRate, '6g', 'rad/s'),
+                       units.seed ? ' (the unit of rates). ' : '. ');
       if (criticalSpin === null) {
         this.coin.append('No critical spin: a rim with corners switches corners at upright, so it has no straight rolling.');
       } else {
+        // In SI the core's own ω_c / √(g/a) follows; in the seed's units, where ω_c shows as that, the SI value.
+        const other = units.seed ? number('criticalSpinSI', criticalSpin, '6g', 'rad/s')
+          : number('criticalSpinInNaturalUnits', criticalSpinInNaturalUnits, '6f', '√(g/a)');
         this.coin.append(element('span', { title: 'the spin below which straight (upright) rolling is unstable' }, [
-          'Critical spin of the upright coin ω', element('sub', { text: 'c' }), ' = ', number('criticalSpin', criticalSpin, '6g', 'rad/s'), ' (',
-          number('criticalSpinInNaturalUnits', criticalSpinInNaturalUnits, '6f', '√(g/a)'),
+          'Critical spin of the upright coin ω', element('sub', { text: 'c' }), ' = ',
+          number('criticalSpin', criticalSpin, '6g', 'rad/s', units), ' (', other,
           rim ? '' : '; 1/√3 for the thin disk', ').']));
       }
     }
@@ -124,21 +125,28 @@ export class SteadyPanel {
       const { stability } = report;
       verdict.classList.add(stability.verdict);
       verdict.textContent = stability.verdict.toUpperCase();
+      const shown = (quantity, value, digits, unit) => number(quantity, value, digits, unit, units);
       const eigenvalues = stability.verdict === 'marginal' ? element('span', { text: '0 (twice)' })
-        : element('span', {}, ['±', number('rate', stability.rate, '9g'), stability.verdict === 'stable' ? ' i' : '', ' 1/s']);
-      const time = stability.verdict === 'stable' ? [' · period ', number('time', stability.time, '9g', 's')]
-        : stability.verdict === 'unstable' ? [' · e-folding time ', number('time', stability.time, '9g', 's')] : [];
+        : element('span', {}, ['±', bareNumber('rate', stability.rate, '9g', '1/s', units),
+                               stability.verdict === 'stable' ? ' i' : '', ` ${units.label('1/s')}`]);
+      const time = stability.verdict === 'stable' ? [' · period ', shown('time', stability.time, '9g', 's')]
+        : stability.verdict === 'unstable' ? [' · e-folding time ', shown('time', stability.time, '9g', 's')] : [];
+      const { initial: start, radii, reaction } = report;
       list.append(
-        ...entry('θ', 'tilt from upright', number('theta', report.initial.theta, '12g', '°')),
-        ...entry('ω_Z', 'rolling rate: ω_Z = ψ̇ − φ̇ sin θ (seed eq. 11)', number('omega_Z', report.initial.omega_Z, '12g', 'rad/s')),
-        ...entry('ω_Y', 'ω_Y = φ̇ cos θ (seed eq. 11)', number('omega_Y', report.initial.omega_Y, '12g', 'rad/s')),
-        ...entry('K', 'stiffness of the tilt: δθ″ = −K δθ', number('K', report.stiffness, '9g', '1/s²')),
-        ...entry('φ̇', 'precession rate: how fast the heading turns', number('precessionRate', report.precessionRate, '9g', 'rad/s')),
-        ...entry('ψ̇', 'spin rate of the face', number('spinRate', report.spinRate, '9g', 'rad/s')),
-        ...entry('R_G', 'radius of the circle the centre of mass traces', number('radiusCentreOfMass', report.radii.centreOfMass, '9g', 'm')),
-        ...entry('R_C', 'radius of the circle the contact point traces', number('radiusContact', report.radii.contact, '9g', 'm')),
-        ...entry('N', 'the floor\'s normal force', number('N', report.reaction.N, '6g', 'N')),
-        ...entry('F', 'the friction force that holds it', number('F', report.reaction.F, '6g', 'N')),
+        ...entry('θ', 'tilt from upright', number('theta', start.theta, '12g', '°')),
+        ...entry('ω_Z', 'rolling rate: ω_Z = ψ̇ − φ̇ sin θ (seed eq. 11)',
+                 shown('omega_Z', start.omega_Z, '12g', 'rad/s')),
+        ...entry('ω_Y', 'ω_Y = φ̇ cos θ (seed eq. 11)', shown('omega_Y', start.omega_Y, '12g', 'rad/s')),
+        ...entry('K', 'stiffness of the tilt: δθ″ = −K δθ', shown('K', report.stiffness, '9g', '1/s^2')),
+        ...entry('φ̇', 'precession rate: how fast the heading turns',
+                 shown('precessionRate', report.precessionRate, '9g', 'rad/s')),
+        ...entry('ψ̇', 'spin rate of the face', shown('spinRate', report.spinRate, '9g', 'rad/s')),
+        ...entry('R_G', 'radius of the circle the centre of mass traces',
+                 shown('radiusCentreOfMass', radii.centreOfMass, '9g', 'm')),
+        ...entry('R_C', 'radius of the circle the contact point traces',
+                 shown('radiusContact', radii.contact, '9g', 'm')),
+        ...entry('N', 'the floor\'s normal force', shown('N', reaction.N, '6g', 'N')),
+        ...entry('F', 'the friction force that holds it', shown('F', reaction.F, '6g', 'N')),
         ...entry('μ ≥', 'the least friction coefficient that holds it, F/N', number('frictionNeeded', report.frictionNeeded, '4g')),
         ...entry('λ', 'the linearised eigenvalues of a small tilt perturbation, ±√−K, and the wobble\'s period 2π/√K or the ' +
                  'growth\'s e-folding time 1/√−K', element('span', {}, [eigenvalues, ...time]), true));

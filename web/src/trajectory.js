@@ -8,6 +8,7 @@
 // omega = theta-dot e_X + phi-dot e_y + psi-dot e_Z with e_y = cos(theta) e_Y - sin(theta) e_Z
 // (docs/seed.md §2), so omega_X = theta-dot, omega_Y = phi-dot cos(theta) and
 // omega_Z = psi-dot - phi-dot sin(theta).
+import { formatG } from './units.js';
 
 const kTurn = 2 * Math.PI;
 
@@ -36,7 +37,8 @@ function hermite(p0, p1, d0, d1, h, f) {
 }
 
 const fixed = (value, digits, width) => value.toFixed(digits).padStart(width);
-const shownToTwoDecimals = (value) => (Math.abs(value) < 0.005 ? 0 : value);
+// Zero where the digits shown would print -0.00.
+const shownTo = (value, digits) => (Math.abs(value) < 0.5 * Math.pow(10, -digits) ? 0 : value);
 
 export class Trajectory {
   // result: what the worker sends back (core.simulate's names, columns, rows, end, events, report);
@@ -108,23 +110,38 @@ export class Trajectory {
       state.t = this.columns.t[i] + f * h;
     }
     Object.assign(state, rates(state.theta, state.omega_X, state.omega_Y, state.omega_Z));
-    state.hudLines = this.hudLines(state);
     return state;
   }
 
-  // The renderer's overlay, word for word and in its number formats.
-  hudLines(s) {
-    const degrees = 180 / Math.PI;
+  // The overlay: in SI the renderer's, word for word and in its number formats; in the seed's units
+  // (units.js) its rates are the seed's |φ̇| and ω_Z in √(g/a), radians per unit of time, not turns
+  // per second.
+  hudLines(s, units) {
+    const degrees = 180 / Math.PI, rate = units.label('rad/s');
+    const [contact, face] = units.seed
+      ? [`${fixed(units.shown(Math.abs(s.phiDot), 'rad/s'), 3, 9)} ${rate} round the floor`,
+         `${fixed(shownTo(units.shown(s.omega_Z, 'rad/s'), 3), 3, 9)} ${rate} about its axis`]
+      : [`${fixed(Math.abs(s.phiDot) / kTurn, 2, 9)} Hz round the floor`,
+         `${fixed(shownTo(s.omega_Z / kTurn, 2), 2, 9)} Hz about its axis`];
+    const tilt = `${fixed(shownTo(s.theta * degrees, 2), 2, 9)}° from vertical, ` +
+                 `${(90 - Math.abs(s.theta) * degrees).toFixed(2)}° above the floor`;
     const lines = [
-      `t        ${fixed(s.t, 3, 9)} s`,
-      `θ        ${fixed(shownToTwoDecimals(s.theta * degrees), 2, 9)}° from vertical, ${(90 - Math.abs(s.theta) * degrees).toFixed(2)}° above the floor`,
+      `t        ${fixed(units.shown(s.t, 's'), 3, 9)} ${units.label('s')}`,
+      `θ        ${tilt}`,
       s.phase === 2 ? 'contact         -- in the air'
-        : s.axisGoesRound ? `contact  ${fixed(Math.abs(s.phiDot) / kTurn, 2, 9)} Hz round the floor` : 'contact         -- rocking, not going round',
-      `face     ${fixed(shownToTwoDecimals(s.omega_Z / kTurn), 2, 9)} Hz about its axis`,
-      `E        ${fixed(s.energy, 5, 9)} J`,
+        : s.axisGoesRound ? `contact  ${contact}` : 'contact         -- rocking, not going round',
+      `face     ${face}`,
+      `E        ${fixed(units.shown(s.energy, 'J'), 5, 9)} ${units.label('J')}`,
     ];
-    if (this.hasEffects) lines.push(`P        ${fixed(1e3 * s.power, 3, 9)} mW dissipated`);
-    if (s.sliding === 1) lines.push(`sliding  ${fixed(1e3 * s.slip_speed, 2, 9)} mm/s slip`);
+    // The seed's power and slip are small numbers: four digits, not a fixed point.
+    const small = (value, unit) => `${formatG(units.shown(value, unit), 4).padStart(9)} ${units.label(unit)}`;
+    if (this.hasEffects) {
+      lines.push(`P        ${units.seed ? small(s.power, 'W') : `${fixed(1e3 * s.power, 3, 9)} mW`} dissipated`);
+    }
+    if (s.sliding === 1) {
+      const slip = units.seed ? small(s.slip_speed, 'm/s') : `${fixed(1e3 * s.slip_speed, 2, 9)} mm/s`;
+      lines.push(`sliding  ${slip} slip`);
+    }
     if (s.phase === 2 || s.impacts > 0) {
       lines.push(`${(s.phase === 2 ? 'flight' : 'landed').padEnd(8)} ${String(s.impacts).padStart(9)} impact${s.impacts === 1 ? '' : 's'}`);
     }

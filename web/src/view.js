@@ -18,8 +18,13 @@ import { floorTile, kClassic, kFloorTileMetres } from './floor.js';
 ColorManagement.enabled = false;
 
 const kLight = new Vector3(-0.35, 1.0, 0.45).normalize();  // render/renderer_state.h kLightDirection
-const kShadowColour = [0, 0, 0, 0.45];
-const kContactColour = [0.85, 0.1, 0.08, 1];
+export const kShadowColour = [0, 0, 0, 0.45];
+export const kContactColour = [0.85, 0.1, 0.08, 1];
+// The coin's albedos, linear (shaders/coin.frag); the legend shows them too (legend.js).
+export const kCoinColours = {
+  brass: [0.80, 0.56, 0.20], silver: [0.48, 0.50, 0.55], blueEnamel: [0.03, 0.07, 0.32], redEnamel: [0.36, 0.03, 0.03],
+};
+const glslVec3 = (colour) => `vec3(${colour.map((c) => c.toFixed(2)).join(', ')})`;
 
 // Blending as the renderer's: colour over colour by alpha, the canvas's alpha left alone.
 const blended = { blending: CustomBlending, blendSrc: SrcAlphaFactor, blendDst: OneMinusSrcAlphaFactor,
@@ -71,11 +76,11 @@ vec3 toSrgb(vec3 linear) {
   return mix(low, high, step(vec3(0.0031308), linear));
 }
 void main() {
-  vec3 brass = vec3(0.80, 0.56, 0.20);
-  vec3 silver = vec3(0.48, 0.50, 0.55);
+  vec3 brass = ${glslVec3(kCoinColours.brass)};
+  vec3 silver = ${glslVec3(kCoinColours.silver)};
   vec3 albedo;
-  if (surface == 0) albedo = faceColour(brass, vec3(0.03, 0.07, 0.32));
-  else if (surface == 1) albedo = faceColour(silver, vec3(0.36, 0.03, 0.03));
+  if (surface == 0) albedo = faceColour(brass, ${glslVec3(kCoinColours.blueEnamel)});
+  else if (surface == 1) albedo = faceColour(silver, ${glslVec3(kCoinColours.redEnamel)});
   else if (surface == 2) albedo = rimColour(brass);
   else albedo = brass * 0.7;
   vec3 n = normalize(worldNormal);

@@ -500,11 +500,23 @@ bool HybridRun::switchIfDue() {
     finishedStats_ += segment_->stats();
     pace_.afterSteps(finishedStats_.acceptedSteps, handover->t);
   };
-  const auto tooManySwitches = [this](double t) {
-    std::size_t recent = 0;
+  // Past the limit the run ends: stick-slip, unless corner landings at upright come between the
+  // switches. Then the switching is the flat band rocking on the floor as its landings accumulate
+  // (docs/flight.md §4a; each landing leaves the rim sliding, then rolling), and its end is the
+  // band's, on-edge. Stick-slip without the band has no corner landings at all; the band's rocking
+  // makes at most two switches per landing.
+  const auto tooManySwitches = [this, &handover](double t) {
+    std::size_t recent = 0, cornerLandings = 0;
     for (const ModeSwitch& w : switches_) recent += w.t > t - 1 ? 1 : 0;
-    switchRefused_ = recent >= kMaxSwitchesPerSecond;
-    return switchRefused_;
+    if (recent < kMaxSwitchesPerSecond) return false;
+    for (const ImpactRecord& impact : impacts_) cornerLandings += impact.corner && impact.t > t - 1 ? 1 : 0;
+    if (3 * cornerLandings >= recent) {
+      ending_ =
+          Ending{.event = ModelEvent::OnEdge, .t = t, .state = handover->flight, .dissipated = handover->dissipated};
+    } else {
+      switchRefused_ = true;
+    }
+    return true;
   };
   const double t = handover->t, dissipated = handover->dissipated;
   const physics::SlidingState& state = handover->state;

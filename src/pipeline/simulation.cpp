@@ -323,8 +323,9 @@ std::string describeStop(const RunEvent& hit) {
     case ModelEvent::OnEdge:
       meaning = fmt::format(
           "the coin stands on its edge: the rocking between the rim's two corners has died away (both move slower "
-          "than the bounce-end's speed, docs/flight.md §4a) and the flat band between them lies on the floor, the "
-          "centre moving at {:.3g} m/s; rolling on the band is not modelled",
+          "than the bounce-end's speed, or their landings came faster than the run resolves, docs/flight.md §4a) "
+          "and the flat band between them lies on the floor, the centre moving at {:.3g} m/s; rolling on the band "
+          "is not modelled",
           std::hypot(hit.forward.velocity.x(), hit.forward.velocity.z()));
       break;
   }

@@ -487,6 +487,41 @@ TEST(Flight, ARockingCoinClosesItsEnergyBudgetThroughEveryCornerLanding) {
   }
 }
 
+// A natural flip of the toss study (docs/toss.md §4) that rolled onto its flat band: each corner
+// landing left the rim sliding, then rolling, as the landings accumulated at upright (their speeds
+// falling 3.6e-5 to 3.5e-9 m/s), and the switches between them passed the stick-slip limit first. It
+// ended `stick-slip`; the band lying on the floor is its end (docs/flight.md §4a): on-edge, upright,
+// with at least the energy of standing on the rim (here more: it spins about the vertical at 55 rad/s,
+// on the band, which the model does not have) and the run's energy books closed.
+TEST(Flight, ABandRockingWhileItSlidesEndsOnItsEdgeNotAtStickSlip) {
+  const nlohmann::json scene = {
+      {"coin", {{"radius", 0.01213}, {"mass", 0.00567}, {"thickness", 0.00175}, {"edge_radius", 0.0003}}},
+      {"initial",
+       {{"theta", -89.999}, {"omega_X", 234.9681181757918}, {"omega_Z", 30.040915826905174}, {"y", 0.3},
+        {"v_y", 2.0606580649635244}}},
+      {"friction", 0.3},
+      {"sliding", true},
+      {"flight", true},
+      {"restitution", 0.5},
+      {"effects", {{{"type", "rolling_resistance"}, {"length", 2e-5}}}},
+      {"duration", 60}};
+  const pipeline::Simulation sim = simulationOf(scene);
+  pipeline::CoinRun run(sim);
+  const double start = run.sampleAt(0)->forward.energy;
+  double worst = 0;
+  for (double t = 0; t <= 60; t += 0.01) {
+    const std::optional<pipeline::RunSample> s = run.sampleAt(t);
+    if (!s) break;
+    worst = std::max(worst, std::abs(s->forward.energy + s->dissipated - start));
+  }
+  EXPECT_TRUE(isBelow(worst, 1e-9 * start));
+  ASSERT_TRUE(run.stoppedBy());
+  const pipeline::RunEvent& end = *run.stoppedBy();
+  EXPECT_EQ(end.event, physics::ModelEvent::OnEdge) << physics::eventName(end.event) << " at " << end.t;
+  EXPECT_TRUE(isBelow(std::abs(end.state.theta), 1e-6));
+  EXPECT_GE(end.forward.energy, physics::uprightEnergy(sim.model) * (1 - 1e-9));
+}
+
 TEST(Flight, ACoinPassingUprightWithEnergyToSpareLandsOnItsOtherFace) {
   // Tipped from -12 deg towards upright fast enough to climb over the other corner's balance point.
   nlohmann::json scene = rockingCoin(0.3);

@@ -6,6 +6,7 @@
 // (COINROLL_FORWARD), so the code that calls them is unchanged.
 
 #include <string>
+#include <string_view>
 
 namespace coinroll::io {
 
@@ -18,10 +19,13 @@ class RuntimeLibrary {
   RuntimeLibrary& operator=(const RuntimeLibrary&) = delete;
 
   // The address of `name`, the library opened on first use. Throws std::runtime_error naming the
-  // library, its package and the loader's reason when either cannot be found.
+  // library, its package and the loader's reason when either cannot be found; where the loader
+  // failed on a library ours needs, naming that one as what to repair.
   void* symbol(const char* name);
 
  private:
+  std::string loadFailure(std::string_view reason) const;
+
   std::string soname_, package_;
   void* handle_ = nullptr;
 };

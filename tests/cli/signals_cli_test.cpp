@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "scratch_dir.h"
+#include "temporaries.h"
 
 namespace {
 
@@ -60,6 +61,7 @@ class BackgroundRun {
   BackgroundRun& operator=(const BackgroundRun&) = delete;
 
   bool started() const { return pid_ > 0; }
+  pid_t pid() const { return pid_; }
   // True once the process sleeps in `kernelFunction` (its /proc wchan), within `timeout`: a fixed
   // sleep before a signal is too short on a loaded machine, where the signal then lands before the
   // handlers exist.
@@ -114,18 +116,21 @@ class SignalsCliTest : public coinroll::testing::ScratchDirTest {
     std::ofstream(dir_ / "f_000.png") << kEarlierFrame;
   }
 
-  // Hidden files in the directory: the temporaries of a run under way.
+  // Hidden files in the directory: temporaries left, or named ones of a run under way.
   int hiddenFiles() const {
     int count = 0;
     for (const auto& entry : fs::directory_iterator(dir_)) count += entry.path().filename().string()[0] == '.';
     return count;
   }
 
-  // Waits (at most 10 s) until a run has at least `count` hidden files: its work is under way.
-  bool waitForHiddenFiles(int count) const {
-    for (int i = 0; i < 1000 && hiddenFiles() < count; ++i) std::this_thread::sleep_for(10ms);
-    return hiddenFiles() >= count;
+  // Waits (at most 10 s) until `run` writes at least `count` temporaries in `directory` (unnamed
+  // ones are seen among its descriptors): its work is under way.
+  static bool waitForTemporaries(const BackgroundRun& run, int count, const fs::path& directory) {
+    for (int i = 0; i < 1000 && coinroll::testing::temporariesBeingWritten(run.pid(), directory) < count; ++i)
+      std::this_thread::sleep_for(10ms);
+    return coinroll::testing::temporariesBeingWritten(run.pid(), directory) >= count;
   }
+  bool waitForTemporaries(const BackgroundRun& run, int count) const { return waitForTemporaries(run, count, dir_); }
 
   // The directory holds what the test put there, as it was: the scene and the earlier frame.
   void expectUntouched(const std::string& context) const {
@@ -145,7 +150,7 @@ TEST_F(SignalsCliTest, EveryRequestToStopLeavesNoFile) {
     const std::string name = sigabbrev_np(signal);
     BackgroundRun run(dir_, kSequence);
     ASSERT_TRUE(run.started());
-    ASSERT_TRUE(waitForHiddenFiles(5)) << "SIG" << name << ": the render never started staging frames";
+    ASSERT_TRUE(waitForTemporaries(run, 5)) << "SIG" << name << ": the render never started staging frames";
     run.send(signal);
     const int status = run.wait();
     ASSERT_TRUE(WIFEXITED(status)) << "SIG" << name << " killed the run instead of stopping it";
@@ -162,7 +167,7 @@ TEST_F(SignalsCliTest, ASecondSignalWhileFramesAreStagedEndsAtOnceAndLeavesNothi
   for (const std::string output : {"f_%03d.png", "o.mp4"}) {
     BackgroundRun run(dir_, {"render", "scene.json", "-q", "-o", output});
     ASSERT_TRUE(run.started());
-    ASSERT_TRUE(waitForHiddenFiles(output == "o.mp4" ? 1 : 20)) << output << ": the render never started writing";
+    ASSERT_TRUE(waitForTemporaries(run, output == "o.mp4" ? 1 : 20)) << output << ": the render never started writing";
     run.send(SIGSTOP);
     run.send(SIGINT);
     run.send(SIGTERM);
@@ -206,7 +211,7 @@ TEST_F(SignalsCliTest, ARequestToStopLeavesTheEarlierOutputsAndTheirSidecars) {
     for (const std::string& name : outputs) std::ofstream(dir_ / name) << earlier;
     BackgroundRun run(dir_, arguments);
     ASSERT_TRUE(run.started());
-    ASSERT_TRUE(waitForHiddenFiles(1)) << arguments[0] << ": the run never started writing";
+    ASSERT_TRUE(waitForTemporaries(run, 1)) << arguments[0] << ": the run never started writing";
     std::this_thread::sleep_for(300ms);
     run.send(SIGINT);
     const std::optional<int> status = run.waitAtMost(10s);

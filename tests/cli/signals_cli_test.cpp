@@ -1,6 +1,7 @@
 // Signals from outside (cli/interrupts.h, docs/outputs.md "Signals"): every request to stop, a
 // second one, and one that the work cannot answer in time all end the run with exit 1 and leave
-// no file, hidden temporaries included, and earlier files of the same names untouched.
+// no file, hidden temporaries included, and earlier files of the same names untouched. SIGKILL,
+// which no handler sees, leaves none either where temporaries are unnamed (io/temporary.h).
 
 #include <gtest/gtest.h>
 
@@ -132,6 +133,18 @@ class SignalsCliTest : public coinroll::testing::ScratchDirTest {
   }
   bool waitForTemporaries(const BackgroundRun& run, int count) const { return waitForTemporaries(run, count, dir_); }
 
+  // Waits (at most 10 s) until a hidden temporary of `output` is in the directory.
+  bool waitForHiddenFile(const std::string& output) const {
+    const auto present = [&] {
+      for (const auto& entry : fs::directory_iterator(dir_)) {
+        if (entry.path().filename().string().rfind("." + output + ".partial-", 0) == 0) return true;
+      }
+      return false;
+    };
+    for (int i = 0; i < 1000 && !present(); ++i) std::this_thread::sleep_for(10ms);
+    return present();
+  }
+
   // The directory holds what the test put there, as it was: the scene and the earlier frame.
   void expectUntouched(const std::string& context) const {
     std::vector<std::string> names;
@@ -227,6 +240,81 @@ TEST_F(SignalsCliTest, ARequestToStopLeavesTheEarlierOutputsAndTheirSidecars) {
     }
     expectUntouched(arguments[0]);
   }
+}
+
+// SIGKILL cannot be caught, so no handler removes anything: an unnamed temporary is freed by the
+// kernel with the process (issue 50: each killed run left its `.o.mp4.partial-PID-0`, and a PNG
+// sequence every frame it had staged).
+TEST_F(SignalsCliTest, SigkillMidWriteLeavesNoFile) {
+  for (const auto& [arguments, output] :
+       {std::pair{std::vector<std::string>{"render", "scene.json", "-q", "-o", "o.mp4"}, std::string("o.mp4")},
+        std::pair{kSequence, std::string("f_%03d.png")},
+        std::pair{std::vector<std::string>{"simulate", "scene.json", "--csv", "o.csv", "--sample-dt", "0.001", "--set",
+                                           "duration=1e4"},
+                  std::string("o.csv")}}) {
+    BackgroundRun run(dir_, arguments);
+    ASSERT_TRUE(run.started());
+    ASSERT_TRUE(waitForTemporaries(run, output == "f_%03d.png" ? 20 : 1)) << output << ": the run never started";
+    std::this_thread::sleep_for(200ms);  // well into the content
+    run.send(SIGKILL);
+    const int status = run.wait();
+    ASSERT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL) << output << ": ended before the kill";
+    expectUntouched(output);
+  }
+}
+
+// Today's named temporaries, where O_TMPFILE is refused (forced here): a request to stop still
+// leaves nothing, and SIGKILL leaves the one temporary, as the docs say it does there.
+TEST_F(SignalsCliTest, NamedTemporariesStillGoOnARequestToStopButNotOnSigkill) {
+  const coinroll::testing::NamedTemporaries named;
+  const std::vector<std::string> arguments = {"render", "scene.json", "-q", "-o", "o.mp4"};
+  {
+    BackgroundRun run(dir_, arguments);
+    ASSERT_TRUE(run.started());
+    ASSERT_TRUE(waitForHiddenFile("o.mp4")) << "the render never made its named temporary";
+    run.send(SIGTERM);
+    const int status = run.wait();
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 1) << run.errors();
+    expectUntouched("SIGTERM");
+  }
+  BackgroundRun run(dir_, arguments);
+  ASSERT_TRUE(run.started());
+  ASSERT_TRUE(waitForHiddenFile("o.mp4")) << "the render never made its named temporary";
+  run.send(SIGKILL);
+  run.wait();
+  std::vector<std::string> left;
+  for (const auto& entry : fs::directory_iterator(dir_)) {
+    if (entry.path().filename().string()[0] == '.') left.push_back(entry.path().filename().string());
+  }
+  ASSERT_EQ(left.size(), 1u);
+  EXPECT_EQ(left[0].rfind(".o.mp4.partial-" + std::to_string(run.pid()) + "-", 0), 0u) << left[0];
+}
+
+// The MP4 muxer reopens its file by name to move the index to the front (faststart). With the
+// folder renamed under it, the named temporary's path led nowhere: FFmpeg printed its own
+// "[mp4 @ 0x...] Unable to re-open" line and the temporary stayed in the renamed folder. An
+// unnamed temporary is reopened through /proc/self/fd, so the video is finished; it is then not
+// published into the renamed folder, which the user did not name, but refused with the reason.
+TEST_F(SignalsCliTest, AnOutputFolderRenamedDuringARenderIsAClearErrorAndLeavesNothing) {
+  fs::create_directory(dir_ / "out");
+  BackgroundRun run(dir_, {"render", "scene.json", "-q", "-o", "out/x.mp4", "--set", "duration=20"});
+  ASSERT_TRUE(run.started());
+  ASSERT_TRUE(waitForTemporaries(run, 1, dir_ / "out")) << "the render never started writing";
+  fs::rename(dir_ / "out", dir_ / "renamed");
+  const std::optional<int> status = run.waitAtMost(60s);
+  ASSERT_TRUE(status) << "still running 60 s later";
+  ASSERT_TRUE(WIFEXITED(*status));
+  EXPECT_EQ(WEXITSTATUS(*status), 1) << run.errors();
+  const std::string errors = run.errors();
+  EXPECT_NE(errors.find("out/x.mp4: cannot move the finished MP4 into place: No such file or directory: its "
+                        "directory " + fs::canonical(dir_).string() + "/out was renamed or removed while it was "
+                        "written"),
+            std::string::npos)
+      << errors;
+  EXPECT_EQ(errors.find("Unable to re-open"), std::string::npos) << errors;
+  EXPECT_FALSE(fs::exists(dir_ / "out"));
+  EXPECT_TRUE(fs::is_empty(dir_ / "renamed")) << "neither the video nor a temporary";
 }
 
 }  // namespace

@@ -301,6 +301,7 @@ TEST_F(SignalsCliTest, AnOutputFolderRenamedDuringARenderIsAClearErrorAndLeavesN
   BackgroundRun run(dir_, {"render", "scene.json", "-q", "-o", "out/x.mp4", "--set", "duration=20"});
   ASSERT_TRUE(run.started());
   ASSERT_TRUE(waitForTemporaries(run, 1, dir_ / "out")) << "the render never started writing";
+  std::this_thread::sleep_for(300ms);  // past the muxer's first open: the faststart reopen is the one to survive
   fs::rename(dir_ / "out", dir_ / "renamed");
   const std::optional<int> status = run.waitAtMost(60s);
   ASSERT_TRUE(status) << "still running 60 s later";

@@ -1,9 +1,10 @@
 #pragma once
 // The one output layer every command writes through (docs/outputs.md). What happens depends on
 // what the name turns out to be (io/destination.h):
-// - a new name or a regular file: the content goes to a hidden temporary beside it and is
-//   renamed onto it by commit(), so a failed or interrupted run never leaves a truncated file
-//   under the name (rename(2) within one directory is atomic); a replaced file keeps its
+// - a new name or a regular file: the content goes to a temporary beside it (unnamed where the
+//   file system allows, so not even SIGKILL leaves it; io/temporary.h) and is renamed onto it by
+//   commit(), so a failed or interrupted run never leaves a truncated file under the name
+//   (rename(2) within one directory is atomic); a replaced file keeps its
 //   permission bits (and, as root, its owner); a file the user could not write is refused;
 // - a symbolic link: the same for the file it leads to; the link stays a link;
 // - a device, FIFO or descriptor (/dev/null, a FIFO, /dev/stdout, /dev/fd/N from `>(...)`):

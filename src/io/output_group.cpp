@@ -15,11 +15,9 @@
 
 namespace coinroll::io {
 
-OutputGroup::OutputGroup(std::string what) : what_(std::move(what)) {}
-
 namespace {
 
-// The share of the limit on open files a group's unnamed temporaries may hold: the rest is left to
+// The share (1/4) of the limit on open files a group's unnamed temporaries may hold: the rest is left to
 // the encoders, the renderer and the caller (a quarter of the usual 1024 is 256 frames).
 constexpr rlim_t kUnnamedShareOfOpenFiles = 4;
 
@@ -31,6 +29,8 @@ std::size_t unnamedTemporaryBudget() {
 }
 
 }  // namespace
+
+OutputGroup::OutputGroup(std::string what) : what_(std::move(what)) {}
 
 std::filesystem::path OutputGroup::add(const std::filesystem::path& name, const std::string& what) {
   if (committed_) throw std::logic_error(name.string() + ": add() after commit()");

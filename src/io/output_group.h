@@ -1,7 +1,7 @@
 #pragma once
 // Files published together or not at all: a run's outputs, such as a PNG sequence's frames, or a
-// video and its sidecar (docs/outputs.md). Each file is
-// written under a hidden temporary beside its name; commit() renames them all into place and
+// video and its sidecar (docs/outputs.md). Each file is written under a temporary beside its name
+// (unnamed, or hidden: io/temporary.h); commit() renames them all into place and
 // removes the files retired with them, and if any step fails it undoes the steps before it, so
 // the directory holds the earlier files exactly as they were. No file system renames many files
 // in one step, so a reader looking while commit() runs (a few milliseconds for thousands of

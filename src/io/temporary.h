@@ -1,7 +1,7 @@
 #pragma once
 // Hidden files of our own beside an output: the temporary a file is written under before its
 // rename, and the copy of a replaced file a PNG sequence keeps until all its frames are in place.
-// Internal to src/io.
+// Internal to src/io: other folders write through OutputFile and OutputGroup.
 
 #include <sys/types.h>
 

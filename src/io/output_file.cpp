@@ -63,6 +63,12 @@ int openDevice(const Destination& destination) {
   return descriptor;
 }
 
+// A named temporary lives without a descriptor, and a library that writes by path opens its own;
+// an unnamed one lives only while its descriptor is open.
+void keepOnlyWhatLivesOn(TemporaryFile& temporary) {
+  if (!temporary.isUnnamed()) temporary.closeDescriptor();
+}
+
 }  // namespace
 
 // Gathers small insertions into one write(); errors surface as the exception writeBytes throws.
@@ -127,22 +133,22 @@ OutputFile::OutputFile(const std::filesystem::path& name, std::string what, Acce
     return;
   } else {
     checkReplaceable(destination_);
-    TemporaryFile temporary = createTemporaryFor(destination_);
-    temporary_ = temporary.path;
-    descriptor_ = temporary.descriptor;
-    listedTemporary_ = std::move(temporary.listed);
-    if (access_ == Access::ByPath) {
-      ::close(descriptor_);  // the library opens the file itself
-      descriptor_ = -1;
+    ownTemporary_ = createTemporaryFor(destination_);
+    temporary_ = ownTemporary_.path();
+    if (access_ == Access::Sequential) {
+      // A descriptor of our own, so that its close in commit() is checked before the output is
+      // published (NFS reports a failed write only there).
+      descriptor_ = ::fcntl(ownTemporary_.descriptor(), F_DUPFD_CLOEXEC, 0);
+      if (descriptor_ < 0) throw std::runtime_error(destination_.name.string() + ": cannot write: " + describe(errno));
     }
+    keepOnlyWhatLivesOn(ownTemporary_);
     return;
   }
   if (access_ == Access::ByPath) {
     try {
-      TemporaryFile scratch = createScratchFileFor(destination_);
-      temporary_ = scratch.path;
-      ::close(scratch.descriptor);
-      listedTemporary_ = std::move(scratch.listed);
+      ownTemporary_ = createScratchFileFor(destination_);
+      temporary_ = ownTemporary_.path();
+      keepOnlyWhatLivesOn(ownTemporary_);
     } catch (...) {
       ::close(descriptor_);
       throw;
@@ -152,7 +158,6 @@ OutputFile::OutputFile(const std::filesystem::path& name, std::string what, Acce
 
 OutputFile::~OutputFile() {
   if (descriptor_ >= 0) ::close(descriptor_);
-  if (!committed_ && !grouped_ && !temporary_.empty()) ::unlink(temporary_.c_str());
 }
 
 std::ostream& OutputFile::stream() {
@@ -199,10 +204,9 @@ void OutputFile::copyTemporaryToStream() {
   const int source = ::open(temporary_.c_str(), O_RDONLY | O_CLOEXEC);
   if (source < 0) failWrite(errno);
   // Gone from the directory before the first byte goes out: if the reader vanishes and SIGPIPE
-  // ends us during the copy, nothing is left in $TMPDIR.
-  ::unlink(temporary_.c_str());
+  // ends us during the copy, nothing is left in $TMPDIR (`source` keeps an unnamed one alive).
+  ownTemporary_.remove();
   temporary_.clear();
-  listedTemporary_.reset();
   std::vector<char> bytes(kCopyBufferBytes);
   for (;;) {
     const ssize_t count = ::read(source, bytes.data(), bytes.size());
@@ -239,13 +243,15 @@ void OutputFile::commit() {
     if (::close(descriptor) != 0 && errno != EINTR) failWrite(errno);
   }
   if (!destination_.isStream() && !grouped_) {
-    std::error_code error;
-    std::filesystem::rename(temporary_, destination_.path, error);
-    if (error) {
-      throw std::runtime_error(destination_.name.string() + ": cannot move the finished output into place: " +
-                               error.message());
-    }
-    listedTemporary_.reset();
+    const auto cannotMove = [&](int error) {
+      return std::runtime_error(destination_.name.string() + ": cannot move the finished output into place: " +
+                                describeMoveError(error, destination_.path));
+    };
+    // An unnamed temporary is given a hidden name first: rename(2) is what replaces the earlier
+    // file atomically, and linkat(2) onto the destination itself would refuse an existing one.
+    if (const int error = ownTemporary_.giveName(); error != 0) throw cannotMove(error);
+    if (const int error = ownTemporary_.closeDescriptor(); error != 0) failWrite(error);
+    if (const int error = ownTemporary_.moveOnto(destination_.path); error != 0) throw cannotMove(error);
   }
   committed_ = true;
 }

@@ -1,9 +1,10 @@
 #pragma once
 // The one output layer every command writes through (docs/outputs.md). What happens depends on
 // what the name turns out to be (io/destination.h):
-// - a new name or a regular file: the content goes to a hidden temporary beside it and is
-//   renamed onto it by commit(), so a failed or interrupted run never leaves a truncated file
-//   under the name (rename(2) within one directory is atomic); a replaced file keeps its
+// - a new name or a regular file: the content goes to a temporary beside it (unnamed where the
+//   file system allows, so not even SIGKILL leaves it; io/temporary.h) and is renamed onto it by
+//   commit(), so a failed or interrupted run never leaves a truncated file under the name
+//   (rename(2) within one directory is atomic); a replaced file keeps its
 //   permission bits (and, as root, its owner); a file the user could not write is refused;
 // - a symbolic link: the same for the file it leads to; the link stays a link;
 // - a device, FIFO or descriptor (/dev/null, a FIFO, /dev/stdout, /dev/fd/N from `>(...)`):
@@ -20,7 +21,7 @@
 
 #include "io/destination.h"
 #include "io/output_group.h"
-#include "io/unfinished_files.h"
+#include "io/temporary.h"
 
 namespace coinroll::io {
 
@@ -54,7 +55,8 @@ class OutputFile {
   const Destination& destination() const { return destination_; }
   const std::filesystem::path& name() const { return destination_.name; }
 
-  // Access::ByPath: the file to write. Empty for a Sequential stream, which has none.
+  // Access::ByPath: the file to write, by this name only while this object lives (an unnamed
+  // temporary's is /proc/self/fd/N). Empty for a Sequential stream, which has none.
   const std::filesystem::path& temporaryPath() const { return temporary_; }
 
   // Access::Sequential: appends bytes (std::runtime_error naming the output on a failed write).
@@ -79,9 +81,10 @@ class OutputFile {
   std::string what_;
   const Access access_;
   std::filesystem::path temporary_;  // the file by path: beside the destination, or in $TMPDIR
-  ListedFile listedTemporary_;       // temporary_ on the list of unfinished files, until published
+  TemporaryFile ownTemporary_;       // temporary_ when it is not a group's
   bool grouped_ = false;             // temporary_ is an OutputGroup's, published and removed by it
-  int descriptor_ = -1;              // where the bytes go: the temporary, or the stream
+  int descriptor_ = -1;              // where Sequential bytes go: the temporary (a descriptor of
+                                     // our own), or the stream
   std::unique_ptr<StreamBuffer> buffer_;
   std::unique_ptr<std::ostream> stream_;
   bool committed_ = false;

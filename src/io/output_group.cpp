@@ -1,5 +1,6 @@
 #include "io/output_group.h"
 
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -8,19 +9,28 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "io/output_file.h"
 #include "io/temporary.h"
 #include "io/unfinished_files.h"
 
 namespace coinroll::io {
 
-OutputGroup::OutputGroup(std::string what) : what_(std::move(what)) {}
+namespace {
 
-OutputGroup::~OutputGroup() {
-  if (committed_) return;
-  for (const Staged& file : staged_) {
-    if (!file.placed) ::unlink(file.temporary.c_str());
-  }
+// The share (1/4) of the limit on open files a group's unnamed temporaries may hold: the rest is left to
+// the encoders, the renderer and the caller (a quarter of the usual 1024 is 256 frames).
+constexpr rlim_t kUnnamedShareOfOpenFiles = 4;
+
+std::size_t unnamedTemporaryBudget() {
+  rlimit limit{};
+  if (::getrlimit(RLIMIT_NOFILE, &limit) != 0) return 0;
+  if (limit.rlim_cur == RLIM_INFINITY) return static_cast<std::size_t>(-1);
+  return static_cast<std::size_t>(limit.rlim_cur / kUnnamedShareOfOpenFiles);
 }
+
+}  // namespace
+
+OutputGroup::OutputGroup(std::string what) : what_(std::move(what)) {}
 
 std::filesystem::path OutputGroup::add(const std::filesystem::path& name, const std::string& what) {
   if (committed_) throw std::logic_error(name.string() + ": add() after commit()");
@@ -33,15 +43,18 @@ std::filesystem::path OutputGroup::add(const std::filesystem::path& name, const 
   }
   checkReplaceable(destination);
   refuseSharedTarget(destination, content);
-  TemporaryFile temporary = createTemporaryFor(destination);
-  ::close(temporary.descriptor);  // the caller writes it by path
   Staged file;
+  file.temporary = createTemporaryFor(destination, unnamedTemporaries_ < unnamedTemporaryBudget());
+  if (file.temporary.isUnnamed()) {
+    ++unnamedTemporaries_;
+  } else {
+    file.temporary.closeDescriptor();  // the caller writes it by path, and a sequence has thousands
+  }
+  file.path = file.temporary.path();
   file.destination = std::move(destination);
   file.what = content;
-  file.temporary = temporary.path;
-  file.listedTemporary = std::move(temporary.listed);
   staged_.push_back(std::move(file));
-  return staged_.back().temporary;
+  return staged_.back().path;
 }
 
 void OutputGroup::protect(const std::vector<std::filesystem::path>& inputs) {
@@ -130,13 +143,20 @@ void OutputGroup::commit() {
     const UnfinishedFilesSection section;
     try {
       for (Staged& file : staged_) {
-        keepPrevious(file);
-        if (std::rename(file.temporary.c_str(), file.destination.path.c_str()) != 0) {
-          throw std::runtime_error(file.destination.name.string() + ": cannot move the finished " + file.what +
-                                   " into place: " + std::strerror(errno));
+        const auto cannotMove = [&](int error) {
+          return std::runtime_error(file.destination.name.string() + ": cannot move the finished " + file.what +
+                                    " into place: " + describeMoveError(error, file.destination.path));
+        };
+        // An unnamed temporary needs a name for rename(2), the one call that replaces a file
+        // atomically; it is listed from then on, so an ending process removes it like the others.
+        if (const int error = file.temporary.giveName(); error != 0) throw cannotMove(error);
+        if (const int error = file.temporary.closeDescriptor(); error != 0) {
+          throw std::runtime_error(file.destination.name.string() + ": writing the " + file.what +
+                                   " failed: " + describeWriteError(error));
         }
+        keepPrevious(file);
+        if (const int error = file.temporary.moveOnto(file.destination.path); error != 0) throw cannotMove(error);
         file.placed = true;
-        file.listedTemporary.reset();
       }
       for (Retired& old : retired_) {
         const std::filesystem::path previous = siblingName(old.path, "previous");

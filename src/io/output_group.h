@@ -1,7 +1,7 @@
 #pragma once
 // Files published together or not at all: a run's outputs, such as a PNG sequence's frames, or a
-// video and its sidecar (docs/outputs.md). Each file is
-// written under a hidden temporary beside its name; commit() renames them all into place and
+// video and its sidecar (docs/outputs.md). Each file is written under a temporary beside its name
+// (unnamed, or hidden: io/temporary.h); commit() renames them all into place and
 // removes the files retired with them, and if any step fails it undoes the steps before it, so
 // the directory holds the earlier files exactly as they were. No file system renames many files
 // in one step, so a reader looking while commit() runs (a few milliseconds for thousands of
@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "io/destination.h"
+#include "io/temporary.h"
 #include "io/unfinished_files.h"
 
 namespace coinroll::io {
@@ -25,16 +26,18 @@ class OutputGroup {
   // `what` names one file's content in messages ("PNG"), for the files add() and retire() are not
   // told another name for.
   explicit OutputGroup(std::string what = "output");
-  ~OutputGroup();  // without commit(): removes the temporaries; the earlier files stay
+  ~OutputGroup() = default;  // without commit(): removes the temporaries; the earlier files stay
 
   OutputGroup(const OutputGroup&) = delete;
   OutputGroup& operator=(const OutputGroup&) = delete;
 
   // Stages `name`: resolves it (links followed; it must be a new name or a regular file, since
   // it is published by a rename), refuses it as OutputFile would, creates its temporary with the
-  // mode of the file it replaces, and returns the temporary's path for the caller to write.
-  // `what` names its content in messages (empty: the group's). Throws std::runtime_error naming
-  // `name`.
+  // mode of the file it replaces, and returns the temporary's path for the caller to write (by
+  // that name only while the group lives: an unnamed temporary's is /proc/self/fd/N). Each unnamed
+  // temporary holds a descriptor until commit(), so past a share of the process's limit on open
+  // files (RLIMIT_NOFILE) the rest are named ones. `what` names its content in messages (empty:
+  // the group's). Throws std::runtime_error naming `name`.
   std::filesystem::path add(const std::filesystem::path& name, const std::string& what = "");
 
   // Files add() must never lead to (the command's inputs): a frame name that reaches one, through
@@ -56,12 +59,12 @@ class OutputGroup {
   struct Staged {
     Destination destination;
     std::string what;
-    std::filesystem::path temporary;
+    TemporaryFile temporary;
+    std::filesystem::path path;      // the temporary's, as add() returned it
     std::filesystem::path previous;  // the replaced file, kept until the commit holds
     bool previousIsLink = false;     // `previous` is a second hard link: the name kept its file
     bool placed = false;             // the temporary was renamed onto the destination
-    ListedFile listedTemporary;      // unfinished files (io/unfinished_files.h) until placed
-    ListedFile listedPrevious;
+    ListedFile listedPrevious;       // unfinished files (io/unfinished_files.h) until the commit holds
   };
   struct Retired {
     std::filesystem::path path;
@@ -86,6 +89,7 @@ class OutputGroup {
 
   std::string what_;
   std::vector<Staged> staged_;
+  std::size_t unnamedTemporaries_ = 0;  // staged temporaries that hold a descriptor
   std::vector<Retired> retired_;
   std::map<FileIdentity, std::filesystem::path> protected_;  // an input's identity -> its name
   // A staged name as messages give it: the name, and what its content is.

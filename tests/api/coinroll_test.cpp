@@ -5,13 +5,19 @@
 
 #include <gtest/gtest.h>
 
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <atomic>
 #include <chrono>
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <thread>
 
 #include "scratch_dir.h"
+#include "temporaries.h"
 
 namespace {
 
@@ -63,6 +69,34 @@ TEST_F(ApiOutputs, RenderVideoNeverWritesAPngSequenceOverItsSceneFile) {
   EXPECT_NE(message.find("one of its frames would be the input " + scene.string()), std::string::npos) << message;
   EXPECT_EQ(contentsOf(scene), kScene);
   EXPECT_EQ(scratch_->fileCount(), 1);
+}
+
+// A process using the library that ends unseen leaves nothing beside the output (issue 50): SIGKILL,
+// and SIGTERM, for which the library installs no handler (multiprocessing's Pool.terminate sends
+// it to workers that forked from the caller, as this child does). Each left `.x.mp4.partial-PID-0`.
+TEST_F(ApiOutputs, ARenderKilledMidWriteLeavesNoFile) {
+  const coinroll::Scene scene = coinroll::Scene::fromJson(kScene, {"duration=60"});
+  for (const int signal : {SIGKILL, SIGTERM}) {
+    const pid_t child = ::fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+      try {
+        coinroll::renderVideo(scene, dir_ / "x.mp4");
+      } catch (...) {
+      }
+      ::_exit(0);
+    }
+    for (int i = 0; i < 1000 && coinroll::testing::temporariesBeingWritten(child, dir_) == 0; ++i)
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    const bool writing = coinroll::testing::temporariesBeingWritten(child, dir_) > 0;
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));  // well into the video
+    ::kill(child, signal);
+    int status = 0;
+    ::waitpid(child, &status, 0);
+    ASSERT_TRUE(writing) << "the render never started writing";
+    ASSERT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == signal) << "ended before the signal " << signal;
+    EXPECT_EQ(scratch_->fileCount(), 0) << "signal " << signal;
+  }
 }
 
 TEST(ApiRows, SimulateRefusesMoreRowsThanTheCommandsLimitBeforeAnyWork) {

@@ -2006,6 +2006,25 @@ def catches(pid: int, sig: int) -> bool:
     return any(mask >> (int(sig) - 1) & 1 for mask in masks)
 
 
+def writing_temporary(pid: int, directory: Path) -> bool:
+    """True while the process writes a temporary in `directory`: a hidden `.NAME.partial-PID-N`, or an
+    unnamed file (O_TMPFILE, src/io/temporary.h) among its descriptors, whose link reads "DIR/#INODE (deleted)"."""
+    if any(".partial" in p.name for p in directory.iterdir()):
+        return True
+    unnamed = str(directory.resolve()) + "/#"
+    try:
+        descriptors = os.listdir(f"/proc/{pid}/fd")
+    except OSError:
+        return False
+    for descriptor in descriptors:
+        try:
+            if os.readlink(f"/proc/{pid}/fd/{descriptor}").startswith(unnamed):
+                return True
+        except OSError:
+            pass
+    return False
+
+
 def kernel_wait(pid: int) -> str:
     """The kernel function the process sleeps in ("wait_for_partner": opening a FIFO nobody reads)."""
     try:
@@ -2024,7 +2043,7 @@ def run_process(c: Case, binary: str, directory: Path):
     problem = None
     if c.signal is not None:
         deadline = time.monotonic() + 10
-        started = lambda: (any(".partial" in p.name for p in directory.iterdir()) if c.wait_for == "partial"
+        started = lambda: (writing_temporary(process.pid, directory) if c.wait_for == "partial"
                            else len(out.data) > 0 if c.wait_for == "stdout"
                            else kernel_wait(process.pid) == "wait_for_partner" if c.wait_for == "fifo" else False)
         while c.wait_for != "sleep" and process.poll() is None and not started() and time.monotonic() < deadline:

@@ -6,6 +6,7 @@
 
 #include "cli/run_command.h"
 #include "scratch_dir.h"
+#include "temporaries.h"
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -276,9 +277,13 @@ TEST_F(RenderCliTest, InterruptLeavesNoFileAndExitsOne) {
           "render.width=320", "--set", "render.height=180", static_cast<char*>(nullptr));
     _exit(127);
   }
-  // Wait until the encoder has started writing its temporary file, then press Ctrl-C.
-  for (int i = 0; i < 200 && leftovers().empty(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  ASSERT_FALSE(leftovers().empty()) << "the render never started writing";
+  // Wait until the encoder has started writing its temporary file (unnamed, io/temporary.h: seen
+  // among the run's descriptors), then press Ctrl-C.
+  for (int i = 0; i < 200 && coinroll::testing::temporariesBeingWritten(child, dir_) < 1; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  const bool writing = coinroll::testing::temporariesBeingWritten(child, dir_) >= 1;
+  if (!writing) kill(child, SIGKILL);  // not left running for ever
+  ASSERT_TRUE(writing) << "the render never started writing";
   kill(child, SIGINT);
   int status = 0;
   waitpid(child, &status, 0);

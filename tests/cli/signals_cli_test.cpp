@@ -1,6 +1,7 @@
 // Signals from outside (cli/interrupts.h, docs/outputs.md "Signals"): every request to stop, a
 // second one, and one that the work cannot answer in time all end the run with exit 1 and leave
-// no file, hidden temporaries included, and earlier files of the same names untouched.
+// no file, hidden temporaries included, and earlier files of the same names untouched. SIGKILL,
+// which no handler sees, leaves none either where temporaries are unnamed (io/temporary.h).
 
 #include <gtest/gtest.h>
 
@@ -23,6 +24,7 @@
 #include <vector>
 
 #include "scratch_dir.h"
+#include "temporaries.h"
 
 namespace {
 
@@ -60,6 +62,7 @@ class BackgroundRun {
   BackgroundRun& operator=(const BackgroundRun&) = delete;
 
   bool started() const { return pid_ > 0; }
+  pid_t pid() const { return pid_; }
   // True once the process sleeps in `kernelFunction` (its /proc wchan), within `timeout`: a fixed
   // sleep before a signal is too short on a loaded machine, where the signal then lands before the
   // handlers exist.
@@ -114,17 +117,32 @@ class SignalsCliTest : public coinroll::testing::ScratchDirTest {
     std::ofstream(dir_ / "f_000.png") << kEarlierFrame;
   }
 
-  // Hidden files in the directory: the temporaries of a run under way.
+  // Hidden files in the directory: temporaries left, or named ones of a run under way.
   int hiddenFiles() const {
     int count = 0;
     for (const auto& entry : fs::directory_iterator(dir_)) count += entry.path().filename().string()[0] == '.';
     return count;
   }
 
-  // Waits (at most 10 s) until a run has at least `count` hidden files: its work is under way.
-  bool waitForHiddenFiles(int count) const {
-    for (int i = 0; i < 1000 && hiddenFiles() < count; ++i) std::this_thread::sleep_for(10ms);
-    return hiddenFiles() >= count;
+  // Waits (at most 10 s) until `run` writes at least `count` temporaries in `directory` (unnamed
+  // ones are seen among its descriptors): its work is under way.
+  static bool waitForTemporaries(const BackgroundRun& run, int count, const fs::path& directory) {
+    for (int i = 0; i < 1000 && coinroll::testing::temporariesBeingWritten(run.pid(), directory) < count; ++i)
+      std::this_thread::sleep_for(10ms);
+    return coinroll::testing::temporariesBeingWritten(run.pid(), directory) >= count;
+  }
+  bool waitForTemporaries(const BackgroundRun& run, int count) const { return waitForTemporaries(run, count, dir_); }
+
+  // Waits (at most 10 s) until a hidden temporary of `output` is in the directory.
+  bool waitForHiddenFile(const std::string& output) const {
+    const auto present = [&] {
+      for (const auto& entry : fs::directory_iterator(dir_)) {
+        if (entry.path().filename().string().rfind("." + output + ".partial-", 0) == 0) return true;
+      }
+      return false;
+    };
+    for (int i = 0; i < 1000 && !present(); ++i) std::this_thread::sleep_for(10ms);
+    return present();
   }
 
   // The directory holds what the test put there, as it was: the scene and the earlier frame.
@@ -145,7 +163,7 @@ TEST_F(SignalsCliTest, EveryRequestToStopLeavesNoFile) {
     const std::string name = sigabbrev_np(signal);
     BackgroundRun run(dir_, kSequence);
     ASSERT_TRUE(run.started());
-    ASSERT_TRUE(waitForHiddenFiles(5)) << "SIG" << name << ": the render never started staging frames";
+    ASSERT_TRUE(waitForTemporaries(run, 5)) << "SIG" << name << ": the render never started staging frames";
     run.send(signal);
     const int status = run.wait();
     ASSERT_TRUE(WIFEXITED(status)) << "SIG" << name << " killed the run instead of stopping it";
@@ -162,7 +180,7 @@ TEST_F(SignalsCliTest, ASecondSignalWhileFramesAreStagedEndsAtOnceAndLeavesNothi
   for (const std::string output : {"f_%03d.png", "o.mp4"}) {
     BackgroundRun run(dir_, {"render", "scene.json", "-q", "-o", output});
     ASSERT_TRUE(run.started());
-    ASSERT_TRUE(waitForHiddenFiles(output == "o.mp4" ? 1 : 20)) << output << ": the render never started writing";
+    ASSERT_TRUE(waitForTemporaries(run, output == "o.mp4" ? 1 : 20)) << output << ": the render never started writing";
     run.send(SIGSTOP);
     run.send(SIGINT);
     run.send(SIGTERM);
@@ -206,7 +224,7 @@ TEST_F(SignalsCliTest, ARequestToStopLeavesTheEarlierOutputsAndTheirSidecars) {
     for (const std::string& name : outputs) std::ofstream(dir_ / name) << earlier;
     BackgroundRun run(dir_, arguments);
     ASSERT_TRUE(run.started());
-    ASSERT_TRUE(waitForHiddenFiles(1)) << arguments[0] << ": the run never started writing";
+    ASSERT_TRUE(waitForTemporaries(run, 1)) << arguments[0] << ": the run never started writing";
     std::this_thread::sleep_for(300ms);
     run.send(SIGINT);
     const std::optional<int> status = run.waitAtMost(10s);
@@ -222,6 +240,82 @@ TEST_F(SignalsCliTest, ARequestToStopLeavesTheEarlierOutputsAndTheirSidecars) {
     }
     expectUntouched(arguments[0]);
   }
+}
+
+// SIGKILL cannot be caught, so no handler removes anything: an unnamed temporary is freed by the
+// kernel with the process (issue 50: each killed run left its `.o.mp4.partial-PID-0`, and a PNG
+// sequence every frame it had staged).
+TEST_F(SignalsCliTest, SigkillMidWriteLeavesNoFile) {
+  for (const auto& [arguments, output] :
+       {std::pair{std::vector<std::string>{"render", "scene.json", "-q", "-o", "o.mp4"}, std::string("o.mp4")},
+        std::pair{kSequence, std::string("f_%03d.png")},
+        std::pair{std::vector<std::string>{"simulate", "scene.json", "--csv", "o.csv", "--sample-dt", "0.001", "--set",
+                                           "duration=1e4"},
+                  std::string("o.csv")}}) {
+    BackgroundRun run(dir_, arguments);
+    ASSERT_TRUE(run.started());
+    ASSERT_TRUE(waitForTemporaries(run, output == "f_%03d.png" ? 20 : 1)) << output << ": the run never started";
+    std::this_thread::sleep_for(200ms);  // well into the content
+    run.send(SIGKILL);
+    const int status = run.wait();
+    ASSERT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL) << output << ": ended before the kill";
+    expectUntouched(output);
+  }
+}
+
+// Today's named temporaries, where O_TMPFILE is refused (forced here): a request to stop still
+// leaves nothing, and SIGKILL leaves the one temporary, as the docs say it does there.
+TEST_F(SignalsCliTest, NamedTemporariesStillGoOnARequestToStopButNotOnSigkill) {
+  const coinroll::testing::NamedTemporaries named;
+  const std::vector<std::string> arguments = {"render", "scene.json", "-q", "-o", "o.mp4"};
+  {
+    BackgroundRun run(dir_, arguments);
+    ASSERT_TRUE(run.started());
+    ASSERT_TRUE(waitForHiddenFile("o.mp4")) << "the render never made its named temporary";
+    run.send(SIGTERM);
+    const int status = run.wait();
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 1) << run.errors();
+    expectUntouched("SIGTERM");
+  }
+  BackgroundRun run(dir_, arguments);
+  ASSERT_TRUE(run.started());
+  ASSERT_TRUE(waitForHiddenFile("o.mp4")) << "the render never made its named temporary";
+  run.send(SIGKILL);
+  run.wait();
+  std::vector<std::string> left;
+  for (const auto& entry : fs::directory_iterator(dir_)) {
+    if (entry.path().filename().string()[0] == '.') left.push_back(entry.path().filename().string());
+  }
+  ASSERT_EQ(left.size(), 1u);
+  EXPECT_EQ(left[0].rfind(".o.mp4.partial-" + std::to_string(run.pid()) + "-", 0), 0u) << left[0];
+}
+
+// The MP4 muxer reopens its file by name to move the index to the front (faststart). With the
+// folder renamed under it, the named temporary's path led nowhere: FFmpeg printed its own
+// "[mp4 @ 0x...] Unable to re-open" line and the temporary stayed in the renamed folder. An
+// unnamed temporary is reopened through /proc/self/fd, so the video is finished; it is then not
+// published into the renamed folder, which the user did not name, but refused with the reason.
+TEST_F(SignalsCliTest, AnOutputFolderRenamedDuringARenderIsAClearErrorAndLeavesNothing) {
+  fs::create_directory(dir_ / "out");
+  BackgroundRun run(dir_, {"render", "scene.json", "-q", "-o", "out/x.mp4", "--set", "duration=20"});
+  ASSERT_TRUE(run.started());
+  ASSERT_TRUE(waitForTemporaries(run, 1, dir_ / "out")) << "the render never started writing";
+  std::this_thread::sleep_for(300ms);  // past the muxer's first open: the faststart reopen is the one to survive
+  fs::rename(dir_ / "out", dir_ / "renamed");
+  const std::optional<int> status = run.waitAtMost(60s);
+  ASSERT_TRUE(status) << "still running 60 s later";
+  ASSERT_TRUE(WIFEXITED(*status));
+  EXPECT_EQ(WEXITSTATUS(*status), 1) << run.errors();
+  const std::string errors = run.errors();
+  EXPECT_NE(errors.find("out/x.mp4: cannot move the finished MP4 into place: No such file or directory: its "
+                        "directory " + fs::canonical(dir_).string() + "/out was renamed or removed while it was "
+                        "written"),
+            std::string::npos)
+      << errors;
+  EXPECT_EQ(errors.find("Unable to re-open"), std::string::npos) << errors;
+  EXPECT_FALSE(fs::exists(dir_ / "out"));
+  EXPECT_TRUE(fs::is_empty(dir_ / "renamed")) << "neither the video nor a temporary";
 }
 
 }  // namespace

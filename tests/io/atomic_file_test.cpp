@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <fcntl.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -21,11 +22,13 @@
 #include "io/output_file.h"
 #include "io/output_group.h"
 #include "scratch_dir.h"
+#include "temporaries.h"
 
 namespace fs = std::filesystem;
 using coinroll::io::Destination;
 using coinroll::io::OutputFile;
 using coinroll::io::OutputGroup;
+using coinroll::testing::NamedTemporaries;
 using coinroll::testing::ScratchDirectory;
 
 namespace {
@@ -44,6 +47,12 @@ mode_t modeOf(const fs::path& path) {
   struct stat info {};
   EXPECT_EQ(::lstat(path.c_str(), &info), 0) << path;
   return info.st_mode & 07777;
+}
+
+// The directory a temporary is in: an unnamed one's /proc/self/fd link reads "DIRECTORY/#INODE (deleted)".
+fs::path directoryOf(const fs::path& temporary) {
+  return temporary.parent_path() == "/proc/self/fd" ? fs::read_symlink(temporary).parent_path()
+                                                    : temporary.parent_path();
 }
 
 // The message of the std::exception `action` throws, or "" when it throws none.
@@ -114,6 +123,63 @@ TEST(OutputFile, AbandonedFileLeavesNothingBehind) {
   EXPECT_TRUE(fs::is_empty(scratch.path()));
 }
 
+// Unnamed (O_TMPFILE), so a process killed while it writes leaves nothing (issue 50): the scratch
+// directory (in /tmp, a file system that has it) shows no file until the commit.
+TEST(OutputFile, TheTemporaryHasNoNameUntilCommit) {
+  const ScratchDirectory scratch;
+  OutputFile file(scratch / "out.csv", "CSV");
+  file.write("data\n");
+  EXPECT_EQ(scratch.fileCount(), 0);
+  EXPECT_EQ(file.temporaryPath().parent_path(), "/proc/self/fd");
+  file.commit();
+  EXPECT_EQ(contentOf(scratch / "out.csv"), "data\n");
+  EXPECT_EQ(scratch.fileCount(), 1);
+}
+
+// Where O_TMPFILE is refused (forced here): the hidden name beside the output, as before.
+TEST(OutputFile, WithoutUnnamedFilesTheTemporaryIsAHiddenNameBesideTheOutput) {
+  const NamedTemporaries named;
+  const ScratchDirectory scratch;
+  {
+    OutputFile file(scratch / "out.csv", "CSV");
+    file.write("data\n");
+    const std::string name = file.temporaryPath().filename().string();
+    EXPECT_EQ(file.temporaryPath().parent_path(), fs::canonical(scratch.path()));
+    EXPECT_EQ(name.rfind(".out.csv.partial-" + std::to_string(::getpid()) + "-", 0), 0u) << name;
+    EXPECT_EQ(contentOf(file.temporaryPath()), "data\n");
+    file.commit();
+  }
+  EXPECT_EQ(contentOf(scratch / "out.csv"), "data\n");
+  EXPECT_EQ(scratch.fileCount(), 1);
+  {
+    OutputFile abandoned(scratch / "other.csv", "CSV");
+    abandoned.write("half");
+    EXPECT_EQ(scratch.fileCount(), 2);
+  }
+  EXPECT_EQ(scratch.fileCount(), 1);
+}
+
+// A library that writes by path (the MP4 muxer, and its faststart pass that reopens the file) is
+// given /proc/self/fd/N, which reaches the file even after its folder is renamed; the output is
+// then not published into a folder the user did not name, and the error says why.
+TEST(OutputFile, AFolderRenamedDuringTheWriteIsAClearErrorAndLeavesNothing) {
+  const ScratchDirectory scratch;
+  fs::create_directory(scratch / "out");
+  OutputFile file(scratch / "out" / "x.mp4", "MP4", OutputFile::Access::ByPath);
+  fs::rename(scratch / "out", scratch / "renamed");
+  std::ofstream written(file.temporaryPath(), std::ios::binary);
+  written << "encoded bytes";
+  written.close();
+  EXPECT_FALSE(written.fail()) << "the temporary cannot be reopened by its path";
+  EXPECT_EQ(contentOf(file.temporaryPath()), "encoded bytes");
+  const std::string error = errorOf([&] { file.commit(); });
+  EXPECT_EQ(error, (scratch / "out" / "x.mp4").string() +
+                       ": cannot move the finished output into place: No such file or directory: its directory " +
+                       (fs::canonical(scratch.path()) / "out").string() +
+                       " was renamed or removed while it was written");
+  EXPECT_TRUE(fs::is_empty(scratch / "renamed"));
+}
+
 TEST(OutputFile, MissingDirectoryIsReportedWithThePath) {
   const ScratchDirectory scratch;
   const std::string error = errorOf([&] { OutputFile file(scratch / "no_such_dir" / "x" / "out.csv", "CSV"); });
@@ -175,7 +241,9 @@ TEST(OutputFile, AReplacedFileKeepsItsMode) {
   writeFile(target, "old\n");
   fs::permissions(target, fs::perms::owner_read | fs::perms::owner_write);  // 0600
   OutputFile file(target, "CSV");
-  EXPECT_EQ(modeOf(file.temporaryPath()), 0600u) << "the temporary is private before any content";
+  struct stat temporary {};
+  ASSERT_EQ(::stat(file.temporaryPath().c_str(), &temporary), 0);
+  EXPECT_EQ(temporary.st_mode & 07777, 0600u) << "the temporary is private before any content";
   file.write("new\n");
   file.commit();
   EXPECT_EQ(contentOf(target), "new\n");
@@ -265,7 +333,7 @@ TEST(OutputFile, ALinkIsWrittenThroughToItsTargetAndStaysALink) {
   fs::create_symlink("data/target.csv", scratch / "link.csv");
   {
     OutputFile file(scratch / "link.csv", "CSV");
-    EXPECT_EQ(file.temporaryPath().parent_path(), fs::canonical(scratch / "data")) << "beside the target";
+    EXPECT_EQ(directoryOf(file.temporaryPath()), fs::canonical(scratch / "data")) << "beside the target";
     file.write("new\n");
     file.commit();
   }
@@ -357,7 +425,7 @@ TEST(OutputFile, ASeekableOutputForAPipeIsMadeInTmpdirAndCopiedAtCommit) {
   {
     OutputFile file("/dev/fd/" + std::to_string(pipe.write), "MP4", OutputFile::Access::ByPath);
     temporary = file.temporaryPath();
-    EXPECT_EQ(temporary.parent_path(), fs::temp_directory_path());
+    EXPECT_EQ(directoryOf(temporary), fs::temp_directory_path());
     std::ofstream(temporary, std::ios::binary) << "encoded bytes";
     file.commit();
   }
@@ -390,6 +458,7 @@ TEST(OutputFile, ADescriptorThatCannotBeWrittenIsRefused) {
 // --- groups: all or nothing
 
 TEST(OutputGroup, AFailedRenameRollsBackSoTheEarlierFilesStay) {
+  const NamedTemporaries named;  // a name the test can remove, so that its rename fails
   const ScratchDirectory scratch;
   for (int i = 0; i < 3; ++i) writeFile(scratch / ("f_" + std::to_string(i)), "old " + std::to_string(i));
   writeFile(scratch / "f_3", "old stale 3");
@@ -411,6 +480,25 @@ TEST(OutputGroup, AFailedRenameRollsBackSoTheEarlierFilesStay) {
   for (int i = 0; i < 3; ++i) EXPECT_EQ(contentOf(scratch / ("f_" + std::to_string(i))), "old " + std::to_string(i));
   EXPECT_EQ(contentOf(scratch / "f_3"), "old stale 3");
   EXPECT_EQ(scratch.fileCount(), 4) << "no temporary and no kept copy is left";
+}
+
+// Each unnamed temporary of a group holds a descriptor until the commit; past a quarter of the
+// limit on open files the rest are named, so a long PNG sequence never runs out of descriptors.
+TEST(OutputGroup, PastItsShareOfOpenFilesAGroupNamesItsTemporaries) {
+  const ScratchDirectory scratch;
+  rlimit limit{};
+  ASSERT_EQ(::getrlimit(RLIMIT_NOFILE, &limit), 0);
+  const rlimit small{64, limit.rlim_max};
+  ASSERT_EQ(::setrlimit(RLIMIT_NOFILE, &small), 0);
+  {
+    OutputGroup group("PNG");
+    for (int i = 0; i < 20; ++i) writeFile(group.add(scratch / ("f_" + std::to_string(i))), std::to_string(i));
+    EXPECT_EQ(scratch.fileCount(), 4) << "16 unnamed, then named ones";
+    group.commit();
+  }
+  ASSERT_EQ(::setrlimit(RLIMIT_NOFILE, &limit), 0);
+  EXPECT_EQ(scratch.fileCount(), 20);
+  for (int i = 0; i < 20; ++i) EXPECT_EQ(contentOf(scratch / ("f_" + std::to_string(i))), std::to_string(i));
 }
 
 TEST(OutputGroup, ACommitPublishesEveryFileAndRemovesTheRetiredOnes) {

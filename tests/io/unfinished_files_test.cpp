@@ -18,6 +18,7 @@
 #include "io/output_group.h"
 #include "io/unfinished_files.h"
 #include "scratch_dir.h"
+#include "temporaries.h"
 
 namespace fs = std::filesystem;
 using coinroll::io::OutputFile;
@@ -43,9 +44,18 @@ extern "C" void removeAndEnd(int) {
 
 }  // namespace
 
-TEST(UnfinishedFiles, ATemporaryIsListedUntilItIsPublishedOrRemoved) {
+// The list holds named temporaries (where O_TMPFILE is refused, forced here) and the names given at
+// commit; an unnamed temporary has no name to remove, so it is not listed while it is written.
+TEST(UnfinishedFiles, ANamedTemporaryIsListedUntilItIsPublishedOrRemoved) {
   const ScratchDirectory scratch;
   const std::size_t before = unfinishedFileCount();
+  {
+    OutputFile file(scratch / "unnamed.csv", "CSV");
+    OutputGroup group("PNG");
+    writeFile(group.add(scratch / "f_0"), "new");
+    EXPECT_EQ(unfinishedFileCount(), before) << "an unnamed temporary is listed";
+  }
+  const coinroll::testing::NamedTemporaries named;
   {
     OutputFile published(scratch / "a.csv", "CSV");
     OutputFile abandoned(scratch / "b.csv", "CSV");
@@ -69,25 +79,28 @@ TEST(UnfinishedFiles, ATemporaryIsListedUntilItIsPublishedOrRemoved) {
 }
 
 // What a second Ctrl-C does: a process with a half-written file and half a PNG sequence staged
-// removes them and ends, without running a destructor.
+// removes them and ends, without running a destructor; with named temporaries too.
 TEST(UnfinishedFiles, RemovingThemLeavesTheDirectoryAsItWas) {
-  const ScratchDirectory scratch;
-  writeFile(scratch / "f_0", "earlier");
-  const pid_t child = ::fork();
-  ASSERT_GE(child, 0);
-  if (child == 0) {
-    OutputFile file(scratch / "out.csv", "CSV");
-    file.write("half a CSV");
-    OutputGroup group("PNG");
-    for (const char* name : {"f_0", "f_1", "f_2"}) writeFile(group.add(scratch / name), "new frame");
-    coinroll::io::removeUnfinishedFiles();
-    ::_exit(0);
+  for (const bool named : {false, true}) {
+    const ScratchDirectory scratch;
+    writeFile(scratch / "f_0", "earlier");
+    const pid_t child = ::fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+      if (named) ::setenv("COINROLL_NAMED_TEMPORARIES", "1", 1);
+      OutputFile file(scratch / "out.csv", "CSV");
+      file.write("half a CSV");
+      OutputGroup group("PNG");
+      for (const char* name : {"f_0", "f_1", "f_2"}) writeFile(group.add(scratch / name), "new frame");
+      coinroll::io::removeUnfinishedFiles();
+      ::_exit(0);
+    }
+    int status = 0;
+    ::waitpid(child, &status, 0);
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(scratch.fileCount(), 1) << (named ? "named" : "unnamed");
+    EXPECT_EQ(contentOf(scratch / "f_0"), "earlier");
   }
-  int status = 0;
-  ::waitpid(child, &status, 0);
-  ASSERT_TRUE(WIFEXITED(status));
-  EXPECT_EQ(scratch.fileCount(), 1);
-  EXPECT_EQ(contentOf(scratch / "f_0"), "earlier");
 }
 
 // A handler run after (or inside) a removal on the same thread removes again rather than wait for

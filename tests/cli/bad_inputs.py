@@ -1891,11 +1891,16 @@ case("sweep-thread-stacks", C, "sweep --threads 4 with 1 GB thread stacks under 
      "--grid initial.theta=1:20:40 -o o.csv", 1, "of 4: Resource temporarily unavailable: a thread needs memory for "
      "its stack, within the address-space limit of 1465 MiB (ulimit -v 1500000)",
      key="thread", shell=True, timeout=10)
-# A bare std::bad_alloc before. The scene reader's 16 MiB buffer cannot be had under 16 MB.
-case("out-of-memory-named", C, "a scene under a 16 MB address-space limit: out of memory, named",
-     "ulimit -v 16000; exec {bin} simulate scene.json --csv o.csv", 1,
+# A bare std::bad_alloc before. A legal 8 MiB scene (padded with spaces) cannot be read and parsed
+# under 16 MB.
+case("out-of-memory-named", C, "an 8 MiB scene under a 16 MB address-space limit: out of memory, named",
+     "ulimit -v 16000; exec {bin} simulate big.json --csv o.csv", 1,
      "out of memory: the address-space limit of 16 MiB (ulimit -v 16000) is used up", key="memory", shell=True,
-     timeout=10)
+     files={"big.json": VALID[:-1] + " " * (8 << 20) + "}"}, timeout=10)
+# Issue 50: the scene reader took 16 MiB for any scene, so a 400-byte one could not run under 16 MB.
+case("small-scene-small-limit", C, "a small scene under a 12 MB address-space limit runs (reads in chunks)",
+     "ulimit -v 12000; exec {bin} simulate scene.json --csv o.csv", 0, None, produces=("o.csv",), shell=True,
+     timeout=10, na_before="out of memory under 16 MB before (issue 50)")
 # A 16 MiB array is eight million JSON values: parsed, it took 128 MB, and as much again to free,
 # which under a 250 MB limit ended the program in std::terminate as the scene's error unwound.
 case("scene-too-many-values", C, "a 16 MB scene array of zeros under a 250 MB address-space limit",

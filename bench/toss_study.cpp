@@ -89,7 +89,7 @@ nlohmann::json landedFlip(double psi, double turns, double upSpeed, double resti
           {"flight", true},
           {"restitution", restitution},
           {"effects", {{{"type", "rolling_resistance"}, {"length", 2e-5}}}},
-          {"duration", 60}};
+          {"duration", 300}};
 }
 
 // How a landed flip ended: the face up, the event, when, and its cost.

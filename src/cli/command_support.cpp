@@ -143,13 +143,17 @@ void refuseTakingOverDefaultName(
                                scene::printable(output.string()), made));
 }
 
+void finishStandardOutput(std::string_view what) {
+  std::cout.flush();
+  // A full device, a closed stdout or a reader gone while SIGPIPE is ignored: the stream says so.
+  if (!std::cout)
+    throw std::runtime_error(fmt::format("writing the {} to stdout failed: {}", what, std::strerror(errno)));
+}
+
 void writeTextOutput(const std::string& path, std::string_view what, const std::function<void(std::ostream&)>& write) {
   if (path == "-") {
     write(std::cout);
-    std::cout.flush();
-    // A full device, a closed stdout or a reader gone while SIGPIPE is ignored: the stream says so.
-    if (!std::cout)
-      throw std::runtime_error(fmt::format("writing the {} to stdout failed: {}", what, std::strerror(errno)));
+    finishStandardOutput(what);
     return;
   }
   io::OutputFile file(path, std::string(what));

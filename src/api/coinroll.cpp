@@ -92,7 +92,7 @@ std::string joinedAround(const std::vector<std::string>& around, std::string_vie
 }
 
 Scene::Impl parsed(nlohmann::json document, const std::vector<std::string>& overrides, std::string_view sourceName) {
-  for (const std::string& assignment : overrides) scene::applyOverride(document, assignment);
+  scene::applyOverrides(document, overrides);
   scene::SceneConfig config = scene::parseScene(document, sourceName);
   return {std::move(document), std::string(sourceName), std::move(config)};
 }

@@ -45,9 +45,7 @@ std::pair<nlohmann::json, std::string> loadSceneDocument(const SceneSource& sour
   nlohmann::json document = !source.file                ? scene::builtInDefaultScene()
                             : readsStandardInput(source) ? readStandardInputScene()
                                                          : scene::readSceneDocument(*source.file);
-  // A document that is no object has no initial block to replace: the loader names what it is.
-  if (initial && document.is_object()) document["initial"] = *initial;
-  for (const std::string& assignment : source.overrides) scene::applyOverride(document, assignment);
+  scene::applyOverrides(document, source.overrides, initial);
   const std::string sourceName = !source.file                ? "built-in default scene"
                                  : readsStandardInput(source) ? "standard input"
                                                               : *source.file;

@@ -166,10 +166,7 @@ std::pair<nlohmann::json, std::string> sceneDocument(const std::string& scene, b
                                                      const std::string& sourceName,
                                                      const std::optional<nlohmann::json>& initial = std::nullopt) {
   nlohmann::json document = hasScene ? scene::parseSceneText(scene, sourceName) : scene::builtInDefaultScene();
-  if (initial && document.is_object()) document["initial"] = *initial;
-  for (const std::string& assignment : emscripten::vecFromJSArray<std::string>(overrides)) {
-    scene::applyOverride(document, assignment);
-  }
+  scene::applyOverrides(document, emscripten::vecFromJSArray<std::string>(overrides), initial);
   return {std::move(document), hasScene ? sourceName : "built-in default scene"};
 }
 

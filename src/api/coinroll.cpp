@@ -4,10 +4,10 @@
 
 #include <algorithm>
 #include <array>
-#include <cmath>
 #include <limits>
 #include <memory>
 #include <numbers>
+#include <span>
 #include <thread>
 #include <utility>
 #include <variant>
@@ -15,13 +15,12 @@
 #include "physics/coin_model.h"
 #include "physics/observables.h"
 #include "physics/steady.h"
-#include "physics/validity.h"
 #include "pipeline/cancelled.h"
 #include "pipeline/inputs.h"
+#include "pipeline/scene_run.h"
 #include "pipeline/simulation.h"
 #include "pipeline/still.h"
 #include "pipeline/sweep.h"
-#include "pipeline/trajectory_samples.h"
 #include "pipeline/video_frames.h"
 #include "scene/scene_loader.h"
 #include "video/make_sink.h"
@@ -93,7 +92,7 @@ std::string joinedAround(const std::vector<std::string>& around, std::string_vie
 }
 
 Scene::Impl parsed(nlohmann::json document, const std::vector<std::string>& overrides, std::string_view sourceName) {
-  for (const std::string& assignment : overrides) scene::applyOverride(document, assignment);
+  scene::applyOverrides(document, overrides);
   scene::SceneConfig config = scene::parseScene(document, sourceName);
   return {std::move(document), std::string(sourceName), std::move(config)};
 }
@@ -148,31 +147,26 @@ const std::vector<double>& Columns::operator[](std::string_view name) const {
   throw std::out_of_range(fmt::format("no column \"{}\" (this scene's columns: {})", name, fmt::join(names, ", ")));
 }
 
-// The same rows the CSV writer prints (pipeline/trajectory_samples.h), kept as numbers.
+// The same rows the CSV writer prints (pipeline/scene_run.h), kept as numbers.
 Columns simulate(const Scene& scene, double sampleDt, const std::atomic<bool>* cancel) {
   Columns columns;
-  const pipeline::TrajectoryReport result = translatingErrors([&] {
-    if (!(sampleDt > 0) || !std::isfinite(sampleDt)) {
-      throw std::invalid_argument(
-          fmt::format("{}: must be a finite number > 0 s, got {}", marked("sampleDt"), sampleDt));
-    }
-    // The command's limit, without its --max-rows: these rows are held in memory, not streamed.
-    pipeline::refuseTooManyRows(scene.duration(), sampleDt, pipeline::kDefaultMaxRows, marked("sampleDt"), "");
-    pipeline::Simulation simulation = pipeline::buildSimulation(scene.impl().config);
-    simulation.cancel = cancel;
-    const std::vector<std::string_view> names = pipeline::trajectoryColumns(simulation);
-    columns.names.assign(names.begin(), names.end());
-    columns.values.resize(names.size());
-    return pipeline::sampleTrajectory(simulation, sampleDt, [&columns](std::span<const double> row) {
-      for (std::size_t i = 0; i < row.size(); ++i) columns.values[i].push_back(row[i]);
-    });
-  });
-  if (const auto& stop = result.stoppedBy) {
-    columns.end = {.event = std::string(physics::eventName(stop->event)), .time = stop->t,
-                   .description = pipeline::describeStop(*stop)};
-  } else {
-    columns.end = {.event = "duration", .time = scene.duration(), .description = {}};
-  }
+  const std::string sampleDtName = marked("sampleDt");
+  pipeline::SceneRunRequest request;
+  request.sampleDt = sampleDt;
+  request.sampleDtName = sampleDtName;
+  // The command's limit (the request's default), without its --max-rows: these rows are held in
+  // memory, not streamed.
+  request.cancel = cancel;
+  const auto begin = [&columns](const pipeline::RunStart& start) {
+    columns.names.assign(start.columns.begin(), start.columns.end());
+    columns.values.resize(start.columns.size());
+  };
+  const auto row = [&columns](std::span<const double> values) {
+    for (std::size_t i = 0; i < values.size(); ++i) columns.values[i].push_back(values[i]);
+  };
+  const pipeline::SceneTable table = translatingErrors(
+      [&] { return pipeline::simulateScene(scene.impl().config, request, {.begin = begin, .row = row}); });
+  columns.end = {.event = std::string(table.end.event), .time = table.end.time, .description = table.end.description};
   return columns;
 }
 

@@ -45,9 +45,7 @@ std::pair<nlohmann::json, std::string> loadSceneDocument(const SceneSource& sour
   nlohmann::json document = !source.file                ? scene::builtInDefaultScene()
                             : readsStandardInput(source) ? readStandardInputScene()
                                                          : scene::readSceneDocument(*source.file);
-  // A document that is no object has no initial block to replace: the loader names what it is.
-  if (initial && document.is_object()) document["initial"] = *initial;
-  for (const std::string& assignment : source.overrides) scene::applyOverride(document, assignment);
+  scene::applyOverrides(document, source.overrides, initial);
   const std::string sourceName = !source.file                ? "built-in default scene"
                                  : readsStandardInput(source) ? "standard input"
                                                               : *source.file;
@@ -143,13 +141,17 @@ void refuseTakingOverDefaultName(
                                scene::printable(output.string()), made));
 }
 
+void finishStandardOutput(std::string_view what) {
+  std::cout.flush();
+  // A full device, a closed stdout or a reader gone while SIGPIPE is ignored: the stream says so.
+  if (!std::cout)
+    throw std::runtime_error(fmt::format("writing the {} to stdout failed: {}", what, std::strerror(errno)));
+}
+
 void writeTextOutput(const std::string& path, std::string_view what, const std::function<void(std::ostream&)>& write) {
   if (path == "-") {
     write(std::cout);
-    std::cout.flush();
-    // A full device, a closed stdout or a reader gone while SIGPIPE is ignored: the stream says so.
-    if (!std::cout)
-      throw std::runtime_error(fmt::format("writing the {} to stdout failed: {}", what, std::strerror(errno)));
+    finishStandardOutput(what);
     return;
   }
   io::OutputFile file(path, std::string(what));

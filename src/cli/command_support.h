@@ -58,6 +58,10 @@ void refuseTakingOverDefaultName(
     const std::filesystem::path& output, const std::string& digest,
     const std::function<std::optional<std::string>(const std::filesystem::path&)>& readDigest);
 
+// Flushes standard output once `what` ("CSV") is written to it; std::runtime_error if the stream
+// failed (a full device, a closed stdout, a reader gone while SIGPIPE is ignored).
+void finishStandardOutput(std::string_view what);
+
 // Runs `write` into `path`: standard output for "-", otherwise the output layer (a temporary file
 // that takes the name only once `write` and the close have succeeded, or a device, FIFO or
 // descriptor written directly; io/output_file.h). `what` names the content in errors ("CSV").

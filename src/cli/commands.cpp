@@ -23,6 +23,7 @@
 #include "physics/observables.h"
 #include "physics/steady.h"
 #include "physics/validity.h"
+#include "pipeline/scene_run.h"
 #include "pipeline/simulation.h"
 #include "pipeline/still.h"
 #include "pipeline/trajectory_samples.h"
@@ -74,7 +75,7 @@ ResolvedScene resolveScene(const SceneSource& source) {
 
 // The CSV's sidecar (SimulateOptions::provenancePath).
 nlohmann::json csvProvenance(const nlohmann::json& document, const SimulateOptions& options,
-                             const pipeline::TrajectoryReport& result, double duration) {
+                             const pipeline::SceneTable& run) {
   const video::Provenance provenance = provenanceOf(document);
   return {{"program", "coinroll"},
           {"version", COINROLL_VERSION},
@@ -82,9 +83,9 @@ nlohmann::json csvProvenance(const nlohmann::json& document, const SimulateOptio
           {"command", "simulate"},
           {"csv", options.csvPath},  // any bytes: dumped with invalid UTF-8 replaced (U+FFFD)
           {"sample_dt", options.sampleDt},
-          {"rows", result.rows},
-          {"end", result.stoppedBy ? std::string(physics::eventName(result.stoppedBy->event)) : "duration"},
-          {"end_time", result.stoppedBy ? result.stoppedBy->t : duration},
+          {"rows", run.run.rows},
+          {"end", run.end.event},
+          {"end_time", run.end.time},
           {"scene", document}};
 }
 
@@ -186,60 +187,66 @@ std::string approximateBytes(double bytes) {
 
 
 void runSimulate(const SimulateOptions& options) {
-  if (!(options.sampleDt > 0) || !std::isfinite(options.sampleDt)) {
-    throw UsageError(fmt::format("--sample-dt: must be a finite number > 0 s, got {}", options.sampleDt));
-  }
   refuseEmptyOutputName("--csv", options.csvPath, "out.csv (or - for standard output)");
   if (options.csvPath != "-") refuseOverwritingInput("--csv", options.csvPath, inputsOf(options.scene));
   if (options.provenancePath) refuseProvenanceName(options);
-  // Named, not a structured binding: the CSV's lambda captures the document, which clang 14 (the
+  // Named, not a structured binding: the run's lambda captures the document, which clang 14 (the
   // sanitizer build's compiler) cannot do with a binding.
   const std::pair<nlohmann::json, std::string> loaded = loadSceneDocument(options.scene);
   const nlohmann::json& document = loaded.first;
   const scene::SceneConfig scene = scene::parseScene(document, loaded.second);
-  pipeline::Simulation simulation = pipeline::buildSimulation(scene);
-  const long maxRows = options.maxRows > 0 ? options.maxRows : pipeline::kDefaultMaxRows;
-  const double rows = pipeline::sampleCountUnbounded(scene.duration, options.sampleDt);
-  const double bytes = rows * static_cast<double>(pipeline::trajectoryColumns(simulation).size()) * kCsvBytesPerValue;
-  try {
-    pipeline::refuseTooManyRows(scene.duration, options.sampleDt, maxRows, "--sample-dt", "--max-rows",
-                                fmt::format("about {} of CSV", approximateBytes(bytes)));
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(e.what());
-  }
-  simulation.cancel = &interruptRequested();
-  reportSteadyStart(scene, options.quiet);
+  const pipeline::SceneRunRequest request{
+      .sampleDt = options.sampleDt,
+      .sampleDtName = "--sample-dt",
+      .maxRows = options.maxRows > 0 ? options.maxRows : pipeline::kDefaultMaxRows,
+      .maxRowsOption = "--max-rows",
+      .rowsCost = [](double rows, std::size_t columns) {
+        return fmt::format("about {} of CSV",
+                           approximateBytes(rows * static_cast<double>(columns) * kCsvBytesPerValue));
+      },
+      .cancel = &interruptRequested()};
 
+  // The outputs open only once the run is accepted, so a refused run touches no file. With a
+  // sidecar the CSV and it are published together or not at all: a failed or interrupted run leaves
+  // both earlier files as they were.
+  io::OutputGroup outputs;
+  io::OutputGroup* const group = options.provenancePath ? &outputs : nullptr;
+  std::optional<io::OutputFile> csv, provenance;
+  std::ostream* out = &std::cout;
+  pipeline::TrajectoryCsvLine csvLine;
+  const auto begin = [&](const pipeline::RunStart& start) {
+    if (!options.quiet) {
+      for (const std::string& note : start.notes) std::cerr << note << '\n';
+    }
+    if (options.csvPath != "-") {
+      out = &csv.emplace(options.csvPath, "CSV", io::OutputFile::Access::Sequential, group).stream();
+    }
+    if (options.provenancePath) {
+      provenance.emplace(*options.provenancePath, "provenance JSON", io::OutputFile::Access::Sequential, group);
+    }
+    *out << pipeline::trajectoryCsvHeader(start.columns);
+  };
+  const auto row = [&](std::span<const double> values) {
+    const std::string_view text = csvLine(values);
+    out->write(text.data(), static_cast<std::streamsize>(text.size()));
+  };
   ProgressLine noProgress(ProgressLine::Style::Off, "", "");
-  const pipeline::TrajectoryReport result = withProgress(noProgress, options.csvPath, [&] {
-    pipeline::TrajectoryReport r;
-    const auto writeCsv = [&](std::ostream& out) {
-      r = pipeline::writeTrajectoryCsv(simulation, options.sampleDt, out);
-    };
-    if (!options.provenancePath) {
-      writeTextOutput(options.csvPath, "CSV", writeCsv);
-      return r;
+  const pipeline::SceneTable table = withProgress(noProgress, options.csvPath, [&] {
+    pipeline::SceneTable run = pipeline::simulateScene(scene, request, {.begin = begin, .row = row});
+    if (!csv) finishStandardOutput("CSV");
+    if (provenance) {
+      provenance->stream() << csvProvenance(document, options, run)
+                                  .dump(2, ' ', false, nlohmann::json::error_handler_t::replace)
+                           << '\n';
     }
-    // The CSV and its sidecar are published together or not at all, so a failed or interrupted
-    // run leaves both earlier files as they were.
-    io::OutputGroup outputs;
-    std::optional<io::OutputFile> csv;
-    if (options.csvPath != "-") csv.emplace(options.csvPath, "CSV", io::OutputFile::Access::Sequential, &outputs);
-    io::OutputFile json(*options.provenancePath, "provenance JSON", io::OutputFile::Access::Sequential, &outputs);
-    if (csv) {
-      writeCsv(csv->stream());
-    } else {
-      writeTextOutput("-", "CSV", writeCsv);
-    }
-    json.stream() << csvProvenance(document, options, r, scene.duration)
-                         .dump(2, ' ', false, nlohmann::json::error_handler_t::replace)
-                  << '\n';
     if (csv) csv->commit();
-    json.commit();
-    outputs.commit();
-    return r;
+    if (provenance) {
+      provenance->commit();
+      outputs.commit();
+    }
+    return run;
   });
-  for (const std::string& line : pipeline::reportLines(result)) {
+  for (const std::string& line : table.report) {
     // Quiet keeps what changes the meaning of the CSV: a warning, and a run that ended early.
     if (options.quiet && !line.starts_with("coinroll: warning:") && !line.starts_with("coinroll: stopped early:"))
       continue;

@@ -523,7 +523,7 @@ SceneConfig parseScene(const nlohmann::json& document, std::string_view sourceNa
 
 SceneConfig loadScene(const std::filesystem::path& file, std::span<const std::string> overrides) {
   nlohmann::json document = readSceneDocument(file);
-  for (const std::string& assignment : overrides) applyOverride(document, assignment);
+  applyOverrides(document, overrides);
   return parseScene(document, file.string());
 }
 

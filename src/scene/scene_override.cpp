@@ -141,4 +141,10 @@ void applyOverride(nlohmann::json& document, std::string_view assignment) {
   }
 }
 
+void applyOverrides(nlohmann::json& document, std::span<const std::string> overrides,
+                    const std::optional<nlohmann::json>& initial) {
+  if (initial && document.is_object()) document["initial"] = *initial;
+  for (const std::string& assignment : overrides) applyOverride(document, assignment);
+}
+
 }  // namespace coinroll::scene

@@ -1,9 +1,10 @@
 // The core's entry point for JavaScript (docs/web.md): `coinroll simulate` and `coinroll steady` as
-// calls. Each makes the calls its command makes (cli/commands.cpp runSimulate and runSteady,
-// cli/command_support.cpp loadSceneDocument), in the command's order, so the CSV is the command's
-// CSV, the steady report the command's numbers and a refused scene the command's message; the
-// columns are the rows the CSV writer prints (sampleTrajectory), kept as numbers.
-// src/wasm/core_api.js wraps them in the module's documented functions.
+// calls. simulate runs the command's run (pipeline::simulateScene) on the scene read as the command
+// reads it (cli/command_support.cpp loadSceneDocument), keeping the rows as the CSV's text or as
+// columns of doubles; steady makes the calls its command makes (cli/commands.cpp runSteady), in the
+// command's order. So the CSV is the command's CSV, the steady report the command's numbers and a
+// refused scene the command's message. src/wasm/core_api.js wraps them in the module's documented
+// functions.
 
 #include <emscripten/bind.h>
 #include <emscripten/val.h>
@@ -16,7 +17,6 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <exception>
 #include <limits>
 #include <new>
@@ -24,19 +24,16 @@
 #include <optional>
 #include <span>
 #include <string_view>
-#include <ostream>
 #include <stdexcept>
-#include <streambuf>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "physics/steady.h"
-#include "physics/validity.h"
 #include "pipeline/cancelled.h"
 #include "pipeline/simulation.h"
+#include "pipeline/scene_run.h"
 #include "pipeline/trajectory_csv.h"
-#include "pipeline/trajectory_samples.h"
 #include "scene/json_reader.h"
 #include "scene/scene_error.h"
 #include "scene/scene_loader.h"
@@ -89,53 +86,10 @@ class Progress {
   long reported_ = -1;
 };
 
-// The CSV collected in memory, its rows counted as the writer ends each line (the header's is no row).
-class CsvCollector : public std::streambuf {
- public:
-  explicit CsvCollector(Progress& progress) : progress_(progress) {}
-
-  const std::string& text() const { return text_; }
-
- protected:
-  std::streamsize xsputn(const char* data, std::streamsize size) override {
-    text_.append(data, static_cast<std::size_t>(size));
-    for (const char* end = data + size; (data = static_cast<const char*>(std::memchr(data, '\n', end - data)));
-         ++data) {
-      lineEnded();
-    }
-    return size;
-  }
-  int_type overflow(int_type c) override {
-    if (traits_type::eq_int_type(c, traits_type::eof())) return traits_type::not_eof(c);
-    text_.push_back(traits_type::to_char_type(c));
-    if (c == '\n') lineEnded();
-    return c;
-  }
-
- private:
-  void lineEnded() {
-    if (headerWritten_) progress_.row();
-    headerWritten_ = true;
-  }
-
-  Progress& progress_;
-  bool headerWritten_ = false;
-  std::string text_;
-};
-
 // Bytes or doubles copied out of the module's memory (slice) into a typed array of JavaScript's own.
 template <class T>
 val copiedOut(std::span<const T> values) {
   return val(emscripten::typed_memory_view(values.size(), values.data())).call<val>("slice");
-}
-
-val runEvent(std::string_view kind, std::string_view name, double t, const std::string& description) {
-  val event = val::object();
-  event.set("kind", std::string(kind));
-  event.set("name", std::string(name));
-  event.set("time", t);
-  event.set("description", description);
-  return event;
 }
 
 val stringArray(const std::vector<std::string>& strings) {
@@ -146,37 +100,26 @@ val stringArray(const std::vector<std::string>& strings) {
 
 // What a run gives besides its rows: the end, the events in time order, the singular time, the
 // step statistics and the command's stderr report.
-val runResult(const pipeline::TrajectoryReport& result, double duration, const std::string& note) {
+val runResult(const pipeline::SceneTable& table) {
+  const pipeline::TrajectoryReport& result = table.run;
   val out = val::object();
   out.set("rows", static_cast<double>(result.rows));
   val end = val::object();
-  if (result.stoppedBy) {
-    end.set("event", std::string(physics::eventName(result.stoppedBy->event)));
-    end.set("time", result.stoppedBy->t);
-    end.set("description", pipeline::describeStop(*result.stoppedBy));
-  } else {
-    end.set("event", std::string("duration"));
-    end.set("time", duration);
-    end.set("description", std::string());
-  }
+  end.set("event", std::string(table.end.event));
+  end.set("time", table.end.time);
+  end.set("description", table.end.description);
   out.set("end", end);
 
-  // The run's events in time order: a switch or a warning never follows the stop.
-  std::vector<std::pair<double, val>> events;
-  for (const pipeline::ModeSwitch& w : result.switches) {
-    events.emplace_back(w.t, runEvent("switch", w.toSliding ? "slides" : "rolls", w.t, ""));
+  val events = val::array();
+  for (const pipeline::RunMark& mark : table.marks) {
+    val event = val::object();
+    event.set("kind", std::string(mark.kind));
+    event.set("name", std::string(mark.name));
+    event.set("time", mark.time);
+    event.set("description", mark.description);
+    events.call<void>("push", event);
   }
-  for (const pipeline::RunEvent& w : result.warnings) {
-    events.emplace_back(w.t, runEvent("warning", physics::eventName(w.event), w.t, pipeline::describeStop(w)));
-  }
-  std::stable_sort(events.begin(), events.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-  if (const auto& stop = result.stoppedBy) {
-    events.emplace_back(stop->t,
-                        runEvent("stop", physics::eventName(stop->event), stop->t, pipeline::describeStop(*stop)));
-  }
-  val eventList = val::array();
-  for (const auto& [t, event] : events) eventList.call<void>("push", event);
-  out.set("events", eventList);
+  out.set("events", events);
   // The impacts' times, s ("flight": true): the page slows down at each (render.time_remap.impact).
   std::vector<double> impactTimes;
   for (const pipeline::ImpactRecord& impact : result.impacts) impactTimes.push_back(impact.t);
@@ -198,9 +141,9 @@ val runResult(const pipeline::TrajectoryReport& result, double duration, const s
   stats.set("rhsEvaluations", static_cast<double>(result.stats.rhsEvaluations));
   out.set("stats", stats);
 
-  std::vector<std::string> report;
-  if (!note.empty()) report.push_back("coinroll: note: " + note);
-  for (std::string& line : pipeline::reportLines(result)) report.push_back(std::move(line));
+  // All the command prints on stderr: the notes before the run, then its report.
+  std::vector<std::string> report = table.start.notes;
+  report.insert(report.end(), table.report.begin(), table.report.end());
   out.set("report", stringArray(report));
   return out;
 }
@@ -223,10 +166,7 @@ std::pair<nlohmann::json, std::string> sceneDocument(const std::string& scene, b
                                                      const std::string& sourceName,
                                                      const std::optional<nlohmann::json>& initial = std::nullopt) {
   nlohmann::json document = hasScene ? scene::parseSceneText(scene, sourceName) : scene::builtInDefaultScene();
-  if (initial && document.is_object()) document["initial"] = *initial;
-  for (const std::string& assignment : emscripten::vecFromJSArray<std::string>(overrides)) {
-    scene::applyOverride(document, assignment);
-  }
+  scene::applyOverrides(document, emscripten::vecFromJSArray<std::string>(overrides), initial);
   return {std::move(document), hasScene ? sourceName : "built-in default scene"};
 }
 
@@ -240,46 +180,51 @@ val numberOrNull(const std::optional<double>& value) { return value ? val(*value
 val simulate(const std::string& scene, bool hasScene, val overrides, const std::string& sourceName, double sampleDt,
              double maxRows, val progressCallback, bool asColumns) {
   try {
-    if (!(sampleDt > 0) || !std::isfinite(sampleDt)) {
-      throw BadRequest(fmt::format("sampleDt: must be a finite number > 0 s, got {}", sampleDt));
-    }
     const auto [document, name] = sceneDocument(scene, hasScene, std::move(overrides), sourceName);
     const scene::SceneConfig config = scene::parseScene(document, name);
-    try {  // the command's and the library's rule: whole rows, as the run writes them
-      const double limit = std::min(std::floor(maxRows), static_cast<double>(std::numeric_limits<long>::max() / 2));
-      pipeline::refuseTooManyRows(config.duration, sampleDt, static_cast<long>(limit), "sampleDt", "maxRows");
-    } catch (const std::invalid_argument& e) {
-      throw BadRequest(e.what());
-    }
-    pipeline::Simulation simulation = pipeline::buildSimulation(config);
     std::atomic<bool> cancel = false;
-    simulation.cancel = &cancel;
-    Progress progress(std::move(progressCallback), pipeline::sampleCount(config.duration, sampleDt), cancel);
-    CsvCollector csv(progress);
-    std::vector<std::vector<double>> columns(asColumns ? pipeline::trajectoryColumns(simulation).size() : 0);
-    pipeline::TrajectoryReport result;
-    try {
+    pipeline::SceneRunRequest request;
+    request.sampleDt = sampleDt;
+    request.sampleDtName = "sampleDt";
+    // Whole rows, as the run writes them, and no more than a long holds.
+    const double limit = std::min(std::floor(maxRows), static_cast<double>(std::numeric_limits<long>::max() / 2));
+    request.maxRows = static_cast<long>(limit);
+    request.maxRowsOption = "maxRows";
+    request.cancel = &cancel;
+    std::optional<Progress> progress;
+    std::vector<std::vector<double>> columns;
+    std::string csv;
+    pipeline::TrajectoryCsvLine csvLine;
+    const auto begin = [&](const pipeline::RunStart& start) {
+      progress.emplace(std::move(progressCallback), start.expectedRows, cancel);
       if (asColumns) {
-        result = pipeline::sampleTrajectory(simulation, sampleDt, [&](std::span<const double> row) {
-          for (std::size_t i = 0; i < row.size(); ++i) columns[i].push_back(row[i]);
-          progress.row();
-        });
+        columns.resize(start.columns.size());
       } else {
-        std::ostream out(&csv);
-        result = pipeline::writeTrajectoryCsv(simulation, sampleDt, out);
+        csv = pipeline::trajectoryCsvHeader(start.columns);
       }
-    } catch (const std::invalid_argument& e) {  // as the command's withProgress maps it
+    };
+    const auto row = [&](std::span<const double> values) {
+      if (asColumns) {
+        for (std::size_t i = 0; i < values.size(); ++i) columns[i].push_back(values[i]);
+      } else {
+        csv += csvLine(values);
+      }
+      progress->row();
+    };
+    pipeline::SceneTable table;
+    try {
+      table = pipeline::simulateScene(config, request, {.begin = begin, .row = row});
+    } catch (const std::invalid_argument& e) {  // the sample step, the row limit: the command's exit 2
       throw BadRequest(e.what());
     }
-    progress.finish();
+    progress->finish();
 
-    val out = runResult(result, config.duration, pipeline::steadyStartNote(config));
+    val out = runResult(table);
     if (asColumns) {
       val names = val::array();
       val values = val::array();
-      const std::vector<std::string_view> columnNames = pipeline::trajectoryColumns(simulation);
       for (std::size_t i = 0; i < columns.size(); ++i) {
-        names.call<void>("push", std::string(columnNames[i]));
+        names.call<void>("push", std::string(table.start.columns[i]));
         values.call<void>("push", copiedOut(std::span<const double>(columns[i])));
       }
       out.set("names", names);
@@ -287,8 +232,7 @@ val simulate(const std::string& scene, bool hasScene, val overrides, const std::
     } else {
       // As bytes, for core_api.js to decode with TextDecoder: embind's own std::string conversion
       // walks the text a byte at a time in JavaScript, which took a tenth of a long run.
-      const std::string& text = csv.text();
-      out.set("csvBytes", copiedOut(std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size())));
+      out.set("csvBytes", copiedOut(std::span(reinterpret_cast<const std::uint8_t*>(csv.data()), csv.size())));
     }
     return out;
   } catch (const scene::SceneError& e) {

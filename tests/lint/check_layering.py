@@ -68,7 +68,7 @@ MAY_INCLUDE = {
     },
     # The installable library's API (include/coinroll/coinroll.h): a peer of cli, never used by it.
     "api": {
-        "physics": "steady states and their stability as `coinroll steady` computes them; a run's end event by name",
+        "physics": "steady states and their stability as `coinroll steady` computes them",
         "scene": "loads and validates scenes from files or JSON text",
         "pipeline": "simulate, still and video through the same pipelines as the commands",
         "video": "picks the sink for a video's file name",
@@ -76,9 +76,9 @@ MAY_INCLUDE = {
     # The WebAssembly core's binding (docs/web.md): `coinroll simulate` as a JavaScript call, the
     # scene-to-CSV path only (no render or video in a browser's module). A peer of cli and api.
     "wasm": {
-        "physics": "a run's end event by name",
+        "physics": "steady states and their stability as `coinroll steady` computes them",
         "scene": "reads the scene text and its --set overrides as the command does",
-        "pipeline": "builds the simulation and writes the trajectory CSV as the command does",
+        "pipeline": "runs the command's run (simulateScene) and writes its rows as the command's CSV",
     },
     # Parse argv, build the pipeline, run, map errors to exit codes: may use everything.
     "cli": {

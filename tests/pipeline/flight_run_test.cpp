@@ -516,7 +516,7 @@ TEST(Flight, ABandRockingWhileItSlidesEndsOnItsEdgeNotAtStickSlip) {
   }
   EXPECT_TRUE(isBelow(worst, 1e-9 * start));
   ASSERT_TRUE(run.stoppedBy());
-  const pipeline::RunEvent& end = *run.stoppedBy();
+  const pipeline::RunEvent end = *run.stoppedBy();
   EXPECT_EQ(end.event, physics::ModelEvent::OnEdge) << physics::eventName(end.event) << " at " << end.t;
   EXPECT_TRUE(isBelow(std::abs(end.state.theta), 1e-6));
   EXPECT_GE(end.forward.energy, physics::uprightEnergy(sim.model) * (1 - 1e-9));

@@ -260,6 +260,16 @@ try {
     check(`every plot's cursor at t = ${t} s is on row ${row}, its values the CSV's there`,
           misses.length === 0 && Object.keys(plots).length > 0, misses.slice(0, 4).join('; '));
 
+    // The legends' values change as the cursor moves, and wrap anew; the picture's size must not follow
+    // (each change resizes the WebGL canvas, which in software takes a frame's time and more).
+    const viewSizes = new Set();
+    for (let k = 0; k <= 24; ++k) {
+      await hook('seek', 0.25 * k);
+      viewSizes.add(await page.$eval('#view', (e) => `${e.clientWidth}x${e.clientHeight}`));
+    }
+    check('the picture keeps its size while the plots\' cursor and legends move through the run', viewSizes.size === 1,
+          [...viewSizes].join(', '));
+
     // A press in the middle of the tilt plot, playing, pauses at the middle of the run; a drag seeks on.
     const over = await page.$eval('.plot[data-plot="tilt"] .u-over', (e) => {
       e.scrollIntoView({ block: 'center' });

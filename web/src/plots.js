@@ -43,8 +43,10 @@ function plotsOf(trajectory) {
       axes: [{ label: 'E', unit: 'J' }].concat(columns.power ? [{ label: 'P', unit: 'W' }] : []) },
     cone === undefined
       ? { id: 'contact', title: 'Floor reaction', series: contact, axes: [{ label: 'force', unit: 'N' }] }
+      // The ratio from 0, and the cone's edge in view however far inside it the coin rolls.
       : { id: 'contact', title: 'Floor reaction and the friction cone', series: contact,
-          axes: [{ label: 'N', unit: 'N' }, { label: '|F|/μₛN', unit: '' }] },
+          axes: [{ label: 'N', unit: 'N' }, { label: '|F|/μₛN', unit: '' }],
+          rightRange: (u, min, max) => [0, Math.max(1.1, max)] },
   ];
 }
 
@@ -155,7 +157,8 @@ export class Plots {
     const none = () => null, place = (chart) => this.place(chart);
     return {
       title: plot.title, width, height: kPlotHeight,
-      scales: { x: { time: false, range: (u, min, max) => [min, max] } },
+      scales: Object.assign({ x: { time: false, range: (u, min, max) => [min, max] } },
+                            plot.rightRange ? { right: { range: plot.rightRange } } : {}),
       axes,
       series: [{ label: 't', value },
                ...plot.series.map((s) => ({ label: s.label, stroke: s.stroke, width: 1.5, dash: s.dash, value,

@@ -189,15 +189,13 @@ export class Plots {
     over.addEventListener('pointermove', (event) => { if (over.hasPointerCapture(event.pointerId)) seekTo(event); });
   }
 
-  // For the test hook: each plot's x and series at its cursor, by column, with their units' labels.
+  // For the test hook: each plot's row at its cursor, x and series there (by column), and axis labels.
   atCursor() {
     return Object.fromEntries(this.charts.map((chart) => {
       const idx = chart.cursor.idx, { plot } = chart;
       const at = (k) => (idx === null ? null : chart.data[k][idx]);
       const values = Object.fromEntries(plot.series.map((s, k) => [s.key, at(k + 1)]));
-      const units = Object.fromEntries(plot.series.map((s) => [s.key, this.units.label(s.unit)]));
-      return [plot.id, { idx, x: at(0), values, units, title: plot.title,
-                         axes: chart.axes.map((a) => a.label) }];
+      return [plot.id, { idx, x: at(0), values, axes: chart.axes.map((a) => a.label) }];
     }));
   }
 }

@@ -1,8 +1,8 @@
 #!/usr/bin/env node
 // Builds the page (docs/web.md "The page") into ONE self-contained HTML file that opens from
 // file:// with no network: the WebAssembly core, the page's script, the worker's script, the
-// tree-shaken parts of three.js, the scene schema, the examples and the coin's face texture, all
-// inlined.
+// tree-shaken parts of three.js, uPlot and its stylesheet, the scene schema, the examples and the
+// coin's face texture, all inlined.
 //
 //     node web/build.mjs [--core build-wasm/coinroll_core.js] [--coinroll build/coinroll]
 //                        [--out build-web/coinroll.html]
@@ -11,6 +11,7 @@
 // controls' ranges, defaults, units and tooltips are the loader's own, not a copy.
 import { execFileSync } from 'node:child_process';
 import { mkdirSync, readFileSync, readdirSync, writeFileSync } from 'node:fs';
+import { createRequire } from 'node:module';
 import { dirname, join, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { gzipSync } from 'node:zlib';
@@ -100,7 +101,9 @@ const page = await esbuild.build(Object.assign({}, common, {
 }));
 // Inside a <script> element only "</script" ends it early; a JSON string may hold it.
 const script = page.outputFiles[0].text.replace(/<\/(script)/gi, '<\\/$1');
-const style = readFileSync(join(web, 'src/page.css'), 'utf8');
+// uPlot's own stylesheet first, so that the page's rules for the plots come after it.
+const plotStyle = readFileSync(createRequire(join(web, 'package.json')).resolve('uplot/dist/uPlot.min.css'), 'utf8');
+const style = `${plotStyle}\n${readFileSync(join(web, 'src/page.css'), 'utf8')}`;
 const html = readFileSync(join(web, 'src/page.html'), 'utf8')
   .replace('/*STYLE*/', () => style)
   .replace('/*SCRIPT*/', () => script);
@@ -108,5 +111,5 @@ mkdirSync(dirname(options.out), { recursive: true });
 writeFileSync(options.out, html);
 const mb = (n) => (n / 1e6).toFixed(3);
 console.log(`${options.out}: ${mb(html.length)} MB (the core's script ${mb(coreSource.length)} MB and its WebAssembly gzipped ` +
-            `${mb(wasmGzipBase64.length)} MB in base64, the page's script and three.js ` +
+            `${mb(wasmGzipBase64.length)} MB in base64, the page's script, three.js and uPlot ` +
             `${mb(script.length - JSON.stringify(workerSource).length - JSON.stringify(coreSource).length)} MB)`);

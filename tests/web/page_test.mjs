@@ -229,6 +229,89 @@ try {
   check('the built-in default scene runs on load', first.sourceName === 'built-in default scene', first.sourceName);
   const defaultCsv = simulate(undefined, first.sampleDt);
   await compareWithCsv('default scene', defaultCsv, [0, 1, 240, 777, defaultCsv.rows - 1]);
+
+  // The plots under the view (web/src/plots.js): the run's own columns, the cursor on the playback
+  // time, a press seeking the motion, the seed's units rescaling them.
+  await part('plots', async () => {
+    const kExpected = { tilt: ['theta'], spins: ['omega_X', 'omega_Y', 'omega_Z'], energy: ['energy'],
+                        contact: ['normal_force', 'friction_force'] };
+    const row = 777, t = defaultCsv.columns.t[row];
+    await hook('seek', t);
+    const plots = await hook('plots');
+    const drawn = await page.$$eval('.plot', (all) =>
+      all.map((p) => p.dataset.plot + (p.querySelector('canvas') ? '' : '?')));
+    const shape = Object.fromEntries(Object.entries(plots).map(([id, p]) => [id, Object.keys(p.values)]));
+    check('the default scene has the tilt, spins, energy and floor-reaction plots, with their series',
+          JSON.stringify(shape) === JSON.stringify(kExpected) && drawn.join(' ') === Object.keys(kExpected).join(' '),
+          `${JSON.stringify(shape)}; ${drawn.join(', ')}`);
+    // At the cursor: the page's own column (θ in degrees), exactly, and coinroll simulate's CSV within 1e-9 of
+    // the column's largest magnitude (the module differs from the program by 9.2e-15 of it here, docs/web.md).
+    const state = await hook('stateAt', t), misses = [];
+    for (const [id, plot] of Object.entries(plots)) {
+      if (plot.idx !== row || plot.x !== t) misses.push(`${id}: cursor at row ${plot.idx}, t = ${plot.x}`);
+      for (const [name, value] of Object.entries(plot.values)) {
+        const factor = name === 'theta' ? 180 / Math.PI : 1, column = defaultCsv.columns[name];
+        const tolerance = 1e-9 * Math.max(...column.map(Math.abs)) * factor + 1e-12;
+        if (value !== state[name] * factor || !(Math.abs(value - column[row] * factor) <= tolerance)) {
+          misses.push(`${id} ${name}: plotted ${value}, page ${state[name] * factor}, CSV ${column[row] * factor}`);
+        }
+      }
+    }
+    check(`every plot's cursor at t = ${t} s is on row ${row}, its values the CSV's there`,
+          misses.length === 0 && Object.keys(plots).length > 0, misses.slice(0, 4).join('; '));
+
+    // The legends' values change as the cursor moves, and wrap anew; the picture's size must not follow
+    // (each change resizes the WebGL canvas, which in software takes a frame's time and more).
+    const viewSizes = new Set();
+    for (let k = 0; k <= 24; ++k) {
+      await hook('seek', 0.25 * k);
+      viewSizes.add(await page.$eval('#view', (e) => `${e.clientWidth}x${e.clientHeight}`));
+    }
+    check('the picture keeps its size while the plots\' cursor and legends move through the run', viewSizes.size === 1,
+          [...viewSizes].join(', '));
+
+    // A press in the middle of the tilt plot, playing, pauses at the middle of the run; a drag seeks on.
+    const over = await page.$eval('.plot[data-plot="tilt"] .u-over', (e) => {
+      e.scrollIntoView({ block: 'center' });
+      const r = e.getBoundingClientRect();
+      return { left: r.left, width: r.width, y: r.top + r.height / 2 };
+    });
+    const { sampleDt } = await hook('run'), end = defaultCsv.columns.t[defaultCsv.rows - 1];
+    await page.click('#play');
+    await page.mouse.click(over.left + over.width / 2, over.y);
+    await new Promise((r) => setTimeout(r, 100));
+    const clicked = await hook('time'), stopped = !(await hook('playing'));
+    check('a click in the middle of the tilt plot pauses the motion at the middle of the run (within a sample)',
+          stopped && Math.abs(clicked - end / 2) <= sampleDt, `t = ${clicked}, expected ${end / 2}, paused ${stopped}`);
+    await page.mouse.move(over.left + over.width / 4, over.y);
+    await page.mouse.down();
+    for (let k = 1; k <= 10; ++k) await page.mouse.move(over.left + over.width * (0.25 + 0.05 * k), over.y);
+    await page.mouse.up();
+    await new Promise((r) => setTimeout(r, 100));
+    const dragged = await hook('time'), cursor = (await hook('plots')).tilt;
+    check('a drag along the tilt plot seeks to where it ends, the cursor following',
+          Math.abs(dragged - 0.75 * end) <= sampleDt && Math.abs(cursor.x - dragged) <= sampleDt / 2 + 1e-12,
+          `t = ${dragged}, expected ${0.75 * end}, cursor at ${cursor.x}`);
+
+    // The seed's units: energies over M g a, times over sqrt(a/g), and the axes say so.
+    await hook('seek', t);
+    const scene = JSON.parse((await hook('run')).text);
+    const schemaGravity = () => JSON.parse(coinroll(['schema']).stdout).keys.find((k) => k.path === 'gravity').default;
+    const g = scene.gravity !== undefined ? scene.gravity : schemaGravity();
+    const Mga = scene.coin.mass * g * scene.coin.radius;
+    await page.click('input[name=units][value=seed]');
+    const seed = (await hook('plots')).energy, si = plots.energy;
+    await page.click('input[name=units][value=si]');
+    const back = (await hook('plots')).energy;
+    check('in the seed\'s units the energy plot shows E / (M g a) against t / √(a/g), labelled so; SI again after',
+          Math.abs(seed.values.energy * Mga / si.values.energy - 1) <= 1e-12 &&
+          Math.abs(seed.x * Math.sqrt(scene.coin.radius / g) / t - 1) <= 1e-12 &&
+          seed.axes.join(' | ') === 't (√(a/g)) | E (Mga)' &&
+          back.values.energy === si.values.energy && back.axes.join(' | ') === 't (s) | E (J)',
+          `E ${si.values.energy} J at row ${si.idx}, ${seed.values.energy} Mga (M g a ${Mga} J) at row ${seed.idx}; ` +
+          `axes ${seed.axes.join(', ')}; back ${back.values.energy} J at row ${back.idx}, ` +
+          `axes ${back.axes.join(', ')}`);
+  });
   // Playback at the scene's pace, time_scale 0.5, or slower where frames take long (a frame's step is
   // capped at 0.1 s, so that a stalled page does not jump).
   await hook('seek', 0);
@@ -826,8 +909,10 @@ try {
       }).map((e) => `${e.tagName.toLowerCase()}#${e.id}.${e.className} ends at ${e.getBoundingClientRect().right}`);
       const view = document.getElementById('view').getBoundingClientRect();
       const { scrollWidth, scrollHeight } = document.documentElement;
+      const charts = [...document.querySelectorAll('.plot .uplot')].map((e) => e.getBoundingClientRect())
+        .map((r) => [r.left, r.top, r.width].map(Math.round));
       return { innerWidth, innerHeight, scrollWidth, scrollHeight, outside: outside.slice(0, 4),
-               view: [view.width, view.height] };
+               view: [view.width, view.height], plots: { open: document.getElementById('plots').open, charts } };
     });
     const fits = (m) => m.scrollWidth <= m.innerWidth && m.outside.length === 0;
     const open = async (frame) => {
@@ -840,6 +925,9 @@ try {
     const phone = await measure(page);
     check('at 360 px nothing lies past the window\'s sides, and the view is as wide as the window', fits(phone) &&
           phone.view[0] >= phone.innerWidth - 1 && phone.view[1] >= 200, JSON.stringify(phone));
+    check('at 360 px the four plots are open, one above another, each at least 300 px wide', phone.plots.open &&
+          phone.plots.charts.length === 4 && phone.plots.charts.every(([, top, width], k, all) => width >= 300 &&
+          (k === 0 || top > all[k - 1][1])), JSON.stringify(phone.plots));
     // The default scene's camera frames its whole circle in the program's 16:9 picture, which the
     // phone's narrower view must not cut: the coin's centre mark is in the picture all round.
     await hook('showTestMarks', true);
@@ -866,6 +954,13 @@ try {
           embedded.innerWidth === 800 && fits(embedded) && embedded.scrollHeight <= embedded.innerHeight &&
           embedded.view[0] >= 400,
           JSON.stringify(embedded));
+    // The plots, closed there to leave the picture its height, opened: they scroll inside their section.
+    await frame.evaluate(() => { document.getElementById('plots').open = true; });
+    await new Promise((r) => setTimeout(r, 200));
+    const opened = await measure(frame);
+    check('in the 800x600 iframe the plots start closed, and opened they fit its width and height',
+          !embedded.plots.open && opened.plots.charts.length === 4 && fits(opened) &&
+          opened.scrollHeight <= opened.innerHeight && opened.view[1] >= 150, JSON.stringify(opened));
 
     await page.setViewport({ width: 1600, height: 900 });
     await page.goto(pageUrl);
@@ -873,6 +968,10 @@ try {
     const wide = await measure(page);
     check('at 1600 px nothing lies past the window, and the view takes at least half its width', fits(wide) &&
           wide.scrollHeight <= wide.innerHeight && wide.view[0] >= 800, JSON.stringify(wide));
+    check('at 1600 px the four plots are open side by side under the view, the view keeping 60 % of the height',
+          wide.plots.open && wide.plots.charts.length === 4 &&
+          wide.plots.charts.every(([, top]) => top === wide.plots.charts[0][1]) &&
+          wide.view[1] >= 0.6 * wide.innerHeight, JSON.stringify(wide.plots));
   });
   check('no console error, no network request', problems.length === 0, problems.slice(0, 5).join('; '));
 } finally {

@@ -6,6 +6,7 @@ import { CameraRig } from './camera_rig.js';
 import { drawnCoinShape } from './coin_geometry.js';
 import { Controls, fitScene, suggestedValue } from './controls.js';
 import { Legend } from './legend.js';
+import { Plots } from './plots.js';
 import { Cancelled, Runner } from './runner.js';
 import { defaultOf } from './schema.js';
 import { SteadyPanel, steadyRequests } from './steady_panel.js';
@@ -82,6 +83,16 @@ const steadyPanel = new SteadyPanel($('steady'), (initial) => {
   onControl('initial[steady].steady');
 });
 const legend = new Legend($('legend'));
+// The plots open where they leave the picture room: a phone scrolls to them, a short window (an
+// 800x600 iframe) keeps them a click away.
+$('plots').open = window.innerHeight >= 700 || window.innerWidth < 720;
+// A press on a plot stops playback there, as a student points at a moment to look at it.
+const plots = new Plots($('plots'), (t) => {
+  setPlaying(false);
+  page.t = t;
+  page.holdUntil = 0;
+  view.dirty = true;
+});
 let rig = null, fixedSize = null, lastFrameTime, request = 0;
 // Whether the latest request is still to be drawn (or refused), and who waits for it (the test hook).
 let pending = true;
@@ -163,6 +174,7 @@ function newRun(result) {
   steadyPanel.show(trajectory.scene.initial, result.steady, units);
   showKeys(units);
   page.t = 0;
+  plots.show(trajectory, units);
   page.playing = true;
   page.holdUntil = 0;
   $('play').textContent = 'Pause';
@@ -204,6 +216,7 @@ function draw() {
   const units = page.units(trajectory.scene), time = (t) => units.shown(t, 's').toFixed(3);
   $('hud').textContent = renderSpec(trajectory.scene).hud ? trajectory.hudLines(state, units).join('\n') : '';
   $('time').value = page.t;
+  plots.setTime(state.t);
   $('time-text').textContent = `${time(state.t)} / ${time(trajectory.endTime)} ${units.label('s')}`;
   if (timing.firstFrameAt === undefined) timing.firstFrameAt = performance.now();
   if (timing.last && timing.last.firstFrameAt === undefined) timing.last.firstFrameAt = performance.now();
@@ -258,6 +271,7 @@ for (const radio of document.querySelectorAll('input[name=units]')) {
     if (!page.trajectory) return;
     const units = page.units(page.trajectory.scene);
     steadyPanel.setUnits(units);
+    plots.setUnits(units);
     showKeys(units);
     view.dirty = true;
   });
@@ -361,6 +375,8 @@ window.coinrollPage = {
     result['stateAt alone'] = (performance.now() - start) / frames;
     return result;
   },
+  // Each plot's numbers at its cursor (plots.js atCursor).
+  plots: () => plots.atCursor(),
   playbackRate: (t) => page.trajectory.playbackRate(page.trajectory.stateAt(t)),
   time: () => page.t,
 };

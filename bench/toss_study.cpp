@@ -7,8 +7,9 @@
 // show how much the bounces change the fraction, and time a toss from the hand to its decided face
 // and, for every tenth, to rest.
 //
-// Run: build/bench/toss_study [OUT_DIR [LANDED_TOSSES]]   (default docs/ and 2000; writes toss_caught.csv,
-// toss_landed.csv)
+// Run: build/bench/toss_study [OUT_DIR [LANDED_TOSSES [RESTITUTIONS]]]   (default docs/, 2000 and 0.2,0.5,0.8;
+// writes toss_caught.csv, toss_landed.csv). RESTITUTIONS, comma-separated, lets one process take each
+// restitution of a long study, so that the cores share it.
 
 #include <fmt/format.h>
 
@@ -19,6 +20,7 @@
 #include <map>
 #include <numbers>
 #include <random>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -188,7 +190,13 @@ int main(int argc, char** argv) {
   fmt::print("| restitution | tosses | same side, landed | same side, caught | ms per toss, decided | "
              "decided after (s) | ms per toss, to rest | endings |\n|---|---|---|---|---|---|---|---|\n");
   const int kLanded = argc > 2 ? std::stoi(argv[2]) : 2000;
-  for (const double restitution : {0.2, 0.5, 0.8}) {
+  std::vector<double> restitutions = {0.2, 0.5, 0.8};
+  if (argc > 3) {
+    restitutions.clear();
+    std::stringstream list(argv[3]);
+    for (std::string item; std::getline(list, item, ',');) restitutions.push_back(std::stod(item));
+  }
+  for (const double restitution : restitutions) {
     std::mt19937 flips(2023);
     int same = 0, caught = 0, checked = 0, edges = 0;
     double decided = 0, decidedMs = 0, restMs = 0;

@@ -1,8 +1,8 @@
 #!/usr/bin/env node
 // Builds the page (docs/web.md "The page") into ONE self-contained HTML file that opens from
 // file:// with no network: the WebAssembly core, the page's script, the worker's script, the
-// tree-shaken parts of three.js, uPlot and its stylesheet, the scene schema, the examples and the
-// coin's face texture, all inlined.
+// tree-shaken parts of three.js, uPlot and its stylesheet, the scene schema, the examples, the
+// renderer's fragment shaders and the coin's face texture, all inlined.
 //
 //     node web/build.mjs [--core build-wasm/coinroll_core.js] [--coinroll build/coinroll]
 //                        [--out build-web/coinroll.html]
@@ -67,12 +67,21 @@ try {
 }
 const examples = Object.fromEntries(readdirSync(join(repo, 'examples')).filter((f) => f.endsWith('.json')).sort()
   .map((f) => [f.replace(/\.json$/, ''), readFileSync(join(repo, 'examples', f), 'utf8')]));
+// The renderer's fragment shaders (shaders/*.frag), which the page compiles as they are: GLSL 3.30's
+// fragment stage and GLSL ES 3.00's agree on what they use, once the version line, which WebGL 2 sets
+// itself, is dropped. The vertex stages differ (three.js names the attributes and matrices its own way).
+const fragmentShaders = Object.fromEntries(['coin', 'floor', 'trace', 'flat'].map((name) => {
+  const text = readInput(join(repo, `shaders/${name}.frag`), 'a shader', 'it is in the repository').toString();
+  if (!text.startsWith('#version 330 core\n')) throw new Error(`build.mjs: shaders/${name}.frag does not start with #version 330 core`);
+  return [name, text.slice('#version 330 core\n'.length)];
+}));
 const facePng = readInput(join(repo, 'assets/coin_face.png'), 'the coin face', 'it is in the repository').toString('base64');
 
 // The page's own modules ask for these by name; esbuild resolves them here.
 const inlined = {
   'inline:schema': `export default ${schemaText.trim()};`,
   'inline:examples': `export default ${JSON.stringify(examples)};`,
+  'inline:shaders': `export default ${JSON.stringify(fragmentShaders)};`,
   'inline:face': `export default ${JSON.stringify(`data:image/png;base64,${facePng}`)};`,
   'inline:wasm': `export default ${JSON.stringify(wasmGzipBase64)};`,
 };

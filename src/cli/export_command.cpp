@@ -29,8 +29,8 @@ namespace {
 // The page's slot for the scene: the page starts from the default scene while it holds null.
 constexpr std::string_view kScenePlaceholder = R"(<script type="application/json" id="coinroll-scene">null</script>)";
 
-// The built page is about 1.2 MB (the WebAssembly core and three.js). What is read stops past this
-// bound, so a name that leads to no page (a device that never ends, such as /dev/zero; a video; a
+// The built page is a few MB at most (the WebAssembly core, three.js and uPlot). What is read stops past
+// this bound, so a name that leads to no page (a device that never ends, such as /dev/zero; a video; a
 // 3 GB file under an exported page's name) is refused instead of filling memory. The bound leaves
 // room for the page to grow and for an exported page's scene (a scene file is at most 16 MiB).
 constexpr std::size_t kMaxPageBytes = 64 << 20;
@@ -153,7 +153,7 @@ void runExport(const ExportOptions& options) {
 
   std::optional<std::string> text = readPage(page.path, page.name);
   if (!text) {
-    throw std::runtime_error(fmt::format("{}: more than {} bytes; a built page is about 1.2 MB: name the page "
+    throw std::runtime_error(fmt::format("{}: more than {} bytes, far more than a built page: name the page "
                                          "tools/build_page.sh builds (build/web/coinroll.html)", page.name,
                                          kMaxPageBytes));
   }

@@ -373,7 +373,7 @@ CLI::App* addExportCommand(CLI::App& app, ExportOptions& options) {
       "export",
       "Write the scene as a web page: coinroll's own physics in WebAssembly, drawn with three.js, with sliders");
   addSceneOptions(*command, options.scene, false);
-  addOutputOptions(*command, options.output, options.force, "The page to write (one HTML file, about 1.5 MB)");
+  addOutputOptions(*command, options.output, options.force, "The page to write (one HTML file that opens offline)");
   addQuietFlag(*command, options.quiet, "No summary on stderr");
   command->footer(
       "The page opens from file:// with no network: the scene plays at once, and its sliders (from coinroll schema)\n"

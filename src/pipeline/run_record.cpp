@@ -28,6 +28,21 @@ FrameState frameStateOf(double time, const RunSample& sample) {
           .impacts = sample.impacts};
 }
 
+void addSurveySample(RunRecord& record, const RunSample& sample, bool first, bool onGrid) {
+  MotionSurvey& survey = record.survey;
+  if (first) survey.lower = survey.upper = sample.forward.centre;
+  for (const Eigen::Vector3d& p : {sample.forward.centre, sample.forward.contactPoint}) {
+    survey.lower = survey.lower.cwiseMin(p);
+    survey.upper = survey.upper.cwiseMax(p);
+  }
+  if (onGrid) {
+    record.trace.emplace_back(static_cast<float>(sample.forward.contactPoint.x()),
+                              static_cast<float>(sample.forward.contactPoint.z()));
+    record.traceSlides.push_back(sample.forward.sliding);
+    record.traceFlies.push_back(sample.forward.flying);
+  }
+}
+
 std::optional<double> FixedFrameTimes::timeOf(long k, const RunSample*) {
   if (k >= static_cast<long>(times_.size())) return std::nullopt;
   return times_[static_cast<std::size_t>(k)];
@@ -89,18 +104,7 @@ class Pass {
       gridDone_ = true;
       return;
     }
-    MotionSurvey& survey = record_.survey;
-    if (gridIndex_ == 0) survey.lower = survey.upper = sample->forward.centre;
-    for (const Eigen::Vector3d& p : {sample->forward.centre, sample->forward.contactPoint}) {
-      survey.lower = survey.lower.cwiseMin(p);
-      survey.upper = survey.upper.cwiseMax(p);
-    }
-    if (static_cast<double>(gridIndex_) * dt_ == t) {
-      record_.trace.emplace_back(static_cast<float>(sample->forward.contactPoint.x()),
-                                 static_cast<float>(sample->forward.contactPoint.z()));
-      record_.traceSlides.push_back(sample->forward.sliding);
-      record_.traceFlies.push_back(sample->forward.flying);
-    }
+    addSurveySample(record_, *sample, gridIndex_ == 0, static_cast<double>(gridIndex_) * dt_ == t);
     if (t == duration_) atDuration_ = sample;
     if (++gridIndex_ > lastGrid_) gridDone_ = true;
   }

@@ -76,6 +76,10 @@ struct RunRecord {
   integrate::Stats stats;          // of the pass's one CoinRun
 };
 
+// Adds a sample of the run to `record`'s survey (the box round every centre and contact point; `first`
+// starts it) and, when it lies `onGrid` (at j traceInterval), the trace's next point.
+void addSurveySample(RunRecord& record, const RunSample& sample, bool first, bool onGrid);
+
 // Integrates `simulation` once, to its duration or the event that ends it.
 RunRecord recordRun(const Simulation& simulation, FramePlan& plan);
 

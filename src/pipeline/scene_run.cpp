@@ -59,12 +59,13 @@ SceneTable simulateScene(const scene::SceneConfig& scene, const SceneRunRequest&
   refuseTooManyRows(scene.duration, sampleDt, request.maxRows, request.sampleDtName, request.maxRowsOption, rowsCost);
   simulation.cancel = request.cancel;
   table.start.expectedRows = sampleCount(scene.duration, sampleDt);
+  table.start.model = &simulation.model;
   if (const std::string note = steadyStartNote(scene); !note.empty()) {
     table.start.notes.push_back("coinroll: note: " + note);
   }
 
   if (sink.begin) sink.begin(table.start);
-  table.run = sampleTrajectory(simulation, sampleDt, sink.row);
+  table.run = sampleTrajectory(simulation, sampleDt, sink.row, sink.sample);
   table.end = endOf(table.run, scene.duration);
   table.marks = marksOf(table.run);
   table.report = reportLines(table.run);

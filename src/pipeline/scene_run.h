@@ -12,6 +12,7 @@
 #include <string_view>
 #include <vector>
 
+#include "physics/coin_model.h"
 #include "pipeline/trajectory_samples.h"
 #include "scene/scene_config.h"
 
@@ -34,6 +35,7 @@ struct RunStart {
   std::vector<std::string_view> columns;  // trajectoryColumns: what each row holds, in order
   long expectedRows = 0;                  // sampleCount: the rows of a run that reaches its duration
   std::vector<std::string> notes;         // stderr lines about the scene itself ("coinroll: note: ...")
+  const physics::CoinModel* model = nullptr;  // the run's coin, valid until simulateScene returns
 };
 
 // Where the rows go. `begin` is called once, after the refusals and before the first row, so a door
@@ -41,6 +43,7 @@ struct RunStart {
 struct RowSink {
   std::function<void(const RunStart&)> begin;
   TrajectoryRow row;
+  SampleObserver sample = {};  // optional: each row's sample itself, before its row, and the duration's
 };
 
 // How a run ended: at its duration, or at the validity event that stopped it early.

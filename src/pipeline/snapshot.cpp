@@ -4,10 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
 
-#include "physics/flight.h"
+#include "pipeline/overlay_lines.h"
 #include "render/overlay_text.h"
 
 namespace coinroll::pipeline {
@@ -19,79 +18,6 @@ render::CoinPose coinPose(const FrameState& frame) {
   return {glm::vec3(static_cast<float>(centre.x()), static_cast<float>(centre.y()), static_cast<float>(centre.z())),
           frame.attitude};
 }
-
-// In the air: the coin's plane above the floor (rad, in [0, pi/2], from its axis alone, whichever
-// way it has turned over) and the height of the rim's lowest point (m). They follow from the drawn
-// pose, which is all FrameState keeps of the attitude: its fixed few bytes bound a clip's memory.
-double tiltAboveFloor(const FrameState& frame) {
-  const glm::vec3 axis = frame.attitude * glm::vec3(0, 0, 1);
-  return std::atan2(std::hypot(static_cast<double>(axis.x), static_cast<double>(axis.z)),
-                    std::abs(static_cast<double>(axis.y)));
-}
-double rimHeight(const physics::CoinModel& model, const FrameState& frame) {
-  const Eigen::Quaterniond attitude(frame.attitude.w, frame.attitude.x, frame.attitude.y, frame.attitude.z);
-  return frame.centre.y() - physics::lowestPointDepth(model, attitude.normalized());
-}
-
-// A rate that rounds to zero is shown as 0.00, never as -0.00.
-double shownToTwoDecimals(double value) { return std::abs(value) < 0.005 ? 0.0 : value; }
-
-// Overlay lines: time, tilt, the contact point's rate, the face's spin, energy (and power
-// dissipated, and the slip while sliding), then `extra`.
-std::vector<std::string> hudLines(const physics::CoinModel& model, const FrameState& frame,
-                                  const std::vector<std::string>& extra) {
-  // Near flat psi-dot grows with the contact point's rate while the face itself turns slowly, so
-  // the overlay names what it shows: Omega = phi-dot (the contact point round the floor, in Hz,
-  // what the ear hears and the eye follows) and the face's own turning omega_Z = psi-dot - phi-dot sin(theta),
-  // both in Hz, so that the two rates read side by side. A coin that rocks rather than precesses has
-  // no contact rate to show (physics::axisGoesRound).
-  // In the air there is no contact and the seed's theta (from vertical, for a coin on its rim) does
-  // not say how a tumbling coin lies: the tilt comes from the axis, and the rim's height replaces
-  // the contact's rate.
-  constexpr double kTurn = 2 * std::numbers::pi;
-  std::vector<std::string> lines = {fmt::format("t        {:9.3f} s", frame.time)};
-  if (frame.flying) {
-    lines.push_back(fmt::format("tilt     {:9.2f}° above the floor", tiltAboveFloor(frame) * 180 / std::numbers::pi));
-    lines.push_back(fmt::format("rim      {:9.2f} mm above the floor, in the air", 1e3 * rimHeight(model, frame)));
-  } else {
-    // The scene's theta (from vertical), and the tilt above the floor a spin-down is read by.
-    lines.push_back(fmt::format("θ        {:9.2f}° from vertical, {:.2f}° above the floor",
-                                shownToTwoDecimals(frame.theta * 180 / std::numbers::pi),
-                                90 - std::abs(frame.theta) * 180 / std::numbers::pi));
-    lines.push_back(frame.axisGoesRound
-                        ? fmt::format("contact  {:9.2f} Hz round the floor", std::abs(frame.precessionRate) / kTurn)
-                        : std::string("contact         -- rocking, not going round"));
-  }
-  lines.push_back(fmt::format("face     {:9.2f} Hz about its axis", shownToTwoDecimals(frame.omega_Z / kTurn)));
-  lines.push_back(fmt::format("E        {:9.5f} J", frame.energy));
-  if (!model.effects.empty()) lines.push_back(fmt::format("P        {:9.3f} mW dissipated", 1e3 * frame.power));
-  // What is drawn is what is simulated: a sliding coin says so, with the slip of its contact.
-  if (frame.sliding) lines.push_back(fmt::format("sliding  {:9.2f} mm/s slip", 1e3 * frame.slipSpeed));
-  // With flight, the phase and the bounces so far (the trace under a flying coin is its rim's lowest
-  // point seen from above).
-  if (frame.flying || frame.impacts > 0) {
-    lines.push_back(fmt::format("{:<8} {:9d} impact{}", frame.flying ? "flight" : "landed", frame.impacts,
-                                frame.impacts == 1 ? "" : "s"));
-  }
-  lines.insert(lines.end(), extra.begin(), extra.end());
-  return lines;
-}
-
-}  // namespace
-
-std::vector<std::string> panelLabel(const physics::CoinModel& model, const FrameState& frame) {
-  std::vector<std::string> lines = {fmt::format("t = {:.3f} s", frame.time)};
-  if (frame.flying) {
-    lines.push_back(fmt::format("{:.2f}° above the floor", tiltAboveFloor(frame) * 180 / std::numbers::pi));
-    lines.push_back(fmt::format("rim {:.1f} mm up, in the air", 1e3 * rimHeight(model, frame)));
-  } else {
-    lines.push_back(fmt::format("{:.2f}° above the floor", 90 - std::abs(frame.theta) * 180 / std::numbers::pi));
-    lines.push_back(fmt::format("contact {:.1f} Hz", std::abs(frame.precessionRate) / (2 * std::numbers::pi)));
-  }
-  return lines;
-}
-
-namespace {
 
 // Ribbon width for the trace: about 2.5 pixels at the camera target, at least a twentieth of the
 // coin radius.

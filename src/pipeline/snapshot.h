@@ -14,11 +14,6 @@
 
 namespace coinroll::pipeline {
 
-// A strobe panel's short overlay (still --panels), instead of the full HUD that would cover a third
-// of a small panel: the time, the tilt above the floor, and on the floor the contact point's rate,
-// in the air the rim's height (hudLines says the same in its longer form).
-std::vector<std::string> panelLabel(const physics::CoinModel& model, const FrameState& frame);
-
 // Snapshots of one run in time order, read from its record (run_record.h): the trace (the contact
 // point every traceInterval up to the frame's time, then the contact point now), stroboscopic
 // ghosts, the coin's pose, the camera from render.camera and the survey, the overlay.

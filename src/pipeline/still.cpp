@@ -13,6 +13,7 @@
 #include "pipeline/run_record.h"
 #include "pipeline/resources.h"
 #include "pipeline/simulation.h"
+#include "pipeline/overlay_lines.h"
 #include "pipeline/snapshot.h"
 #include "render/floor_tile.h"
 #include "render/renderer.h"

@@ -56,7 +56,8 @@ std::vector<std::string_view> trajectoryColumns(const Simulation& simulation) {
   return names;
 }
 
-TrajectoryReport sampleTrajectory(const Simulation& simulation, double sampleDt, const TrajectoryRow& row) {
+TrajectoryReport sampleTrajectory(const Simulation& simulation, double sampleDt, const TrajectoryRow& row,
+                                  const SampleObserver& observe) {
   const bool dissipative = isDissipative(simulation);
   CoinRun run(simulation);
   TrajectoryReport result;
@@ -69,6 +70,7 @@ TrajectoryReport sampleTrajectory(const Simulation& simulation, double sampleDt,
     const double t = static_cast<double>(k) * sampleDt;
     const std::optional<RunSample> sample = run.sampleAt(t);
     if (!sample) break;
+    if (observe) observe(t, *sample, true);
     const physics::CoinState& s = sample->state;
     const physics::Forward& f = sample->forward;
     const physics::Reaction& r = f.reaction;
@@ -95,7 +97,8 @@ TrajectoryReport sampleTrajectory(const Simulation& simulation, double sampleDt,
   // The rows end at the last multiple of the sample step; the run goes on to its duration, and a stop
   // after the last row is still its stop.
   if (result.rows == rows && static_cast<double>(rows - 1) * sampleDt < simulation.duration) {
-    run.sampleAt(simulation.duration);
+    const std::optional<RunSample> atDuration = run.sampleAt(simulation.duration);
+    if (atDuration && observe) observe(simulation.duration, *atDuration, false);
   }
   result.stoppedBy = run.stoppedBy();
   if (result.stoppedBy && !simulation.model.friction.cone) {

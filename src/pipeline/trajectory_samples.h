@@ -81,8 +81,12 @@ struct TrajectoryReport {
 
 // Integrates `simulation` and hands `row` the values of trajectoryColumns(simulation) at each
 // sample time, until the duration or the event that ends the run.
+// `observe`, when set, sees each row's sample itself before the row (`row` true; the visual track's
+// source), and the sample at the duration the run is taken on to after the last row (`row` false).
 using TrajectoryRow = std::function<void(std::span<const double>)>;
-TrajectoryReport sampleTrajectory(const Simulation& simulation, double sampleDt, const TrajectoryRow& row);
+using SampleObserver = std::function<void(double t, const RunSample&, bool row)>;
+TrajectoryReport sampleTrajectory(const Simulation& simulation, double sampleDt, const TrajectoryRow& row,
+                                  const SampleObserver& observe = {});
 
 // What `coinroll simulate` prints on stderr about a run, a line each, without line breaks: the
 // switches, the impacts and the warnings merged in simulated-time order (at one time: switch, impact,

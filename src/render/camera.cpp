@@ -5,16 +5,21 @@
 
 namespace coinroll::render {
 
-CameraMatrices cameraMatrices(const CameraView& camera, int width, int height) {
+ClipPlanes clipPlanes(const CameraView& camera) {
   const float distance = glm::length(camera.eye - camera.target);
-  const float nearPlane = std::max(1e-3f, 0.02f * distance);
-  const float farPlane = 200.0f * distance;
+  return {.near = std::max(1e-3f, 0.02f * distance), .far = 200.0f * distance};
+}
+
+glm::vec3 upOf(const CameraView& camera) {
   const glm::vec3 forward = glm::normalize(camera.target - camera.eye);
-  // Looking straight down makes y useless as "up"; fall back to -z so the view stays defined.
-  const glm::vec3 up = std::abs(forward.y) > 0.999f ? glm::vec3(0, 0, -1) : glm::vec3(0, 1, 0);
-  return {glm::lookAt(camera.eye, camera.target, up),
+  return std::abs(forward.y) > 0.999f ? glm::vec3(0, 0, -1) : glm::vec3(0, 1, 0);
+}
+
+CameraMatrices cameraMatrices(const CameraView& camera, int width, int height) {
+  const ClipPlanes planes = clipPlanes(camera);
+  return {glm::lookAt(camera.eye, camera.target, upOf(camera)),
           glm::perspective(glm::radians(camera.fovYDegrees), static_cast<float>(width) / static_cast<float>(height),
-                           nearPlane, farPlane)};
+                           planes.near, planes.far)};
 }
 
 glm::vec2 pixelFromWorld(const CameraView& camera, int width, int height, const glm::vec3& world) {

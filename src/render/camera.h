@@ -13,6 +13,16 @@ struct CameraMatrices {
   glm::mat4 projection;
 };
 
+// Where the depth buffer's range starts and ends: bracketing the target distance generously (the
+// floor fades into fog long before the far plane).
+struct ClipPlanes {
+  float near, far;  // m
+};
+ClipPlanes clipPlanes(const CameraView& camera);
+
+// The view's "up": the floor's y, or -z looking straight down, where y says nothing.
+glm::vec3 upOf(const CameraView& camera);
+
 // Right-handed look-at with the floor's y up; near and far planes bracket the target distance
 // generously (the floor fades into fog long before the far plane).
 CameraMatrices cameraMatrices(const CameraView& camera, int width, int height);

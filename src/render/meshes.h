@@ -19,6 +19,9 @@ struct CoinVertex {
   float part;          // a CoinPart, as float for the vertex attribute
 };
 
+// Facets round the rim of the coin the renderer draws (and the page, from the same triangles).
+inline constexpr int kCoinSegments = 128;
+
 // Triangles (three vertices each) of the coin with `segments` facets around the rim.
 std::vector<CoinVertex> coinTriangles(const CoinShape& shape, int segments);
 

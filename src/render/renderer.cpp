@@ -18,8 +18,6 @@ namespace coinroll::render {
 
 namespace {
 
-constexpr int kCoinSegments = 128;
-
 void validate(const RenderSettings& s) {
   for (const auto& [field, side] : {std::pair{"width", s.width}, std::pair{"height", s.height}}) {
     if (side < kMinImageSide || side > kMaxImageSide) {

@@ -18,6 +18,7 @@
 #include <cmath>
 #include <cstdint>
 #include <exception>
+#include <initializer_list>
 #include <limits>
 #include <new>
 #include <numbers>
@@ -34,6 +35,10 @@
 #include "pipeline/simulation.h"
 #include "pipeline/scene_run.h"
 #include "pipeline/trajectory_csv.h"
+#include "pipeline/visual_track.h"
+#include "render/camera.h"
+#include "render/floor_tile.h"
+#include "render/theme.h"
 #include "scene/json_reader.h"
 #include "scene/scene_error.h"
 #include "scene/scene_loader.h"
@@ -170,6 +175,94 @@ std::pair<nlohmann::json, std::string> sceneDocument(const std::string& scene, b
   return {std::move(document), hasScene ? sourceName : "built-in default scene"};
 }
 
+// Texts as one buffer of UTF-8, each ended by a NUL, for core_api.js to decode at once and split:
+// thousands of std::string conversions by embind would walk them a byte at a time.
+val textsOut(const std::vector<std::string>& texts) {
+  std::string bytes;
+  for (const std::string& text : texts) bytes.append(text).push_back('\0');
+  return copiedOut(std::span(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()));
+}
+
+// The visual track (pipeline/visual_track.h) as typed arrays: the coin's triangles (position and
+// normal, three floats a vertex; part, one) and its radii, per row the camera (eye, target and up,
+// three floats a row; the vertical field of view in degrees, one) and the overlay's text, and the
+// clip's clock (each frame's simulated time and playback rate, at fps frames per second of video).
+val visualOut(const pipeline::VisualTrack& track, const render::CoinShape& shape) {
+  std::vector<float> position, normal, part;
+  for (const render::CoinVertex& v : track.coin) {
+    position.insert(position.end(), {v.position.x, v.position.y, v.position.z});
+    normal.insert(normal.end(), {v.normal.x, v.normal.y, v.normal.z});
+    part.push_back(v.part);
+  }
+  val coin = val::object();
+  coin.set("position", copiedOut(std::span<const float>(position)));
+  coin.set("normal", copiedOut(std::span<const float>(normal)));
+  coin.set("part", copiedOut(std::span<const float>(part)));
+  val out = val::object();
+  out.set("coin", coin);
+  // m: the coin's outer radius, and the face's to the fillet, across which the face's picture lies.
+  out.set("coinRadius", static_cast<double>(shape.radius));
+  out.set("faceRadius", static_cast<double>(shape.radius - shape.edgeRadius));
+  std::vector<float> eye, target, up, fov;
+  for (const render::CameraView& camera : track.cameras) {
+    const glm::vec3 cameraUp = render::upOf(camera);
+    eye.insert(eye.end(), {camera.eye.x, camera.eye.y, camera.eye.z});
+    target.insert(target.end(), {camera.target.x, camera.target.y, camera.target.z});
+    up.insert(up.end(), {cameraUp.x, cameraUp.y, cameraUp.z});
+    fov.push_back(camera.fovYDegrees);
+  }
+  val cameras = val::object();
+  cameras.set("eye", copiedOut(std::span<const float>(eye)));
+  cameras.set("target", copiedOut(std::span<const float>(target)));
+  cameras.set("up", copiedOut(std::span<const float>(up)));
+  cameras.set("fov", copiedOut(std::span<const float>(fov)));
+  out.set("cameras", cameras);
+  out.set("overlaySiBytes", textsOut(track.overlaySi));
+  out.set("overlaySeedBytes", textsOut(track.overlaySeed));
+  val clock = val::object();
+  clock.set("fps", track.clock.fps);
+  clock.set("times", copiedOut(std::span<const double>(track.clock.times)));
+  clock.set("playbackRates", copiedOut(std::span<const double>(track.clock.playbackRates)));
+  clock.set("simulatedFrames", static_cast<double>(track.clock.simulatedFrames));
+  // s of video a clip holds its landing (and a page its end, before it plays again).
+  clock.set("holdSeconds", pipeline::kLandingHoldSeconds);
+  out.set("clock", clock);
+  return out;
+}
+
+val floats(std::initializer_list<float> values) {
+  return copiedOut(std::span<const float>(values.begin(), values.size()));
+}
+val rgb(const glm::vec3& c) { return floats({c.r, c.g, c.b}); }
+
+// What the picture is drawn in for render.theme `name` (render/theme.h) besides the shaders: the sky,
+// the trace's colours, and the floor's grid tile (`tilePixels` square, RGBA bytes, lit and in sRGB),
+// with the tile's and the grid's size in metres.
+val picture(const std::string& name, int tilePixels) {
+  const render::Theme theme = name == "paper" ? render::Theme::Paper : render::Theme::Classic;
+  const render::Palette& palette = render::palette(theme);
+  val out = val::object();
+  out.set("backgroundSrgb", rgb(palette.backgroundSrgb));
+  val trace = val::object();
+  trace.set("recentRolling", rgb(palette.trace.recentRolling));
+  trace.set("oldRolling", rgb(palette.trace.oldRolling));
+  trace.set("recentSliding", rgb(palette.trace.recentSliding));
+  trace.set("oldSliding", rgb(palette.trace.oldSliding));
+  trace.set("opacity", floats({palette.trace.opacity.x, palette.trace.opacity.y}));
+  out.set("trace", trace);
+  val floor = val::object();
+  floor.set("floor", rgb(palette.floor.floor));
+  floor.set("minorLine", rgb(palette.floor.minorLine));
+  floor.set("majorLine", rgb(palette.floor.majorLine));
+  out.set("floor", floor);
+  const image::Image tile = render::floorTile(tilePixels, palette.floor);
+  out.set("floorTile", copiedOut(std::span<const std::uint8_t>(tile.rgba)));
+  out.set("tilePixels", tilePixels);
+  out.set("tileMetres", render::kFloorTileMetres);
+  out.set("gridMetres", render::kFloorGridMetres);
+  return out;
+}
+
 val numberOrNull(const std::optional<double>& value) { return value ? val(*value) : val::null(); }
 
 // `scene`: the scene file's bytes (a JavaScript string arrives as UTF-8); `hasScene` false: the
@@ -178,13 +271,14 @@ val numberOrNull(const std::optional<double>& value) { return value ? val(*value
 // holds `error` (kind, exitCode and message, as the command's exit code and message) instead of
 // throwing, so no C++ exception crosses into JavaScript; core_api.js throws it.
 val simulate(const std::string& scene, bool hasScene, val overrides, const std::string& sourceName, double sampleDt,
-             double maxRows, val progressCallback, bool asColumns) {
+             double maxRows, val progressCallback, bool asColumns, bool visual) {
   try {
     const auto [document, name] = sceneDocument(scene, hasScene, std::move(overrides), sourceName);
     const scene::SceneConfig config = scene::parseScene(document, name);
     std::atomic<bool> cancel = false;
     pipeline::SceneRunRequest request;
-    request.sampleDt = sampleDt;
+    // The visual track's rows lie on the renderer's trace grid, whose slow-downs it follows.
+    request.sampleDt = visual ? pipeline::traceInterval(config.duration) : sampleDt;
     request.sampleDtName = "sampleDt";
     // Whole rows, as the run writes them, and no more than a long holds.
     const double limit = std::min(std::floor(maxRows), static_cast<double>(std::numeric_limits<long>::max() / 2));
@@ -195,8 +289,10 @@ val simulate(const std::string& scene, bool hasScene, val overrides, const std::
     std::vector<std::vector<double>> columns;
     std::string csv;
     pipeline::TrajectoryCsvLine csvLine;
+    std::optional<pipeline::VisualTrackBuilder> track;
     const auto begin = [&](const pipeline::RunStart& start) {
       progress.emplace(std::move(progressCallback), start.expectedRows, cancel);
+      if (visual) track.emplace(config, *start.model);
       if (asColumns) {
         columns.resize(start.columns.size());
       } else {
@@ -212,14 +308,20 @@ val simulate(const std::string& scene, bool hasScene, val overrides, const std::
       progress->row();
     };
     pipeline::SceneTable table;
+    std::optional<pipeline::VisualTrack> finished;
     try {
-      table = pipeline::simulateScene(config, request, {.begin = begin, .row = row});
-    } catch (const std::invalid_argument& e) {  // the sample step, the row limit: the command's exit 2
+      pipeline::SampleObserver sample;
+      if (visual) sample = [&](double t, const pipeline::RunSample& s, bool isRow) { track->add(t, s, isRow); };
+      table = pipeline::simulateScene(config, request, {.begin = begin, .row = row, .sample = sample});
+      if (track) finished = std::move(*track).finish(&cancel);
+    } catch (const std::invalid_argument& e) {  // the sample step, the row or frame limit: the command's exit 2
       throw BadRequest(e.what());
     }
     progress->finish();
 
     val out = runResult(table);
+    out.set("sampleDt", request.sampleDt);
+    if (finished) out.set("visual", visualOut(*finished, config.render.picture.coin));
     if (asColumns) {
       val names = val::array();
       val values = val::array();
@@ -376,6 +478,7 @@ std::string defaultSceneJson() { return scene::builtInDefaultScene().dump(2) + "
 EMSCRIPTEN_BINDINGS(coinroll_core) {
   emscripten::function("coreSimulate", &simulate);
   emscripten::function("coreSteady", &steady);
+  emscripten::function("corePicture", &picture);
   emscripten::function("coreDefaultSceneJson", &defaultSceneJson);
   emscripten::constant("coreVersion", std::string(COINROLL_VERSION));
 }

@@ -41,11 +41,12 @@
     return overrides;
   }
 
-  function simulateOptions(options) {
+  // `allowed`: the options the function takes (visualRun chooses its own sample step).
+  function simulateOptions(options, allowed = kSimulateOptions) {
     if (options === undefined || options === null) options = {};
     if (typeof options !== 'object') throw new TypeError(`options: expected an object; got ${describeValue(options)}`);
-    const unknown = Object.keys(options).filter((key) => !kSimulateOptions.includes(key));
-    if (unknown.length) throw new TypeError(`options: unknown ${unknown.join(', ')}; the options are ${kSimulateOptions.join(', ')}`);
+    const unknown = Object.keys(options).filter((key) => !allowed.includes(key));
+    if (unknown.length) throw new TypeError(`options: unknown ${unknown.join(', ')}; the options are ${allowed.join(', ')}`);
     const { sampleDt = 0.01, sourceName = 'scene JSON', maxRows = 1e9, onProgress } = options;
     if (typeof sampleDt !== 'number') throw new TypeError(`options.sampleDt: expected a number of seconds; got ${describeValue(sampleDt)}`);
     if (typeof sourceName !== 'string') throw new TypeError(`options.sourceName: expected a string; got ${describeValue(sourceName)}`);
@@ -58,11 +59,16 @@
     return { sampleDt, sourceName, maxRows, onProgress };
   }
 
-  // asColumns: the rows as Float64Array columns instead of the CSV's text.
-  function simulateRun(scene, overrides, options, asColumns) {
+  // Texts the core packed into one buffer, each ended by a NUL (core.cpp textsOut).
+  const textsOf = (bytes) => new TextDecoder().decode(bytes).split('\0').slice(0, -1);
+
+  // asColumns: the rows as Float64Array columns instead of the CSV's text. visual: on the renderer's
+  // trace grid, with the visual track (what the picture shows besides the columns).
+  function simulateRun(scene, overrides, options, asColumns, visual = false) {
     const [sceneText, hasScene] = sceneArgument(scene);
     const list = overridesArgument(overrides);
-    const { sampleDt, sourceName, maxRows, onProgress } = simulateOptions(options);
+    const { sampleDt, sourceName, maxRows, onProgress } =
+      simulateOptions(options, visual ? kSimulateOptions.filter((o) => o !== 'sampleDt') : kSimulateOptions);
     // An exception thrown by the callback stops the run as `false` does, and is thrown once the run
     // has unwound: passing through the WebAssembly it would skip the C++ destructors (the run's
     // memory would stay taken).
@@ -75,7 +81,7 @@
         return false;
       }
     });
-    const result = Module['coreSimulate'](sceneText, hasScene, list, sourceName, sampleDt, maxRows, progress, asColumns);
+    const result = Module['coreSimulate'](sceneText, hasScene, list, sourceName, sampleDt, maxRows, progress, asColumns, visual);
     if (thrown) throw thrown.e;
     if (result.error) throw new CoinrollError(result.error.kind, result.error.exitCode, result.error.message);
     if (asColumns) {
@@ -84,6 +90,12 @@
     } else {
       result.csv = new TextDecoder().decode(result.csvBytes);
       delete result.csvBytes;
+    }
+    if (visual) {
+      const track = result.visual;
+      track.overlay = { si: textsOf(track.overlaySiBytes), seed: textsOf(track.overlaySeedBytes) };
+      delete track.overlaySiBytes;
+      delete track.overlaySeedBytes;
     }
     return result;
   }
@@ -124,4 +136,16 @@
   Module['simulateCsv'] = (scene, overrides, options) => simulateRun(scene, overrides, options, false);
   Module['simulate'] = (scene, overrides, options) => simulateRun(scene, overrides, options, true);
   Module['steady'] = steady;
+  // What the renderer draws a picture in for render.theme `theme` ("classic" or "paper"): the sky,
+  // the trace's colours and the floor's grid tile, `tilePixels` square.
+  Module['picture'] = (theme = 'classic', tilePixels = 512) => {
+    if (theme !== 'classic' && theme !== 'paper') throw new TypeError(`theme: expected "classic" or "paper"; got ${describeValue(theme)}`);
+    if (!Number.isInteger(tilePixels) || tilePixels < 1 || tilePixels > 4096) {
+      throw new TypeError(`tilePixels: expected a whole number from 1 to 4096; got ${describeValue(tilePixels)}`);
+    }
+    return Module['corePicture'](theme, tilePixels);
+  };
+  // simulate on the renderer's trace grid with the visual track: what a page needs to draw the run
+  // as `coinroll render` does (its coin, overlay and clock), besides the columns.
+  Module['visualRun'] = (scene, overrides, options) => simulateRun(scene, overrides, options, true, true);
 })();

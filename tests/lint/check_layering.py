@@ -73,12 +73,16 @@ MAY_INCLUDE = {
         "pipeline": "simulate, still and video through the same pipelines as the commands",
         "video": "picks the sink for a video's file name",
     },
-    # The WebAssembly core's binding (docs/web.md): `coinroll simulate` as a JavaScript call, the
-    # scene-to-CSV path only (no render or video in a browser's module). A peer of cli and api.
+    # The WebAssembly core's binding (docs/web.md): `coinroll simulate` as a JavaScript call, and the
+    # visual track a page draws from; no GL and no video in a browser's module. A peer of cli and api.
     "wasm": {
         "physics": "steady states and their stability as `coinroll steady` computes them",
         "scene": "reads the scene text and its --set overrides as the command does",
         "pipeline": "runs the command's run (simulateScene) and writes its rows as the command's CSV",
+        # The renderer's GL-free headers: what a page draws with, computed by the renderer's code.
+        "render/camera.h": "the camera's up, as the renderer's look-at takes it",
+        "render/floor_tile.h": "the floor's grid tile the renderer samples",
+        "render/theme.h": "the colours each theme draws in",
     },
     # Parse argv, build the pipeline, run, map errors to exit codes: may use everything.
     "cli": {
@@ -113,7 +117,7 @@ WHY_NOT = {
     ("image", None): "image is a leaf utility (io only)",
     ("io", None): "io is the bottom leaf utility",
     ("pipeline", "cli"): "argv and exit codes belong to cli; cli calls pipeline",
-    ("wasm", "render"): "the WebAssembly core is the scene-to-CSV path; a page draws for itself",
+    ("wasm", "render"): "the WebAssembly core takes only the renderer's GL-free parts; a page draws with its own GL",
     ("wasm", "video"): "the WebAssembly core is the scene-to-CSV path; it encodes nothing",
 }
 

@@ -15,6 +15,7 @@
 
 #include "pipeline/run_record.h"
 #include "pipeline/simulation.h"
+#include "pipeline/overlay_lines.h"
 #include "pipeline/snapshot.h"
 #include "render/camera.h"
 #include "render/overlay_text.h"

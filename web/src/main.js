@@ -2,39 +2,28 @@
 // WebAssembly core runs it in a worker, and three.js plays the run back as the program draws it.
 import { coreSource, workerSource } from 'inline:worker';
 import examples from 'inline:examples';
-import { CameraRig } from './camera_rig.js';
-import { drawnCoinShape } from './coin_geometry.js';
 import { Controls, fitScene, suggestedValue } from './controls.js';
 import { Legend } from './legend.js';
 import { Plots } from './plots.js';
 import { Cancelled, Runner } from './runner.js';
 import { defaultOf } from './schema.js';
 import { SteadyPanel, steadyRequests } from './steady_panel.js';
-import { Trajectory, traceInterval } from './trajectory.js';
+import { Trajectory } from './trajectory.js';
 import { basisOf, formatG, Units } from './units.js';
 import { View } from './view.js';
 
 const $ = (id) => document.getElementById(id);
-const kLandingHoldSeconds = 1.5;  // pipeline/video_frames.h: a clip holds its last picture this long
 
-// The scene's render settings that playback and the camera read, with the schema's defaults.
+// The scene's render settings that the camera and the view read, with the schema's defaults.
 function renderSpec(scene) {
-  const render = scene.render || {}, camera = render.camera || {}, remap = render.time_remap;
+  const render = scene.render || {}, camera = render.camera || {};
   const or = (value, path) => (value !== undefined ? value : defaultOf(path));
   return {
-    time_scale: or(render.time_scale, 'render.time_scale'),
-    fps: or(render.fps, 'render.fps'),
-    time_remap: remap && Object.assign({}, remap, {
-      growth: or(remap.growth, 'render.time_remap.growth'),
-      flight: remap.flight && { slow: remap.flight.slow, window: or(remap.flight.window, 'render.time_remap.flight.window') },
-      impact: remap.impact && { slow: remap.impact.slow, window: or(remap.impact.window, 'render.time_remap.impact.window') },
-    }),
     trace: or(render.trace, 'render.trace'),
     hud: or(render.hud, 'render.hud'),
     camera: {
-      mode: or(camera.mode, 'render.camera.mode'), eye: camera.eye, target: camera.target, fov: or(camera.fov, 'render.camera.fov'),
+      mode: or(camera.mode, 'render.camera.mode'),
       aspect: or(render.width, 'render.width') / or(render.height, 'render.height'),
-      orbit_period: or(camera.orbit_period, 'render.camera.orbit_period'), elevation: or(camera.elevation, 'render.camera.elevation'),
     },
   };
 }
@@ -47,17 +36,6 @@ function steadyRequestsOf(text) {
     return initial !== null && typeof initial === 'object' && !Array.isArray(initial) ? steadyRequests(initial) : [];
   } catch (e) {
     return [];
-  }
-}
-
-// The step the page samples a scene at (the renderer's trace interval); 0.01 s, the program's
-// default, where the text is not a scene with a duration (the core then says what is wrong).
-function sampleDtOf(text) {
-  try {
-    const duration = JSON.parse(text).duration;
-    return typeof duration === 'number' && duration > 0 ? traceInterval(duration) : 0.01;
-  } catch (e) {
-    return 0.01;
   }
 }
 
@@ -82,7 +60,7 @@ const steadyPanel = new SteadyPanel($('steady'), (initial) => {
   page.scene.initial = initial;
   onControl('initial[steady].steady');
 });
-const legend = new Legend($('legend'));
+let legend = null;  // made once the core says what the picture is drawn in
 // The plots open where they leave the picture room: a phone scrolls to them, a short window (an
 // 800x600 iframe) keeps them a click away.
 $('plots').open = window.innerHeight >= 700 || window.innerWidth < 720;
@@ -93,7 +71,7 @@ const plots = new Plots($('plots'), (t) => {
   page.holdUntil = 0;
   view.dirty = true;
 });
-let rig = null, fixedSize = null, lastFrameTime, request = 0;
+let fixedSize = null, lastFrameTime, request = 0;
 // Whether the latest request is still to be drawn (or refused), and who waits for it (the test hook).
 let pending = true;
 let waiters = [];
@@ -123,7 +101,6 @@ async function start(text, sourceName, origin) {
   pending = true;
   controls.clearErrors();
   $('scene-error').textContent = '';
-  const sampleDt = sampleDtOf(text);
   const busy = setTimeout(() => { $('busy').hidden = false; }, 150);
   const progress = (rows, expected) => {
     $('progress').value = expected > 0 ? rows / expected : 0;
@@ -131,12 +108,12 @@ async function start(text, sourceName, origin) {
   };
   progress(0, 0);
   try {
-    const result = await runner.run(text, sampleDt, sourceName, progress, steadyRequestsOf(text));
+    const result = await runner.run(text, sourceName, progress, steadyRequestsOf(text));
     if (id !== request) return;
     const scene = JSON.parse(text);
     if (origin.box) page.scene = scene;
-    page.trajectory = new Trajectory(result, scene, sampleDt, renderSpec(scene));
-    page.run = { text, sourceName, sampleDt };
+    page.trajectory = new Trajectory(result, scene);
+    page.run = { text, sourceName, sampleDt: result.sampleDt };
     page.runRequest = id;
     timing.last = { requestedAt, resultAt: performance.now(), workerMs: result.ms };
     newRun(result);
@@ -167,8 +144,7 @@ function newRun(result) {
   const trajectory = page.trajectory;
   resize();
   const spec = renderSpec(trajectory.scene);
-  view.setRun(trajectory, drawnCoinShape(trajectory.scene.coin), spec.trace);
-  makeRig();
+  view.setRun(trajectory, spec.trace);
   controls.refresh();
   const units = page.units(trajectory.scene);
   steadyPanel.show(trajectory.scene.initial, result.steady, units);
@@ -188,13 +164,6 @@ function newRun(result) {
   view.dirty = true;
 }
 
-function makeRig() {
-  const trajectory = page.trajectory;
-  if (!trajectory) return;
-  rig = new CameraRig(renderSpec(trajectory.scene).camera, trajectory.survey(), trajectory.scene.coin.radius, view.width, view.height);
-  view.dirty = true;
-}
-
 function resize() {
   const box = $('view');
   const width = fixedSize ? fixedSize[0] : box.clientWidth, height = fixedSize ? fixedSize[1] : box.clientHeight;
@@ -203,18 +172,29 @@ function resize() {
   // render/overlay_text.cpp: the em from ascent to descent is a 45th of the height; DejaVu Sans
   // Mono's ascent to descent is 1.164 of its CSS font size.
   $('hud').style.fontSize = `${(Math.max(10, height / 45) / 1.164).toFixed(1)}px`;
-  makeRig();
+  view.dirty = true;
+}
+
+// The scene's camera at t for the view on screen. It is `coinroll render`'s, which frames the scene's
+// picture (render.width x render.height); the fov is vertical, so a view narrower than that picture (a
+// phone held upright) widens the field until the picture's width fits, and a wider one shows more at
+// the sides: tan(fov'/2) = tan(fov/2) max(1, (W/H)_scene / (w/h)_view).
+function sceneCamera(t) {
+  const trajectory = page.trajectory, spec = renderSpec(trajectory.scene).camera;
+  const camera = trajectory.cameraAt(t);
+  const narrowing = spec.aspect / (view.width / view.height);
+  if (narrowing > 1) camera.fov = 2 * Math.atan(Math.tan(0.5 * camera.fov * Math.PI / 180) * narrowing) * 180 / Math.PI;
+  camera.follows = spec.mode === 'follow';
+  return camera;
 }
 
 // Draws the picture at the current time and shows its overlay.
 function draw() {
   const trajectory = page.trajectory;
   const state = trajectory.stateAt(page.t);
-  const camera = rig.at(state.t, [state.x, state.y, state.z]);
-  camera.follows = rig.spec.mode === 'follow';
-  view.draw(state, camera, trajectory);
+  view.draw(state, sceneCamera(state.t), trajectory);
   const units = page.units(trajectory.scene), time = (t) => units.shown(t, 's').toFixed(3);
-  $('hud').textContent = renderSpec(trajectory.scene).hud ? trajectory.hudLines(state, units).join('\n') : '';
+  $('hud').textContent = renderSpec(trajectory.scene).hud ? trajectory.overlayAt(state.t, units.seed) : '';
   $('time').value = page.t;
   plots.setTime(state.t);
   $('time-text').textContent = `${time(state.t)} / ${time(trajectory.endTime)} ${units.label('s')}`;
@@ -225,8 +205,8 @@ function draw() {
 }
 
 // Playback: simulated seconds advance at the scene's playback rate (render.time_scale, slowed by
-// render.time_remap where the motion is fast, in the air and at each impact) times the speed chosen; the end is held 1.5 s, then
-// the run plays again.
+// render.time_remap where the motion is fast, in the air and at each impact: the core's, per row) times
+// the speed chosen; the end is held as a clip holds it, then the run plays again.
 function frame(now) {
   requestAnimationFrame(frame);
   const elapsed = lastFrameTime === undefined ? 0 : Math.min((now - lastFrameTime) / 1000, 0.1);
@@ -236,10 +216,10 @@ function frame(now) {
   if (!trajectory) return;
   if (page.playing) {
     if (page.t >= trajectory.endTime) {
-      if (!page.holdUntil) page.holdUntil = now + 1000 * kLandingHoldSeconds;
+      if (!page.holdUntil) page.holdUntil = now + 1000 * trajectory.visual.clock.holdSeconds;
       if (now >= page.holdUntil) { page.t = 0; page.holdUntil = 0; }
     } else {
-      const rate = trajectory.playbackRate(trajectory.stateAt(page.t));
+      const rate = trajectory.playbackRate(page.t);
       page.t = Math.min(page.t + elapsed * rate * page.speed, trajectory.endTime);
     }
     view.dirty = true;
@@ -306,8 +286,10 @@ $('download').addEventListener('click', () => {
 });
 
 let defaultSceneText = '';
-runner.ready.then(({ version, defaultScene }) => {
+runner.ready.then(({ version, defaultScene, picture }) => {
   $('version').textContent = version;
+  view.setPicture(picture);
+  legend = new Legend($('legend'), picture);
   defaultSceneText = defaultScene;
   // A page written by `coinroll export` opens on its scene, as the scene file's JSON.
   const exported = JSON.parse(document.getElementById('coinroll-scene').textContent);
@@ -377,6 +359,6 @@ window.coinrollPage = {
   },
   // Each plot's numbers at its cursor (plots.js atCursor).
   plots: () => plots.atCursor(),
-  playbackRate: (t) => page.trajectory.playbackRate(page.trajectory.stateAt(t)),
+  playbackRate: (t) => page.trajectory.playbackRate(t),
   time: () => page.t,
 };

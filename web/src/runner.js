@@ -34,10 +34,10 @@ export class Runner {
     return { worker, ready };
   }
 
-  // The run of `sceneText` sampled every sampleDt s: resolves to the worker's result, rejects with
+  // The run of `sceneText` on the renderer's grid: resolves to the worker's result, rejects with
   // RunError for a refusal, Cancelled when a later run() took over. `steady`: `coinroll steady`'s
   // requests ({kind, theta, omega_Z, branch}) of the same scene, answered in the result's `steady`.
-  async run(sceneText, sampleDt, sourceName, onProgress, steady = []) {
+  async run(sceneText, sourceName, onProgress, steady = []) {
     const id = (this.nextId = (this.nextId || 0) + 1);
     if (this.busy) {
       this.busy.worker.terminate();
@@ -68,7 +68,7 @@ export class Runner {
         if (data.type === 'result') resolve(data);
         else reject(new RunError(data));
       };
-      slot.worker.postMessage({ id, sceneText, sampleDt, sourceName, steady });
+      slot.worker.postMessage({ id, sceneText, sourceName, steady });
     });
   }
 }

@@ -7,24 +7,36 @@ import {
   BufferAttribute, BufferGeometry, ClampToEdgeWrapping, Color, ColorManagement, CustomBlending, DataTexture, DoubleSide,
   EqualStencilFunc, GLSL3, IncrementStencilOp, LinearFilter, LinearMipmapLinearFilter, LinearSRGBColorSpace, Matrix4, Mesh,
   NoColorSpace, OneFactor, OneMinusSrcAlphaFactor, PerspectiveCamera, Points, Quaternion, RepeatWrapping, Scene,
-  ShaderMaterial, SrcAlphaFactor, Texture, Vector3, WebGLRenderer, WebGLRenderTarget, ZeroFactor, NearestFilter,
+  ShaderMaterial, SrcAlphaFactor, Texture, Vector3, Vector4, WebGLRenderer, WebGLRenderTarget, ZeroFactor, NearestFilter,
 } from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import faceDataUri from 'inline:face';
-import { coinTriangles, kPhaseFlight, kTraceInTheAir, ribbonStrip } from './coin_geometry.js';
-import { clipPlanes, upFor } from './camera_rig.js';
-import { floorTile, kClassic, kFloorTileMetres } from './floor.js';
+// The renderer's own fragment shaders (shaders/*.frag), compiled here as they are; the vertex shaders
+// below are the page's, in three.js's names for the attributes and matrices.
+import fragmentShaders from 'inline:shaders';
+import { kPhaseFlight, kTraceInTheAir, ribbonStrip } from './trace_ribbon.js';
 
 ColorManagement.enabled = false;
 
 const kLight = new Vector3(-0.35, 1.0, 0.45).normalize();  // render/renderer_state.h kLightDirection
 export const kShadowColour = [0, 0, 0, 0.45];
 export const kContactColour = [0.85, 0.1, 0.08, 1];
-// The coin's albedos, linear (shaders/coin.frag); the legend shows them too (legend.js).
+// The coin's albedos, linear, read off shaders/coin.frag itself for the legend (legend.js): the
+// metals as it declares them, the enamels as it paints each face with them.
+function shaderColour(pattern) {
+  const found = fragmentShaders.coin.match(pattern);
+  if (!found) throw new Error(`shaders/coin.frag no longer matches ${pattern}: the legend reads its colours there`);
+  return found.slice(1, 4).map(Number);
+}
+const vec3 = String.raw`vec3\(([\d.]+), ([\d.]+), ([\d.]+)\)`;
 export const kCoinColours = {
-  brass: [0.80, 0.56, 0.20], silver: [0.48, 0.50, 0.55], blueEnamel: [0.03, 0.07, 0.32], redEnamel: [0.36, 0.03, 0.03],
+  brass: shaderColour(new RegExp(`vec3 brass = ${vec3}`)), silver: shaderColour(new RegExp(`vec3 silver = ${vec3}`)),
+  blueEnamel: shaderColour(new RegExp(`faceColour\\(brass, ${vec3}\\)`)),
+  redEnamel: shaderColour(new RegExp(`faceColour\\(silver, ${vec3}\\)`)),
 };
-const glslVec3 = (colour) => `vec3(${colour.map((c) => c.toFixed(2)).join(', ')})`;
+// The depth range for a camera at `distance` m from its target, as the renderer brackets it
+// (render/camera.cpp clipPlanes), for the scene's camera and one the user steers alike.
+const clipPlanes = (distance) => ({ near: Math.max(1e-3, 0.02 * distance), far: 200 * distance });
 
 // Blending as the renderer's: colour over colour by alpha, the canvas's alpha left alone.
 const blended = { blending: CustomBlending, blendSrc: SrcAlphaFactor, blendDst: OneMinusSrcAlphaFactor,
@@ -46,53 +58,6 @@ void main() {
   gl_Position = projectionMatrix * viewMatrix * world;
 }`;
 
-// shaders/coin.frag, with three's cameraPosition for its eye.
-const coinFragment = `
-out vec4 fragColour;
-in vec3 worldPosition;
-in vec3 worldNormal;
-in vec3 bodyPosition;
-flat in int surface;
-uniform vec3 lightDirection;
-uniform float radius;
-uniform sampler2D face;
-float inside(float distanceOutside) {
-  float width = fwidth(distanceOutside);
-  return 1.0 - smoothstep(-width, width, distanceOutside);
-}
-vec3 faceColour(vec3 metal, vec3 enamel) {
-  vec2 p = bodyPosition.xy / radius;
-  vec2 pattern = texture(face, vec2(0.5 + 0.5 * p.x, 0.5 - 0.5 * p.y)).rg;
-  return mix(metal * pattern.r, enamel, pattern.g);
-}
-vec3 rimColour(vec3 metal) {
-  float turns = atan(bodyPosition.y, bodyPosition.x) / 6.2831853;
-  float stripe = abs(fract(turns * 96.0) - 0.5) - 0.25;
-  return mix(metal, metal * 0.55, inside(stripe));
-}
-vec3 toSrgb(vec3 linear) {
-  vec3 low = linear * 12.92;
-  vec3 high = 1.055 * pow(linear, vec3(1.0 / 2.4)) - 0.055;
-  return mix(low, high, step(vec3(0.0031308), linear));
-}
-void main() {
-  vec3 brass = ${glslVec3(kCoinColours.brass)};
-  vec3 silver = ${glslVec3(kCoinColours.silver)};
-  vec3 albedo;
-  if (surface == 0) albedo = faceColour(brass, ${glslVec3(kCoinColours.blueEnamel)});
-  else if (surface == 1) albedo = faceColour(silver, ${glslVec3(kCoinColours.redEnamel)});
-  else if (surface == 2) albedo = rimColour(brass);
-  else albedo = brass * 0.7;
-  vec3 n = normalize(worldNormal);
-  vec3 v = normalize(cameraPosition - worldPosition);
-  vec3 h = normalize(lightDirection + v);
-  vec3 ambient = mix(vec3(0.20, 0.19, 0.17), vec3(0.38, 0.42, 0.48), 0.5 + 0.5 * n.y);
-  float diffuse = max(dot(n, lightDirection), 0.0);
-  float specular = pow(max(dot(n, h), 0.0), 40.0) * step(0.0, dot(n, lightDirection));
-  vec3 linear = albedo * (ambient + 0.85 * diffuse) + 0.45 * specular * mix(albedo, vec3(1.0), 0.3);
-  fragColour = vec4(toSrgb(clamp(linear, 0.0, 1.0)), 1.0);
-}`;
-
 const floorVertex = `
 uniform vec2 centre;
 uniform float extent;
@@ -101,20 +66,6 @@ void main() {
   vec2 xz = centre + extent * position.xy;
   worldPosition = vec3(xz.x, 0.0, xz.y);
   gl_Position = projectionMatrix * viewMatrix * vec4(worldPosition, 1.0);
-}`;
-
-const floorFragment = `
-out vec4 fragColour;
-in vec3 worldPosition;
-uniform sampler2D gridTile;
-uniform float tileMetres;
-uniform float fogStart;
-uniform float fogEnd;
-uniform vec3 backgroundSrgb;
-void main() {
-  vec3 floorColour = texture(gridTile, worldPosition.xz / tileMetres).rgb;
-  float fog = smoothstep(fogStart, fogEnd, length(worldPosition - cameraPosition));
-  fragColour = vec4(mix(floorColour, backgroundSrgb, fog), 1.0);
 }`;
 
 // The ribbon's width is a uniform (it follows the camera) and its age is the point's index over the
@@ -135,32 +86,15 @@ void main() {
   gl_Position = projectionMatrix * viewMatrix * vec4(p.x, 0.0, p.y, 1.0);
 }`;
 
-const traceFragment = `
-out vec4 fragColour;
-in float vertexAge;
-in float vertexSliding;
-uniform vec3 recentRolling;
-uniform vec3 oldRolling;
-uniform vec3 recentSliding;
-uniform vec3 oldSliding;
-uniform vec2 opacity;
-void main() {
-  if (vertexSliding > 1.5) discard;  // in the air: no contact to trace
-  vec3 recent = mix(recentRolling, recentSliding, vertexSliding);
-  vec3 old = mix(oldRolling, oldSliding, vertexSliding);
-  fragColour = vec4(mix(recent, old, vertexAge), mix(opacity.x, opacity.y, vertexAge));
-}`;
-
 // The cached sky and floor, laid over the whole picture pixel for pixel.
 const backgroundVertex = 'out vec2 texel; void main() { texel = 0.5 + 0.5 * position.xy; gl_Position = vec4(position.xy, 0.0, 1.0); }';
 const backgroundFragment = 'out vec4 fragColour; in vec2 texel; uniform sampler2D picture; void main() { fragColour = texture(picture, texel); }';
 
 const flatVertex = 'uniform float pointSize; void main() { gl_PointSize = pointSize; gl_Position = projectionMatrix * viewMatrix * modelMatrix * vec4(position, 1.0); }';
-const flatFragment = 'out vec4 fragColour; uniform vec4 colour; void main() { fragColour = colour; }';
 
 const shader = (vertexShader, fragmentShader, uniforms, extra = {}) =>
   new ShaderMaterial(Object.assign({ glslVersion: GLSL3, vertexShader, fragmentShader, uniforms }, extra));
-const flat = (colour, extra = {}) => shader(flatVertex, flatFragment, { colour: { value: colour }, pointSize: { value: 1 } }, extra);
+const flat = (colour, extra = {}) => shader(flatVertex, fragmentShaders.flat, { colour: { value: colour }, pointSize: { value: 1 } }, extra);
 
 // A ribbon of `points` vertex pairs as triangles: three.js draws no triangle strips.
 function stripTriangles(points) {
@@ -189,7 +123,6 @@ export class View {
   constructor(canvas) {
     this.renderer = new WebGLRenderer({ canvas, antialias: true, stencil: true, alpha: false });
     this.renderer.outputColorSpace = LinearSRGBColorSpace;
-    this.renderer.setClearColor(new Color(...kClassic.backgroundSrgb), 1);
     this.scene = new Scene();
     this.camera = new PerspectiveCamera(35, 1, 0.01, 100);
     this.controls = new OrbitControls(this.camera, canvas);
@@ -198,13 +131,10 @@ export class View {
     this.controls.addEventListener('start', () => { this.userCamera = true; });
     this.controls.addEventListener('change', () => { this.dirty = true; });
 
-    const tile = new DataTexture(floorTile(512, kClassic.floor), 512, 512);
-    Object.assign(tile, { wrapS: RepeatWrapping, wrapT: RepeatWrapping, generateMipmaps: true, minFilter: LinearMipmapLinearFilter,
-                          magFilter: LinearFilter, colorSpace: NoColorSpace, needsUpdate: true });
     this.floor = mesh(geometry({ position: [new Float32Array([-1, -1, 0, 1, 1, 0, 1, -1, 0, -1, -1, 0, -1, 1, 0, 1, 1, 0]), 3] }),
-      shader(floorVertex, floorFragment, {
-        centre: { value: [0, 0] }, extent: { value: 1 }, gridTile: { value: tile }, tileMetres: { value: kFloorTileMetres },
-        fogStart: { value: 1 }, fogEnd: { value: 2 }, backgroundSrgb: { value: kClassic.backgroundSrgb },
+      shader(floorVertex, fragmentShaders.floor, {
+        centre: { value: [0, 0] }, extent: { value: 1 }, eye: { value: new Vector3() }, gridTile: { value: null }, tileMetres: { value: 1 },
+        fogStart: { value: 1 }, fogEnd: { value: 2 }, backgroundSrgb: { value: [0, 0, 0] },
       }, { side: DoubleSide }), 0);
 
     const face = new Texture();
@@ -213,15 +143,18 @@ export class View {
     const image = new Image();
     image.onload = () => { face.image = image; face.needsUpdate = true; this.dirty = true; };
     image.src = faceDataUri;
-    this.coinMaterial = shader(coinVertex, coinFragment, { lightDirection: { value: kLight }, radius: { value: 1 }, face: { value: face } });
+    // A coin drawn whole (no strobe copies here): opaque and untinted.
+    this.coinMaterial = shader(coinVertex, fragmentShaders.coin, {
+      lightDirection: { value: kLight }, radius: { value: 1 }, face: { value: face }, eye: { value: new Vector3() },
+      opacity: { value: 1 }, tint: { value: new Vector4(0, 0, 0, 0) },
+    });
     this.shadowMaterial = flat(kShadowColour, Object.assign({ stencilWrite: true, stencilFunc: EqualStencilFunc, stencilRef: 0,
                                                                stencilZPass: IncrementStencilOp }, decal));
-    const t = kClassic.trace;
     this.traceUniforms = {
-      halfWidth: { value: 0.001 }, lastIndex: { value: 1 }, recentRolling: { value: t.recentRolling }, oldRolling: { value: t.oldRolling },
-      recentSliding: { value: t.recentSliding }, oldSliding: { value: t.oldSliding }, opacity: { value: t.opacity },
+      halfWidth: { value: 0.001 }, lastIndex: { value: 1 }, recentRolling: { value: [0, 0, 0] }, oldRolling: { value: [0, 0, 0] },
+      recentSliding: { value: [0, 0, 0] }, oldSliding: { value: [0, 0, 0] }, opacity: { value: [1, 1] },
     };
-    this.traceMaterial = shader(traceVertex, traceFragment, this.traceUniforms, decal);
+    this.traceMaterial = shader(traceVertex, fragmentShaders.trace, this.traceUniforms, decal);
 
     const marker = [];
     for (let i = 0; i < 32; ++i) {
@@ -250,18 +183,33 @@ export class View {
     this.dirty = true;
   }
 
-  // A new run: the coin's mesh for its shape, the trace's ribbon over the whole run.
-  setRun(trajectory, shape, showTrace) {
+  // What the renderer draws in (the core's `picture`: render/theme.cpp, render/floor_tile.cpp): the
+  // sky, the floor's grid tile and the trace's colours.
+  setPicture(picture) {
+    this.renderer.setClearColor(new Color(...picture.backgroundSrgb), 1);
+    const n = picture.tilePixels, tile = new DataTexture(picture.floorTile, n, n);
+    Object.assign(tile, { wrapS: RepeatWrapping, wrapT: RepeatWrapping, generateMipmaps: true, minFilter: LinearMipmapLinearFilter,
+                          magFilter: LinearFilter, colorSpace: NoColorSpace, needsUpdate: true });
+    Object.assign(this.floor.material.uniforms, { gridTile: { value: tile }, tileMetres: { value: picture.tileMetres },
+                                                  backgroundSrgb: { value: Array.from(picture.backgroundSrgb) } });
+    for (const [name, value] of Object.entries(picture.trace)) this.traceUniforms[name].value = Array.from(value);
+    this.backgroundSeen = undefined;
+    this.dirty = true;
+  }
+
+  // A new run: the coin's triangles as the renderer draws them (the core's visual track), the trace's
+  // ribbon over the whole run.
+  setRun(trajectory, showTrace) {
     for (const old of [this.coin, this.shadow, this.trace, this.traceTail]) {
       if (old) { this.scene.remove(old); old.geometry.dispose(); }
     }
-    const triangles = coinTriangles(shape);
+    const { coin: triangles, coinRadius, faceRadius } = trajectory.visual;
     const coinGeometry = geometry({ position: [triangles.position, 3], normal: [triangles.normal, 3], part: [triangles.part, 1] });
-    this.coinMaterial.uniforms.radius.value = shape.radius - shape.edgeRadius;
+    this.coinMaterial.uniforms.radius.value = faceRadius;
     this.coin = mesh(coinGeometry, this.coinMaterial, 4);
     this.shadow = mesh(coinGeometry, this.shadowMaterial, 1);
     this.shadow.matrixAutoUpdate = false;
-    this.radius = shape.radius;
+    this.radius = coinRadius;
     const c = trajectory.columns;
     const ribbon = ribbonStrip(c.contact_x, c.contact_z, c.sliding, trajectory.rows, c.phase);
     this.ribbonIndex = ribbon.index;
@@ -298,14 +246,14 @@ export class View {
       }
       this.controls.update();
     } else {
-      camera.up.set(...upFor(view));
+      camera.up.set(...view.up);
       camera.position.set(...view.eye);
       this.controls.target.set(...view.target);
       camera.lookAt(this.controls.target);
     }
     this.lastCentre = new Vector3(state.x, state.y, state.z);
-    const { near, far } = clipPlanes({ eye: camera.position.toArray(), target: this.controls.target.toArray() });
     const distance = camera.position.distanceTo(this.controls.target);
+    const { near, far } = clipPlanes(distance);
     Object.assign(camera, { fov: view.fov, aspect: this.width / this.height, near, far });
     camera.updateProjectionMatrix();
     camera.updateMatrixWorld();
@@ -313,6 +261,8 @@ export class View {
     const floor = this.floor.material.uniforms;
     floor.centre.value = [this.controls.target.x, this.controls.target.z];
     floor.extent.value = 150 * distance;
+    floor.eye.value.copy(camera.position);
+    this.coinMaterial.uniforms.eye.value.copy(camera.position);
     floor.fogStart.value = 2.5 * distance;
     floor.fogEnd.value = 12 * distance;
 

@@ -164,7 +164,7 @@ Landing land(const Simulation& simulation, double t, const physics::FlightState&
     landing.impact.bouncesEnd = true;
     return landing;
   }
-  physics::ImpactLaw law = *simulation.flight;
+  physics::ImpactLaw law = model.impact;
   physics::ImpactOutcome outcome = physics::resolveImpact(model, atTouch, law);
   // The last of a bounce sequence is made plastic, so the rim stays on the floor (docs/flight.md §4).
   const bool bouncesEnd = plastic || (!outcome.jammed && outcome.reboundSpeed < restSpeed(model));

@@ -17,6 +17,13 @@ struct Friction {
   double kinetic = 0;          // the sliding contact's coefficient ("sliding": true)
 };
 
+// The rim striking the floor ("flight": true; docs/flight.md §3): Stronge's energetic restitution and
+// Coulomb friction during the impulse.
+struct ImpactLaw {
+  double restitution = 0;  // e in [0, 1]: the normal impulse's work in restitution over its work in compression, -e^2
+  double friction = 0;     // mu >= 0 during the impact
+};
+
 struct CoinModel {
   double M = 0;    // kg, mass
   double a = 0;    // m, outer radius
@@ -27,6 +34,7 @@ struct CoinModel {
   double holeRadius = 0;  // m, b: a ring's hole, open to the room under the face (air drag, docs/euler_disk.md 2.5a)
   std::vector<Effect> effects;  // empty: the seed's ideal rolling, energy conserved
   Friction friction{};  // the default: no cone (no slip monitor) and no sliding friction
+  ImpactLaw impact{};   // the landings' law ("flight": true); the default: plastic and frictionless
 };
 
 // Thin uniform disk: I_X = M a^2 / 4, I_Z = M a^2 / 2 (seed eq. 12).

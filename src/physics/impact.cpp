@@ -39,12 +39,13 @@ Eigen::Matrix3d skew(const Eigen::Vector3d& r) {
 
 Eigen::Vector3d horizontal(const Eigen::Vector3d& u) { return {u.x(), 0, u.z()}; }
 
-enum class ContactMode { Slipping, Sticking, Ray };
+// The contact point's stages within one impulse (eq. 3.4), not the run's contact modes (contact_mode.h).
+enum class ImpactContact { Slipping, Sticking, Ray };
 
 // How the tangential impulse grows with the normal one (eq. 3.4): along -mu s_hat while slipping,
 // at the fixed ratio tau* while sticking or slipping along a ray.
-struct Mode {
-  ContactMode contact = ContactMode::Slipping;
+struct ImpulseMode {
+  ImpactContact contact = ImpactContact::Slipping;
   Eigen::Vector3d ratio = Eigen::Vector3d::Zero();  // tau, horizontal, for Sticking and Ray
 };
 
@@ -55,14 +56,14 @@ struct ImpulsePath {
   double work = 0;                              // J, W_n: the normal impulse's work so far
 };
 
-Eigen::Vector3d impulseRate(const Mode& mode, const Eigen::Vector3d& u, double mu) {
-  if (mode.contact != ContactMode::Slipping) return kUp + mode.ratio;
+Eigen::Vector3d impulseRate(const ImpulseMode& mode, const Eigen::Vector3d& u, double mu) {
+  if (mode.contact != ImpactContact::Slipping) return kUp + mode.ratio;
   const Eigen::Vector3d slip = horizontal(u);
   const double speed = slip.norm();
   return speed > 0 ? Eigen::Vector3d(kUp - mu * slip / speed) : kUp;
 }
 
-ImpulsePath step(const ImpulsePath& s, double dp, const Mode& mode, const Eigen::Matrix3d& K, double mu) {
+ImpulsePath step(const ImpulsePath& s, double dp, const ImpulseMode& mode, const Eigen::Matrix3d& K, double mu) {
   const auto rate = [&](const Eigen::Vector3d& u) { return impulseRate(mode, u, mu); };
   const Eigen::Vector3d r1 = rate(s.u);
   const Eigen::Vector3d u2 = s.u + 0.5 * dp * K * r1;
@@ -118,12 +119,12 @@ std::optional<Eigen::Vector3d> rayDirection(const Eigen::Matrix3d& K, double mu)
 }
 
 // The mode at zero slip: sticking when tau* fits the cone, else slipping along the ray.
-std::optional<Mode> modeFromRest(const Eigen::Matrix3d& K, double mu) {
+std::optional<ImpulseMode> modeFromRest(const Eigen::Matrix3d& K, double mu) {
   const Eigen::Vector3d tau = stickingRatio(K);
-  if (tau.norm() <= mu) return Mode{.contact = ContactMode::Sticking, .ratio = tau};
+  if (tau.norm() <= mu) return ImpulseMode{.contact = ImpactContact::Sticking, .ratio = tau};
   const std::optional<Eigen::Vector3d> ray = rayDirection(K, mu);
   if (!ray) return std::nullopt;
-  return Mode{.contact = ContactMode::Ray, .ratio = -mu * *ray};
+  return ImpulseMode{.contact = ImpactContact::Ray, .ratio = -mu * *ray};
 }
 
 }  // namespace
@@ -149,10 +150,10 @@ ImpactOutcome resolveImpact(const CoinModel& m, const FlightState& state, const 
   ImpulsePath s{.u = u0};
   // A slip below round-off of the approach has no direction of its own: the impact starts at rest.
   const double slipRoundOff = 1e-12 * u0.norm();
-  Mode mode;
+  ImpulseMode mode;
   if (horizontal(u0).norm() <= slipRoundOff) {
     s.u = Eigen::Vector3d(0, u0.y(), 0);
-    const std::optional<Mode> rest = modeFromRest(K, mu);
+    const std::optional<ImpulseMode> rest = modeFromRest(K, mu);
     if (!rest) {
       outcome.jammed = true;
       return outcome;
@@ -181,8 +182,8 @@ ImpactOutcome resolveImpact(const CoinModel& m, const FlightState& state, const 
     // closes hundreds of times slower than (3.7) lets steps grow.
     double stepSize = dp;
     bool settled = false;
-    Mode stepMode = mode;
-    if (mode.contact == ContactMode::Slipping) {
+    ImpulseMode stepMode = mode;
+    if (mode.contact == ImpactContact::Slipping) {
       const double slip = horizontal(s.u).norm();
       const Eigen::Vector3d slipRate = horizontal(K * impulseRate(mode, s.u, mu));
       const Eigen::Vector3d direction = horizontal(s.u) / slip;
@@ -193,7 +194,7 @@ ImpactOutcome resolveImpact(const CoinModel& m, const FlightState& state, const 
         // rate re-read at the stop, where the slip has no direction, would drop up to a sixth of the
         // step's friction impulse, and an impact that sticks would gain energy (docs/flight.md 3.8).
         stepSize = std::min(dp, slip / closing);
-        stepMode = Mode{.contact = ContactMode::Ray, .ratio = -mu * direction};
+        stepMode = ImpulseMode{.contact = ImpactContact::Ray, .ratio = -mu * direction};
       } else {
         if (slipRate.norm() > 0) stepSize = std::min(dp, 0.5 * slip / slipRate.norm());
         if (directionStiffness > 0) stepSize = std::min(stepSize, slip / directionStiffness);
@@ -213,10 +214,10 @@ ImpactOutcome resolveImpact(const CoinModel& m, const FlightState& state, const 
       next = step(s, hi * stepSize, stepMode, K, mu);
     }
     s = next;
-    if (mode.contact == ContactMode::Slipping &&
+    if (mode.contact == ImpactContact::Slipping &&
         (reachesTheStop || horizontal(s.u).norm() <= kStoppedSlip * u0.norm())) {
       s.u = Eigen::Vector3d(0, s.u.y(), 0);
-      const std::optional<Mode> rest = modeFromRest(K, mu);
+      const std::optional<ImpulseMode> rest = modeFromRest(K, mu);
       if (!rest) {
         outcome.jammed = true;
         return outcome;

@@ -10,11 +10,6 @@
 
 namespace coinroll::physics {
 
-struct ImpactLaw {
-  double restitution = 0;  // e in [0, 1]: the normal impulse's work in restitution over its work in compression, -e^2
-  double friction = 0;     // mu >= 0 during the impact
-};
-
 struct ImpactOutcome {
   FlightState after;                                 // velocities changed, attitude and centre as before
   Eigen::Vector3d impulse = Eigen::Vector3d::Zero();  // P, N s, floor components, at the contact

@@ -45,6 +45,14 @@ CoinState toEulerState(const QuaternionState& state, const CoinState& continuati
 // The seed's theta of an attitude, as toEulerState computes it (eq. 1.4): cheap, for the flat events.
 double thetaOf(const Eigen::Quaterniond& unitQ);
 
+// theta's rate times cos theta, -d(n_y)/dt for the symmetry axis n (sin theta = -n_y): theta' where
+// the tilt is small, with its sign and zeros at every tilt, without a forward pass (omegaBody: rad/s,
+// material axes).
+inline double tiltRate(const Eigen::Quaterniond& q, const Eigen::Vector3d& omegaBody) {
+  const Eigen::Vector3d normal = q * Eigen::Vector3d::UnitZ();
+  return -(q * omegaBody).cross(normal).y();
+}
+
 // The forward pass of this formulation at one state, read from the attitude and the material-frame
 // rates alone (no Euler angles): Forward::dOmega is d(omega)/dt in material components (eq. 3.4
 // with the effects' couple added to b), the reaction is eq. 5.2.

@@ -6,7 +6,8 @@
 #include <numbers>
 
 #include "integrate/event_location.h"
-#include "physics/impact.h"
+#include "physics/landing.h"
+#include "physics/quaternion_dynamics.h"
 #include "physics/validity.h"
 
 namespace coinroll::pipeline {
@@ -137,62 +138,22 @@ RunSample flightSample(const physics::CoinModel& model, const physics::FlightSta
           .dissipated = dissipated};
 }
 
-double restSpeed(const physics::CoinModel& model) {
-  constexpr double kRestHeight = 1e-6;  // per m of radius
-  return std::sqrt(2 * model.g * kRestHeight * model.a);
+std::optional<RunSample> FlightSegment::sampleAt(double t, const physics::CoinState& continuation) {
+  if (flight_.touchdown() && t > *flight_.touchdown()) return std::nullopt;
+  return flight_.sample(flight_.at(t), continuation);
 }
 
-physics::FlightState onTheFloor(const physics::CoinModel& model, physics::FlightState state) {
-  state.centre.y() = physics::lowestPointDepth(model, state.q);
-  return state;
+std::optional<RunEvent> FlightSegment::stoppedBy(const physics::CoinState& continuation) const {
+  if (!flight_.touchdown() || *flight_.touchdown() > duration_) return std::nullopt;
+  const double t = *flight_.touchdown();
+  return runEventOf(switchId(physics::Transition::Touchdown), t, flight_.sample(flight_.at(t), continuation));
 }
 
-Landing land(const Simulation& simulation, double t, const physics::FlightState& atTouch, double dissipated,
-             bool plastic) {
-  const physics::CoinModel& model = simulation.model;
-  Landing landing{.state = atTouch, .dissipated = dissipated, .impact = {.t = t}};
-  const Eigen::Vector3d rim = physics::lowestPointVector(model, atTouch.q);
-  const double closing = -physics::pointVelocity(atTouch, rim).y();
-  landing.impact.normalSpeed = std::max(closing, 0.0);
-  if (std::abs(physics::thetaOf(atTouch.q)) >= physics::flatStopFor(model, physics::Formulation::Quaternion).tilt) {
-    landing.next = Landing::Next::Rest;
-    return landing;
-  }
-  // A touchdown located where the rim has just stopped closing (a graze) has nothing to absorb.
-  if (closing <= 0) {
-    landing.next = Landing::Next::Contact;
-    landing.impact.bouncesEnd = true;
-    return landing;
-  }
-  physics::ImpactLaw law = *simulation.flight;
-  physics::ImpactOutcome outcome = physics::resolveImpact(model, atTouch, law);
-  // The last of a bounce sequence is made plastic, so the rim stays on the floor (docs/flight.md §4).
-  const bool bouncesEnd = plastic || (!outcome.jammed && outcome.reboundSpeed < restSpeed(model));
-  if (bouncesEnd && law.restitution > 0) {
-    law.restitution = 0;
-    outcome = physics::resolveImpact(model, atTouch, law);
-  }
-  if (outcome.jammed) {
-    landing.next = Landing::Next::Jam;
-    return landing;
-  }
-  landing.next = bouncesEnd ? Landing::Next::Contact : Landing::Next::Flight;
-  landing.state = outcome.after;
-  landing.dissipated += outcome.energyLost;
-  landing.impact.reboundSpeed = bouncesEnd ? 0 : outcome.reboundSpeed;
-  landing.impact.energyLost = outcome.energyLost;
-  landing.impact.bouncesEnd = bouncesEnd;
-  return landing;
-}
-
-physics::SlidingState contactStateOf(const physics::CoinModel& model, const physics::FlightState& state) {
-  const Eigen::Vector3d u = physics::pointVelocity(state, physics::lowestPointVector(model, state.q));
-  return {.attitude = {.q = state.q, .omegaBody = state.omegaBody, .x = state.centre.x(), .z = state.centre.z()},
-          .slip = Eigen::Vector2d(u.x(), u.z())};
-}
-
-physics::FlightState flightStateOf(const physics::QuaternionState& attitude, const physics::Forward& contact) {
-  return {.q = attitude.q, .omegaBody = attitude.omegaBody, .centre = contact.centre, .velocity = contact.velocity};
+std::optional<SegmentEnd> FlightSegment::end() const {
+  if (!flight_.touchdown()) return std::nullopt;
+  const double t = *flight_.touchdown();
+  return SegmentEnd{.transition = physics::Transition::Touchdown,
+                    .handover = physics::flightHandover(flight_.model(), t, flight_.at(t), flight_.dissipated())};
 }
 
 }  // namespace coinroll::pipeline

@@ -1,7 +1,7 @@
 #pragma once
-// The flights of a run with "flight": true (docs/flight.md): the free coin's integrated state read in
-// the seed's variables, the touchdown of its rim that ends a flight, and what the touchdown's impact
-// leads to: another flight, the held contact once the bounces have died away, or rest on a face.
+// The flights of a run with "flight": true (docs/flight.md): the free coin's state read in the seed's
+// variables, the touchdown of its rim that ends a flight (its impact: physics/landing.h), and a
+// flight as a HybridRun's segment.
 
 #include <optional>
 #include <vector>
@@ -9,10 +9,8 @@
 #include "physics/coin_model.h"
 #include "physics/coin_state.h"
 #include "physics/flight.h"
-#include "physics/quaternion_dynamics.h"
-#include "physics/sliding.h"
+#include "pipeline/contact_segment.h"
 #include "pipeline/motion.h"
-#include "pipeline/simulation.h"
 
 namespace coinroll::pipeline {
 
@@ -46,37 +44,24 @@ class FreeFlight {
   std::optional<double> touchdown_;
 };
 
-// `state` with its centre at the height where the rim's lowest point touches the floor: where a
-// bounce or a lift-off starts a flight (the touchdown was located a root tolerance either side of it,
-// the contact's height carries round-off), moved by at most 1e-12 a.
-physics::FlightState onTheFloor(const physics::CoinModel& model, physics::FlightState state);
+// A chain's flight (HybridRun), ended by its touchdown.
+class FlightSegment final : public ContactSegment {
+ public:
+  // `duration`: s, the run's; a touchdown after it is not the run's.
+  FlightSegment(const physics::CoinModel& model, double t0, const physics::FlightState& start, double dissipated,
+                double duration)
+      : flight_(model, t0, start, dissipated, duration), duration_(duration) {}
 
-// m/s, u_rest of docs/flight.md eq. (4.1): bounces end at a rebound that would lift the rim 1e-6 a.
-double restSpeed(const physics::CoinModel& model);
+  bool continuesAngles() const override { return true; }
+  std::optional<RunSample> sampleAt(double t, const physics::CoinState& continuation) override;
+  std::optional<RunEvent> stoppedBy(const physics::CoinState& continuation) const override;
+  std::vector<RunEvent> warnings() const override { return {}; }
+  integrate::Stats stats() const override { return {}; }
+  std::optional<SegmentEnd> end() const override;
 
-// What a touchdown leads to (docs/flight.md §3-§5).
-struct Landing {
-  enum class Next {
-    Flight,   // the rim bounced
-    Contact,  // the bounces ended: the rim stays on the floor, sliding or rolling
-    Rest,     // the coin arrived flat on a face (physics::ModelEvent::Rest)
-    Jam,      // the impact has no solution (physics::ModelEvent::ImpactJam)
-  };
-  Next next = Next::Flight;
-  physics::FlightState state;  // after the impact (Contact: the rim's normal velocity zero); Rest, Jam: at touch
-  double dissipated = 0;       // J, the impact's loss included
-  ImpactRecord impact;
+ private:
+  FreeFlight flight_;
+  double duration_;  // s
 };
-
-// `plastic`: end the bounces here whatever the rebound (a run past its bound of impacts per second).
-Landing land(const Simulation& simulation, double t, const physics::FlightState& atTouch, double dissipated,
-             bool plastic);
-
-// The held contact of a coin whose rim touches the floor without normal velocity: its attitude and
-// rates, and the slip of the contact point.
-physics::SlidingState contactStateOf(const physics::CoinModel& model, const physics::FlightState& state);
-
-// The flight that a held contact leaves in (a lift-off): its forward pass's centre and velocity.
-physics::FlightState flightStateOf(const physics::QuaternionState& attitude, const physics::Forward& contact);
 
 }  // namespace coinroll::pipeline

@@ -1,9 +1,9 @@
 #pragma once
-// A run that rolls and slides ("sliding": true; docs/sliding.md §4): a chain of segments, each one
-// integrator over one contact mode, switched at located events. Rolling integrates the quaternion
-// formulation and leaves it when the rolling reaction reaches friction_static N; sliding integrates
-// physics/sliding.h and leaves it when the slip speed reaches zero and the rolling reaction fits the
-// cone. Every switch is kept, with its time, for the command's stderr.
+// A run that rolls and slides ("sliding": true; docs/sliding.md §4), and flies and lands ("flight":
+// true; docs/flight.md): a chain of segments, one per stretch of a contact mode (physics/contact_mode.h),
+// each ending in a located transition. Where each one leads is physics::next's table; the chain keeps
+// the books: the segments' work and crossings, the switches and impacts with their times (for the
+// command's stderr), and its bounds on how fast it switches and lands.
 
 #include <memory>
 #include <optional>
@@ -12,16 +12,16 @@
 #include "integrate/pace.h"
 #include "integrate/solver_config.h"
 #include "physics/coin_state.h"
-#include "physics/flight.h"
 #include "physics/contact_mode.h"
-#include "physics/sliding.h"
+#include "physics/flight.h"
+#include "physics/validity.h"
 #include "pipeline/motion.h"
 #include "pipeline/run_event.h"
 #include "pipeline/simulation.h"
 
 namespace coinroll::pipeline {
 
-// One contact mode's stretch of the chain (hybrid_run.cpp): a Motion that may end in a switch.
+// One contact mode's stretch of the chain (contact_segment.h).
 class ContactSegment;
 
 class HybridRun final : public Motion {
@@ -38,28 +38,35 @@ class HybridRun final : public Motion {
   integrate::Stats stats() const override;
 
  private:
-  void startRolling(double t, const physics::QuaternionState& state, double dissipated);
-  // `mode`: Sliding (friction along the slip) or Creeping (along its rest, physics::Creep: from zero
-  // slip, or a slip too small for its direction to be integrated).
-  void startSliding(double t, const physics::SlidingState& state, double dissipated, physics::ContactMode mode);
+  // Takes `transition` from `from` where physics::next leads: starts that mode's segment, or resolves
+  // its impact; false when the run ends there.
+  bool enter(physics::Mode from, physics::Transition transition, const physics::Handover& handover);
+  // The segment of each mode, from the state handed on to it.
+  void startRolling(const physics::Handover& start);
+  void startSliding(const physics::Handover& start, physics::Mode mode);  // Sliding or Creeping
   void startFlight(double t, const physics::FlightState& state, double dissipated);
-  // The rim held on the floor after a landing (docs/flight.md §4): sliding, creeping or rolling as
-  // at a start, or flying on where the floor cannot hold it (N <= 0).
-  void startContact(double t, const physics::SlidingState& state, double dissipated);
-  // The touchdown at t: the impact, and what follows it; false when the run ends there. With
-  // `otherCorner` (floor components, from the centre of mass) the landing is a cornered rim's corner
-  // as the coin passes upright, the other corner the one it rolled on (docs/flight.md §4a).
-  bool land(double t, const physics::FlightState& atTouch, double dissipated,
-            std::optional<Eigen::Vector3d> otherCorner = std::nullopt);
-  // Moves to the next segment when the current one ended in a switch; false when a model event ended it.
+  // The impact of a flight's touchdown (from Flight) or of a cornered rim's other corner (from a held
+  // contact), and what its outcome leads to; false when the run ends there.
+  bool strike(physics::Mode from, const physics::Handover& handover);
+  // The stderr's switches: each slide that starts from rolling or where there was no contact, and each
+  // return from a slide to rolling; none between sliding and creeping.
+  void noteSwitch(physics::Mode from, physics::Mode to, double t);
+  // Ends the run at `event` with the coin handed over there.
+  void endAt(physics::ModelEvent event, const physics::Handover& handover);
+  // Past the bound of rolling-sliding switches per second: the run ends (stick-slip or on-edge).
+  bool tooManySwitches(const physics::Handover& handover);
+  // Moves to the next segment when the current one ended in a transition; false when a model event
+  // ended it, or the run ends at the transition.
   bool switchIfDue();
 
   Simulation simulation_;
+  physics::Mode mode_ = physics::Mode::Rolling;  // the current segment's
   std::unique_ptr<ContactSegment> segment_;
   std::vector<ModeSwitch> switches_;
   std::vector<RunEvent> warnings_;  // of the segments before the current one
   std::vector<ImpactRecord> impacts_;
-  // A landing that ended the run (rest on a face, an impact jam): the event and the state at touch.
+  // A transition that ended the run (rest on a face, an impact jam, on its edge, decided): the event
+  // and the coin there.
   struct Ending {
     physics::ModelEvent event;
     double t = 0;

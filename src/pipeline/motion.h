@@ -8,6 +8,7 @@
 
 #include "integrate/solver_config.h"
 #include "physics/coin_state.h"
+#include "physics/contact_mode.h"
 #include "physics/forward.h"
 #include "physics/validity.h"
 #include "pipeline/run_event.h"
@@ -68,9 +69,11 @@ class Motion {
   virtual integrate::Stats stats() const = 0;
 };
 
-// Event ids from this one on are a chain's switches between contact modes (hybrid_run.cpp), past
+// Event ids from this one on are a chain's transitions between contact modes (hybrid_run.h), past
 // physics::ModelEvent's values.
 inline constexpr int kFirstSwitchId = 1000;
+
+inline int switchId(physics::Transition transition) { return kFirstSwitchId + static_cast<int>(transition); }
 
 // The RunEvent of event `id` hit at t and sampled as `at`: a model event as itself; a switch that
 // ends the run (one the chain could not make: stick-slip past its bound) as stick-slip.

@@ -248,8 +248,9 @@ Simulation buildSimulation(const scene::SceneConfig& scene) {
     sim.initialVelocity = Eigen::Vector2d(e->velocity->at(0), e->velocity->at(1));
   }
   if (scene.flight) {
-    sim.flight = physics::ImpactLaw{.restitution = scene.restitution,
-                                    .friction = scene.impactFriction.value_or(sim.model.friction.kinetic)};
+    sim.flight = true;
+    sim.model.impact = {.restitution = scene.restitution,
+                        .friction = scene.impactFriction.value_or(sim.model.friction.kinetic)};
     if (const auto* e = std::get_if<scene::ExplicitInitial>(&scene.initial)) {
       sim.initialHeight = e->y;
       sim.initialVerticalVelocity = e->v_y;

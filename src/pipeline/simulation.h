@@ -12,8 +12,8 @@
 #include "integrate/solver_config.h"
 #include "physics/coin_model.h"
 #include "physics/coin_state.h"
+#include "physics/flight.h"
 #include "physics/formulation.h"
-#include "physics/impact.h"
 #include "pipeline/run_event.h"
 #include "scene/scene_config.h"
 
@@ -28,9 +28,9 @@ struct Simulation {
   // slip (pipeline/hybrid_run.h); the quaternion formulation carries it.
   bool sliding = false;
   std::optional<Eigen::Vector2d> initialVelocity;  // m/s, (v_x, v_z); none: the rolling velocity
-  // "flight": lift-off goes on in flight and the rim's impacts follow this law (docs/flight.md); none:
-  // lift-off ends a sliding run.
-  std::optional<physics::ImpactLaw> flight;
+  // "flight": lift-off goes on in flight and the rim's impacts follow model.impact (docs/flight.md);
+  // false: lift-off ends a sliding run.
+  bool flight = false;
   bool stopWhenDecided = false;  // flight: end at the event decided (docs/flight.md §5a)
   std::optional<double> initialHeight;  // m, initial.y: the centre's height (flight only); none: on the floor
   std::optional<double> initialVerticalVelocity;  // m/s, initial.v_y (flight only)

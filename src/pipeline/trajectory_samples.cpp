@@ -114,7 +114,7 @@ TrajectoryReport sampleTrajectory(const Simulation& simulation, double sampleDt,
   result.warnings = run.warnings();
   result.switches = run.switches();
   result.impacts = run.impacts();
-  result.flight = simulation.flight.has_value();
+  result.flight = simulation.flight;
   result.stats = run.stats();
   return result;
 }

@@ -19,10 +19,12 @@
 #include "physics/coin_model.h"
 #include "physics/coin_rhs.h"
 #include "physics/coin_state.h"
+#include "physics/contact_mode.h"
 #include "physics/dynamics.h"
 #include "physics/formulation.h"
 #include "physics/quaternion_dynamics.h"
 #include "physics/validity.h"
+#include "pipeline/motion.h"
 
 namespace coinroll::pipeline {
 
@@ -96,31 +98,35 @@ integrate::Event<N> modelEvent(physics::ModelEvent kind, std::function<double(do
           .direction = direction, .terminal = terminal};
 }
 
-// coin-flat or face-down (|theta| reaches physics::flatStopFor) and, for a rim with corners,
-// corner-switch (theta passes 0): the events of the coin's geometry, which always end the run.
-// theta's rate times cos theta, -d(n_y)/dt for the symmetry axis n (sin theta = -n_y): theta'
-// where the tilt is small, with its sign and zeros at every tilt, without a forward pass.
-inline double tiltRate(const Eigen::Quaterniond& q, const Eigen::Vector3d& omegaBody) {
-  const Eigen::Vector3d normal = q * Eigen::Vector3d::UnitZ();
-  return -(q * omegaBody).cross(normal).y();
-}
-
 template <physics::Formulation F, int N>
 double tiltRateOf(const integrate::Vec<N>& y) {
   if constexpr (F == physics::Formulation::EulerAngles) {
     return y[physics::kOmega_X];
   } else {
     const physics::QuaternionState s = physics::toQuaternionState(y.template head<physics::kQuaternionStateSize>());
-    return tiltRate(s.q, s.omegaBody);
+    return physics::tiltRate(s.q, s.omegaBody);
   }
 }
 
+// A chain's transition between contact modes (physics::Transition) as a terminal event, its id past
+// ModelEvent's values (switchId).
+template <int N>
+integrate::Event<N> transitionEvent(physics::Transition transition,
+                                    std::function<double(double, const integrate::Vec<N>&)> g, int direction = -1) {
+  return {.name = std::string(physics::transitionName(transition)), .id = switchId(transition), .g = std::move(g),
+          .direction = direction, .terminal = true};
+}
+
+// coin-flat or face-down (|theta| reaches physics::flatStopFor) and, for a rim with corners, theta
+// passing 0: the events of the coin's geometry. The corner's crossing ends the run (corner-switch)
+// unless `landsTheOtherCorner`: a chain with flight lands that corner there (Transition::CornerLands).
 // `theta` reads the tilt of an integrated state, `tiltRate` its rate's sign (tiltRateOf): a corner
 // rolled past upright and back within one step is seen at the turn of the tilt (issue 49).
 template <int N>
 std::vector<integrate::Event<N>> geometryEvents(const physics::CoinModel& model, physics::Formulation formulation,
                                                 std::function<double(const integrate::Vec<N>&)> theta,
-                                                std::function<double(const integrate::Vec<N>&)> tiltRate) {
+                                                std::function<double(const integrate::Vec<N>&)> tiltRate,
+                                                bool landsTheOtherCorner = false) {
   using Y = integrate::Vec<N>;
   const physics::FlatStop flat = physics::flatStopFor(model, formulation);
   std::vector<integrate::Event<N>> events;
@@ -128,8 +134,10 @@ std::vector<integrate::Event<N>> geometryEvents(const physics::CoinModel& model,
       flat.event, [theta, tilt = flat.tilt](double, const Y& y) { return physics::flatMargin(theta(y), tilt); }, -1,
       true));
   if (physics::hasCorners(model)) {
-    integrate::Event<N> corner = modelEvent<N>(
-        physics::ModelEvent::CornerSwitch, [theta](double, const Y& y) { return theta(y); }, 0, true);
+    const auto upright = [theta](double, const Y& y) { return theta(y); };
+    integrate::Event<N> corner = landsTheOtherCorner
+                                     ? transitionEvent<N>(physics::Transition::CornerLands, upright, 0)
+                                     : modelEvent<N>(physics::ModelEvent::CornerSwitch, upright, 0, true);
     corner.rate = [tiltRate](double, const Y& y) { return tiltRate(y); };
     events.push_back(std::move(corner));
   }

@@ -63,21 +63,19 @@ TEST(ContactMode, AStartWithASlipSlidesAndOtherwiseRollsWhereTheRollingReactionF
   // Tilted and at rest the coin falls, and rolling needs friction to hold its contact point.
   const QuaternionState q = fromEulerState(CoinState{.theta = 25 * kDeg});
   const Forward rolling = forward(m, q);
-  const Forward noSlip = slidingForward(m, {.attitude = q}, m.friction.kinetic, Eigen::Vector3d::UnitX());
-  const Forward slipping =
-      slidingForward(m, {.attitude = q, .slip = Eigen::Vector2d(0.1, 0)}, m.friction.kinetic, Eigen::Vector3d::UnitX());
-  EXPECT_EQ(startingMode(m, rolling, slipping), ContactMode::Sliding);
+  const Handover slipStops{.t = 0.5, .state = {.attitude = q}, .forward = rolling};
+  EXPECT_EQ(heldMode(m, {.attitude = q, .slip = Eigen::Vector2d(0.1, 0)}), Mode::Sliding);
   ASSERT_GT(rolling.reaction.F, 0);
   ASSERT_GT(rolling.reaction.N, 0);
   const double needed = rolling.reaction.F / rolling.reaction.N;
   m.friction.cone = 0.5 * needed;
   EXPECT_LT(slideOnsetMargin(m, rolling), 0);
-  EXPECT_EQ(startingMode(m, rolling, noSlip), ContactMode::Creeping);
-  EXPECT_EQ(modeAfterSlipStops(m, rolling), ContactMode::Creeping);
+  EXPECT_EQ(heldMode(m, {.attitude = q}), Mode::Creeping);
+  EXPECT_EQ(next(m, Mode::Sliding, Transition::SlipStops, slipStops), Next(Mode::Creeping));
   m.friction.cone = 2 * needed;
   EXPECT_GT(slideOnsetMargin(m, rolling), 0);
-  EXPECT_EQ(startingMode(m, rolling, noSlip), ContactMode::Rolling);
-  EXPECT_EQ(modeAfterSlipStops(m, rolling), ContactMode::Rolling);
+  EXPECT_EQ(heldMode(m, {.attitude = q}), Mode::Rolling);
+  EXPECT_EQ(next(m, Mode::Sliding, Transition::SlipStops, slipStops), Next(Mode::Rolling));
   // A slip stops at 1e-11 m/s up to t = 1 s, a threshold growing with t after. 10 atol at the
   // default atol (1e-12) is that threshold; a looser atol raises it to what the integrator holds.
   constexpr double kDefaultResolved = 10 * 1e-12;

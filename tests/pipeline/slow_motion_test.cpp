@@ -192,7 +192,7 @@ TEST(SlowMotion, WithoutTheNewKeysTheFrameTimesAreTodays) {
 TEST(SlowMotion, ACoinThatNeverFliesIsNotSlowedNorRunTwice) {
   scene::SceneConfig scene = tossScene(kFlightAndImpact);
   pipeline::Simulation simulation = pipeline::buildSimulation(scene);
-  simulation.flight.reset();  // as "flight": false
+  simulation.flight = false;
   const pipeline::SlowMotionSchedule schedule = pipeline::planSlowMotion(scene, simulation);
   EXPECT_TRUE(schedule.flights.empty());
   EXPECT_TRUE(schedule.impacts.empty());

@@ -424,13 +424,13 @@ TEST(RenderAntialiasing, EdgesApproachASupersampledReference) {
   const double none = psnrWith(Antialiasing::Msaa, 1), fxaa = psnrWith(Antialiasing::Fxaa, 1),
                msaa4 = psnrWith(Antialiasing::Msaa, 4), ssaa = psnrWith(Antialiasing::Ssaa, 1),
                ssaaMsaa4 = psnrWith(Antialiasing::Ssaa, 4);
-  // Measured here 33.3, 34.5 and 36.2 dB: each mode must keep its rank by about a decibel. SSAA's
-  // 4 samples (a video's default from a fixed camera) must not be worse than 4x MSAA's, and its 16
-  // (a still's default) clearly better: the defaults were chosen on that (docs/quality.md).
+  // Measured here 32.8, 34.3, 36.5, 40.3 and 43.3 dB: each mode must keep its rank by a margin. The
+  // defaults were chosen on SSAA's lead (docs/quality.md "Anti-aliasing"): its 4 samples, a fixed
+  // camera's video, clearly ahead of 4x MSAA; its 16, a still's, ahead of those.
   EXPECT_GT(fxaa, none + 0.6) << "FXAA no longer smooths edges";
   EXPECT_GT(msaa4, fxaa + 1.0) << "4x MSAA no longer beats FXAA clearly";
-  EXPECT_GE(ssaa, msaa4) << "2x2 SSAA fell behind 4x MSAA";
-  EXPECT_GT(ssaaMsaa4, msaa4 + 2.0) << "2x2 SSAA with 4x MSAA no longer beats 4x MSAA clearly";
+  EXPECT_GT(ssaa, msaa4 + 2.0) << "2x2 SSAA no longer beats 4x MSAA clearly";
+  EXPECT_GT(ssaaMsaa4, ssaa + 1.5) << "2x2 SSAA with 4x MSAA no longer beats 2x2 SSAA clearly";
   std::cerr << "edge PSNR against 64 samples: none " << none << " dB, fxaa " << fxaa << " dB, msaa 4 " << msaa4
             << " dB, ssaa " << ssaa << " dB, ssaa + msaa 4 " << ssaaMsaa4 << " dB\n";
 }

@@ -60,14 +60,13 @@ struct Method {
   std::string name;
   Antialiasing antialiasing = Antialiasing::Msaa;
   int msaa = 1;
-  int supersample = 1;  // drawn at this many times the width and height, box-filtered down here
 };
 
 std::vector<Method> methods() {
-  return {{"none", Antialiasing::Msaa, 1, 1},   {"msaa 2x", Antialiasing::Msaa, 2, 1},
-          {"msaa 4x", Antialiasing::Msaa, 4, 1}, {"msaa 8x", Antialiasing::Msaa, 8, 1},
-          {"fxaa", Antialiasing::Fxaa, 1, 1},    {"ssaa 2x2", Antialiasing::Msaa, 1, 2},
-          {"ssaa 2x2 + msaa 4x", Antialiasing::Msaa, 4, 2}};
+  return {{"none", Antialiasing::Msaa, 1},    {"msaa 2x", Antialiasing::Msaa, 2},
+          {"msaa 4x", Antialiasing::Msaa, 4}, {"msaa 8x", Antialiasing::Msaa, 8},
+          {"fxaa", Antialiasing::Fxaa, 1},    {"ssaa 2x2", Antialiasing::Ssaa, 1},
+          {"ssaa 2x2 + msaa 4x", Antialiasing::Ssaa, 4}};
 }
 
 std::vector<Picture> pictures() {
@@ -211,7 +210,6 @@ std::vector<Row> measurePicture(render::GlBackend backend, const Picture& pictur
   struct Candidate {
     Row row;
     std::unique_ptr<render::Renderer> renderer;
-    int scale = 1;
     std::vector<double> times;
   };
   std::vector<Candidate> candidates;
@@ -220,10 +218,7 @@ std::vector<Row> measurePicture(render::GlBackend backend, const Picture& pictur
     candidate.row.backend = render::glBackendName(backend);
     candidate.row.picture = picture.name;
     candidate.row.method = method.name;
-    candidate.scale = method.supersample;
     render::RenderSettings settings = base;
-    settings.width *= method.supersample;
-    settings.height *= method.supersample;
     settings.antialiasing = method.antialiasing;
     settings.msaa = method.msaa;
     try {
@@ -234,9 +229,8 @@ std::vector<Row> measurePicture(render::GlBackend backend, const Picture& pictur
       continue;
     }
     const int perPixel = method.antialiasing == Antialiasing::Fxaa ? 1 : grantedSamples(backend, method.msaa);
-    candidate.row.samplesGranted = perPixel * method.supersample * method.supersample;
-    candidate.row.error = errorAgainst(rgb(candidate.renderer->draw(plain), method.supersample), reference, edges);
-    if (method.supersample > 1) candidate.row.note = "drawn at 2x2 the size; the box filter (CPU, here) not timed";
+    candidate.row.samplesGranted = perPixel * render::drawScale(settings) * render::drawScale(settings);
+    candidate.row.error = errorAgainst(rgb(candidate.renderer->draw(plain), 1), reference, edges);
     // The timed renderer draws the full snapshot; one with the background cache if `render` would use it.
     if (reuse) {
       settings.reuseStaticBackground = true;
@@ -288,9 +282,9 @@ void writeCsv(const std::vector<Row>& rows, const std::string& path) {
          "cost_vs_msaa4,note\n";
   for (const Row& r : rows) {
     std::string note = r.note;
-    std::replace(note.begin(), note.end(), ',', ';');
-    csv << fmt::format("{},{},{},{},{:.4f},{:.3f},{:.2f},{:.3f},{:.4f},{:.2f},{:.3f},{}\n", r.backend, r.picture,
-                       r.method, r.samplesGranted, r.error.edgeShare, r.error.edgeMean, r.error.edgeP99,
+    std::replace(note.begin(), note.end(), '"', '\'');
+    csv << fmt::format("{},\"{}\",{},{},{:.4f},{:.3f},{:.2f},{:.3f},{:.4f},{:.2f},{:.3f},\"{}\"\n", r.backend,
+                       r.picture, r.method, r.samplesGranted, r.error.edgeShare, r.error.edgeMean, r.error.edgeP99,
                        r.error.edgePsnr, r.error.allMean, r.milliseconds, r.costRatio, note);
   }
   if (!csv) throw std::runtime_error(fmt::format("{}: cannot write", path));

@@ -1,9 +1,12 @@
-// End to end `coinroll render` (10 s of the default scene at 30 fps, 1280x720, 4x MSAA, x264
-// veryfast) against its two stages alone, measured in the same run: render only (frames
-// discarded), encode only (the same frames, kept in memory, into the same MP4 sink), and the
-// pipeline (render on this thread, encode on the AsyncSink's). Also the ffmpeg tool encoding its
-// testsrc2 pattern, so the figure compares across machines, and the peak resident memory of a
-// 10 s and a 60 s render (child processes, 640x360). Ratios matter; absolute seconds are noise.
+// End to end `coinroll render` (10 s of the default scene at 30 fps, 1280x720, x264 veryfast crf
+// 18) against its two stages alone, measured in the same run: render only (frames discarded),
+// encode only (the same frames, kept in memory, into the same MP4 sink), and the pipeline (render
+// on this thread, encode on the AsyncSink's), with the anti-aliasing `auto` chooses and with 4x
+// MSAA (the default before issue 53), paired in one run. Also the ffmpeg tool encoding its
+// testsrc2 pattern with the same settings, so the figure compares across machines; the default
+// scene's whole 12 s clip against real time; and the peak resident memory of a 10 s and a 60 s
+// render (child processes, 640x360). Wall and CPU seconds (this process's threads, or the child's).
+// Ratios matter; absolute seconds are noise.
 // Run: build/bench/pipeline_bench [--no-memory]   (LP_NUM_THREADS sets llvmpipe's threads)
 #include <fmt/format.h>
 #include <sys/resource.h>
@@ -28,13 +31,22 @@ using Clock = std::chrono::steady_clock;
 
 double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
-scene::SceneConfig benchScene(const std::string& cameraMode, int encoderThreads) {
+// CPU seconds (user + system) of this process's threads, or of its waited-for children.
+double cpuSeconds(int who) {
+  rusage usage{};
+  getrusage(who, &usage);
+  const auto seconds = [](const timeval& t) { return static_cast<double>(t.tv_sec) + 1e-6 * t.tv_usec; };
+  return seconds(usage.ru_utime) + seconds(usage.ru_stime);
+}
+
+// `antialiasing`: empty for the scene's default (auto), else the method named.
+scene::SceneConfig benchScene(const std::string& cameraMode, int encoderThreads, const std::string& antialiasing) {
   nlohmann::json doc = scene::builtInDefaultScene();
   doc["duration"] = 10.0;
   doc["render"]["time_scale"] = 1.0;
   doc["render"]["width"] = 1280;
   doc["render"]["height"] = 720;
-  doc["render"]["msaa"] = 4;
+  if (!antialiasing.empty()) doc["render"]["antialiasing"] = antialiasing;
   doc["render"]["camera"] = {{"mode", cameraMode}, {"orbit_period", 10.0}};
   doc["render"]["video"] = {{"preset", "veryfast"}, {"crf", 18}, {"threads", encoderThreads}};
   return scene::parseScene(doc, "pipeline_bench");
@@ -58,7 +70,7 @@ class KeepSink final : public video::FrameSink {
 };
 
 struct Timings {
-  double renderOnly = 0, encodeOnly = 0, pipeline = 0;
+  double renderOnly = 0, encodeOnly = 0, pipeline = 0, pipelineCpu = 0;
   long frames = 0;
 };
 
@@ -80,21 +92,44 @@ Timings measure(const scene::SceneConfig& s, const std::filesystem::path& out) {
     t.encodeOnly = secondsSince(start);
   }
   {
-    video::AsyncSink sink(std::make_unique<video::EncoderSink>(out, encoding(s)));
     const auto start = Clock::now();
-    pipeline::renderVideo(s, sink);
+    const double cpuStart = cpuSeconds(RUSAGE_SELF);
+    {
+      video::AsyncSink sink(std::make_unique<video::EncoderSink>(out, encoding(s)));
+      pipeline::renderVideo(s, sink);
+    }  // the encoder thread joined: its CPU time counted
     t.pipeline = secondsSince(start);
+    t.pipelineCpu = cpuSeconds(RUSAGE_SELF) - cpuStart;
   }
   return t;
 }
 
-double ffmpegTestPatternSeconds() {
+struct WallAndCpu {
+  double wall = NAN, cpu = NAN;
+};
+
+WallAndCpu ffmpegTestPattern() {
   const auto start = Clock::now();
+  const double cpuStart = cpuSeconds(RUSAGE_CHILDREN);
   const int status = std::system(
       "ffmpeg -hide_banner -loglevel error -nostdin -f lavfi -i testsrc2=size=1280x720:rate=30 -frames:v 300 "
-      "-c:v libx264 -preset veryfast -f null -");
-  if (status != 0) return NAN;
-  return secondsSince(start);
+      "-c:v libx264 -preset veryfast -crf 18 -f null -");
+  if (status != 0) return {};
+  return {secondsSince(start), cpuSeconds(RUSAGE_CHILDREN) - cpuStart};
+}
+
+// The built-in default scene's whole clip (12 s of video), encoded as `render` encodes it.
+WallAndCpu defaultClip(const std::string& antialiasing, const std::filesystem::path& out) {
+  nlohmann::json doc = scene::builtInDefaultScene();
+  if (!antialiasing.empty()) doc["render"]["antialiasing"] = antialiasing;
+  const scene::SceneConfig s = scene::parseScene(doc, "default");
+  const auto start = Clock::now();
+  const double cpuStart = cpuSeconds(RUSAGE_SELF);
+  {
+    video::AsyncSink sink(std::make_unique<video::EncoderSink>(out, encoding(s)));
+    pipeline::renderVideo(s, sink);
+  }
+  return {secondsSince(start), cpuSeconds(RUSAGE_SELF) - cpuStart};
 }
 
 // Peak resident set of `coinroll render` for a clip of `seconds`, in MiB.
@@ -119,24 +154,33 @@ int main(int argc, char** argv) {
   const bool memory = !(argc > 1 && std::string(argv[1]) == "--no-memory");
   const char* lpThreads = std::getenv("LP_NUM_THREADS");
   const std::filesystem::path out = std::filesystem::temp_directory_path() / "coinroll_pipeline_bench.mp4";
-  fmt::print("pipeline_bench: 10 s at 30 fps, 1280x720, 4x MSAA, x264 veryfast crf 18; llvmpipe threads: {}\n\n",
+  fmt::print("pipeline_bench: 10 s at 30 fps, 1280x720, x264 veryfast crf 18; llvmpipe threads: {}\n\n",
              lpThreads ? lpThreads : "default");
-  const double reference = ffmpegTestPatternSeconds();
-  fmt::print("{:<28} {:>9} {:>9} {:>9} {:>14} {:>12} {:>14}\n", "camera, x264 threads", "render s", "encode s",
-             "both s", "both / slower", "real time x", "both / ffmpeg");
-  for (const std::string camera : {"fixed", "orbit"}) {
-    for (int threads : {1, 2}) {
-      const Timings t = measure(benchScene(camera, threads), out);
-      const double slower = std::max(t.renderOnly, t.encodeOnly);
-      fmt::print("{:<28} {:>9.2f} {:>9.2f} {:>9.2f} {:>14.2f} {:>12.2f} {:>14.2f}\n",
-                 fmt::format("{}, {}", camera, threads), t.renderOnly, t.encodeOnly, t.pipeline, t.pipeline / slower,
-                 10.0 / t.pipeline, t.pipeline / reference);
-    }
+  const WallAndCpu reference = ffmpegTestPattern();
+  fmt::print("| camera, anti-aliasing, x264 threads | render s | encode s | both s | both CPU s | both / slower | "
+             "real time x | both / ffmpeg, wall | both / ffmpeg, CPU |\n|---|---|---|---|---|---|---|---|---|\n");
+  struct Case {
+    std::string camera, antialiasing;
+    int threads;
+  };
+  for (const Case& c : {Case{"fixed", "msaa", 1}, Case{"fixed", "", 1}, Case{"fixed", "msaa", 2}, Case{"fixed", "", 2},
+                        Case{"orbit", "", 1}}) {
+    const Timings t = measure(benchScene(c.camera, c.threads, c.antialiasing), out);
+    const double slower = std::max(t.renderOnly, t.encodeOnly);
+    fmt::print("| {}, {}, {} | {:.2f} | {:.2f} | {:.2f} | {:.2f} | {:.2f} | {:.2f} | {:.2f} | {:.2f} |\n", c.camera,
+               c.antialiasing.empty() ? "auto" : "msaa 4x", c.threads, t.renderOnly, t.encodeOnly, t.pipeline,
+               t.pipelineCpu, t.pipeline / slower, 10.0 / t.pipeline, t.pipeline / reference.wall,
+               t.pipelineCpu / reference.cpu);
   }
-  fmt::print(
-      "\nffmpeg -f lavfi -i testsrc2=size=1280x720:rate=30 -frames:v 300 -c:v libx264 -preset veryfast -f null -: "
-      "{:.2f} s\n",
-      reference);
+  fmt::print("\nffmpeg -f lavfi -i testsrc2=size=1280x720:rate=30 -frames:v 300 -c:v libx264 -preset veryfast -crf 18 "
+             "-f null -: wall {:.2f} s, CPU {:.2f} s\n",
+             reference.wall, reference.cpu);
+  fmt::print("\n| default scene, 12 s clip | wall s | CPU s | faster than real time x |\n|---|---|---|---|\n");
+  for (const std::string antialiasing : {"msaa", ""}) {
+    const WallAndCpu clip = defaultClip(antialiasing, out);
+    fmt::print("| {} | {:.2f} | {:.2f} | {:.2f} |\n", antialiasing.empty() ? "auto" : "msaa 4x", clip.wall, clip.cpu,
+               12.0 / clip.wall);
+  }
   std::filesystem::remove(out);
   if (memory) {
     const std::string binary = std::string(COINROLL_BINARY_DIR) + "/coinroll";

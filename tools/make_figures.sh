@@ -7,8 +7,8 @@
 #
 # --quick leaves out the two slow sets: the stability maps (thousands of runs, minutes) and the
 # spectrograms (the 138 s Euler's-disk clip is rendered whole for its sound). The work-precision
-# charts are drawn from the benchmark tables in docs/*.csv (timings: build/bench/work_precision
-# and build/bench/stability measure them anew).
+# charts and the anti-aliasing chart are drawn from the benchmark tables in docs/*.csv (timings:
+# build/bench/work_precision, build/bench/stability and build/bench/antialias_quality measure them anew).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 quick=0
@@ -48,6 +48,10 @@ $python tools/plot_spin_down.py "$coinroll" --out-dir "$out" >/dev/null
 step "work_precision.png, stability.png (from the benchmark tables)"
 if [[ "$out" != "$root/docs" ]]; then cp docs/work_precision*.csv docs/stability_*.csv "$out/"; fi
 $python tools/plot_work_precision.py "$out" >/dev/null
+
+step "antialias_quality.png (from build/bench/antialias_quality's table)"
+if [[ "$out" != "$root/docs" ]]; then cp docs/antialias_quality.csv "$out/"; fi
+$python tools/plot_antialias_quality.py "$out"
 
 if [[ $quick == 0 ]]; then
   step "map_straight.png, map_circles.png, map_spin_down.png (minutes)"

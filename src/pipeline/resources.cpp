@@ -96,9 +96,13 @@ void requireAddressSpace(std::uint64_t bytes, std::string_view what, std::string
 }
 
 std::uint64_t rendererAddressSpace(const render::RenderSettings& settings) {
-  const std::uint64_t samples = settings.antialiasing == render::Antialiasing::Msaa
-                                    ? static_cast<std::uint64_t>(settings.msaa)
-                                    : 2;  // FXAA: a second picture
+  // Per picture pixel. FXAA: a second picture. SSAA: msaa samples at each of the drawn pixels, and
+  // with MSAA those pixels resolved once more at the drawn size.
+  const auto drawnPixels = static_cast<std::uint64_t>(render::drawScale(settings) * render::drawScale(settings));
+  const std::uint64_t samples = settings.antialiasing == render::Antialiasing::Fxaa
+                                    ? 2
+                                    : drawnPixels * static_cast<std::uint64_t>(settings.msaa) +
+                                          (render::isMultisampled(settings) && drawnPixels > 1 ? drawnPixels : 0);
   // A reused background keeps a second multisampled colour and depth buffer.
   const std::uint64_t perPixel = kBytesPerPixel + kBytesPerSample * samples * (settings.reuseStaticBackground ? 2 : 1);
   const std::uint64_t pixels = static_cast<std::uint64_t>(settings.width) * static_cast<std::uint64_t>(settings.height);
@@ -106,7 +110,9 @@ std::uint64_t rendererAddressSpace(const render::RenderSettings& settings) {
 }
 
 void requireRendererAddressSpace(const render::RenderSettings& settings, std::uint64_t encoderBytes) {
-  const int samples = settings.antialiasing == render::Antialiasing::Msaa ? settings.msaa : 1;
+  const int samples = settings.antialiasing == render::Antialiasing::Fxaa
+                          ? 1
+                          : render::drawScale(settings) * render::drawScale(settings) * settings.msaa;
   requireAddressSpace(
       rendererAddressSpace(settings) + encoderBytes,
       fmt::format("{} {}x{} pictures with {} samples per pixel", encoderBytes > 0 ? "drawing and encoding" : "drawing",

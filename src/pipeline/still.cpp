@@ -94,7 +94,7 @@ StillPicture drawStill(const scene::SceneConfig& scene, const StillRequest& requ
   }
   Simulation simulation = buildSimulation(scene);
   simulation.cancel = request.cancel;
-  render::RenderSettings settings = scene.render.picture;
+  render::RenderSettings settings = scene.render.pictureFor(scene::RenderSpec::Output::Still);
   settings.reuseStaticBackground = false;  // one frame: nothing to reuse
   // llvmpipe does not check its allocations: short of memory, it crashes or hangs rather than
   // failing, so what it needs is checked first.

@@ -313,7 +313,7 @@ VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& si
   refuseAbsurdDuration(scene, options.maxFrames, options.maxFramesOption);
   Simulation simulation = buildSimulation(scene);
   simulation.cancel = options.cancel;
-  render::RenderSettings settings = scene.render.picture;
+  render::RenderSettings settings = scene.render.pictureFor(scene::RenderSpec::Output::Video);
   settings.reuseStaticBackground = options.reuseStaticBackground;
   // llvmpipe does not check its allocations: short of memory, it crashes or hangs rather than
   // failing; an encoder fails mid-clip without saying why. So what both need is checked first.

@@ -30,7 +30,16 @@ inline constexpr bool isMsaaSampleCount(int samples) {
 
 // Msaa: `msaa` samples per pixel, resolved by a blit. Fxaa: one sample per pixel and a fast
 // approximate anti-aliasing pass over the picture (shaders/fxaa.frag); `msaa` is ignored.
-enum class Antialiasing { Msaa, Fxaa };
+// Ssaa: drawn at kSupersampleFactor times the width and height with `msaa` samples per pixel there,
+// each kSupersampleFactor x kSupersampleFactor block then averaged into one pixel: unlike MSAA, the
+// floor's texture and the shading are sampled that many times too (docs/quality.md "Anti-aliasing").
+// Auto: the scene's default, which the pipeline turns into one of the others for each output
+// (scene::RenderSpec::pictureFor); a Renderer refuses it.
+enum class Antialiasing { Msaa, Fxaa, Ssaa, Auto };
+
+// Ssaa's factor per side. 2: a 2:1 linear blit lands every output pixel's centre between four
+// drawn pixels, so the blit is the exact 2x2 box average; 16x the pixels (4 per side) cost 4x more.
+inline constexpr int kSupersampleFactor = 2;
 
 // The coin as drawn: a closed cylinder, an annulus when it has a hole, whose two outer edges may
 // be rounded. In the (r, z) half-plane its cross-section is [innerRadius, radius] x [-h/2, h/2]
@@ -75,5 +84,16 @@ struct RenderSettings {
   // are the same either way; off only to measure or test the saving.
   bool reuseStaticBackground = true;
 };
+
+// The pixels drawn per picture pixel along each side: kSupersampleFactor for Ssaa, else 1.
+inline constexpr int drawScale(const RenderSettings& settings) {
+  return settings.antialiasing == Antialiasing::Ssaa ? kSupersampleFactor : 1;
+}
+
+// Whether the drawing buffers hold `msaa` samples per pixel (Msaa and Ssaa with msaa > 1).
+inline constexpr bool isMultisampled(const RenderSettings& settings) {
+  return (settings.antialiasing == Antialiasing::Msaa || settings.antialiasing == Antialiasing::Ssaa) &&
+         settings.msaa > 1;
+}
 
 }  // namespace coinroll::render

@@ -25,7 +25,11 @@ void validate(const RenderSettings& s) {
           fmt::format("render.{}: must be {}..{} pixels, got {}", field, kMinImageSide, kMaxImageSide, side));
     }
   }
-  if (!isMsaaSampleCount(s.msaa) && s.antialiasing == Antialiasing::Msaa) {
+  if (s.antialiasing == Antialiasing::Auto) {
+    throw std::invalid_argument("render.antialiasing: auto names a choice per output, made before drawing "
+                                "(scene::RenderSpec::pictureFor), not a method a Renderer can draw with");
+  }
+  if (!isMsaaSampleCount(s.msaa) && s.antialiasing != Antialiasing::Fxaa) {
     throw std::invalid_argument(
         fmt::format("render.msaa: must be one of {} samples, got {}", fmt::join(kMsaaSampleCounts, ", "), s.msaa));
   }
@@ -75,14 +79,23 @@ Renderer::Renderer(const RenderSettings& settings, GlBackend backend) : settings
   const GlFunctions& gl = state.gl;
   const int w = settings_.width, h = settings_.height;
 
-  GLint maxSamples = 0;
+  GLint maxSamples = 0, maxRenderbufferSide = 0;
   gl.GetIntegerv(GL_MAX_SAMPLES, &maxSamples);
-  if (settings_.antialiasing == Antialiasing::Msaa && settings_.msaa > maxSamples) {
+  gl.GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &maxRenderbufferSide);
+  if (settings_.antialiasing != Antialiasing::Fxaa && settings_.msaa > maxSamples) {
     throw std::invalid_argument(
         fmt::format("render.msaa: this OpenGL allows at most {} samples, got {}", maxSamples, settings_.msaa));
   }
   const bool fxaa = settings_.antialiasing == Antialiasing::Fxaa;
-  const bool multisampled = !fxaa && settings_.msaa > 1;
+  const bool supersampled = settings_.antialiasing == Antialiasing::Ssaa;
+  const bool multisampled = isMultisampled(settings_);
+  const int samples = multisampled ? settings_.msaa : 0;
+  const int drawWidth = w * drawScale(settings_), drawHeight = h * drawScale(settings_);
+  if (std::max(drawWidth, drawHeight) > maxRenderbufferSide) {
+    throw std::invalid_argument(fmt::format("render.antialiasing: ssaa draws {}x{} pixels, and this OpenGL allows at "
+                                            "most {} a side; use msaa for a {}x{} picture",
+                                            drawWidth, drawHeight, maxRenderbufferSide, w, h));
+  }
   state.drawTarget = makeFramebuffer(gl);
   state.drawDepthStencil = makeRenderbuffer(gl);
   gl.BindFramebuffer(GL_FRAMEBUFFER, state.drawTarget.get());
@@ -99,27 +112,32 @@ Renderer::Renderer(const RenderSettings& settings, GlBackend backend) : settings
   } else {
     state.drawColour = makeRenderbuffer(gl);
     gl.BindRenderbuffer(GL_RENDERBUFFER, state.drawColour.get());
-    gl.RenderbufferStorageMultisample(GL_RENDERBUFFER, multisampled ? settings_.msaa : 0, GL_RGBA8, w, h);
+    gl.RenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_RGBA8, drawWidth, drawHeight);
     gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, state.drawColour.get());
   }
   gl.BindRenderbuffer(GL_RENDERBUFFER, state.drawDepthStencil.get());
-  gl.RenderbufferStorageMultisample(GL_RENDERBUFFER, multisampled ? settings_.msaa : 0, GL_DEPTH24_STENCIL8, w, h);
+  gl.RenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_DEPTH24_STENCIL8, drawWidth, drawHeight);
   gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER,
                              state.drawDepthStencil.get());
   if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
-    throw std::runtime_error(
-        fmt::format("OpenGL: cannot create a {}x{} framebuffer with {} samples", w, h, settings_.msaa));
+    throw std::runtime_error(fmt::format("OpenGL: cannot create a {}x{} framebuffer with {} samples", drawWidth,
+                                         drawHeight, settings_.msaa));
   }
-  if (multisampled || fxaa) {
-    state.resolveTarget = makeFramebuffer(gl);
-    state.resolveColour = makeRenderbuffer(gl);
-    gl.BindFramebuffer(GL_FRAMEBUFFER, state.resolveTarget.get());
-    gl.BindRenderbuffer(GL_RENDERBUFFER, state.resolveColour.get());
-    gl.RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, w, h);
-    gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, state.resolveColour.get());
+  const auto makeColourTarget = [&](Framebuffer& target, Renderbuffer& colour, int width, int height) {
+    target = makeFramebuffer(gl);
+    colour = makeRenderbuffer(gl);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, target.get());
+    gl.BindRenderbuffer(GL_RENDERBUFFER, colour.get());
+    gl.RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width, height);
+    gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colour.get());
     if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
-      throw std::runtime_error(fmt::format("OpenGL: cannot create a {}x{} resolve framebuffer", w, h));
+      throw std::runtime_error(fmt::format("OpenGL: cannot create a {}x{} resolve framebuffer", width, height));
     }
+  };
+  if (multisampled || fxaa || supersampled) makeColourTarget(state.resolveTarget, state.resolveColour, w, h);
+  // A blit cannot resolve samples and scale at once: the samples are resolved at the drawn size first.
+  if (supersampled && multisampled) {
+    makeColourTarget(state.supersampleTarget, state.supersampleColour, drawWidth, drawHeight);
   }
 
   // The face pattern (assets/coin_face.png): row 0 of the image is body +Y, so the shader maps

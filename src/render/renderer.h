@@ -52,6 +52,7 @@ class Renderer {
   ScaleBarPlacement drawScaleBar(const FrameSnapshot& snapshot, const glm::mat4& viewProjection);
   void drawCoins(const FrameSnapshot& snapshot, const glm::mat4& viewProjection);
   void applyFxaa();
+  void downsampleSupersampled();
   void drawOverlay(const FrameSnapshot& snapshot, const std::optional<ScaleBarPlacement>& scaleBar);
   void readBack(image::Image& out);
 

@@ -68,8 +68,10 @@ void Renderer::draw(const FrameSnapshot& snapshot, image::Image& out) {
   drawOrRestoreBackground(snapshot.camera, viewProjection);
   const std::optional<ScaleBarPlacement> scaleBar = drawFloorDecals(snapshot, viewProjection);
   drawCoins(snapshot, viewProjection);
-  // The overlay goes on after anti-aliasing: FXAA would soften the text, MSAA gains nothing on it.
+  // The overlay goes on after anti-aliasing: FXAA would soften the text, MSAA gains nothing on it,
+  // and supersampled it would be glyphs twice the size shrunk, not the atlas's.
   if (settings_.antialiasing == Antialiasing::Fxaa) applyFxaa();
+  if (settings_.antialiasing == Antialiasing::Ssaa) downsampleSupersampled();
   drawOverlay(snapshot, scaleBar);
   readBack(out);
   if (const GLenum error = state_->gl.GetError(); error != GL_NO_ERROR) {
@@ -80,7 +82,7 @@ void Renderer::draw(const FrameSnapshot& snapshot, image::Image& out) {
 void Renderer::bindDrawTarget() {
   const GlFunctions& gl = state_->gl;
   gl.BindFramebuffer(GL_FRAMEBUFFER, state_->drawTarget.get());
-  gl.Viewport(0, 0, settings_.width, settings_.height);
+  gl.Viewport(0, 0, settings_.width * drawScale(settings_), settings_.height * drawScale(settings_));
   gl.Enable(GL_DEPTH_TEST);
   gl.DepthFunc(GL_LESS);
   gl.Enable(GL_CULL_FACE);
@@ -98,7 +100,7 @@ void Renderer::bindDrawTarget() {
 void Renderer::drawOrRestoreBackground(const CameraView& camera, const glm::mat4& viewProjection) {
   GlState& state = *state_;
   const GlFunctions& gl = state.gl;
-  const int w = settings_.width, h = settings_.height;
+  const int w = settings_.width * drawScale(settings_), h = settings_.height * drawScale(settings_);
   if (state.backgroundCamera == camera) {
     gl.BindFramebuffer(GL_READ_FRAMEBUFFER, state.backgroundCache.get());
     gl.BlitFramebuffer(0, 0, w, h, 0, 0, w, h, kAllBuffers, GL_NEAREST);
@@ -122,8 +124,8 @@ void Renderer::drawOrRestoreBackground(const CameraView& camera, const glm::mat4
 void Renderer::allocateBackgroundCache() {
   GlState& state = *state_;
   const GlFunctions& gl = state.gl;
-  const int w = settings_.width, h = settings_.height;
-  const int samples = settings_.antialiasing == Antialiasing::Msaa && settings_.msaa > 1 ? settings_.msaa : 0;
+  const int w = settings_.width * drawScale(settings_), h = settings_.height * drawScale(settings_);
+  const int samples = isMultisampled(settings_) ? settings_.msaa : 0;
   state.backgroundCache = makeFramebuffer(gl);
   state.backgroundColour = makeRenderbuffer(gl);
   state.backgroundDepthStencil = makeRenderbuffer(gl);
@@ -323,6 +325,27 @@ void Renderer::applyFxaa() {
   gl.DrawArrays(GL_TRIANGLES, 0, 3);
 }
 
+// Averages each drawn kSupersampleFactor x kSupersampleFactor block into the resolve target, which
+// the overlay (drawn at the picture's own size, so its glyphs stay the atlas's) and the readback use.
+void Renderer::downsampleSupersampled() {
+  GlState& state = *state_;
+  const GlFunctions& gl = state.gl;
+  const int w = settings_.width, h = settings_.height;
+  const int drawWidth = w * kSupersampleFactor, drawHeight = h * kSupersampleFactor;
+  GLuint drawn = state.drawTarget.get();
+  if (isMultisampled(settings_)) {
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, drawn);
+    gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, state.supersampleTarget.get());
+    gl.BlitFramebuffer(0, 0, drawWidth, drawHeight, 0, 0, drawWidth, drawHeight, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    drawn = state.supersampleTarget.get();
+  }
+  gl.BindFramebuffer(GL_READ_FRAMEBUFFER, drawn);
+  gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, state.resolveTarget.get());
+  gl.BlitFramebuffer(0, 0, drawWidth, drawHeight, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_LINEAR);
+  gl.BindFramebuffer(GL_FRAMEBUFFER, state.resolveTarget.get());
+  gl.Viewport(0, 0, w, h);
+}
+
 void Renderer::drawOverlay(const FrameSnapshot& snapshot, const std::optional<ScaleBarPlacement>& scaleBar) {
   GlState& state = *state_;
   const GlFunctions& gl = state.gl;
@@ -364,7 +387,7 @@ void Renderer::readBack(image::Image& out) {
   GlState& state = *state_;
   const GlFunctions& gl = state.gl;
   const int w = settings_.width, h = settings_.height;
-  if (settings_.antialiasing == Antialiasing::Fxaa) {
+  if (settings_.antialiasing == Antialiasing::Fxaa || settings_.antialiasing == Antialiasing::Ssaa) {
     gl.BindFramebuffer(GL_READ_FRAMEBUFFER, state.resolveTarget.get());
   } else if (settings_.msaa > 1) {
     gl.BindFramebuffer(GL_READ_FRAMEBUFFER, state.drawTarget.get());

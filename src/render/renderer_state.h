@@ -44,6 +44,9 @@ struct Renderer::GlState {
   ShaderProgram hudProgram{gl, "hud.vert", "hud.frag"};
   std::optional<ShaderProgram> fxaaProgram;  // only for Antialiasing::Fxaa
   Texture sceneColour;                       // the FXAA pass reads the scene from this texture
+  // Ssaa with MSAA: the drawn picture with its samples resolved, still at the drawn size.
+  Framebuffer supersampleTarget;
+  Renderbuffer supersampleColour;
   VertexArray coinArray = makeVertexArray(gl), floorArray = makeVertexArray(gl), markerArray = makeVertexArray(gl),
               traceArray = makeVertexArray(gl), hudArray = makeVertexArray(gl), fullScreenArray = makeVertexArray(gl),
               scaleBarArray = makeVertexArray(gl);

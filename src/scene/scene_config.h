@@ -127,8 +127,12 @@ inline constexpr int kMaxFps = 240;  // render.fps in [1, kMaxFps]
 struct RenderSpec {
   // What the Renderer is built with: render.width and height (even, for H.264's yuv420p),
   // render.antialiasing and msaa, and the coin as drawn (coin.thickness; a ring's hole narrowed
-  // so a thin hoop still shows as a band).
-  render::RenderSettings picture;
+  // so a thin hoop still shows as a band). Drawn through pictureFor, which resolves "auto".
+  render::RenderSettings picture = [] {
+    render::RenderSettings settings;
+    settings.antialiasing = render::Antialiasing::Auto;
+    return settings;
+  }();
   int fps = video::VideoOptions{}.fps;  // frames per second of video, 1..kMaxFps; the encoder's default
   double timeScale = 1.0;          // video seconds per simulated second
   // When set, playback slows further whenever the chosen rate exceeds its limit, so that rate seen
@@ -143,6 +147,27 @@ struct RenderSpec {
   std::optional<AudioSpec> audio;  // absent: no sound track
   // render.provenance: outputs name coinroll, its release and the scene's digest (docs/outputs.md).
   bool provenance = true;
+
+  // What `picture` is drawn with for `output`: render.antialiasing "auto" made a method, from the
+  // measurements of bench/antialias_quality (docs/quality.md "Anti-aliasing"):
+  // - a still: ssaa with render.msaa samples per drawn pixel (16 a pixel at the default 4), a third
+  //   of 4x MSAA's edge error for one picture's time; msaa once the doubled picture would pass
+  //   kMaxImageSide (its buffers would take gigabytes);
+  // - a video from a fixed camera: ssaa with one sample, which costs what 4x MSAA does a frame
+  //   (0.9-1.0x: the floor is drawn once per clip) for 0.4x its mean edge error;
+  // - a video from a moving camera: msaa, since there the floor is shaded every frame, and ssaa at
+  //   four times the pixels costs 1.2x 4x MSAA's time.
+  enum class Output { Still, Video };
+  render::RenderSettings pictureFor(Output output) const {
+    render::RenderSettings settings = picture;
+    if (settings.antialiasing != render::Antialiasing::Auto) return settings;
+    const bool doubledFits = render::kSupersampleFactor * std::max(picture.width, picture.height) <=
+                             render::kMaxImageSide;
+    settings.antialiasing = doubledFits ? render::Antialiasing::Ssaa : render::Antialiasing::Msaa;
+    if (output == Output::Video && camera.mode != CameraMode::Fixed) settings.antialiasing = render::Antialiasing::Msaa;
+    if (output == Output::Video && settings.antialiasing == render::Antialiasing::Ssaa) settings.msaa = 1;
+    return settings;
+  }
 
   // The encoder's options for these pictures: the same size and frame rate, render.video, and an
   // audio track when render.audio asks for one.

@@ -297,11 +297,15 @@ std::vector<Key> buildTable() {
               "second (docs/outputs.md \"GIF frame timing\")"},
       {.path = "render.antialiasing", .type = T::Name, .unit = "",
        .defaultText = nameOf(picture.antialiasing, kAntialiasingNames), .names = namesOf(kAntialiasingNames),
-       .doc = "`msaa` (`render.msaa` samples per pixel, resolved) or `fxaa` (one sample and a fast edge-smoothing "
-              "pass; `msaa` is then ignored)"},
+       .doc = "`auto`: `ssaa` for a still, `ssaa` with one sample for a video from a fixed camera, `msaa` for a "
+              "video from a moving one (docs/quality.md \"Anti-aliasing\"); `msaa` (`render.msaa` samples per "
+              "pixel, resolved), `ssaa` (drawn at twice the width and height with `render.msaa` samples per pixel "
+              "there, each 2x2 block averaged) or `fxaa` (one sample and a fast edge-smoothing pass; `msaa` is then "
+              "ignored)"},
       {.path = "render.msaa", .type = T::Integer, .unit = "", .defaultText = number(picture.msaa),
-       .doc = fmt::format("samples per pixel: one of {}, and at most what the OpenGL allows (llvmpipe on Debian 12: 4; "
-                          "more is refused, naming the limit)", fmt::join(render::kMsaaSampleCounts, ", "))},
+       .doc = fmt::format("samples per pixel (per drawn pixel with `ssaa`; `auto` takes one for a fixed camera's "
+                          "video): one of {}, and at most what the OpenGL allows (llvmpipe on Debian 12: 4; more is "
+                          "refused, naming the limit)", fmt::join(render::kMsaaSampleCounts, ", "))},
       {.path = "render.time_scale", .type = T::Number, .unit = "", .defaultText = number(render.timeScale),
        .lower = open(0), .doc = "simulated seconds per video second (0.5 = half speed, 2 = twice as fast)"},
       {.path = "render.time_remap", .type = T::Object, .unit = "", .defaultText = "",

@@ -30,7 +30,7 @@ inline constexpr std::array<std::string_view, 2> kFormulationNames = {"euler-ang
 inline constexpr std::array<std::string_view, 2> kOnInvalidNames = {"stop", "warn"};
 inline constexpr std::array<std::string_view, 3> kEffectTypeNames = {"air_drag", "rolling_resistance", "spin_friction"};
 inline constexpr std::array<std::string_view, 2> kAirFlowNames = {"moffatt", "boundary_layer"};
-inline constexpr std::array<std::string_view, 2> kAntialiasingNames = {"msaa", "fxaa"};
+inline constexpr std::array<std::string_view, 4> kAntialiasingNames = {"msaa", "fxaa", "ssaa", "auto"};
 inline constexpr std::array<std::string_view, 2> kBackgroundNames = {"opaque", "transparent"};
 inline constexpr std::array<std::string_view, 2> kThemeNames = {"classic", "paper"};
 inline constexpr std::array<std::string_view, 3> kCameraModeNames = {"fixed", "orbit", "follow"};
@@ -43,7 +43,7 @@ constexpr bool namesEveryValue(Enum last, const std::array<std::string_view, N>&
 }
 static_assert(namesEveryValue(physics::Formulation::Quaternion, kFormulationNames));
 static_assert(namesEveryValue(physics::AirFlow::BoundaryLayer, kAirFlowNames));
-static_assert(namesEveryValue(render::Antialiasing::Fxaa, kAntialiasingNames));
+static_assert(namesEveryValue(render::Antialiasing::Auto, kAntialiasingNames));
 static_assert(namesEveryValue(render::Theme::Paper, kThemeNames));
 
 enum class Type {

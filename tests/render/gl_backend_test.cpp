@@ -152,10 +152,10 @@ RenderSettings smallSettings(Antialiasing antialiasing) {
 // Their GL objects have the same names and contents, so a call reaching the other context (the
 // hazard of OSMesa and EGL in one program: they share Mesa's current-context slot) would still
 // draw the same picture; it shows once that context is gone, so each in turn is destroyed while
-// the other draws on. Moving frames, then still ones (the background cache), MSAA and FXAA.
+// the other draws on. Moving frames, then still ones (the background cache), MSAA, FXAA and SSAA.
 TEST(GlBackends, OsmesaAndEglDrawTheSameBytesSideBySide) {
   if (!isCompiledIn(GlBackend::OsMesa) || !isCompiledIn(GlBackend::Egl)) GTEST_SKIP() << "needs both osmesa and egl";
-  for (const Antialiasing antialiasing : {Antialiasing::Msaa, Antialiasing::Fxaa}) {
+  for (const Antialiasing antialiasing : {Antialiasing::Msaa, Antialiasing::Fxaa, Antialiasing::Ssaa}) {
     for (const GlBackend survivor : {GlBackend::Egl, GlBackend::OsMesa}) {
       std::optional<Renderer> osmesa(std::in_place, smallSettings(antialiasing), GlBackend::OsMesa);
       std::optional<Renderer> egl(std::in_place, smallSettings(antialiasing), GlBackend::Egl);

@@ -1,4 +1,5 @@
-// render --size's presets, as scene/render_output.h gives them to the command line.
+// render --size's presets, as scene/render_output.h gives them to the command line; the
+// anti-aliasing each output draws with (RenderSpec::pictureFor).
 
 #include "scene/render_output.h"
 
@@ -7,6 +8,7 @@
 #include <string>
 
 #include "render/render_settings.h"
+#include "scene/scene_loader.h"
 
 namespace coinroll::scene {
 namespace {
@@ -19,6 +21,45 @@ TEST(PictureSizes, EveryPresetIsA16By9PictureTheLoaderAccepts) {
     EXPECT_LE(size.width, render::kMaxImageSide) << size.name;
     EXPECT_NEAR(static_cast<double>(size.width) / size.height, 16.0 / 9.0, 0.005) << size.name;
     EXPECT_EQ(std::to_string(size.height) + "p", size.name);
+  }
+}
+
+SceneConfig defaultSceneWith(const std::vector<std::string>& overrides) {
+  nlohmann::json document = builtInDefaultScene();
+  for (const std::string& override : overrides) applyOverride(document, override);
+  return parseScene(document, "test");
+}
+
+// docs/quality.md "Anti-aliasing": a still takes 2x2 SSAA with 4x MSAA, a video from a fixed camera
+// 2x2 SSAA with one sample, one from a moving camera 4x MSAA; what a scene names is kept as named.
+TEST(PictureAntialiasing, AutoChoosesPerOutputAndANamedMethodStays) {
+  using render::Antialiasing;
+  const SceneConfig scene = defaultSceneWith({});
+  EXPECT_EQ(scene.render.picture.antialiasing, Antialiasing::Auto);
+  const render::RenderSettings still = scene.render.pictureFor(RenderSpec::Output::Still);
+  EXPECT_EQ(still.antialiasing, Antialiasing::Ssaa);
+  EXPECT_EQ(still.msaa, 4);
+  const render::RenderSettings video = scene.render.pictureFor(RenderSpec::Output::Video);
+  EXPECT_EQ(video.antialiasing, Antialiasing::Ssaa);
+  EXPECT_EQ(video.msaa, 1);
+  const render::RenderSettings orbit =
+      defaultSceneWith({"render.camera.mode=orbit"}).render.pictureFor(RenderSpec::Output::Video);
+  EXPECT_EQ(orbit.antialiasing, Antialiasing::Msaa);
+  EXPECT_EQ(orbit.msaa, 4);
+  // Doubled, a picture wider than 3840 would pass the 7680-pixel side: its buffers would take gigabytes.
+  const render::RenderSettings wide =
+      defaultSceneWith({"render.width=3842"}).render.pictureFor(RenderSpec::Output::Still);
+  EXPECT_EQ(wide.antialiasing, Antialiasing::Msaa);
+  const render::RenderSettings widest =
+      defaultSceneWith({"render.width=3840"}).render.pictureFor(RenderSpec::Output::Still);
+  EXPECT_EQ(widest.antialiasing, Antialiasing::Ssaa);
+  for (const auto& [name, method] : {std::pair{"msaa", Antialiasing::Msaa}, {"fxaa", Antialiasing::Fxaa},
+                                     {"ssaa", Antialiasing::Ssaa}}) {
+    const SceneConfig named = defaultSceneWith({std::string("render.antialiasing=") + name, "render.msaa=2"});
+    for (const auto output : {RenderSpec::Output::Still, RenderSpec::Output::Video}) {
+      EXPECT_EQ(named.render.pictureFor(output).antialiasing, method) << name;
+      EXPECT_EQ(named.render.pictureFor(output).msaa, 2) << name;
+    }
   }
 }
 

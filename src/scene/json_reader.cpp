@@ -148,8 +148,17 @@ bool JsonReader::holds(const schema::Condition& condition) const {
       if (value != nullptr) return true;
       continue;
     }
+    const schema::Key& other = schema::key(path);
+    // A misspelt name is the fault to name, not the rule that reads it ("rign" and an inner_radius).
+    if (value != nullptr && value->is_string() && !other.names.empty() &&
+        std::find(other.names.begin(), other.names.end(), value->get<std::string>()) == other.names.end()) {
+      const std::string rule = fmt::format("must be {}, got \"{}\"", schema::quotedAlternatives(other.names),
+                                           value->get<std::string>());
+      if (other.block() == block_) fail(other.name(), rule);
+      throw SceneError(fmt::format("{}: {}: {}", source_, path, rule));
+    }
     // A value rule holds for the default too: an air_drag entry without a model is Moffatt's.
-    const std::string& fallback = schema::key(path).defaultText;
+    const std::string& fallback = other.defaultText;
     if (value == nullptr && fallback.empty()) continue;
     const nlohmann::json effective = value != nullptr ? *value : nlohmann::json::parse(fallback);
     for (const std::string& wanted : condition.values) {

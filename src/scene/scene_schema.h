@@ -80,19 +80,16 @@ struct Key {
   Type type;
   std::string unit;         // as the docs write it: "m", "rad/s", "degrees"; empty when dimensionless
   std::string defaultText;  // the default as JSON text, taken from the structs; empty: required or absent
-  // Presence, as MuJoCo's schema has required/requires/exclusive. `required`: given wherever its
-  // block is and its `onlyWith` hold. `onlyWith`: given only where these hold. `needs`: on (given,
-  // and not false) only where these hold, so that `"sliding": false` needs no friction. `excludes`:
-  // keys of its block never given beside it. `needsOneOf` (an object): at least one of these keys.
-  bool required = false;
+  bool required = false;  // given wherever its block is and its `onlyWith` hold
   // The range a number must lie in, when it is fixed (bounds that depend on other keys, such as
   // inner_radius <= radius, are the loader's and the doc's).
   std::optional<Bound> lower = std::nullopt, upper = std::nullopt;
   std::vector<std::string_view> names = {};  // Type::Name: the values allowed, in the enum's order
-  std::vector<Condition> onlyWith = {};
-  std::vector<Condition> needs = {};
-  std::vector<std::string> excludes = {};
-  std::vector<std::string> needsOneOf = {};
+  // Presence beyond `required`, as MuJoCo's schema has required/requires/exclusive facets.
+  std::vector<Condition> onlyWith = {};      // given only where these hold
+  std::vector<Condition> needs = {};         // on (given, not false) only where these hold: "sliding": false is off
+  std::vector<std::string> excludes = {};    // keys of its block never given beside it
+  std::vector<std::string> needsOneOf = {};  // an object: at least one of these of its keys
   std::string presenceWhy = {};  // the reason a presence message gives in parentheses
   std::string example = {};  // JSON text a message and the page suggest for a key without a default
   std::string why = {};  // the reason a range message gives in parentheses

@@ -296,6 +296,11 @@ TEST(SceneSchema, EveryPresenceRuleIsEnforced) {
         fill(broken);
         expectRefused(broken, key.path, "only with");
         ++rules;
+        // A misspelt name that the condition reads is the fault named, not the rule reading it.
+        if (const schema::Key& other = schema::key(condition.paths.front()); !other.names.empty()) {
+          put(broken, other, "no-such-name");
+          expectRefused(broken, other.path, "must be");
+        }
       }
     }
     for (const std::string& other : key.excludes) {

@@ -109,9 +109,10 @@ struct ExportOptions {
 void runExport(const ExportOptions& options);
 
 // `coinroll schema`: every key a scene file may hold (scene/scene_schema.h), as JSON for scripts
-// and the web page's controls, or as docs/scene.md's Markdown table.
+// and the web page's controls, or as docs/scene.md's or docs/contract.md's Markdown table.
 struct SchemaOptions {
   bool markdown = false;
+  bool contract = false;
 };
 void runSchema(const SchemaOptions& options);
 

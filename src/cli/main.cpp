@@ -386,8 +386,11 @@ CLI::App* addExportCommand(CLI::App& app, ExportOptions& options) {
 CLI::App* addSchemaCommand(CLI::App& app, SchemaOptions& options) {
   CLI::App* command = app.add_subcommand(
       "schema",
-      "Print every key a scene file may hold: path, type, unit, default, range, the keys it needs, a line of doc");
-  command->add_flag("--markdown", options.markdown, "The table of docs/scene.md instead of JSON");
+      "Print every key a scene file may hold: path, type, unit, default, range, presence rules, a line of doc");
+  CLI::Option* markdown =
+      command->add_flag("--markdown", options.markdown, "The table of docs/scene.md instead of JSON");
+  command->add_flag("--contract", options.contract, "The key table of docs/contract.md instead of JSON")
+      ->excludes(markdown);
   command->footer(
       "JSON by default, one object per key in \"keys\", for scripts and the web page's controls:\n"
       "  coinroll schema | jq '.keys[] | select(.path == \"coin.radius\")'\n"

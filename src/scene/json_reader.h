@@ -1,7 +1,8 @@
 #pragma once
 // Typed, path-aware access to one JSON object of a scene: every read names "<source>: <path>.<key>"
-// in its error, and keys outside the object's block of the scene schema are refused, so a typo
-// never passes silently.
+// in its error, and the object is held to its block of the scene schema on construction (unknown
+// keys, JSON types, presence rules), so a typo never passes silently and the loader reads only
+// what the schema's rows let through.
 
 #include <nlohmann/json.hpp>
 
@@ -17,16 +18,26 @@ namespace coinroll::scene {
 
 class JsonReader {
  public:
-  // Throws SceneError if `object` is not a JSON object or has a key outside the schema's `block`
-  // ("coin", "effects[air_drag]"; "" for the top level). `path` is the object's name in messages
-  // ("effects[0]").
-  JsonReader(const nlohmann::json& object, std::string path, std::string_view source, std::string_view block);
+  // Throws SceneError, in this order, if `object` is not a JSON object, has a key outside the
+  // schema's `block` ("coin", "effects[air_drag]"; "" for the top level), holds a key whose JSON
+  // type is not its row's (numbers, integers, booleans, strings, names, objects; the composite
+  // types are checked where they are read), or breaks a presence rule of the block's rows, each
+  // message naming the key and the fix. `path` is the object's name in messages ("effects[0]").
+  // `top` is the scene document, where conditions on keys of other blocks are looked up (nullptr:
+  // `object` is the document).
+  JsonReader(const nlohmann::json& object, std::string path, std::string_view source, std::string_view block,
+             const nlohmann::json* top = nullptr);
+
+  // A reader of `object`, a block inside this reader's document.
+  JsonReader nested(const nlohmann::json& object, std::string path, std::string_view block) const;
 
   bool has(std::string_view key) const;
 
-  std::optional<double> optionalNumber(std::string_view key) const;  // finite, else SceneError
+  // Typed reads. The JSON type is the key's row's, checked on construction; a read of a key whose row
+  // has another type is a programming error (std::logic_error).
+  std::optional<double> optionalNumber(std::string_view key) const;
   double number(std::string_view key, double fallback) const { return optionalNumber(key).value_or(fallback); }
-  double requiredNumber(std::string_view key) const;
+  double requiredNumber(std::string_view key) const;  // a key its row marks required
   int integer(std::string_view key, int fallback) const;
   bool boolean(std::string_view key, bool fallback) const;
   std::optional<std::string> optionalString(std::string_view key) const;
@@ -43,7 +54,15 @@ class JsonReader {
                          SceneError::Kind kind = SceneError::Kind::BadValue) const;
 
  private:
+  void checkTypes() const;
+  void checkPresence() const;
+  // The value of a key of the table (its path) in this document, nullptr where absent.
+  const nlohmann::json* find(std::string_view path) const;
+  bool holds(const schema::Condition& condition) const;
+  const nlohmann::json* given(std::string_view key, std::initializer_list<schema::Type> types) const;
+
   const nlohmann::json& object_;
+  const nlohmann::json& top_;
   std::string path_;
   std::string source_;
   std::string block_;

@@ -60,26 +60,20 @@ double degrees(const JsonReader& r, std::string_view key) { return boundedNumber
 
 // The coin block: its physics into the returned CoinSpec, its shape as drawn into `drawn`.
 CoinSpec parseCoin(const JsonReader& top, render::CoinShape& drawn) {
-  const nlohmann::json* node = top.child("coin");
-  if (node == nullptr) top.fail("coin", "required (an object with shape, radius, mass)");
-  const JsonReader r(*node, "coin", "", "coin");
+  // `coin` is there: its row makes it required, which the top level's reader enforced.
+  const JsonReader r = top.nested(*top.child("coin"), "coin", "coin");
   CoinSpec coin;
   coin.shape = enumValue(r, "shape", coin.shape);
-  const std::string_view shape = schema::kShapeNames[static_cast<std::size_t>(coin.shape)];
 
   coin.radius = r.bounded("radius", r.requiredNumber("radius"));
   coin.mass = r.bounded("mass", r.requiredNumber("mass"));
   const double thickness = boundedNumber(r, "thickness", 0.06 * coin.radius);
 
-  if (r.has("inner_radius") && coin.shape != Shape::Ring) r.fail("inner_radius", "only allowed with shape \"ring\"");
   coin.innerRadius = r.number("inner_radius", coin.radius);
   if (coin.shape == Shape::Ring && !(coin.innerRadius >= 0 && coin.innerRadius <= coin.radius)) {
     r.fail("inner_radius", fmt::format("must be in [0, radius = {}] m, got {}", coin.radius, coin.innerRadius));
   }
   if (r.has("thickness")) coin.thickness = thickness;
-  if (r.has("edge_radius") && !coin.thickness) {
-    r.fail("edge_radius", "only allowed with coin.thickness (a thin coin has no rim to round)");
-  }
   if (coin.thickness) {
     const double hole = coin.shape == Shape::Ring ? coin.innerRadius : 0.0;
     const double largest = std::min(0.5 * thickness, coin.radius - hole);
@@ -104,18 +98,9 @@ CoinSpec parseCoin(const JsonReader& top, render::CoinShape& drawn) {
     drawn.innerRadius = static_cast<float>(std::min(coin.innerRadius, coin.radius - band));
   }
 
-  if (coin.shape != Shape::Custom) {
-    for (std::string_view key : {"I_X", "I_Z"}) {
-      if (r.has(key)) r.fail(key, fmt::format("only allowed with shape \"custom\" ({} fixes the inertia)", shape));
-    }
-    return coin;
-  }
-  coin.I_X = r.optionalNumber("I_X");
-  coin.I_Z = r.optionalNumber("I_Z");
-  if (!coin.I_X) r.fail("I_X", "required for shape \"custom\" (moment about a diameter, kg m^2)");
-  if (!coin.I_Z) r.fail("I_Z", "required for shape \"custom\" (moment about the symmetry axis, kg m^2)");
-  r.bounded("I_X", *coin.I_X);
-  r.bounded("I_Z", *coin.I_Z);
+  if (coin.shape != Shape::Custom) return coin;
+  coin.I_X = r.bounded("I_X", r.requiredNumber("I_X"));
+  coin.I_Z = r.bounded("I_Z", r.requiredNumber("I_Z"));
   // Perpendicular-axis bound: I_Z = sum m (X^2 + Y^2) <= 2 I_X = sum m (X^2 + Y^2 + 2 Z^2);
   // equality is the flat lamina. The relative slack only forgives round-off in the input.
   if (*coin.I_Z > 2 * *coin.I_X * (1 + 1e-12)) {
@@ -127,11 +112,6 @@ CoinSpec parseCoin(const JsonReader& top, render::CoinShape& drawn) {
 
 InitialSpec parseInitial(const JsonReader& top) {
   const nlohmann::json* node = top.child("initial");
-  if (node == nullptr) {
-    top.fail("initial",
-             "required: give angles and rates, or a steady state like {\"steady\": \"circle\", \"theta\": 20, "
-             "\"omega_Z\": 10}");
-  }
   if (node->is_object() && node->contains("steady")) {
     // Before the keys: with a steady kind that is not a name, the message is about the kind, not
     // about the explicit start's rates beside it.
@@ -142,17 +122,9 @@ InitialSpec parseInitial(const JsonReader& top) {
                             describeJson(kind)),
                 SceneError::Kind::WrongType);
     }
-    const JsonReader r(*node, "initial", "", "initial[steady]");
+    const JsonReader r = top.nested(*node, "initial", "initial[steady]");
     SteadyInitial s;
     s.kind = enumValue(r, "steady", s.kind);
-    const std::string_view kind = schema::kSteadyKindNames[static_cast<std::size_t>(s.kind)];
-    const bool needsTheta = s.kind != SteadyKind::Straight, needsSpin = s.kind != SteadyKind::SpinInPlace;
-    if (needsTheta && !r.has("theta")) r.fail("theta", fmt::format("required for steady \"{}\" (degrees)", kind));
-    if (!needsTheta && r.has("theta")) r.fail("theta", "not allowed for steady \"straight\" (it rolls upright)");
-    if (needsSpin && !r.has("omega_Z")) r.fail("omega_Z", fmt::format("required for steady \"{}\" (rad/s)", kind));
-    if (!needsSpin && r.has("omega_Z"))
-      r.fail("omega_Z", "not allowed for steady \"spin-in-place\" (omega_Z = 0 there)");
-    if (r.has("branch") && s.kind != SteadyKind::Circle) r.fail("branch", "only allowed for steady \"circle\"");
     s.theta = degrees(r, "theta");
     s.omega_Z = boundedNumber(r, "omega_Z", 0);
     const std::string branch = r.optionalString("branch").value_or("+");
@@ -164,7 +136,7 @@ InitialSpec parseInitial(const JsonReader& top) {
     s.z = boundedNumber(r, "z", 0);
     return s;
   }
-  const JsonReader r(*node, "initial", "", "initial");
+  const JsonReader r = top.nested(*node, "initial", "initial");
   ExplicitInitial e;
   e.theta = degrees(r, "theta");
   e.phi = degrees(r, "phi");
@@ -185,7 +157,7 @@ SolverSpec parseSolver(const JsonReader& top) {
   SolverSpec solver;
   const nlohmann::json* node = top.child("solver");
   if (node == nullptr) return solver;
-  const JsonReader r(*node, "solver", "", "solver");
+  const JsonReader r = top.nested(*node, "solver", "solver");
   if (r.has("formulation")) {
     solver.formulation = enumValue(
         r, "formulation", Formulation{},
@@ -229,7 +201,7 @@ CameraSpec parseCamera(const JsonReader& render) {
   CameraSpec camera;
   const nlohmann::json* node = render.child("camera");
   if (node == nullptr) return camera;
-  const JsonReader r(*node, "render.camera", "", "render.camera");
+  const JsonReader r = render.nested(*node, "render.camera", "render.camera");
   camera.mode = enumValue(r, "mode", camera.mode);
   if (r.has("eye")) camera.eye = parsePoint(r, "eye");
   if (r.has("target")) camera.target = parsePoint(r, "target");
@@ -258,7 +230,7 @@ std::optional<AudioSpec> parseAudio(const JsonReader& render) {
   if (node->is_boolean()) return audio;
   if (!node->is_object())
     render.fail("audio", "must be true, false or an object of options, got " + describeJson(*node));
-  const JsonReader a(*node, "render.audio", "", "render.audio");
+  const JsonReader a = render.nested(*node, "render.audio", "render.audio");
   audio.pitch = enumValue(a, "pitch", audio.pitch,
                           "must be \"video\" (follows slow motion) or \"real\", got \"{}\"");
   audio.timbre = enumValue(a, "timbre", audio.timbre);
@@ -272,11 +244,7 @@ std::optional<EventSlowDown> parseSlowDown(const JsonReader& remap, std::string_
   const nlohmann::json* node = remap.child(key);
   if (node == nullptr) return std::nullopt;
   const std::string path = fmt::format("render.time_remap.{}", key);
-  const JsonReader r(*node, path, "", path);
-  if (!r.has("slow")) {
-    r.fail("slow", fmt::format("required: the playback rate {}, times time_scale, in (0, 1] (0.25 plays it 4x slower)",
-                               key == "flight" ? "in the air" : "at an impact"));
-  }
+  const JsonReader r = remap.nested(*node, path, path);
   EventSlowDown slowDown;
   slowDown.slow = boundedNumber(r, "slow", slowDown.slow);
   slowDown.window = boundedNumber(r, "window", slowDown.window);
@@ -287,7 +255,7 @@ RenderSpec parseRender(const JsonReader& top) {
   RenderSpec render;
   const nlohmann::json* node = top.child("render");
   if (node == nullptr) return render;
-  const JsonReader r(*node, "render", "", "render");
+  const JsonReader r = top.nested(*node, "render", "render");
   render::RenderSettings& picture = render.picture;
   for (auto [key, field] : {std::pair{"width", &picture.width}, std::pair{"height", &picture.height}}) {
     *field = r.integer(key, *field);
@@ -306,17 +274,8 @@ RenderSpec parseRender(const JsonReader& top) {
   }
   render.timeScale = boundedNumber(r, "time_scale", render.timeScale);
   if (const nlohmann::json* remap = r.child("time_remap")) {
-    const JsonReader m(*remap, "render.time_remap", "", "render.time_remap");
-    constexpr std::string_view kByRate = "give exactly one of spin_rate (slow down by psi-dot) or precession_rate (by "
-                                         "phi-dot, the contact point's rate round the floor), in rad/s";
-    const bool byRate = m.has("spin_rate") || m.has("precession_rate");
-    const bool byEvents = m.has("flight") || m.has("impact");
-    if (m.has("spin_rate") && m.has("precession_rate")) r.fail("time_remap", std::string(kByRate));
-    if (!byRate && !byEvents) {
-      r.fail("time_remap",
-             fmt::format("{}, or flight or impact (slow motion in the air, around each impact)", kByRate));
-    }
-    if (byRate) {
+    const JsonReader m = r.nested(*remap, "render.time_remap", "render.time_remap");
+    if (m.has("spin_rate") || m.has("precession_rate")) {
       const std::string_view key = m.has("spin_rate") ? "spin_rate" : "precession_rate";
       const double limit = m.number(key, 0);
       if (!schema::rangeViolation(m.spec(key), limit).empty()) {
@@ -326,10 +285,6 @@ RenderSpec parseRender(const JsonReader& top) {
       render.timeRemap = TimeRemap{.rate = key == "spin_rate" ? TimeRemap::Rate::Spin : TimeRemap::Rate::Precession,
                                    .limit = limit,
                                    .growth = growth};
-    } else if (m.has("growth")) {
-      m.fail("growth",
-             "shapes the slow-down of spin_rate or precession_rate, and neither is given: add one of them, or remove "
-             "growth");
     }
     render.flightSlowDown = parseSlowDown(m, "flight");
     render.impactSlowDown = parseSlowDown(m, "impact");
@@ -338,7 +293,7 @@ RenderSpec parseRender(const JsonReader& top) {
   render.trace = r.boolean("trace", render.trace);
   render.hud = r.boolean("hud", render.hud);
   if (const nlohmann::json* video = r.child("video")) {
-    const JsonReader v(*video, "render.video", "", "render.video");
+    const JsonReader v = r.nested(*video, "render.video", "render.video");
     video::X264Options& x264 = render.video;
     x264.crf = static_cast<int>(v.bounded("crf", v.integer("crf", x264.crf)));
     x264.preset = v.optionalString("preset").value_or(x264.preset);
@@ -369,7 +324,7 @@ RenderSpec parseRender(const JsonReader& top) {
 }
 
 // One entry of "effects" (docs/euler_disk.md §2); defaults are the laws' own member initializers.
-physics::Effect parseEffect(const nlohmann::json& node, const std::string& path) {
+physics::Effect parseEffect(const JsonReader& top, const nlohmann::json& node, const std::string& path) {
   if (!node.is_object() || !node.contains("type") || !node["type"].is_string()) {
     throw SceneError(fmt::format("{}: must be an object with a \"type\": {}, got {}", path,
                                  schema::quotedAlternatives(schema::kEffectTypeNames), describeJson(node)),
@@ -377,21 +332,17 @@ physics::Effect parseEffect(const nlohmann::json& node, const std::string& path)
   }
   const std::string type = node["type"].get<std::string>();
   if (type == "air_drag") {
-    const JsonReader r(node, path, "", "effects[air_drag]");
+    const JsonReader r = top.nested(node, path, "effects[air_drag]");
     physics::AirDrag law;
     law.model = enumValue(r, "model", law.model);
     // Air is 1.8e-5 Pa s; the bound admits glycerine and stops overflow in the couple. A value
     // at or below 0 is told the lower bound alone, as every positive quantity is.
     law.viscosity = r.bounded("viscosity", positive(r, "viscosity", r.number("viscosity", law.viscosity)));
-    if (law.model == physics::AirFlow::Moffatt && r.has("density")) {
-      r.fail("density", "only used by model \"boundary_layer\" (Moffatt's law has no density); remove it or set "
-                        "\"model\": \"boundary_layer\"");
-    }
     law.density = r.bounded("density", positive(r, "density", r.number("density", law.density)));
     return law;
   }
   if (type == "rolling_resistance") {
-    const JsonReader r(node, path, "", "effects[rolling_resistance]");
+    const JsonReader r = top.nested(node, path, "effects[rolling_resistance]");
     physics::RollingResistance law;
     law.length = boundedNumber(r, "length", law.length);
     law.loadExponent = boundedNumber(r, "load_exponent", law.loadExponent);
@@ -399,7 +350,7 @@ physics::Effect parseEffect(const nlohmann::json& node, const std::string& path)
     return law;
   }
   if (type == "spin_friction") {
-    const JsonReader r(node, path, "", "effects[spin_friction]");
+    const JsonReader r = top.nested(node, path, "effects[spin_friction]");
     physics::SpinFriction law;
     law.length = boundedNumber(r, "length", law.length);
     return law;
@@ -432,7 +383,7 @@ std::vector<physics::Effect> parseEffects(const JsonReader& top) {
   std::vector<physics::Effect> effects;
   for (std::size_t i = 0; i < node->size(); ++i) {
     const std::string path = fmt::format("effects[{}]", i);
-    physics::Effect effect = parseEffect((*node)[i], path);
+    physics::Effect effect = parseEffect(top, (*node)[i], path);
     for (const physics::Effect& earlier : effects) {
       if (earlier.index() == effect.index()) {
         throw SceneError(fmt::format("{}: a second \"{}\"; each law may appear once (merge their parameters)", path,
@@ -457,45 +408,18 @@ SceneConfig parseScene(const nlohmann::json& document, std::string_view sourceNa
     scene.friction = top.optionalNumber("friction");
     if (scene.friction) top.bounded("friction", *scene.friction);
     scene.frictionStatic = top.optionalNumber("friction_static");
-    if (scene.frictionStatic && !scene.friction) {
-      top.fail("friction_static", "needs friction (the kinetic coefficient, which it must be at least)");
-    }
     if (scene.frictionStatic && !(*scene.frictionStatic >= *scene.friction && std::isfinite(*scene.frictionStatic))) {
       top.fail("friction_static", fmt::format("must be >= friction = {} (static friction is at least kinetic), got {}",
                                               *scene.friction, *scene.frictionStatic));
     }
     scene.sliding = top.boolean("sliding", false);
-    if (scene.sliding && !scene.friction) {
-      top.fail("sliding",
-               "needs friction (the coefficient of Coulomb friction while the coin slides), e.g. \"friction\": 0.3");
-    }
     scene.flight = top.boolean("flight", false);
-    if (scene.flight && !scene.sliding) {
-      top.fail("flight", "needs \"sliding\": true (a coin that lands rolls or slides again)");
-    }
-    if (top.has("restitution") && !scene.flight) top.fail("restitution", "only with \"flight\": true");
-    if (top.has("impact_friction") && !scene.flight) top.fail("impact_friction", "only with \"flight\": true");
-    if (top.has("stop_when_decided") && !scene.flight) {
-      top.fail("stop_when_decided", "only with \"flight\": true (it ends a toss once its face up is final)");
-    }
     if (scene.flight) {
-      if (!top.has("restitution")) {
-        top.fail("restitution", "required with \"flight\": true: the coefficient of restitution e in [0, 1], "
-                                "e.g. \"restitution\": 0.5");
-      }
-      scene.restitution = boundedNumber(top, "restitution", 0);
+      scene.restitution = top.bounded("restitution", top.requiredNumber("restitution"));
       if (top.has("impact_friction")) scene.impactFriction = boundedNumber(top, "impact_friction", 0);
       scene.stopWhenDecided = top.boolean("stop_when_decided", false);
     }
     scene.initial = parseInitial(top);
-    if (const auto* e = std::get_if<ExplicitInitial>(&scene.initial); e && !scene.flight && (e->y || e->v_y)) {
-      top.fail(e->y ? "initial.y" : "initial.v_y",
-               "only with \"flight\": true (a rolling or sliding coin's height and vertical velocity follow from "
-               "its attitude and rates)");
-    }
-    if (const auto* e = std::get_if<ExplicitInitial>(&scene.initial); e && e->velocity && !scene.sliding) {
-      top.fail("initial.v_x", "only with \"sliding\": true (a rolling coin's velocity follows from its rates)");
-    }
     scene.duration = top.bounded("duration", top.requiredNumber("duration"));
     scene.solver = parseSolver(top);
     // A fixed-step run's step count is known now; the integrator would only find it after hours.

@@ -44,6 +44,13 @@ constexpr double kMinInertia = kMinMass * kMinLength * kMinLength, kMaxInertia =
 constexpr Bound open(double value) { return {value, false}; }
 constexpr Bound closed(double value) { return {value, true}; }
 
+// Presence conditions: `path` given; given with one of `values` (JSON text); one of `paths` given.
+Condition given(std::string path) { return {.paths = {std::move(path)}}; }
+Condition is(std::string path, std::vector<std::string> values) {
+  return {.paths = {std::move(path)}, .values = std::move(values)};
+}
+Condition givenOneOf(std::vector<std::string> paths) { return {.paths = std::move(paths)}; }
+
 // A default as JSON writes it, exponents without their padding zero: 1.8e-5, not 1.8e-05.
 std::string number(double value) {
   std::string text = fmt::format("{}", value);
@@ -86,36 +93,43 @@ std::vector<Key> buildTable() {
       {.path = "name", .type = T::Text, .unit = "", .defaultText = jsonString(scene.name),
        .doc = "text; default output files are named after it"},
       {.path = "coin", .type = T::Object, .unit = "", .defaultText = "", .required = true,
+       .presenceWhy = "an object with shape, radius, mass", .example = R"({"radius": 0.0375, "mass": 0.4})",
        .doc = "the body: its shape, size and mass"},
       {.path = "gravity", .type = T::Number, .unit = "m/s^2", .defaultText = number(scene.gravity),
        .lower = open(0), .upper = closed(kMaxGravity), .doc = "the acceleration of gravity"},
       {.path = "friction", .type = T::Number, .unit = "", .defaultText = "",
-       .lower = closed(0), .doc = "mu, optional: the cone rolling must stay inside (the slip event), and Coulomb's "
+       .lower = closed(0), .example = "0.5",
+       .doc = "mu, optional: the cone rolling must stay inside (the slip event), and Coulomb's "
                                   "kinetic coefficient with `sliding`; absent, no slip monitor"},
-      {.path = "friction_static", .type = T::Number, .unit = "", .defaultText = "", .onlyWith = {"friction=0.5"},
+      {.path = "friction_static", .type = T::Number, .unit = "", .defaultText = "", .onlyWith = {given("friction")},
+       .presenceWhy = "the kinetic coefficient, which it must be at least", .example = "0.6",
        .doc = "at least `friction` (its default): the cone |F| <= friction_static N that rolling stays inside "
               "(the slip event and the start-up check use it)"},
-      {.path = "sliding", .type = T::Boolean, .unit = "", .defaultText = "false", .onlyWith = {"friction=0.5"},
+      {.path = "sliding", .type = T::Boolean, .unit = "", .defaultText = "false", .needs = {given("friction")},
+       .presenceWhy = "the coefficient of Coulomb friction while the coin slides",
        .doc = "true: the coin slides with Coulomb friction instead of stopping at slip (needs `friction`)"},
-      {.path = "flight", .type = T::Boolean, .unit = "", .defaultText = "false",
-       .onlyWith = {"friction=0.5", "sliding=true"},
+      {.path = "flight", .type = T::Boolean, .unit = "", .defaultText = "false", .needs = {is("sliding", {"true"})},
+       .presenceWhy = "a coin that lands rolls or slides again",
        .doc = "true: lift-off goes on in flight, the rim's impacts bounce and the coin rolls or slides again "
               "(docs/flight.md; needs `sliding` and `restitution`)"},
-      {.path = "restitution", .type = T::Number, .unit = "", .defaultText = "", .lower = closed(0),
-       .upper = closed(1), .onlyWith = {"friction=0.5", "sliding=true", "flight=true"},
+      {.path = "restitution", .type = T::Number, .unit = "", .defaultText = "", .required = true, .lower = closed(0),
+       .upper = closed(1), .onlyWith = {is("flight", {"true"})},
+       .presenceWhy = "the impacts of a flight bounce by it", .example = "0.5",
        .doc = "e, required with `flight`: an impact gives back e^2 of its compression's work (Stronge's energetic "
               "coefficient)"},
       {.path = "impact_friction", .type = T::Number, .unit = "", .defaultText = "", .lower = closed(0),
-       .onlyWith = {"friction=0.5", "sliding=true", "restitution=0.5", "flight=true"},
+       .onlyWith = {is("flight", {"true"})}, .presenceWhy = "only a coin in flight has impacts", .example = "0.5",
        .doc = "mu during impacts; absent, `friction`"},
       {.path = "stop_when_decided", .type = T::Boolean, .unit = "", .defaultText = "false",
-       .onlyWith = {"friction=0.5", "sliding=true", "restitution=0.5", "flight=true"},
+       .onlyWith = {is("flight", {"true"})}, .presenceWhy = "it ends a toss once its face up is final",
        .doc = "true: end the run (event `decided`) once the coin has less energy than standing upright on its rim "
               "takes, so its face up can no longer change; a sweep of tosses needs no more"},
       {.path = "initial", .type = T::Object, .unit = "", .defaultText = "", .required = true,
+       .presenceWhy = "angles and rates, or a steady state",
+       .example = R"({"steady": "circle", "theta": 20, "omega_Z": 10})",
        .doc = "the start: angles and rates, or a steady state (`initial[steady]`)"},
       {.path = "duration", .type = T::Number, .unit = "s", .defaultText = "", .required = true, .lower = open(0),
-       .doc = "simulated time"},
+       .example = "1", .doc = "simulated time"},
       {.path = "solver", .type = T::Object, .unit = "", .defaultText = "{}",
        .doc = "the integrator and its tolerances"},
       {.path = "effects", .type = T::List, .unit = "", .defaultText = "[]",
@@ -133,24 +147,27 @@ std::vector<Key> buildTable() {
        .doc = "`disk` (I_X = M a^2/4, I_Z = M a^2/2), `ring` (an annulus of hole radius `inner_radius` b: "
               "I_X = M (a^2 + b^2)/4, I_Z = M (a^2 + b^2)/2) or `custom` (`I_X` and `I_Z` given)"},
       {.path = "coin.radius", .type = T::Number, .unit = "m", .defaultText = "", .required = true,
-       .lower = closed(kMinLength), .upper = closed(kMaxLength), .doc = "a, the rim's radius"},
+       .lower = closed(kMinLength), .upper = closed(kMaxLength), .example = "0.0375", .doc = "a, the rim's radius"},
       {.path = "coin.mass", .type = T::Number, .unit = "kg", .defaultText = "", .required = true,
-       .lower = closed(kMinMass), .upper = closed(kMaxMass), .doc = "M"},
-      {.path = "coin.inner_radius", .type = T::Number, .unit = "m", .defaultText = "", .onlyWith = {"coin.shape=ring"},
+       .lower = closed(kMinMass), .upper = closed(kMaxMass), .example = "0.4", .doc = "M"},
+      {.path = "coin.inner_radius", .type = T::Number, .unit = "m", .defaultText = "",
+       .onlyWith = {is("coin.shape", {R"("ring")"})}, .presenceWhy = "only a ring has a hole", .example = "0.03",
        .doc = "b, the hole's radius, 0 <= b <= radius; default radius (a thin hoop)"},
       {.path = "coin.thickness", .type = T::Number, .unit = "m", .defaultText = "",
-       .lower = closed(kMinLength * 0.06), .upper = closed(kMaxLength),
+       .lower = closed(kMinLength * 0.06), .upper = closed(kMaxLength), .example = "0.003",
        .doc = "given, the coin is a solid of this thickness in the dynamics, not only in the picture (docs/rim.md); "
               "absent, the seed's thin coin, drawn 0.06 x radius thick"},
       {.path = "coin.edge_radius", .type = T::Number, .unit = "m", .defaultText = "",
-       .onlyWith = {"coin.thickness=0.003"},
+       .onlyWith = {given("coin.thickness")}, .presenceWhy = "a thin coin has no rim to round", .example = "0.001",
        .doc = "the rim's rounding rho, 0 <= rho <= min(thickness / 2, radius - inner_radius); default the largest "
               "(a fully rounded rim); 0 is a sharp-cornered cylinder"},
-      {.path = "coin.I_X", .type = T::Number, .unit = "kg m^2", .defaultText = "", .lower = closed(kMinInertia),
-       .upper = closed(kMaxInertia), .onlyWith = {"coin.shape=custom", "coin.I_Z=2e-21"},
+      {.path = "coin.I_X", .type = T::Number, .unit = "kg m^2", .defaultText = "", .required = true,
+       .lower = closed(kMinInertia), .upper = closed(kMaxInertia), .onlyWith = {is("coin.shape", {R"("custom")"})},
+       .presenceWhy = "the other shapes fix the inertia", .example = "0.00014",
        .doc = "custom only, and required there: the moment about a diameter"},
-      {.path = "coin.I_Z", .type = T::Number, .unit = "kg m^2", .defaultText = "", .lower = closed(kMinInertia),
-       .upper = closed(kMaxInertia), .onlyWith = {"coin.shape=custom", "coin.I_X=1e15"},
+      {.path = "coin.I_Z", .type = T::Number, .unit = "kg m^2", .defaultText = "", .required = true,
+       .lower = closed(kMinInertia), .upper = closed(kMaxInertia), .onlyWith = {is("coin.shape", {R"("custom")"})},
+       .presenceWhy = "the other shapes fix the inertia", .example = "0.00028",
        .doc = "custom only, and required there: the moment about the symmetry axis, at most 2 I_X"},
 
       {.path = "initial.theta", .type = T::Number, .unit = "degrees", .defaultText = "0", .lower = open(-90),
@@ -173,49 +190,55 @@ std::vector<Key> buildTable() {
       {.path = "initial.z", .type = T::Number, .unit = "m", .defaultText = "0", .lower = closed(-kMaxPosition),
        .upper = closed(kMaxPosition), .doc = "the centre of mass on the floor"},
       {.path = "initial.v_x", .type = T::Number, .unit = "m/s", .defaultText = "", .lower = closed(-kMaxSpeed),
-       .upper = closed(kMaxSpeed), .onlyWith = {"friction=0.5", "sliding=true"},
+       .upper = closed(kMaxSpeed), .onlyWith = {is("sliding", {"true"})},
+       .presenceWhy = "a rolling coin's velocity follows from its rates", .example = "0.1",
        .doc = "the centre's velocity, a skidding launch; absent, the rolling velocity"},
       {.path = "initial.v_z", .type = T::Number, .unit = "m/s", .defaultText = "", .lower = closed(-kMaxSpeed),
-       .upper = closed(kMaxSpeed), .onlyWith = {"friction=0.5", "sliding=true"},
+       .upper = closed(kMaxSpeed), .onlyWith = {is("sliding", {"true"})},
+       .presenceWhy = "a rolling coin's velocity follows from its rates", .example = "0.1",
        .doc = "the centre's velocity, a skidding launch; absent, the rolling velocity"},
 
       {.path = "initial.y", .type = T::Number, .unit = "m", .defaultText = "", .lower = closed(0),
-       .upper = closed(kMaxPosition), .onlyWith = {"friction=0.5", "sliding=true", "restitution=0.5", "flight=true"},
+       .upper = closed(kMaxPosition), .onlyWith = {is("flight", {"true"})},
+       .presenceWhy = "a rolling or sliding coin's height and vertical velocity follow from its attitude and rates",
+       .example = "0.1",
        .doc = "the centre's height: above resting on the rim, the coin starts in flight; absent, on the floor"},
       {.path = "initial.v_y", .type = T::Number, .unit = "m/s", .defaultText = "0", .lower = closed(-kMaxSpeed),
-       .upper = closed(kMaxSpeed), .onlyWith = {"friction=0.5", "sliding=true", "restitution=0.5", "flight=true"},
+       .upper = closed(kMaxSpeed), .onlyWith = {is("flight", {"true"})},
+       .presenceWhy = "a rolling or sliding coin's height and vertical velocity follow from its attitude and rates",
        .doc = "the centre's vertical velocity (a toss); in flight `v_x` and `v_z` default to 0"},
 
       {.path = "initial[steady].steady", .type = T::Name, .unit = "", .defaultText = "",
        .names = namesOf(kSteadyKindNames),
        .doc = "instead of rates: the program solves for a steady motion, `straight` (needs `omega_Z`), `circle` "
               "(`theta`, `omega_Z`, optional `branch`) or `spin-in-place` (`theta`)"},
-      {.path = "initial[steady].theta", .type = T::Number, .unit = "degrees", .defaultText = "", .lower = open(-90),
-       .upper = open(90), .onlyWith = {"initial.steady=circle", "initial.omega_Z=10"},
+      {.path = "initial[steady].theta", .type = T::Number, .unit = "degrees", .defaultText = "", .required = true,
+       .lower = open(-90), .upper = open(90),
+       .onlyWith = {is("initial[steady].steady", {R"("circle")", R"("spin-in-place")"})},
+       .presenceWhy = "a straight roll is upright", .example = "20",
        .why = "the seed's equations are singular when the coin lies flat",
        .doc = "the steady tilt; required for `circle` and `spin-in-place`, refused for `straight`"},
-      {.path = "initial[steady].omega_Z", .type = T::Number, .unit = "rad/s", .defaultText = "",
-       .lower = closed(-kMaxRate),
-       .upper = closed(kMaxRate), .onlyWith = {"initial.steady=circle", "initial.theta=20"},
+      {.path = "initial[steady].omega_Z", .type = T::Number, .unit = "rad/s", .defaultText = "", .required = true,
+       .lower = closed(-kMaxRate), .upper = closed(kMaxRate),
+       .onlyWith = {is("initial[steady].steady", {R"("straight")", R"("circle")"})},
+       .presenceWhy = "a coin spinning in place has omega_Z = 0", .example = "10",
        .doc = "the rolling rate; required for `straight` and `circle`, refused for `spin-in-place`"},
       {.path = "initial[steady].branch", .type = T::Name, .unit = "", .defaultText = "\"+\"", .names = {"+", "-"},
-       .onlyWith = {"initial.steady=circle", "initial.theta=20", "initial.omega_Z=10"},
+       .onlyWith = {is("initial[steady].steady", {R"("circle")"})}, .presenceWhy = "only a circle has two roots",
        .doc = "`circle` only: `+` for the f+ root of the steady circle's equation, `-` for f-"},
       {.path = "initial[steady].phi", .type = T::Number, .unit = "deg", .defaultText = "0",
        .lower = closed(-kMaxAngleDegrees), .upper = closed(kMaxAngleDegrees),
-       .onlyWith = {"initial.steady=straight", "initial.omega_Z=10"},
        .why = "an angle is the same modulo 360; reduce it",
        .doc = "the heading"},
       {.path = "initial[steady].psi", .type = T::Number, .unit = "deg", .defaultText = "0",
        .lower = closed(-kMaxAngleDegrees), .upper = closed(kMaxAngleDegrees),
-       .onlyWith = {"initial.steady=straight", "initial.omega_Z=10"},
        .why = "an angle is the same modulo 360; reduce it",
        .doc = "the spin angle"},
       {.path = "initial[steady].x", .type = T::Number, .unit = "m", .defaultText = "0", .lower = closed(-kMaxPosition),
-       .upper = closed(kMaxPosition), .onlyWith = {"initial.steady=straight", "initial.omega_Z=10"},
+       .upper = closed(kMaxPosition),
        .doc = "the centre of mass on the floor"},
       {.path = "initial[steady].z", .type = T::Number, .unit = "m", .defaultText = "0", .lower = closed(-kMaxPosition),
-       .upper = closed(kMaxPosition), .onlyWith = {"initial.steady=straight", "initial.omega_Z=10"},
+       .upper = closed(kMaxPosition),
        .doc = "the centre of mass on the floor"},
 
       {.path = "solver.formulation", .type = T::Name, .unit = "", .defaultText = "",
@@ -244,42 +267,41 @@ std::vector<Key> buildTable() {
        .powersOfTen = true, .doc = "fixed-step methods' step"},
   };
 
-  const auto effect = [](std::string_view type) { return fmt::format("effects=[{{\"type\": \"{}\"}}]", type); };
   const std::vector<Key> effects = {
       {.path = "effects[air_drag].type", .type = T::Name, .unit = "", .defaultText = "", .required = true,
-       .names = namesOf(kEffectTypeNames), .onlyWith = {effect("air_drag")},
+       .names = namesOf(kEffectTypeNames),
        .doc = "air drag on the face rolling over the floor (docs/euler_disk.md)"},
       {.path = "effects[air_drag].model", .type = T::Name, .unit = "", .defaultText = nameOf(air.model, kAirFlowNames),
-       .names = namesOf(kAirFlowNames), .onlyWith = {effect("air_drag")},
+       .names = namesOf(kAirFlowNames),
        .doc = "`moffatt` (lubrication flow filling the gap) or `boundary_layer` (Bildsten's Stokes layer)"},
       {.path = "effects[air_drag].viscosity", .type = T::Number, .unit = "Pa s", .defaultText = number(air.viscosity),
-       .lower = open(0), .upper = closed(1e3), .onlyWith = {effect("air_drag")},
+       .lower = open(0), .upper = closed(1e3),
        .doc = "the air's dynamic viscosity (the bound admits glycerine)"},
       {.path = "effects[air_drag].density", .type = T::Number, .unit = "kg/m^3", .defaultText = number(air.density),
        .lower = open(0), .upper = closed(1e5),
-       .onlyWith = {R"(effects=[{"type": "air_drag", "model": "boundary_layer"}])"},
+       .onlyWith = {is("effects[air_drag].model", {R"("boundary_layer")"})},
+       .presenceWhy = "Moffatt's law has no density",
        .doc = "the air's density; `boundary_layer` only"},
       {.path = "effects[rolling_resistance].type", .type = T::Name, .unit = "", .defaultText = "", .required = true,
-       .names = namesOf(kEffectTypeNames), .onlyWith = {effect("rolling_resistance")},
+       .names = namesOf(kEffectTypeNames),
        .doc = "a couple resisting the rim's rolling over the floor"},
       {.path = "effects[rolling_resistance].length", .type = T::Number, .unit = "m",
        .defaultText = number(rolling.length),
-       .lower = closed(0), .onlyWith = {effect("rolling_resistance")},
+       .lower = closed(0),
        .doc = "below `coin.radius`: the energy lost per distance rolled is (length / radius) N"},
       {.path = "effects[rolling_resistance].load_exponent", .type = T::Number, .unit = "",
        .defaultText = number(rolling.loadExponent), .lower = open(0), .upper = closed(2),
-       .onlyWith = {effect("rolling_resistance")}, .why = "1: couple proportional to the load",
+       .why = "1: couple proportional to the load",
        .doc = "n: the couple is length x 1 N x (N / 1 N)^n (n < 1: sublinear in the load)"},
       {.path = "effects[rolling_resistance].rate_exponent", .type = T::Number, .unit = "",
        .defaultText = number(rolling.rateExponent), .lower = closed(1), .upper = closed(3),
-       .onlyWith = {effect("rolling_resistance")},
        .why = "1: a constant couple, power ~ |psi-dot|; 2: power ~ |psi-dot|^2, McDonald and McDonald's measurement",
        .doc = "m: the couple also grows as (|psi-dot| / 1 rad/s)^(m-1), so the power goes as |psi-dot|^m"},
       {.path = "effects[spin_friction].type", .type = T::Name, .unit = "", .defaultText = "", .required = true,
-       .names = namesOf(kEffectTypeNames), .onlyWith = {effect("spin_friction")},
+       .names = namesOf(kEffectTypeNames),
        .doc = "a pivoting couple about the floor normal"},
       {.path = "effects[spin_friction].length", .type = T::Number, .unit = "m", .defaultText = number(pivoting.length),
-       .lower = closed(0), .onlyWith = {effect("spin_friction")},
+       .lower = closed(0),
        .doc = "below `coin.radius`: the couple is length x N ((2/3) mu r for a contact patch of radius r)"},
   };
   table.insert(table.end(), effects.begin(), effects.end());
@@ -309,6 +331,8 @@ std::vector<Key> buildTable() {
       {.path = "render.time_scale", .type = T::Number, .unit = "", .defaultText = number(render.timeScale),
        .lower = open(0), .doc = "simulated seconds per video second (0.5 = half speed, 2 = twice as fast)"},
       {.path = "render.time_remap", .type = T::Object, .unit = "", .defaultText = "",
+       .needsOneOf = {"spin_rate", "precession_rate", "flight", "impact"},
+       .presenceWhy = "where the motion is fast, in the air or at each impact",
        .doc = "slow motion: where the motion is fast (one of `spin_rate` and `precession_rate`), in the air "
               "(`flight`), at each impact (`impact`); at least one, and the slowest of them plays"},
       {.path = "render.camera", .type = T::Object, .unit = "", .defaultText = "{}",
@@ -340,13 +364,16 @@ std::vector<Key> buildTable() {
               "floor two radii in front of the coin (docs/outputs.md)"},
 
       {.path = "render.time_remap.spin_rate", .type = T::Number, .unit = "rad/s", .defaultText = "", .lower = open(0),
+       .example = "10",
        .doc = "slow down further while |psi-dot| exceeds it, so the spin on screen stays at most this x time_scale"},
       {.path = "render.time_remap.precession_rate", .type = T::Number, .unit = "rad/s", .defaultText = "",
-       .lower = open(0),
+       .lower = open(0), .excludes = {"spin_rate"}, .presenceWhy = "one rate sets the slow-down", .example = "10",
        .doc = "instead of `spin_rate`: the same by Omega = |phi-dot|, the contact point's rate round the floor (what "
               "an Euler's disk speeds up)"},
       {.path = "render.time_remap.growth", .type = T::Number, .unit = "", .defaultText = "0", .lower = closed(0),
-       .upper = open(1), .onlyWith = {"render.time_remap.spin_rate=10"},
+       .upper = open(1),
+       .onlyWith = {givenOneOf({"render.time_remap.spin_rate", "render.time_remap.precession_rate"})},
+       .presenceWhy = "it shapes their slow-down",
        .why = "0 holds the visible rate constant, 0.5 lets it grow as the square root of the real one",
        .doc = "above the limit S the rate on screen is time_scale x S x (rate / S)^growth, at most a quarter turn per "
               "frame"},
@@ -357,19 +384,20 @@ std::vector<Key> buildTable() {
        .doc = "slow motion around each impact of the rim (`\"flight\": true`), eased in before it and out after it"},
 
       {.path = "render.time_remap.flight.slow", .type = T::Number, .unit = "", .defaultText = "", .required = true,
-       .lower = open(0), .upper = closed(1),
-       .doc = "the playback rate in the air, times time_scale (0.25 plays a flight 4x slower)"},
+       .lower = open(0), .upper = closed(1), .presenceWhy = "the playback rate in the air, times time_scale",
+       .example = "0.25", .doc = "the playback rate in the air, times time_scale (0.25 plays a flight 4x slower)"},
       {.path = "render.time_remap.flight.window", .type = T::Number, .unit = "s",
        .defaultText = number(slowDown.window),
-       .lower = closed(0), .onlyWith = {"render.time_remap.flight.slow=0.25"},
+       .lower = closed(0),
        .doc = "simulated time over which the slow-down eases in before a lift-off and out after a landing "
               "(0: at once)"},
       {.path = "render.time_remap.impact.slow", .type = T::Number, .unit = "", .defaultText = "", .required = true,
-       .lower = open(0), .upper = closed(1),
+       .lower = open(0), .upper = closed(1), .presenceWhy = "the playback rate at an impact, times time_scale",
+       .example = "0.05",
        .doc = "the playback rate at an impact's instant, times time_scale (0.05 plays it 20x slower)"},
       {.path = "render.time_remap.impact.window", .type = T::Number, .unit = "s",
        .defaultText = number(slowDown.window),
-       .lower = open(0), .onlyWith = {"render.time_remap.impact.slow=0.05"},
+       .lower = open(0),
        .why = "the slow-down eases in and out over it; 0.1 s changes the rate by at most 1.27x a frame at 60 fps",
        .doc = "simulated time before and after each impact over which the slow-down eases in and out; from one "
               "frame to the next the rate changes by at most exp(1.5 (1 - slow) time_scale / (window fps))"},
@@ -477,8 +505,6 @@ std::string quotedAlternatives(std::span<const std::string_view> names) {
   return text;
 }
 
-namespace {
-
 std::string_view typeName(Type type) {
   switch (type) {
     case Type::Number: return "number";
@@ -494,6 +520,54 @@ std::string_view typeName(Type type) {
   }
   return "";
 }
+
+namespace {
+
+// "a, b or c".
+std::string alternatives(const std::vector<std::string>& items) {
+  std::string text;
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    text += (i == 0 ? "" : i + 1 == items.size() ? " or " : ", ") + items[i];
+  }
+  return text;
+}
+
+}  // namespace
+
+std::string conditionText(const Condition& condition, std::string_view block) {
+  std::vector<std::string> names;
+  for (const std::string& path : condition.paths) {
+    const Key& other = key(path);
+    names.emplace_back(other.block() == block ? other.name() : std::string_view(other.path));
+  }
+  std::string text = alternatives(names);
+  if (!condition.values.empty()) text += ": " + alternatives(condition.values);
+  return text;
+}
+
+std::string presenceText(const Key& key) {
+  const auto conditions = [&key](const std::vector<Condition>& list) {
+    std::vector<std::string> texts;
+    for (const Condition& c : list) texts.push_back(fmt::format("`{}`", conditionText(c, key.block())));
+    return fmt::format("{}", fmt::join(texts, " and "));
+  };
+  std::vector<std::string> rules;
+  if (!key.onlyWith.empty()) {
+    rules.push_back("only with " + conditions(key.onlyWith) + (key.required ? ", and required there" : ""));
+  } else if (key.required) {
+    rules.push_back("required");
+  }
+  if (!key.needs.empty()) rules.push_back("`true` only with " + conditions(key.needs));
+  for (const std::string& other : key.excludes) rules.push_back(fmt::format("not with `{}`", other));
+  if (!key.needsOneOf.empty()) {
+    std::vector<std::string> names;
+    for (const std::string& name : key.needsOneOf) names.push_back(fmt::format("`{}`", name));
+    rules.push_back("needs one of " + alternatives(names));
+  }
+  return fmt::format("{}", fmt::join(rules, "; "));
+}
+
+namespace {
 
 // "in (0, 10000]", "> 0", "`disk`, `ring` or `custom`": the range column of docs/scene.md.
 std::string rangeText(const Key& key) {
@@ -520,6 +594,16 @@ std::string cell(std::string_view text) {
   return escaped;
 }
 
+nlohmann::json conditionsJson(const std::vector<Condition>& conditions) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const Condition& c : conditions) {
+    nlohmann::json entry = {{"paths", c.paths}};
+    for (const std::string& value : c.values) entry["values"].push_back(nlohmann::json::parse(value));
+    list.push_back(std::move(entry));
+  }
+  return list;
+}
+
 }  // namespace
 
 nlohmann::json toJson() {
@@ -528,28 +612,35 @@ nlohmann::json toJson() {
     nlohmann::json row = {{"path", k.path}, {"type", typeName(k.type)}, {"doc", k.doc}};
     if (!k.unit.empty()) row["unit"] = k.unit;
     if (!k.defaultText.empty()) row["default"] = nlohmann::json::parse(k.defaultText);
+    if (!k.example.empty()) row["example"] = nlohmann::json::parse(k.example);
     if (k.required) row["required"] = true;
     const auto bound = [](const Bound& b) { return nlohmann::json{{"value", b.value}, {"inclusive", b.inclusive}}; };
     if (k.lower) row["minimum"] = bound(*k.lower);
     if (k.upper) row["maximum"] = bound(*k.upper);
     if (!k.names.empty()) row["names"] = k.names;
-    if (!k.onlyWith.empty()) row["only_with"] = k.onlyWith;
+    if (!k.onlyWith.empty()) row["only_with"] = conditionsJson(k.onlyWith);
+    if (!k.needs.empty()) row["needs"] = conditionsJson(k.needs);
+    if (!k.excludes.empty()) row["excludes"] = k.excludes;
+    if (!k.needsOneOf.empty()) row["needs_one_of"] = k.needsOneOf;
     rows.push_back(std::move(row));
   }
   return {{"schema", "coinroll scene"}, {"keys", std::move(rows)}};
 }
 
 std::string toMarkdown() {
-  std::string text = "| key | type | unit | default | range | only with | meaning |\n|---|---|---|---|---|---|---|\n";
+  std::string text = "| key | type | unit | default | range | presence | meaning |\n|---|---|---|---|---|---|---|\n";
   for (const Key& k : table()) {
-    std::string onlyWith;
-    for (const std::string& assignment : k.onlyWith)
-      onlyWith += fmt::format("{}`{}`", onlyWith.empty() ? "" : ", ", assignment);
-    const std::string fallback = k.required              ? "required"
-                                 : k.defaultText.empty() ? ""
-                                                         : fmt::format("`{}`", k.defaultText);
+    const std::string fallback = k.defaultText.empty() ? "" : fmt::format("`{}`", k.defaultText);
     text += fmt::format("| `{}` | {} | {} | {} | {} | {} | {} |\n", k.path, typeName(k.type), cell(k.unit),
-                        cell(fallback), cell(rangeText(k)), cell(onlyWith), cell(k.doc));
+                        cell(fallback), cell(rangeText(k)), cell(presenceText(k)), cell(k.doc));
+  }
+  return text;
+}
+
+std::string toContractMarkdown() {
+  std::string text = "| key | type | unit | presence |\n|---|---|---|---|\n";
+  for (const Key& k : table()) {
+    text += fmt::format("| `{}` | {} | {} | {} |\n", k.path, typeName(k.type), cell(k.unit), cell(presenceText(k)));
   }
   return text;
 }

@@ -1,10 +1,11 @@
 #pragma once
-// The scene file's keys as one table: path, type, unit, default, range, the keys that make a key
-// valid, the names an enumerated key takes, and a line of documentation. The loader takes from it
-// the keys each object allows and the ranges its numbers must lie in; `coinroll schema` prints it
-// (JSON for the web page's controls and for scripts, Markdown for docs/scene.md), and tests hold
-// the fuzzer's dictionary and docs/contract.md to it. A new key is one row here plus its read in
-// scene_loader.cpp.
+// The scene file's keys as one table: path, type, unit, default, range, the presence rules that say
+// where a key may or must be given, the names an enumerated key takes, and a line of documentation.
+// The reader (scene/json_reader.h) takes from it the keys each object allows, their JSON types and
+// presence rules, and the loader the ranges its numbers must lie in; `coinroll schema` prints it
+// (JSON for the web page's controls and for scripts, Markdown for docs/scene.md and docs/contract.md),
+// and tests probe every bound and presence rule of it. A new key is one row here plus its physics;
+// the loader keeps only rules between numbers of several keys (inner_radius <= radius).
 
 #include <array>
 #include <limits>
@@ -64,19 +65,33 @@ struct Bound {
   bool inclusive;
 };
 
+// A presence rule's condition on another key of the table ("flight", "coin.shape", and in the key's
+// own block "effects[air_drag].model"): it holds where one of `paths` is given and, when `values`
+// are listed (as JSON text: "true", "\"ring\""), where that key's value, or its default when it is
+// absent, is one of them.
+struct Condition {
+  std::vector<std::string> paths;
+  std::vector<std::string> values = {};
+};
+
 struct Key {
   std::string
       path;  // "coin.radius"; an effect's keys under "effects[<type>]"; a steady start's under "initial[steady]"
   Type type;
   std::string unit;         // as the docs write it: "m", "rad/s", "degrees"; empty when dimensionless
   std::string defaultText;  // the default as JSON text, taken from the structs; empty: required or absent
-  bool required = false;
+  bool required = false;  // given wherever its block is and its `onlyWith` hold
   // The range a number must lie in, when it is fixed (bounds that depend on other keys, such as
   // inner_radius <= radius, are the loader's and the doc's).
   std::optional<Bound> lower = std::nullopt, upper = std::nullopt;
   std::vector<std::string_view> names = {};  // Type::Name: the values allowed, in the enum's order
-  // `--set` assignments under which the key is allowed at all ("coin.shape=ring").
-  std::vector<std::string> onlyWith = {};
+  // Presence beyond `required`, as MuJoCo's schema has required/requires/exclusive facets.
+  std::vector<Condition> onlyWith = {};      // given only where these hold
+  std::vector<Condition> needs = {};         // on (given, not false) only where these hold: "sliding": false is off
+  std::vector<std::string> excludes = {};    // keys of its block never given beside it
+  std::vector<std::string> needsOneOf = {};  // an object: at least one of these of its keys
+  std::string presenceWhy = {};  // the reason a presence message gives in parentheses
+  std::string example = {};  // JSON text a message and the page suggest for a key without a default
   std::string why = {};  // the reason a range message gives in parentheses
   bool unitInRule = true;  // false where the range message has always been bare ("must be in [1, 240]")
   bool powersOfTen = false;  // bounds written 1e-14 rather than 1e-14's %g form (the solver's tolerances)
@@ -103,10 +118,24 @@ std::string rangeViolation(const Key& key, double value);
 // "\"a\", \"b\" or \"c\"".
 std::string quotedAlternatives(std::span<const std::string_view> names);
 
+// "number", "boolean or object": the type as docs/scene.md and the page name it.
+std::string_view typeName(Type type);
+
+// A condition as messages and docs write it: `shape: "ring"`, `thickness`, `spin_rate or
+// precession_rate`; keys of `block` by their name, others by their path.
+std::string conditionText(const Condition& condition, std::string_view block);
+
+// The key's presence rules in words, for the docs' tables: "required", "only with `flight: true`".
+std::string presenceText(const Key& key);
+
 // The table as JSON, for `coinroll schema` and the web page's controls.
 nlohmann::json toJson();
 
 // The table as docs/scene.md's Markdown table.
 std::string toMarkdown();
+
+// docs/contract.md's table: every key with its type, unit and presence rules, what scripts may rely
+// on staying as it is.
+std::string toContractMarkdown();
 
 }  // namespace coinroll::scene::schema

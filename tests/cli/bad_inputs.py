@@ -294,9 +294,9 @@ case("type-coin-array", C, "coin is an array", SIM, 2, "coin: must be an object,
      key="coin", files={"scene.json": json.dumps({**BASE, "coin": []})})
 case("type-name-number", C, "name is a number", SIM, 2, "name: must be a string, got 5",
      key="name", files={"scene.json": scene(name=5)})
-case("required-mass", C, "coin.mass missing", SIM, 2, "coin.mass: required (a number)", key="coin.mass",
+case("required-mass", C, "coin.mass missing", SIM, 2, 'coin.mass: required (a number in kg); add it, e.g. "mass": 0.4', key="coin.mass",
      files={"scene.json": json.dumps({**BASE, "coin": {"radius": 0.0375}})})
-case("required-duration", C, "duration missing", SIM, 2, "duration: required (a number)", key="duration",
+case("required-duration", C, "duration missing", SIM, 2, 'duration: required (a number in s); add it, e.g. "duration": 1', key="duration",
      files={"scene.json": scene(duration=DELETE)})
 case("required-initial", C, "initial missing", SIM, 2, "initial", files={"scene.json": scene(initial=DELETE)},
      gtest=(G_SCENES,))
@@ -317,19 +317,19 @@ case("shape-unknown", C, "coin.shape triangle", SIM, 2, "coin.shape", key="shape
 case("ring-inner-too-big", C, "ring inner_radius > radius", SIM, 2,
      "coin.inner_radius: must be in [0, radius = 0.0375] m, got 0.05", key="coin.inner_radius",
      files={"scene.json": scene(coin={"shape": "ring", "inner_radius": 0.05})})
-case("disk-with-inner", C, "inner_radius on a disk", SIM, 2, 'coin.inner_radius: only allowed with shape "ring"',
+case("disk-with-inner", C, "inner_radius on a disk", SIM, 2, 'coin.inner_radius: only with shape: "ring" (only a ring has a hole); remove inner_radius or give shape: "ring"',
      key="coin.inner_radius", files={"scene.json": scene(coin={"inner_radius": 0.01})})
 case("custom-no-inertia", C, "custom coin without I_X", SIM, 2, "coin.I_X", key="I_X",
      files={"scene.json": scene(coin={"shape": "custom"})}, gtest=(G_SCENES,))
 case("custom-iz-too-big", C, "custom I_Z > 2 I_X", SIM, 2, "coin.I_Z", key="I_Z",
      files={"scene.json": scene(coin={"shape": "custom", "I_X": 1e-5, "I_Z": 3e-5})}, gtest=(G_SCENES,))
-case("disk-with-inertia", C, "I_X given for a disk", SIM, 2, 'coin.I_X: only allowed with shape "custom"',
+case("disk-with-inertia", C, "I_X given for a disk", SIM, 2, 'coin.I_X: only with shape: "custom" (the other shapes fix the inertia); remove I_X or give shape: "custom"',
      key="coin.I_X", files={"scene.json": scene(coin={"I_X": 0.01})})
 case("steady-unknown", C, "initial.steady wobble", SIM, 2,
      'initial.steady: must be "straight", "circle" or "spin-in-place", got "wobble"', key="initial.steady",
      files={"scene.json": scene(initial={"steady": "wobble", "theta": DELETE, "omega_Z": DELETE})})
 case("steady-no-spin", C, "steady straight without omega_Z", SIM, 2,
-     'initial.omega_Z: required for steady "straight" (rad/s)', key="omega_Z",
+     'initial.omega_Z: required with steady: "straight" or "circle" (a coin spinning in place has omega_Z = 0); add it, e.g. "omega_Z": 10', key="omega_Z",
      files={"scene.json": scene(initial={"steady": "straight", "theta": DELETE, "omega_Z": DELETE})})
 case("steady-with-rates", C, "steady circle with omega_X as well", SIM, 2,
      "initial.omega_X: unknown key; allowed here: steady, theta,", key="omega_X",
@@ -378,7 +378,7 @@ CORNERED = {"thickness": 0.013, "edge_radius": 0.001}  # rho < h/2: two corners 
 G_THICK = "CliTest.SteadyOfAFullyRoundedThickCoinPrintsItsRimAndALowerCriticalSpin"
 G_CORNERED = "CliTest.SteadyOfACorneredRimHasAVerdictButNoCriticalSpin"
 case("rim-edge-without-thickness", C, "coin.edge_radius without coin.thickness", SIM, 2,
-     "coin.edge_radius: only allowed with coin.thickness (a thin coin has no rim to round)", key="coin.edge_radius",
+     "coin.edge_radius: only with thickness (a thin coin has no rim to round); remove edge_radius or give thickness, e.g. 0.003", key="coin.edge_radius",
      files={"scene.json": scene(coin={"edge_radius": 0.001})}, na_before=NO_RIM)
 case("rim-edge-negative", C, "coin.edge_radius -0.001", SIM, 2,
      "coin.edge_radius: must be in [0, 0.0065] m (at most thickness / 2 = 0.0065 m), got -0.001", key="coin.edge_radius",
@@ -446,17 +446,17 @@ case("rim-steady-cmd-cornered-circle", C, "coinroll steady, circle on a cornered
 C = "rolling and sliding"
 NO_SLIDING = "no sliding before"
 case("sliding-without-friction", C, "sliding true without friction", SIM, 2,
-     "sliding: needs friction", key="sliding", files={"scene.json": scene(sliding=True)}, na_before=NO_SLIDING)
+     "sliding: true only with friction (the coefficient of Coulomb friction while the coin slides); remove sliding or give friction", key="sliding", files={"scene.json": scene(sliding=True)}, na_before=NO_SLIDING)
 case("sliding-not-boolean", C, "sliding \"yes\"", SIM, 2, "sliding", key="sliding",
      files={"scene.json": scene(sliding="yes", friction=0.3)}, na_before=NO_SLIDING)
 case("static-below-kinetic", C, "friction_static 0.2 < friction 0.3", SIM, 2,
      "friction_static: must be >= friction = 0.3", key="friction_static",
      files={"scene.json": scene(friction=0.3, friction_static=0.2)}, na_before=NO_SLIDING)
 case("static-without-kinetic", C, "friction_static without friction", SIM, 2,
-     "friction_static: needs friction", key="friction_static",
+     "friction_static: only with friction (the kinetic coefficient, which it must be at least); remove friction_static or give friction", key="friction_static",
      files={"scene.json": scene(friction_static=0.5)}, na_before=NO_SLIDING)
 case("velocity-without-sliding", C, "initial.v_x without sliding", SIM, 2,
-     "initial.v_x: only with \"sliding\": true", key="initial.v_x",
+     "initial.v_x: only with sliding: true (a rolling coin's velocity follows from its rates); remove v_x or give sliding: true", key="initial.v_x",
      files={"scene.json": scene(initial={"v_x": 1.0})}, na_before=NO_SLIDING)
 case("velocity-absurd", C, "initial.v_z 1e9 m/s", SIM, 2, "initial.v_z", key="v_z",
      files={"scene.json": scene(sliding=True, friction=0.3, initial={"v_z": 1e9})}, na_before=NO_SLIDING)
@@ -475,19 +475,20 @@ C = "flight and impact"
 NO_FLIGHT = "no flight before"
 FLY = {"sliding": True, "friction": 0.3, "flight": True, "restitution": 0.5}
 case("flight-without-sliding", C, "flight true without sliding", SIM, 2,
-     "flight: needs \"sliding\": true", key="flight",
+     "flight: true only with sliding: true (a coin that lands rolls or slides again); remove flight or give sliding: true", key="flight",
      files={"scene.json": scene(flight=True, friction=0.3, restitution=0.5)}, na_before=NO_FLIGHT)
 case("flight-without-restitution", C, "flight true without restitution", SIM, 2,
-     "restitution: required with \"flight\": true", key="restitution",
+     'restitution: required with flight: true (the impacts of a flight bounce by it); add it, e.g. "restitution": 0.5', key="restitution",
      files={"scene.json": scene(sliding=True, friction=0.3, flight=True)}, na_before=NO_FLIGHT)
 case("restitution-above-one", C, "restitution 1.5", SIM, 2, "restitution: must be in [0, 1], got 1.5",
      key="restitution", files={"scene.json": scene(**{**FLY, "restitution": 1.5})}, na_before=NO_FLIGHT)
 case("restitution-without-flight", C, "restitution without flight", SIM, 2,
-     "restitution: only with \"flight\": true", key="restitution",
+     "restitution: only with flight: true (the impacts of a flight bounce by it); remove restitution or give flight: true", key="restitution",
      files={"scene.json": scene(sliding=True, friction=0.3, restitution=0.5)}, na_before=NO_FLIGHT)
 case("impact-friction-negative", C, "impact_friction -0.1", SIM, 2, "impact_friction: must be", key="impact_friction",
      files={"scene.json": scene(**FLY, impact_friction=-0.1)}, na_before=NO_FLIGHT)
-case("height-without-flight", C, "initial.y without flight", SIM, 2, "initial.y: only with \"flight\": true",
+case("height-without-flight", C, "initial.y without flight", SIM, 2, "initial.y: only with flight: true (a rolling or sliding coin's height and vertical velocity follow from its attitude "
+     "and rates); remove y or give flight: true",
      key="initial.y", files={"scene.json": scene(sliding=True, friction=0.3, initial={"y": 0.1})},
      na_before=NO_FLIGHT)
 case("height-below-floor", C, "initial.y puts the rim below the floor", SIM, 2,
@@ -497,7 +498,8 @@ case("vertical-velocity-into-floor", C, "initial.v_y -1 m/s on the floor", SIM, 
      "initial.v_y: the coin's rim would move into the floor", key="initial.v_y",
      files={"scene.json": scene(**FLY, initial={"v_y": -1})}, na_before=NO_FLIGHT)
 case("decided-without-flight", C, "stop_when_decided without flight", SIM, 2,
-     "stop_when_decided: only with \"flight\": true", key="stop_when_decided",
+     "stop_when_decided: only with flight: true (it ends a toss once its face up is final); remove stop_when_decided or "
+     "give flight: true", key="stop_when_decided",
      files={"scene.json": scene(sliding=True, friction=0.3, stop_when_decided=True)}, na_before=NO_FLIGHT)
 case("decided-not-boolean", C, "stop_when_decided \"yes\"", SIM, 2, "stop_when_decided: must be", key="stop_when_decided",
      files={"scene.json": scene(**FLY, stop_when_decided="yes")}, na_before=NO_FLIGHT)
@@ -545,17 +547,17 @@ case("audio-number", C, "render.audio 1", REN + "render.audio=1", 2,
      "render.audio: must be true, false or an object of options, got 1", key="render.audio")
 case("remap-both", C, "time_remap with spin_rate and precession_rate",
      REN + "render.time_remap.spin_rate=1 --set render.time_remap.precession_rate=1", 2,
-     "render.time_remap: give exactly one of spin_rate", key="render.time_remap")
+     "render.time_remap.precession_rate: not with spin_rate (one rate sets the slow-down); remove one of them", key="render.time_remap")
 case("remap-growth-one", C, "time_remap growth 1 (would never slow down)",
      REN + "render.time_remap.precession_rate=10 --set render.time_remap.growth=1", 2,
      "render.time_remap.growth: must be in [0, 1)", key="render.time_remap.growth")
 case("remap-empty", C, "time_remap with no rule at all",
      REN + "'render.time_remap={}'", 2,
-     "render.time_remap: give exactly one of spin_rate (slow down by psi-dot) or precession_rate (by phi-dot, the "
-     "contact point's rate round the floor), in rad/s, or flight or impact", key="render.time_remap")
+     "render.time_remap: needs one of spin_rate, precession_rate, flight or impact (where the motion is fast, in the "
+     "air or at each impact); add one or remove time_remap", key="render.time_remap")
 case("remap-flight-no-slow", C, "time_remap.flight without its slow",
      REN + "render.time_remap.flight.window=0.1", 2,
-     "render.time_remap.flight.slow: required: the playback rate in the air, times time_scale, in (0, 1]",
+     'render.time_remap.flight.slow: required (the playback rate in the air, times time_scale); add it, e.g. "slow": 0.25',
      key="render.time_remap.flight.slow")
 case("remap-impact-slow-zero", C, "time_remap.impact.slow 0 (would never move on)",
      REN + "render.time_remap.impact.slow=0", 2,
@@ -565,7 +567,8 @@ case("remap-impact-window-zero", C, "time_remap.impact.window 0 (an instant no f
      "render.time_remap.impact.window: must be > 0 (the slow-down eases in and out over it", key="render.time_remap.impact.window")
 case("remap-growth-alone", C, "time_remap growth with only a flight slow-down",
      REN + "render.time_remap.flight.slow=0.25 --set render.time_remap.growth=0.5", 2,
-     "render.time_remap.growth: shapes the slow-down of spin_rate or precession_rate, and neither is given",
+     "render.time_remap.growth: only with spin_rate or precession_rate (it shapes their slow-down); remove growth or give "
+     "spin_rate or precession_rate",
      key="render.time_remap.growth")
 
 # --- solver

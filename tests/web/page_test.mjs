@@ -15,7 +15,7 @@
 //   Escape or its button, and does not make the next change refused too;
 // - no slider offers a value outside its key's range (the tilt's also inside the flat stop), on every
 //   example and a scene holding every key the page shows;
-// - the custom shape's moments and the flight keys have controls, shown by the schema's only_with,
+// - the custom shape's moments and the flight keys have controls, shown by the schema's presence rules,
 //   that fill what the choice needs (a disk made custom runs as the disk did; flight, its restitution);
 // - a run in progress shows its progress and gives way to a newer one; playback follows
 //   render.time_remap as `coinroll render --frame-times` reports it, in the air and at each impact too;

@@ -382,7 +382,7 @@ function api(core, checks) {
                 straight.eigenvalues[0].im === 0 && straight.radii.contact === Infinity ? [] : [JSON.stringify(straight)]);
   expectThrow('steady() refuses what the scene refuses, with the program\'s message',
               () => core.steady(null, [], { kind: 'straight', theta: 10, omega_Z: 5 }),
-              (e) => e.kind === 'scene' && e.exitCode === 2 && /theta: not allowed for steady "straight"/.test(e.message));
+              (e) => e.kind === 'scene' && e.exitCode === 2 && /theta: only with steady: "circle" or "spin-in-place"/.test(e.message));
   expectThrow('steady() without kind needs a scene that names a steady state', () => core.steady(null, []),
               (e) => e.kind === 'request' && e.exitCode === 2 && /give kind straight\|circle\|spin-in-place/.test(e.message));
   expectThrow('steady()\'s theta without kind is refused', () => core.steady(null, [], { theta: 10 }),

@@ -3,8 +3,8 @@
 // unit in the units chosen (units.js); a number gets a slider (on a log scale where its range spans
 // decades) and a box for the exact value, a name a menu, a boolean a checkbox; a key without a default
 // that may be absent (thickness, friction) gets a checkbox that puts it in the scene or takes it out.
-// A control is shown only where its only_with assignments hold.
-import schema, { defaultOf, deletePath, getPath, hasEffect, onlyWithHolds, schemaKey, setEffect, setPath } from './schema.js';
+// A control is shown only where the schema's presence rules let its key be on.
+import { defaultOf, deletePath, getPath, hasEffect, presenceHolds, schemaKey, setEffect, setPath } from './schema.js';
 import { formatG, kUnitKeys, Units } from './units.js';
 
 // What the page offers, in its groups; every range, default, unit and text comes from the schema.
@@ -41,11 +41,6 @@ const kNames = new Map([
 ]);
 
 const kSliderSteps = 1000;
-
-// Keys a scene must hold once another has a value, which the schema's table does not mark (its docs
-// say "required there"): the page fills them when that value is chosen, so that the choice runs, and
-// shows them without a checkbox that could only leave them out.
-const kRequiredWith = new Map([['coin.I_X', 'coin.shape=custom'], ['coin.I_Z', 'coin.shape=custom'], ['restitution', 'flight=true']]);
 
 // The key's range, in `units` (the scene's SI where not given).
 function rangeText(key, units = new Units('si')) {
@@ -163,8 +158,7 @@ class Control {
     const effect = /^effects\[(\w+)\]$/.exec(path);
     this.effect = effect ? effect[1] : null;
     this.key = schemaKey(this.effect ? `${path}.type` : path);
-    this.optional = !this.effect && this.key.type !== 'name' && this.key.default === undefined && !this.key.required &&
-                    !kRequiredWith.has(path);
+    this.optional = !this.effect && this.key.type !== 'name' && this.key.default === undefined && !this.key.required;
     const whole = this.effect || this.key.type === 'boolean';
     this.row = element('div', { class: whole ? 'control whole' : 'control', 'data-path': path });
     const name = kNames.get(path);
@@ -294,7 +288,7 @@ class Control {
     const units = this.units();
     this.row.title = tooltip(this.key, units);
     const present = this.effect ? hasEffect(scene, this.effect) : getPath(scene, this.path) !== undefined;
-    let shown = onlyWithHolds(scene, this.key);
+    let shown = presenceHolds(scene, this.key);
     if (this.path === 'initial[steady].steady' || this.effect) shown = true;
     else if (this.path.startsWith('initial.')) shown = shown && getPath(scene, 'initial[steady].steady') === undefined;
     this.row.hidden = !shown;
@@ -396,33 +390,39 @@ export class Controls {
   }
 }
 
-// What a group whose keys all hide says: what the first key's only_with asks of the page's controls.
+// What a group whose keys all hide says: what the first key's presence rules ask of the page's
+// controls, and what those keys' own rules ask first (flight needs sliding, which needs friction).
 function whatShows(key) {
-  const needs = (key.only_with || []).map((assignment) => {
-    const at = assignment.indexOf('=');
-    const path = assignment.slice(0, at);
-    return schemaKey(path).type === 'name' ? `${path} is ${assignment.slice(at + 1)}` : `${path} is ticked`;
-  });
+  const needs = [];
+  const ask = (k) => {
+    for (const condition of [...(k.only_with || []), ...(k.needs || [])]) {
+      const path = condition.paths[0], other = schemaKey(path);
+      ask(other);
+      const type = other.type;
+      needs.push(type === 'name' ? `${path} is ${condition.values.join(' or ')}` : `${path} is ticked`);
+    }
+  };
+  ask(key);
   return needs.length ? `Shown once ${needs.join(' and ')}.` : '';
 }
 
-// Keeps the scene a control changed one the loader takes: a key whose only_with no longer holds
-// leaves it (the loader refuses it: "restitution: only with "flight": true"), which can end another's
-// (sliding off ends flight's, and flight's restitution's); and a key kRequiredWith asks for comes in.
+// Keeps the scene a control changed one the loader takes: a key whose presence rules no longer hold
+// leaves it (the loader refuses it: "restitution: only with flight: true"), which can end another's
+// (sliding off ends flight's, and flight's restitution's); and a key the schema requires there comes in.
 // `running` is the scene on screen, whose coin's moments a coin made custom starts with.
 export function fitScene(scene, running) {
   const paths = kGroups.flatMap(([, group]) => group).filter((path) => !/^(effects|initial)\[/.test(path));
   for (let removed = true; removed;) {
     removed = false;
     for (const path of paths) {
-      if (getPath(scene, path) === undefined || onlyWithHolds(scene, schemaKey(path))) continue;
+      if (getPath(scene, path) === undefined || presenceHolds(scene, schemaKey(path))) continue;
       deletePath(scene, path);
       removed = true;
     }
   }
-  for (const [path, assignment] of kRequiredWith) {
-    const [on, value] = assignment.split('=');
-    if (getPath(scene, path) !== undefined || String(getPath(scene, on)) !== value) continue;
+  for (const path of paths) {
+    const key = schemaKey(path);
+    if (!key.required || !key.only_with || getPath(scene, path) !== undefined || !presenceHolds(scene, key)) continue;
     setPath(scene, path, path.startsWith('coin.I_') ? momentsOf(running.coin)[path.slice(5)] : suggestedValue(path));
   }
 }
@@ -438,9 +438,9 @@ function momentsOf(coin) {
   return { I_X: coin.mass * sumOfSquares / 4, I_Z: coin.mass * sumOfSquares / 2 };
 }
 
-// What a ticked optional key starts at: its schema default, else the value the schema's own
-// examples give it (only_with's `friction=0.5`, `coin.thickness=0.003`), else 1 of its unit.
+// What a ticked optional key starts at: its schema default, else the schema's example of it
+// (`friction` 0.5, `coin.thickness` 0.003), else 1 of its unit.
 export function suggestedValue(path) {
-  const example = schema.keys.flatMap((k) => k.only_with || []).find((a) => a.startsWith(`${path}=`));
-  return defaultOf(path, example !== undefined ? JSON.parse(example.slice(path.length + 1)) : 1);
+  const example = schemaKey(path).example;
+  return defaultOf(path, example !== undefined ? example : 1);
 }

@@ -76,24 +76,22 @@ export function setEffect(scene, type, on) {
   }
 }
 
-// Whether the schema's only_with assignments hold in the scene: the key they set is present and, for
-// a name or a boolean, has that value (the numbers there are only examples of a present value).
-// `effects=[{"type": T, ...}]` asks for an entry of type T with those names.
-export function onlyWithHolds(scene, key) {
-  if (key.path.startsWith('initial[steady].')) return getPath(scene, 'initial[steady].steady') !== undefined;
-  return (key.only_with || []).every((assignment) => {
-    const at = assignment.indexOf('=');
-    const path = assignment.slice(0, at), text = assignment.slice(at + 1);
-    if (path === 'effects') {
-      const [wanted] = JSON.parse(text);
-      const entry = (scene.effects || []).find((e) => e && e.type === wanted.type);
-      return entry !== undefined && Object.entries(wanted).every(([k, v]) => k === 'type' || (entry[k] !== undefined ? entry[k] : defaultOf(`effects[${wanted.type}].${k}`)) === v);
-    }
+// Whether a presence condition of the schema holds in the scene, as the reader decides it: one of its
+// paths is given and, where it lists values, that key's value (its default where absent) is one of them.
+export function conditionHolds(scene, condition) {
+  return condition.paths.some((path) => {
     const value = getPath(scene, path);
-    if (value === undefined) return false;
-    const type = byPath.has(path) ? schemaKey(path).type : 'number';
-    return type === 'name' ? value === text : type === 'boolean' ? String(value) === text : true;
+    if (!condition.values) return value !== undefined;
+    const effective = value !== undefined ? value : schemaKey(path).default;
+    return effective !== undefined && condition.values.includes(effective);
   });
+}
+
+// Whether the key may be on in the scene: its block is there (an effect's entry, a steady start) and
+// its only_with and needs hold.
+export function presenceHolds(scene, key) {
+  if (key.path.includes('.') && container(scene, key.path, false) === undefined) return false;
+  return [...(key.only_with || []), ...(key.needs || [])].every((c) => conditionHolds(scene, c));
 }
 
 export default schema;

@@ -44,10 +44,13 @@ class Printer {
   Shown time(double s) const { return u_.seed ? Shown{s / std::sqrt(u_.a / u_.g), "√(a/g)"} : Shown{s, "s"}; }
   // Rates: the seed's radians per its unit of time; in SI turns per second, as the ear hears them.
   Shown rate(double radiansPerSecond) const {
-    return u_.seed ? Shown{radiansPerSecond / std::sqrt(u_.g / u_.a), "√(g/a)"} : Shown{radiansPerSecond / kTurn, "Hz"};
+    return u_.seed ? Shown{radiansPerSecond / std::sqrt(u_.g / u_.a), "√(g/a)"}
+                   : Shown{radiansPerSecond / kTurn, "Hz"};
   }
   int rateDigits() const { return u_.seed ? 3 : 2; }
-  Shown energy(double joules) const { return u_.seed ? Shown{joules / (u_.M * u_.g * u_.a), "Mga"} : Shown{joules, "J"}; }
+  Shown energy(double joules) const {
+    return u_.seed ? Shown{joules / (u_.M * u_.g * u_.a), "Mga"} : Shown{joules, "J"};
+  }
   // The small numbers: in SI in milli-units at a fixed point, in the seed's four significant digits.
   std::string power(double watts) const {
     return u_.seed ? fmt::format("{:>9} Mg√(ga)", fmt::format("{:.4g}", watts / (u_.M * u_.g * std::sqrt(u_.g * u_.a))))

@@ -120,5 +120,6 @@ mkdirSync(dirname(options.out), { recursive: true });
 writeFileSync(options.out, html);
 const mb = (n) => (n / 1e6).toFixed(3);
 console.log(`${options.out}: ${mb(html.length)} MB (the core's script ${mb(coreSource.length)} MB and its WebAssembly gzipped ` +
-            `${mb(wasmGzipBase64.length)} MB in base64, the page's script, three.js and uPlot ` +
-            `${mb(script.length - JSON.stringify(workerSource).length - JSON.stringify(coreSource).length)} MB)`);
+            `${mb(wasmGzipBase64.length)} MB in base64, the page's script, three.js, uPlot and fflate ` +
+            `${mb(script.length - JSON.stringify(workerSource).length - JSON.stringify(coreSource).length -
+                  wasmGzipBase64.length)} MB)`);

@@ -4,6 +4,7 @@
 //     node tests/web/page_test.mjs --page build/web/coinroll.html --binary build/coinroll
 //
 // - no console error and no request beyond the page's own file, its Blob worker and data URIs;
+// - opened with #probe=T1,T2,..., its DOM dump holds the CSV's numbers at those times;
 // - the numbers the page holds and its overlay shows at given times are `coinroll simulate`'s CSV for
 //   the same scene and sample step;
 // - a slider moved by the page's own keyboard events runs the changed scene, which "download scene"
@@ -124,6 +125,63 @@ function agreesToShownDigits(shown, printed) {
   const [mantissa, exponent = '0'] = shown.split('e');
   const decimals = mantissa.includes('.') ? mantissa.split('.')[1].length : 0;
   return Number.isFinite(a) && Math.abs(a - b) <= Math.pow(10, Number(exponent) - decimals) * (1 + 1e-9);
+}
+
+// #probe (docs/contract.md "Web page"), read as an outside script would: Chromium's DOM dump, no
+// driver. The numbers are the CSV's at those times to the core's tolerance (docs/web.md
+// "Tolerance"); a time past the run's end is null; a refused scene gives the program's message.
+function probed(pageFile, fragment) {
+  const dumped = spawnSync(options.chromium, ['--headless', '--no-sandbox', '--disable-gpu', '--dump-dom',
+                                              `${pathToFileURL(pageFile).href}#probe=${fragment}`],
+                           { encoding: 'utf8', maxBuffer: 1 << 30, timeout: 120000 });
+  const found = /<pre id="coinroll-probe"[^>]*>([^<]*)<\/pre>/.exec(dumped.stdout || '');
+  if (!found) return { missing: `no <pre id="coinroll-probe"> in the DOM dump (status ${dumped.status}): ${(dumped.stderr || '').slice(-300)}` };
+  return JSON.parse(found[1].replace(/&amp;/g, '&').replace(/&lt;/g, '<').replace(/&gt;/g, '>').replace(/&quot;/g, '"'));
+}
+function exportPage(sceneText, name) {
+  const file = join(scratch, `${name}.html`);
+  writeFileSync(join(scratch, `${name}.json`), sceneText);
+  const written = spawnSync(options.binary, ['export', join(scratch, `${name}.json`), '-o', file, '-q'],
+                            { encoding: 'utf8', env: { ...process.env, COINROLL_PAGE: options.page } });
+  if (written.status !== 0) throw new Error(`coinroll export failed: ${written.stderr}`);
+  return file;
+}
+{
+  const times = [0, 0.5, 1, 2, 1e6];
+  const probes = [['the built-in default scene', options.page, undefined],
+                  ['the coin toss, exported', exportPage(readFileSync(join(repo, 'examples/coin_toss.json'), 'utf8'), 'toss'),
+                   readFileSync(join(repo, 'examples/coin_toss.json'), 'utf8')]];
+  for (const [label, file, sceneText] of probes) {
+    const shown = probed(file, times.join(','));
+    let worst = { excess: 0 };
+    for (const [k, t] of times.entries()) {
+      const csv = t > 0 ? simulate(sceneText, t) : simulate(sceneText, 1);
+      const row = t > 0 ? 1 : 0;
+      for (const name of ['theta', 'x', 'y', 'z', 'energy']) {
+        const expected = row < csv.rows ? csv.columns[name][row] : null;
+        const value = shown[name] ? shown[name][k] : undefined;
+        const tolerance = expected === null ? 0 : 1e-6 * Math.max(...csv.columns[name].map(Math.abs)) + 1e-12;
+        const excess = expected === null ? (value === null ? 0 : Infinity) : Math.abs(value - expected) / tolerance;
+        if (!(excess <= worst.excess)) worst = { excess, detail: `${name} at t = ${t}: page ${value}, CSV ${expected}` };
+      }
+    }
+    check(`#probe on ${label}: the DOM dump holds t and the CSV's theta, x, y, z, energy at ${times.join(', ')} s (null past the end)`,
+          !shown.missing && JSON.stringify(shown.t) === JSON.stringify(times) && worst.excess <= 1,
+          shown.missing || (worst.detail ? `worst ${worst.excess.toFixed(3)} of the tolerance, ${worst.detail}` : ''));
+  }
+  // export refuses such a scene; a page holding one anyway (the placeholder filled by hand) says why.
+  const badScene = '{"coin": {"radius": -1}}';
+  const refusedPage = join(scratch, 'refused.html');
+  writeFileSync(refusedPage, readFileSync(options.page, 'utf8').replace(
+    '<script type="application/json" id="coinroll-scene">null</script>',
+    `<script type="application/json" id="coinroll-scene">${badScene}</script>`));
+  const refused = probed(refusedPage, '1');
+  const expectedRefusal = refusal(badScene).replace(/^scene\.json: /, 'exported scene: ');
+  check('#probe on a scene the program refuses gives the program\'s message', refused.error === expectedRefusal,
+        `page ${JSON.stringify(refused)}, coinroll "${expectedRefusal}"`);
+  const malformed = probed(options.page, '1,soon');
+  check('a #probe that is not a list of times says so', /#probe=1,soon: expected simulated times/.test(malformed.error || ''),
+        JSON.stringify(malformed));
 }
 
 const browser = await puppeteer.launch({

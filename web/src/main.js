@@ -2,10 +2,12 @@
 // WebAssembly core runs it in a worker, and three.js plays the run back as the program draws it.
 import { coreSource, workerSource } from 'inline:worker';
 import examples from 'inline:examples';
+import wasmGzipBase64 from 'inline:wasm';
 import { Controls, fitScene, suggestedValue } from './controls.js';
 import { Legend } from './legend.js';
 import { Plots } from './plots.js';
-import { Cancelled, Runner } from './runner.js';
+import { mainThreadCore, probe, probeTimes, writeProbe } from './probe.js';
+import { Cancelled, LocalRunner, Runner } from './runner.js';
 import { defaultOf } from './schema.js';
 import { SteadyPanel, steadyRequests } from './steady_panel.js';
 import { Trajectory } from './trajectory.js';
@@ -52,7 +54,26 @@ const page = {
   showRunning: () => { if (page.run) showSceneText(page.run.text); },
 };
 
-const runner = new Runner(coreSource, workerSource);
+// The scene `coinroll export` put in the page, or null: the built-in default scene.
+const exportedScene = JSON.parse($('coinroll-scene').textContent);
+const exportedSourceName = exportedScene === null ? 'built-in default scene' : 'exported scene';
+
+// Workers, or with #probe=T1,T2,... the page's own thread: the probe is written before the page has
+// loaded (probe.js), and the page then plays the same core's runs.
+function makeRunner() {
+  let times = null;
+  try {
+    times = probeTimes(window.location.hash);
+  } catch (e) {
+    writeProbe({ error: e.message });
+  }
+  if (!times) return new Runner(coreSource, wasmGzipBase64, workerSource);
+  const core = mainThreadCore(coreSource, wasmGzipBase64);
+  const sceneText = exportedScene === null ? core.defaultSceneJson() : JSON.stringify(exportedScene);
+  writeProbe(probe(core, sceneText, exportedSourceName, times));
+  return new LocalRunner(core);
+}
+const runner = makeRunner();
 const view = new View($('canvas'));
 const controls = new Controls($('controls'), page);
 // A steady motion's button starts it as the start menu does, and a refusal shows at that menu.
@@ -292,12 +313,11 @@ runner.ready.then(({ version, defaultScene, picture }) => {
   legend = new Legend($('legend'), picture);
   defaultSceneText = defaultScene;
   // A page written by `coinroll export` opens on its scene, as the scene file's JSON.
-  const exported = JSON.parse(document.getElementById('coinroll-scene').textContent);
-  const sceneText = exported === null ? defaultScene : JSON.stringify(exported, null, 2);
+  const sceneText = exportedScene === null ? defaultScene : JSON.stringify(exportedScene, null, 2);
   page.scene = JSON.parse(sceneText);
   showSceneText(sceneText);
   controls.refresh();
-  start(sceneText, exported === null ? 'built-in default scene' : 'exported scene', { box: true });
+  start(sceneText, exportedSourceName, { box: true });
 }, (e) => { $('scene-error').textContent = e.message; });
 requestAnimationFrame(frame);
 

@@ -1,7 +1,9 @@
 // Runs scenes in Web Workers, each holding the WebAssembly core (src/worker.js), made from a Blob of
-// the core's script and the worker's, since a file:// page can load no other file. A run is
-// synchronous inside its worker, so a newer request cannot reach it: the newer request terminates
-// it and goes to a spare worker that has already loaded the core, and a new spare starts loading.
+// the core's script, its WebAssembly and the worker's script, since a file:// page can load no other
+// file. A run is synchronous inside its worker, so a newer request cannot reach it: the newer request
+// terminates it and goes to a spare worker that has already loaded the core, and a new spare starts
+// loading. LocalRunner runs them on the page's own thread instead (#probe: probe.js).
+import { readyAnswer, runRequest } from './core_requests.js';
 
 export class Cancelled extends Error {}
 
@@ -14,8 +16,9 @@ export class RunError extends Error {
 }
 
 export class Runner {
-  constructor(coreSource, workerSource) {
-    this.url = URL.createObjectURL(new Blob([coreSource, ';\n', workerSource], { type: 'text/javascript' }));
+  constructor(coreSource, wasmGzipBase64, workerSource) {
+    const parts = [coreSource, `;\nconst coinrollWasm = ${JSON.stringify(wasmGzipBase64)};\n`, workerSource];
+    this.url = URL.createObjectURL(new Blob(parts, { type: 'text/javascript' }));
     this.idle = this.spawn();
     this.spare = null;  // made once the first worker is up, so that the two do not share the first second
     this.busy = null;
@@ -70,5 +73,22 @@ export class Runner {
       };
       slot.worker.postMessage({ id, sceneText, sourceName, steady });
     });
+  }
+}
+
+// The same requests answered by a core on the page's thread, each to its end before the next: the
+// page with #probe, whose numbers must be in the DOM by the time the page has loaded.
+export class LocalRunner {
+  constructor(core) {
+    this.core = core;
+    this.ready = Promise.resolve(readyAnswer(core));
+  }
+
+  async run(sceneText, sourceName, onProgress, steady = []) {
+    try {
+      return runRequest(this.core, { sceneText, sourceName, steady }, onProgress);
+    } catch (e) {
+      throw new RunError(e);
+    }
   }
 }

@@ -20,6 +20,8 @@
 //   that fill what the choice needs (a disk made custom runs as the disk did; flight, its restitution);
 // - a run in progress shows its progress and gives way to a newer one; playback follows
 //   render.time_remap as `coinroll render --frame-times` reports it, in the air and at each impact too;
+// - a steady circle nudged by a degree wobbles at the period the panel predicts, as measured on the
+//   page and on the CSV;
 // - the steady-motion panel shows, for the run's coin and tilt, every number `coinroll steady` prints
 //   for each motion it lists, follows a change of tilt or coin, and its buttons start those motions;
 // - in the seed's units (M = a = g = 1) the panel, the controls and the overlay show the program's
@@ -817,6 +819,43 @@ try {
     const startedCsv = simulate(started.text, started.sampleDt);
     await compareWithCsv('the started steady circle', startedCsv, [0, Math.floor(startedCsv.rows / 2), startedCsv.rows - 1]);
     await compareSteadyPanel('the started steady circle');
+  });
+
+  // The wobble a student can watch: a steady circle tapped (tilt rate sqrt K times 1 degree) wobbles
+  // at the period the panel predicts (2 pi / sqrt K) to second order in the tap, and the page's
+  // measured period is the one the tilt's maxima in `coinroll simulate`'s CSV of the same start give.
+  await part('the nudged wobble', async () => {
+    await page.select('#example', 'steady_circle');
+    await settled();
+    const card = (await steadyPanel()).cards.find((c) => c.request.kind === 'circle' && c.branch === '+');
+    await page.click('.steady-motion[data-kind="circle"][data-branch="+"] button.nudge');
+    await new Promise((r) => setTimeout(r, 50));
+    await settled();
+    const nudged = await hook('run');
+    const initial = JSON.parse(nudged.text).initial;
+    const wobble = await page.$eval('.wobble', (e) => ({
+      hidden: e.hidden, text: e.textContent,
+      numbers: Object.fromEntries([...e.querySelectorAll('[data-quantity]')].map((n) => [n.dataset.quantity, Number(n.textContent)])),
+    }));
+    const tap = Math.sqrt(Number(card.numbers.K)) * Math.PI / 180;
+    check('the nudge starts the motion with its tilt rate sqrt(K) x 1 degree', !wobble.hidden &&
+          agreesToShownDigits(card.numbers.theta, String(initial.theta)) && Math.abs(initial.omega_X / tap - 1) < 1e-6 &&
+          agreesToShownDigits(card.numbers.omega_Y, String(initial.omega_Y)) && agreesToShownDigits(card.numbers.omega_Z, String(initial.omega_Z)),
+          `${JSON.stringify(initial)} against the panel's ${JSON.stringify(card.numbers)}`);
+    const predicted = Number(card.numbers.time);
+    const { measuredPeriod: measured, predictedPeriod } = wobble.numbers;
+    check('the tapped circle wobbles at the predicted period to 0.3 % (1 degree each way)', predictedPeriod === predicted &&
+          Math.abs(measured / predicted - 1) < 3e-3, wobble.text);
+    const fine = simulate(nudged.text, 1e-3);
+    const { t, theta } = fine.columns, maxima = [];
+    for (let i = 1; i + 1 < fine.rows; ++i) {
+      if (!(theta[i] > theta[i - 1] && theta[i] >= theta[i + 1])) continue;
+      const curvature = theta[i - 1] - 2 * theta[i] + theta[i + 1];
+      maxima.push(t[i] + 0.5 * (theta[i - 1] - theta[i + 1]) / curvature * (t[i + 1] - t[i]));
+    }
+    const fromCsv = (maxima[maxima.length - 1] - maxima[0]) / (maxima.length - 1);
+    check('the page\'s measured period is the CSV\'s (tilt maxima at 1 ms rows) to 1e-3', Math.abs(measured / fromCsv - 1) < 1e-3,
+          `page ${measured} s, CSV ${fromCsv} s over ${maxima.length - 1} wobbles`);
   });
 
   // The seed's units (M = a = g = 1, docs/web.md "Units"): the switch shows the steady panel, the

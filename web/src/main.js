@@ -169,6 +169,7 @@ function newRun(result) {
   controls.refresh();
   const units = page.units(trajectory.scene);
   steadyPanel.show(trajectory.scene.initial, result.steady, units);
+  steadyPanel.showWobble(trajectory, units);
   showKeys(units);
   page.t = 0;
   plots.show(trajectory, units);

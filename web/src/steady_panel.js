@@ -29,6 +29,23 @@ export function steadyRequests(initial) {
 
 const kSI = new Units('si');
 
+// The tilt's amplitude a nudge gives a stable motion, in degrees: small enough for the linear
+// wobble's period to hold to a tenth of a per cent, large enough to see.
+const kNudgeDegrees = 1;
+
+// The times of the tilt's maxima on a run's rows (t, theta), each refined by the parabola through the
+// row and its two neighbours.
+function tiltMaxima(t, theta, rows) {
+  const maxima = [];
+  for (let i = 1; i + 1 < rows; ++i) {
+    if (!(theta[i] > theta[i - 1] && theta[i] >= theta[i + 1])) continue;
+    const curvature = theta[i - 1] - 2 * theta[i] + theta[i + 1];
+    const offset = curvature < 0 ? 0.5 * (theta[i - 1] - theta[i + 1]) / curvature : 0;
+    maxima.push(t[i] + offset * (t[i + 1] - t[i]));
+  }
+  return maxima;
+}
+
 // One number, given in the SI `unit` and shown in `units`: `quantity` names it for the test
 // (tests/web/page_test.mjs), `digits` the command's format for it ('6g', '9g', '12g', '6f'), kept in
 // the seed's units too.
@@ -58,23 +75,74 @@ export class SteadyPanel {
     this.start = start;
     this.intro = element('p', { class: 'hint' });
     this.coin = element('p', { class: 'steady-coin' });
-    this.cards = kSteadyMotions.map((motion) => {
+    this.cards = kSteadyMotions.map((motion, i) => {
       const button = element('button', { type: 'button', text: 'Start' });
       button.addEventListener('click', () => this.start(startFrom(this.initial, motion.kind, motion.branch)));
+      const nudge = element('button', { type: 'button', class: 'nudge', text: `Nudge ${kNudgeDegrees}°` });
+      nudge.addEventListener('click', () => this.nudge(i));
       const card = element('div', { class: 'steady-motion', 'data-kind': motion.kind, 'data-branch': motion.branch || '' }, [
         element('div', { class: 'steady-head' }, [element('strong', { text: motion.title, title: motion.about }),
-                                                  element('span', { class: 'verdict' }), button]),
+                                                  element('span', { class: 'verdict' }), button, nudge]),
         // Not an .error: nothing the student typed is refused, this coin has no such motion here.
         element('dl'), element('div', { class: 'steady-refusal' }),
       ]);
-      return { motion, card, button };
+      return { motion, card, button, nudge };
     });
-    container.append(element('legend', { text: 'Steady motions' }), this.intro, this.coin, ...this.cards.map((c) => c.card));
+    this.wobble = element('p', { class: 'wobble', hidden: true });
+    container.append(element('legend', { text: 'Steady motions' }), this.intro, this.coin, this.wobble,
+                     ...this.cards.map((c) => c.card));
+  }
+
+  // Starts motion `i` tapped: its tilt rate omega_X = sqrt|K| times kNudgeDegrees, all else as in the
+  // motion. Since the rates' perturbations follow the tilt's (docs/derivations.md eqs. 3.3-3.4), a kick
+  // in the tilt rate alone leaves the motion's two other constants as they were, so the run wobbles
+  // about this motion itself, kNudgeDegrees each way, and its period differs from 2 pi / sqrt K only
+  // at second order (0.09 % at 1 degree, 0.023 % at half a degree on the steady circle). A nudge of
+  // the tilt with the rates kept would move it to a neighbouring motion instead (-9 % there).
+  nudge(i) {
+    const { report } = this.results[i];
+    const { theta, omega_Y: omegaY, omega_Z: omegaZ } = report.initial;
+    const tiltRate = Math.sqrt(Math.abs(report.stiffness)) * kNudgeDegrees * Math.PI / 180;
+    const initial = { theta, omega_X: tiltRate, omega_Y: omegaY, omega_Z: omegaZ };
+    this.nudged = { initial, title: kSteadyMotions[i].title, stability: report.stability };
+    this.start(initial);
+  }
+
+  // For a run started by nudge(): the tilt's wobble measured on the run (the mean spacing of the
+  // tilt's maxima, each placed by the parabola through its row and their neighbours), beside the
+  // predicted period 2 pi / sqrt(K); for an unstable motion, its e-folding time to watch for.
+  showWobble(trajectory, units) {
+    Object.assign(this, { trajectory, units });
+    const nudged = this.nudged;
+    const mine = nudged && JSON.stringify(trajectory.scene.initial) === JSON.stringify(nudged.initial);
+    this.wobble.hidden = !mine;
+    if (!mine) return;
+    const { stability } = nudged;
+    this.wobble.className = `wobble ${stability.verdict}`;
+    const predicted = number('predictedPeriod', stability.time, '9g', 's', units);
+    const lead = `${nudged.title}, nudged (tilt rate ω_X = √|K| × ${kNudgeDegrees}°): `;
+    if (stability.verdict !== 'stable') {
+      this.wobble.replaceChildren(lead, `${stability.verdict}: the tilt leaves the motion`,
+        ...(stability.verdict === 'unstable' ? [', growing like exp(t/τ), τ = ', number('predictedTime', stability.time, '6g', 's', units)] : []),
+        '. Watch the tilt plot.');
+      return;
+    }
+    const maxima = tiltMaxima(trajectory.columns.t, trajectory.columns.theta, trajectory.rows);
+    if (maxima.length < 2) {
+      this.wobble.replaceChildren(lead, 'the run is shorter than one wobble; predicted period 2π/√K = ', predicted, '.');
+      return;
+    }
+    const measured = (maxima[maxima.length - 1] - maxima[0]) / (maxima.length - 1);
+    const difference = (measured / stability.time - 1) * 100;
+    this.wobble.replaceChildren(lead, 'the tilt wobbles with period ', number('measuredPeriod', measured, '6g', 's', units),
+      ` measured over ${maxima.length - 1} wobbles of the run, against 2π/√K = `, predicted,
+      ` predicted (${difference >= 0 ? '+' : ''}${difference.toFixed(2)} %, a second-order effect of the ${kNudgeDegrees}° wobble).`);
   }
 
   // The same motions in other units.
   setUnits(units) {
     if (this.results) this.show(this.initial, this.results, units);
+    if (this.trajectory) this.showWobble(this.trajectory, units);
   }
 
   // The steady motions of the run on screen: `initial` its scene's start, `results` the core's answer
@@ -117,6 +185,9 @@ export class SteadyPanel {
       card.dataset.request = JSON.stringify(requests[i]);
       card.querySelector('.steady-refusal').textContent = error ? `No such motion here: ${error.message}` : '';
       button.disabled = Boolean(error);
+      this.cards[i].nudge.disabled = Boolean(error) || !report || report.stiffness === 0;
+      this.cards[i].nudge.title = error ? 'coinroll refuses this start (below)'
+        : `runs this motion tapped (tilt rate √|K| × ${kNudgeDegrees}°), to watch the wobble the panel predicts`;
       button.title = error ? 'coinroll refuses this start (below)' : `runs this steady motion: initial ${JSON.stringify(startFrom(initial, requests[i].kind, requests[i].branch))}`;
       list.replaceChildren();
       verdict.className = 'verdict';

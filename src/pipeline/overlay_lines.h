@@ -21,8 +21,13 @@ struct OverlayUnits {
   static OverlayUnits seedOf(const physics::CoinModel& model) { return {true, model.M, model.a, model.g}; }
 };
 
-// Overlay lines: time, tilt, the contact point's rate (in the air: the rim's height), the face's
-// spin, energy (and power dissipated, and the slip while sliding, and the impacts), then `extra`.
+// The overlay's lines, joined by '\n' and appended to `out`: time, tilt, the contact point's rate
+// (in the air: the rim's height), the face's spin, energy (and power dissipated, and the slip while
+// sliding, and the impacts).
+void writeHud(std::string& out, const physics::CoinModel& model, const FrameState& frame,
+              const OverlayUnits& units = OverlayUnits::si());
+
+// writeHud's lines one by one, then `extra`.
 std::vector<std::string> hudLines(const physics::CoinModel& model, const FrameState& frame,
                                   const std::vector<std::string>& extra = {},
                                   const OverlayUnits& units = OverlayUnits::si());

@@ -7,16 +7,6 @@
 
 namespace coinroll::pipeline {
 
-namespace {
-
-std::string joined(const std::vector<std::string>& lines) {
-  std::string text;
-  for (const std::string& line : lines) text += (text.empty() ? "" : "\n") + line;
-  return text;
-}
-
-}  // namespace
-
 VisualTrackBuilder::VisualTrackBuilder(const scene::SceneConfig& scene, const physics::CoinModel& model)
     : scene_(scene), model_(model) {
   track_.coin = render::coinTriangles(scene.render.picture.coin, render::kCoinSegments);
@@ -27,8 +17,8 @@ void VisualTrackBuilder::add(double t, const RunSample& sample, bool row) {
   if (!row) return;
   const FrameState frame = frameStateOf(t, sample);
   rows_.push_back(frame);
-  track_.overlaySi.push_back(joined(hudLines(model_, frame)));
-  track_.overlaySeed.push_back(joined(hudLines(model_, frame, {}, OverlayUnits::seedOf(model_))));
+  writeHud(track_.overlaySi.emplace_back(), model_, frame);
+  writeHud(track_.overlaySeed.emplace_back(), model_, frame, OverlayUnits::seedOf(model_));
 }
 
 VisualTrack VisualTrackBuilder::finish(const std::atomic<bool>* cancel) && {

@@ -52,9 +52,14 @@ const page = {
   showRunning: () => { if (page.run) showSceneText(page.run.text); },
 };
 
+// `coinroll export`'s choices for a course page (docs/web.md "A page for a course"): its title and
+// caption, the controls a student sees, the researcher's details folded or shown; null: the page as built.
+const pageOptions = JSON.parse($('coinroll-page-options').textContent) || { details: 'shown' };
+showPageOptions(pageOptions);
+
 const runner = new Runner(coreSource, workerSource);
 const view = new View($('canvas'));
-const controls = new Controls($('controls'), page);
+const controls = new Controls($('controls'), page, pageOptions.controls || null);
 // A steady motion's button starts it as the start menu does, and a refusal shows at that menu.
 const steadyPanel = new SteadyPanel($('steady'), (initial) => {
   page.scene.initial = initial;
@@ -81,6 +86,24 @@ function settle() {
   waiters = [];
 }
 const timing = { firstFrameAt: undefined, last: undefined };
+
+// The title and caption as text (never markup), and the details folded: the scene file's box, with the
+// run's log moved in beside it, one click away.
+function showPageOptions(options) {
+  if (options.title) {
+    document.title = options.title;
+    $('title-text').textContent = options.title;
+    $('version').hidden = true;
+  }
+  if (options.caption) {
+    $('caption').textContent = options.caption;
+    $('caption').hidden = false;
+  }
+  if (options.details === 'folded') {
+    $('researcher').append($('run-info'));
+    $('researcher').open = false;
+  }
+}
 
 function showSceneText(text) {
   $('scene-text').value = text;

@@ -122,7 +122,8 @@ std::optional<std::vector<std::string>> chosenControls(const std::string& list,
     if (item == kAllControls) all = true;
     else if (group != groups.end()) chosen.insert(chosen.end(), group->keys.begin(), group->keys.end());
     else if (std::ranges::find(every, item) != every.end()) chosen.push_back(item);
-    else throw UsageError(fmt::format("--controls {}: no such control on the page; {}", scene::printable(item), valid()));
+    else throw UsageError(fmt::format("--controls {}: no such control on the page; {}", scene::printable(item),
+                                      valid()));
     if (comma == list.size()) break;
     start = comma + 1;
   }

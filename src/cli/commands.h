@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "cli/page_options.h"
+
 namespace coinroll::cli {
 
 struct SceneSource {
@@ -105,6 +107,7 @@ struct ExportOptions {
   std::optional<std::string> output;  // HTML path; default <scene name>.html
   bool quiet = false;                 // no summary on stderr
   bool force = false;                 // replace a default-named page made from another scene
+  PageOptions page;                   // title, caption, controls shown, researcher's details (page_options.h)
 };
 void runExport(const ExportOptions& options);
 

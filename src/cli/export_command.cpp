@@ -17,6 +17,7 @@
 
 #include "cli/command_support.h"
 #include "cli/commands.h"
+#include "cli/page_options.h"
 #include "io/destination.h"
 #include "scene/json_reader.h"
 #include "scene/scene_loader.h"
@@ -28,6 +29,9 @@ namespace {
 
 // The page's slot for the scene: the page starts from the default scene while it holds null.
 constexpr std::string_view kScenePlaceholder = R"(<script type="application/json" id="coinroll-scene">null</script>)";
+// The page's slot for its options (page_options.h): null, the page as built, for a developer.
+constexpr std::string_view kOptionsPlaceholder =
+    R"(<script type="application/json" id="coinroll-page-options">null</script>)";
 
 // The built page is a few MB at most (the WebAssembly core, three.js and uPlot). What is read stops past
 // this bound, so a name that leads to no page (a device that never ends, such as /dev/zero; a video; a
@@ -135,14 +139,13 @@ void runExport(const ExportOptions& options) {
     throw UsageError(fmt::format("-o {}: export writes an HTML page; name it .html, e.g. -o {}",
                                  scene::printable(*options.output), scene::printable(html)));
   }
+  checkPageText(options.page);
   const auto [document, sourceName] = loadSceneDocument(options.scene);
   // A scene the page would refuse is refused here, with the same message.
   const scene::SceneConfig scene = scene::parseScene(document, sourceName);
+  const bool named = document.contains("name") && document.at("name") != "";
   const std::string output =
-      options.output ? *options.output
-                     : defaultOutputName(document.contains("name") && document.at("name") != "", scene.name,
-                                         options.scene, ".html")
-                           .string();
+      options.output ? *options.output : defaultOutputName(named, scene.name, options.scene, ".html").string();
   // The template is read like the scene: an output over it would leave every later export without
   // a page.
   const PageTemplate page = pageTemplate();
@@ -163,6 +166,18 @@ void runExport(const ExportOptions& options) {
     throw std::runtime_error(fmt::format("{}: not a coinroll page (it has no scene placeholder); rebuild it with "
                                          "tools/build_page.sh", page.name));
   }
+  const std::size_t optionsSlot = html.find(kOptionsPlaceholder, slot);
+  if (optionsSlot == std::string::npos) {
+    throw std::runtime_error(fmt::format("{}: not a coinroll page of this version (it has no page-options "
+                                         "placeholder); rebuild it with tools/build_page.sh", page.name));
+  }
+  // Every option is checked before the page is written: the controls against the page's own list.
+  const nlohmann::json pageOptions =
+      pageOptionsJson(options.page, html, page.name, named ? std::optional(scene.name) : std::nullopt);
+  // The options' slot first: it lies after the scene's, whose filling would move it.
+  html.replace(optionsSlot, kOptionsPlaceholder.size(),
+               std::string(kOptionsPlaceholder).replace(kOptionsPlaceholder.find("null"), 4,
+                                                        scriptSafe(pageOptions.dump())));
   const std::string filled = std::string(kScenePlaceholder).replace(kScenePlaceholder.find("null"), 4,
                                                                     scriptSafe(document.dump()));
   html.replace(slot, kScenePlaceholder.size(), filled);

@@ -375,10 +375,30 @@ CLI::App* addExportCommand(CLI::App& app, ExportOptions& options) {
   addSceneOptions(*command, options.scene, false);
   addOutputOptions(*command, options.output, options.force, "The page to write (one HTML file that opens offline)");
   addQuietFlag(*command, options.quiet, "No summary on stderr");
+  command->add_option("--title", options.page.title, "The page's title and heading; default: the scene's name")
+      ->type_name("TEXT");
+  command->add_option("--caption", options.page.caption,
+                      "A paragraph under the heading, shown as plain text (at most 1000 characters); default: none")
+      ->type_name("TEXT");
+  command
+      ->add_option("--controls", options.page.controls,
+                   "The controls a student sees, comma-separated: keys as the controls' tooltips name them "
+                   "(initial.theta,initial.omega_Z,friction) or groups: all, coin, initial, floor, flight, effects, "
+                   "run; the others keep the scene's values. Default: all")
+      ->type_name("LIST");
+  command
+      ->add_option("--details", options.page.details,
+                   "The researcher's details (scene file box, the run's log, the command): folded into one closed "
+                   "section one click away, or shown")
+      ->type_name("folded|shown")
+      ->capture_default_str();
   command->footer(
       "The page opens from file:// with no network: the scene plays at once, and its sliders (from coinroll schema)\n"
       "re-run it in the browser. \"Download scene\" gives back a scene file that coinroll simulate runs exactly.\n"
       "  coinroll export examples/euler_disk.json -o euler.html\n"
+      "  coinroll export examples/euler_disk.json -o euler.html --title \"Euler's disk\" \\\n"
+      "      --caption \"Change the tilt and the spin.\" --controls initial.theta,initial.omega_Z,friction\n"
+      "      (for a course site: only those three controls, the scene file and the log one click away)\n"
       "The page is built beside the program by tools/build_page.sh (docs/web.md \"The page\").");
   return command;
 }

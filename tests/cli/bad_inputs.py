@@ -1668,7 +1668,13 @@ case("sigint-simulate-provenance", C, "SIGINT during simulate --provenance over 
 # goes only under an HTML name, and its embedded scene cannot end or swallow the page's script.
 C = "export"
 PAGE_SLOT = '<script type="application/json" id="coinroll-scene">'
-PAGE = f"<html>{PAGE_SLOT}null</script><script>start()</script></html>"
+OPTIONS_SLOT = '<script type="application/json" id="coinroll-page-options">'
+# The page's list of its controls in their groups (web/src/page.html), of which this page has three.
+PAGE_CONTROLS = ('<script type="application/json" id="coinroll-controls">[{"group": "initial", "title": "Start", '
+                 '"keys": ["initial.theta", "initial.omega_Z"]}, {"group": "floor", "title": "Floor contact", '
+                 '"keys": ["friction"]}]</script>')
+PAGE_TAIL = f"{PAGE_CONTROLS}<script>start()</script></html>"
+PAGE = f"<html>{PAGE_SLOT}null</script>{OPTIONS_SLOT}null</script>{PAGE_TAIL}"
 EXPORT = "COINROLL_PAGE=page.html exec {bin} export scene.json -q "
 WITH_PAGE = {"scene.json": VALID, "page.html": PAGE}
 EATEN = "no such check before (issue 50)"
@@ -1689,7 +1695,9 @@ def check_embedded_scene(name, scene_name):
             return f"{name}: the embedded scene holds a raw '<': {embedded[:80]!r}"
         if json.loads(embedded).get("name") != scene_name:
             return f"{name}: the embedded scene's name is not {scene_name!r}"
-        return None if body[end:] == "</script><script>start()</script></html>" else f"{name}: the page after the scene changed"
+        if not body[end:].startswith(f"</script>{OPTIONS_SLOT}") or not body.endswith(f"</script>{PAGE_TAIL}"):
+            return f"{name}: the page after the scene changed"
+        return None
     return check
 
 
@@ -1723,6 +1731,77 @@ case("export-name-comment-script", C, "a scene name holding '<!--' then '<script
      EXPORT + "-o o.html", 0, None, shell=True, produces=("o.html",),
      files={"scene.json": scene(name=HOSTILE_NAME), "page.html": PAGE},
      check=check_embedded_scene("o.html", HOSTILE_NAME), na_before=EATEN)
+
+# --- export's options for a course page (issue 52): each refused, naming the option and the fix,
+# before anything is written; the title and caption go into the page as JSON with no '<' in it.
+NO_PAGE_OPTIONS = "no page options before (issue 52)"
+CONTROLS_VALID = ("give control keys as the page's tooltips name them (initial.theta, initial.omega_Z, friction) "
+                  "or a group (all, initial, floor), separated by commas")
+case("export-controls-unknown", C, "--controls naming a key the page has no control for",
+     EXPORT + "-o o.html --controls initial.theta,initial.thet", 2,
+     "--controls initial.thet: no such control on the page; " + CONTROLS_VALID, key="--controls", shell=True,
+     files=WITH_PAGE, na_before=NO_PAGE_OPTIONS)
+case("export-controls-render-key", C, "--controls naming a scene key that has no control (render.fps)",
+     EXPORT + "-o o.html --controls render.fps", 2, "--controls render.fps: no such control on the page",
+     key="--controls", shell=True, files=WITH_PAGE, na_before=NO_PAGE_OPTIONS)
+case("export-controls-empty-item", C, "--controls with an empty name between commas",
+     EXPORT + "-o o.html --controls initial.theta,,friction", 2,
+     "--controls initial.theta,,friction: an empty name between commas", key="--controls", shell=True,
+     files=WITH_PAGE, na_before=NO_PAGE_OPTIONS)
+case("export-controls-empty", C, "--controls ''", EXPORT + "-o o.html --controls ''", 2,
+     "--controls: empty; give control keys", key="--controls", shell=True, files=WITH_PAGE,
+     na_before=NO_PAGE_OPTIONS)
+case("export-controls-unknown-preset", C, "--controls naming a group the page does not have",
+     EXPORT + "-o o.html --controls students", 2, "--controls students: no such control on the page",
+     key="--controls", shell=True, files=WITH_PAGE, na_before=NO_PAGE_OPTIONS)
+case("export-title-empty", C, "--title ''", EXPORT + "-o o.html --title ''", 2,
+     "--title: empty; give the page's heading as one line of text, or leave --title out for the scene's name",
+     key="--title", shell=True, files=WITH_PAGE, na_before=NO_PAGE_OPTIONS)
+case("export-title-newline", C, "--title of two lines", EXPORT + "-o o.html --title $'a\\nb'", 2,
+     "--title a\\nb: holds a control character; give the page's heading as one line of text", key="--title",
+     shell=True, files=WITH_PAGE, na_before=NO_PAGE_OPTIONS)
+case("export-title-not-utf8", C, "--title with a Latin-1 byte (not UTF-8)", EXPORT + "-o o.html --title $'caf\\xe9'", 2,
+     "--title: not UTF-8 text", key="--title", shell=True, files=WITH_PAGE, na_before=NO_PAGE_OPTIONS)
+case("export-caption-too-long", C, "--caption of 1001 characters", EXPORT + "-o o.html --caption " + "é" * 1001, 2,
+     "--caption: 1001 characters, more than 1000; give a short paragraph under the heading", key="--caption",
+     shell=True, files=WITH_PAGE, na_before=NO_PAGE_OPTIONS)
+case("export-details-unknown", C, "--details open (neither folded nor shown)", EXPORT + "-o o.html --details open", 2,
+     "--details open: must be folded (one click away) or shown", key="--details", shell=True, files=WITH_PAGE,
+     na_before=NO_PAGE_OPTIONS)
+case("export-page-without-options-slot", C, "a page built before the page options (no placeholder for them)",
+     EXPORT + "-o o.html", 1, "page.html: not a coinroll page of this version (it has no page-options placeholder); "
+     "rebuild it with tools/build_page.sh", key="page.html", shell=True,
+     files={"scene.json": VALID, "page.html": f"<html>{PAGE_SLOT}null</script><script>start()</script></html>"},
+     na_before=NO_PAGE_OPTIONS)
+
+
+def check_page_options(name, expected):
+    """The page `name` holds `expected` as its options' JSON, with no '<' in it."""
+    def check(d):
+        html = (d / name).read_text()
+        start = html.find(OPTIONS_SLOT)
+        if start < 0:
+            return f"{name} has no page-options element"
+        body = html[start + len(OPTIONS_SLOT):]
+        embedded = body[:body.find("</script>")]
+        if "<" in embedded:
+            return f"{name}: the page options hold a raw '<': {embedded[:80]!r}"
+        found = json.loads(embedded)
+        return None if found == expected else f"{name}: page options {found}, not {expected}"
+    return check
+
+
+HOSTILE_CAPTION = "a <b>caption</b> </script><!-- <script> c"
+case("export-options-reach-page", C, "title, caption with '</script>', two controls and a group (must work)",
+     EXPORT + "-o o.html --title 'A <i>title</i>' --caption '" + HOSTILE_CAPTION + "' --controls friction,initial "
+     "--details shown", 0, None, shell=True, produces=("o.html",), files=WITH_PAGE,
+     check=check_page_options("o.html", {"title": "A <i>title</i>", "caption": HOSTILE_CAPTION,
+                                         "controls": ["initial.theta", "initial.omega_Z", "friction"], "details": "shown"}),
+     na_before=NO_PAGE_OPTIONS)
+case("export-options-defaults", C, "no options: the scene's name as title, all controls, details folded (must work)",
+     EXPORT + "-o o.html", 0, None, shell=True, produces=("o.html",), files={**WITH_PAGE, "scene.json": scene(name="tilt")},
+     check=check_page_options("o.html", {"title": "tilt", "caption": None, "controls": None, "details": "folded"}),
+     na_before=NO_PAGE_OPTIONS)
 
 # --- compare: a golden check in someone else's CI; 2 means "could not compare", never "same"
 C = "compare"

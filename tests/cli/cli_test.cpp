@@ -488,7 +488,9 @@ std::string smallScene(int theta) {
 // A page template with the scene's placeholder, as tools/build_page.sh leaves it (export fills it).
 fs::path fakePage(const fs::path& dir) {
   const fs::path page = dir / "template.html";
-  std::ofstream(page) << R"(<html><script type="application/json" id="coinroll-scene">null</script></html>)";
+  std::ofstream(page) << R"(<html><script type="application/json" id="coinroll-scene">null</script>)"
+                          R"(<script type="application/json" id="coinroll-page-options">null</script>)"
+                          R"(<script type="application/json" id="coinroll-controls">[]</script></html>)";
   return page;
 }
 

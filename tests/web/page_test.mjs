@@ -28,6 +28,8 @@
 //   numbers over their units' sizes (ω_c = 1/√3 for the thin disk), and a value typed or slid there
 //   reaches the core in SI;
 // - a legend says what the picture draws; every control has a readable name and a tooltip naming its key;
+// - `coinroll export --title --caption --controls` puts its title and caption on the page as text, shows
+//   only the controls chosen, and folds the researcher's details one click away, within an 800x600 iframe;
 // - at 360 px, in an 800x600 iframe and at 1600 px nothing lies past the window's sides, the view takes
 //   the phone's width (the coin in it) and at least half the wider windows'.
 // Exits 77 (ctest's skip), saying why, where Chromium or web/node_modules is missing.
@@ -995,6 +997,76 @@ try {
         ring.sourceName);
   const ringCsv = simulate(ringText, ring.sampleDt);
   await compareWithCsv('the exported ring', ringCsv, [0, Math.floor(ringCsv.rows / 2), ringCsv.rows - 1]);
+
+  // coinroll export for a course page: a title and a caption shown as text (markup and a "</script>" in
+  // the caption shown literally, the page still alive), only the three controls chosen, the researcher's
+  // details folded and one click away, and the page within an 800x600 iframe.
+  const coursePage = join(scratch, 'course.html');
+  const courseTitle = 'Rolling <i>straight</i> & steady';
+  const courseCaption = 'Change the tilt, the spin and the friction: <b>bold</b> stays text, </script><!-- <script> too.';
+  const courseControls = ['initial.theta', 'initial.omega_Z', 'friction'];
+  await part('a page for a course', async () => {
+    const wrote = spawnSync(options.binary, ['export', join(repo, 'examples/straight_stable.json'), '-o', coursePage, '-q',
+                                             '--title', courseTitle, '--caption', courseCaption, '--controls', courseControls.join(',')],
+                            { encoding: 'utf8', env: { ...process.env, COINROLL_PAGE: options.page } });
+    check('coinroll export --title --caption --controls writes the page', wrote.status === 0 && existsSync(coursePage), wrote.stderr.trim());
+    pagesOpened.add(pathToFileURL(coursePage).href);
+    await page.setViewport({ width: 1280, height: 800 });
+    await page.goto(pathToFileURL(coursePage).href);
+    await page.waitForFunction(() => window.coinrollPage && window.coinrollPage.run(), { timeout: 60000 });
+    await settled();
+    const shown = await page.evaluate(() => {
+      // Drawn: a closed <details>'s content keeps its boxes, hidden by content-visibility.
+      const visible = (e) => e.checkVisibility({ contentVisibilityAuto: true, visibilityProperty: true });
+      return {
+        title: document.title, heading: document.querySelector('h1').innerText.trim(),
+        caption: document.getElementById('caption').textContent, captionTags: document.getElementById('caption').children.length,
+        controls: [...document.querySelectorAll('.control')].filter(visible).map((row) => row.dataset.path),
+        open: document.getElementById('researcher').open,
+        boxVisible: visible(document.getElementById('scene-text')), logVisible: visible(document.getElementById('run-info')),
+      };
+    });
+    const ran = await hook('run');
+    check('the course page shows its title and caption as text, markup and "</script>" literally, and runs its scene',
+          shown.title === courseTitle && shown.heading === courseTitle && shown.caption === courseCaption &&
+          shown.captionTags === 0 && JSON.parse(ran.text).name === 'straight_stable', JSON.stringify(shown));
+    check('the course page shows exactly the three controls chosen', JSON.stringify(shown.controls) === JSON.stringify(courseControls),
+          shown.controls.join(', '));
+    check('the researcher\'s details start folded, the scene box and the log hidden', !shown.open && !shown.boxVisible && !shown.logVisible,
+          JSON.stringify(shown));
+    await page.click('#researcher > summary');
+    const opened = await page.evaluate(() => ({
+      open: document.getElementById('researcher').open, box: document.getElementById('scene-text').checkVisibility(),
+      log: document.getElementById('run-info').checkVisibility(),
+      text: document.getElementById('scene-text').value,
+    }));
+    check('one click opens them: the scene file\'s box with the scene that runs, and the log', opened.open && opened.box &&
+          opened.log && opened.text === ran.text, JSON.stringify({ ...opened, text: opened.text.slice(0, 40) }));
+    const frameUrl = pathToFileURL(join(scratch, 'course_embedded.html')).href;
+    writeFileSync(join(scratch, 'course_embedded.html'), '<!DOCTYPE html><title>course</title><body style="margin:0">' +
+                  `<iframe src="${pathToFileURL(coursePage).href}" width="800" height="600" style="border:0"></iframe></body>`);
+    pagesOpened.add(frameUrl);
+    await page.setViewport({ width: 1000, height: 800 });
+    await page.goto(frameUrl);
+    const frame = page.frames().find((f) => f !== page.mainFrame());
+    await frame.waitForFunction(() => window.coinrollPage && window.coinrollPage.run(), { timeout: 60000 });
+    await frame.evaluate(() => window.coinrollPage.settled());
+    const inFrame = await frame.evaluate(() => {
+      const outside = [...document.querySelectorAll('body *')].filter((e) => {
+        const r = e.getBoundingClientRect();
+        return r.width > 0 && r.height > 0 && (r.left < -0.5 || r.right > innerWidth + 0.5 || r.bottom > innerHeight + 0.5) &&
+          e.checkVisibility() && !e.closest('#panel, #heading');  // those two scroll inside themselves
+      }).map((e) => `${e.tagName.toLowerCase()}#${e.id} at ${JSON.stringify(e.getBoundingClientRect())}`);
+      const { scrollWidth, scrollHeight } = document.documentElement;
+      const heading = document.getElementById('heading').getBoundingClientRect();
+      const view = document.getElementById('view').getBoundingClientRect();
+      return { innerWidth, innerHeight, scrollWidth, scrollHeight, outside: outside.slice(0, 4),
+               heading: [heading.bottom, heading.right], view: [view.width, view.height] };
+    });
+    check('the course page in an 800x600 iframe: nothing outside it, its heading in view, the view at least half its width',
+          inFrame.innerWidth === 800 && inFrame.scrollWidth <= 800 && inFrame.scrollHeight <= 600 && inFrame.outside.length === 0 &&
+          inFrame.heading[0] <= 600 && inFrame.heading[1] <= 800 && inFrame.view[0] >= 400, JSON.stringify(inFrame));
+  });
 
   // The layout from a phone to a wide screen: nothing past the window's sides, the view as wide as a
   // phone (with the coin in it) and at least half of an 800 px iframe and of a 1600 px window, whose

@@ -7,17 +7,10 @@
 import { defaultOf, deletePath, getPath, hasEffect, presenceHolds, schemaKey, setEffect, setPath } from './schema.js';
 import { formatG, kUnitKeys, Units } from './units.js';
 
-// What the page offers, in its groups; every range, default, unit and text comes from the schema.
-export const kGroups = [
-  ['Coin', ['coin.shape', 'coin.radius', 'coin.inner_radius', 'coin.I_X', 'coin.I_Z', 'coin.thickness', 'coin.edge_radius', 'coin.mass']],
-  ['Start', ['initial[steady].steady', 'initial.theta', 'initial.phi', 'initial.omega_X', 'initial.omega_Y', 'initial.omega_Z',
-             'initial.x', 'initial.z', 'initial[steady].theta', 'initial[steady].omega_Z', 'initial[steady].branch']],
-  ['Floor contact', ['friction', 'friction_static', 'sliding', 'initial.v_x', 'initial.v_z']],
-  ['Flight', ['flight', 'restitution', 'impact_friction', 'initial.y', 'initial.v_y', 'stop_when_decided']],
-  ['Effects', ['effects[air_drag]', 'effects[air_drag].model', 'effects[air_drag].viscosity', 'effects[air_drag].density',
-               'effects[rolling_resistance]', 'effects[rolling_resistance].length', 'effects[spin_friction]', 'effects[spin_friction].length']],
-  ['Run', ['duration', 'gravity']],
-];
+// What the page offers, in its groups; every range, default, unit and text comes from the schema. The
+// list is page.html's, which `coinroll export --controls` reads too: [[title, paths], ...].
+export const kGroups = JSON.parse(document.getElementById('coinroll-controls').textContent)
+  .map((group) => [group.title, group.keys]);
 
 // Each control's name as a student reads it, with the seed's symbol where it has one (docs/seed.md,
 // docs/rim.md); the key itself is in the tooltip.
@@ -291,7 +284,7 @@ class Control {
     let shown = presenceHolds(scene, this.key);
     if (this.path === 'initial[steady].steady' || this.effect) shown = true;
     else if (this.path.startsWith('initial.')) shown = shown && getPath(scene, 'initial[steady].steady') === undefined;
-    this.row.hidden = !shown;
+    this.row.hidden = !shown || !this.chosen;
     if (this.check) this.check.checked = this.key.type === 'boolean' ? this.value() === true : present;
     if (this.menu) this.menu.value = this.path === 'initial[steady].steady' ? (this.value() || '(rates)') : this.value();
     if (this.slider) {
@@ -357,14 +350,19 @@ export function startFrom(old = {}, kind, branch) {
 }
 
 export class Controls {
-  // `page`: {scene, changed(path), suggestedValue(path), showRunning()}.
-  constructor(container, page) {
+  // `page`: {scene, changed(path), suggestedValue(path), showRunning()}. `chosen`: the paths a student
+  // sees (`coinroll export --controls`), or null for all; the others keep the scene's values, and a
+  // group none of whose controls is chosen is left out.
+  constructor(container, page, chosen = null) {
     this.controls = [];
     this.groups = [];
     for (const [title, paths] of kGroups) {
       const group = { controls: paths.map((path) => new Control(path, page)) };
+      for (const c of group.controls) c.chosen = !chosen || chosen.includes(c.path);
       group.hint = element('p', { class: 'hint', text: whatShows(group.controls[0].key) });
-      container.append(element('fieldset', {}, [element('legend', { text: title }), group.hint, ...group.controls.map((c) => c.row)]));
+      const fieldset = element('fieldset', {}, [element('legend', { text: title }), group.hint, ...group.controls.map((c) => c.row)]);
+      fieldset.hidden = !group.controls.some((c) => c.chosen);
+      container.append(fieldset);
       this.controls.push(...group.controls);
       this.groups.push(group);
     }

@@ -54,6 +54,11 @@ const page = {
   showRunning: () => { if (page.run) showSceneText(page.run.text); },
 };
 
+// `coinroll export`'s choices for a course page (docs/web.md "A page for a course"): its title and
+// caption, the controls a student sees, the researcher's details folded or shown; null: the page as built.
+const pageOptions = JSON.parse($('coinroll-page-options').textContent) || { details: 'shown' };
+showPageOptions(pageOptions);
+
 // The scene `coinroll export` put in the page, or null: the built-in default scene.
 const exportedScene = JSON.parse($('coinroll-scene').textContent);
 const exportedSourceName = exportedScene === null ? 'built-in default scene' : 'exported scene';
@@ -75,7 +80,7 @@ function makeRunner() {
 }
 const runner = makeRunner();
 const view = new View($('canvas'));
-const controls = new Controls($('controls'), page);
+const controls = new Controls($('controls'), page, pageOptions.controls || null);
 // A steady motion's button starts it as the start menu does, and a refusal shows at that menu.
 const steadyPanel = new SteadyPanel($('steady'), (initial) => {
   page.scene.initial = initial;
@@ -102,6 +107,24 @@ function settle() {
   waiters = [];
 }
 const timing = { firstFrameAt: undefined, last: undefined };
+
+// The title and caption as text (never markup), and the details folded: the scene file's box, with the
+// run's log moved in beside it, one click away.
+function showPageOptions(options) {
+  if (options.title) {
+    document.title = options.title;
+    $('title-text').textContent = options.title;
+    $('version').hidden = true;
+  }
+  if (options.caption) {
+    $('caption').textContent = options.caption;
+    $('caption').hidden = false;
+  }
+  if (options.details === 'folded') {
+    $('researcher').append($('run-info'));
+    $('researcher').open = false;
+  }
+}
 
 function showSceneText(text) {
   $('scene-text').value = text;

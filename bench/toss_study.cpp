@@ -206,7 +206,16 @@ int main(int argc, char** argv) {
       const double turns = 30 + 15 * unit(flips), up = 2 + unit(flips);
       const nlohmann::json flip = landedFlip(psi, turns, up, restitution);
       const auto begin = std::chrono::steady_clock::now();
-      const LandedOutcome landed = landedFace(flip, true);
+      LandedOutcome landed;
+      try {
+        landed = landedFace(flip, true);
+      } catch (const std::exception& e) {
+        // Counted among the endings and shown with its scene, so that one refusal neither hides nor
+        // ends the study.
+        fmt::print(stderr, "flip {} (restitution {}): {}\n{}\n", k, restitution, e.what(), flip.dump());
+        ++endings[fmt::format("error ({})", e.what())];
+        continue;
+      }
       decidedMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
       same += landed.headsUp && !landed.onEdge ? 1 : 0;
       edges += landed.onEdge ? 1 : 0;
@@ -215,7 +224,14 @@ int main(int argc, char** argv) {
       caught += caughtSameSide(m, launch(m, psi, turns * 2 * std::numbers::pi, up)) ? 1 : 0;
       if (k % 10 == 0 && landed.end == "decided") {
         const auto restBegin = std::chrono::steady_clock::now();
-        const LandedOutcome atRest = landedFace(flip, false);
+        LandedOutcome atRest;
+        try {
+          atRest = landedFace(flip, false);
+        } catch (const std::exception& e) {
+          fmt::print(stderr, "flip {} to rest (restitution {}): {}\n{}\n", k, restitution, e.what(), flip.dump());
+          ++endings[fmt::format("error to rest ({})", e.what())];
+          continue;
+        }
         restMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - restBegin).count();
         ++checked;
         if (atRest.headsUp != landed.headsUp) {

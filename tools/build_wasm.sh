@@ -14,5 +14,11 @@ fi
 # parser (Debian's node-acorn) only in Debian's module folder.
 export NODE_PATH=/usr/share/nodejs${NODE_PATH:+:$NODE_PATH}
 emcmake cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build "$build" -j"${JOBS:-$(nproc)}" >&2
+# Under make (cmake --build's coinroll_page target) the jobs are its jobserver's: a -j here would
+# start as many again beside it.
+if [[ "${MAKEFLAGS:-}" == *jobserver* ]]; then
+  cmake --build "$build" >&2
+else
+  cmake --build "$build" -j"${JOBS:-$(nproc)}" >&2
+fi
 echo "$build/coinroll_core.js"

@@ -61,8 +61,9 @@ PageTemplate pageTemplate() {
     if (std::filesystem::is_regular_file(candidate, error)) return {candidate, scene::printable(candidate.string())};
   }
   throw std::runtime_error(fmt::format(
-      "the web page is not built: looked for {} and {}; build it with tools/build_page.sh (it needs Debian's "
-      "emscripten and npm, which tools/setup.sh installs), or name a built page with COINROLL_PAGE",
+      "the web page is not built: looked for {} and {}; cmake --build builds it where Debian's emscripten, node "
+      "and web/node_modules are installed (tools/setup.sh installs them; tools/build_page.sh builds the page alone), "
+      "or name a built page with COINROLL_PAGE",
       candidates[0].string(), candidates[1].string()));
 }
 

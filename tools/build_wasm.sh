@@ -14,11 +14,7 @@ fi
 # parser (Debian's node-acorn) only in Debian's module folder.
 export NODE_PATH=/usr/share/nodejs${NODE_PATH:+:$NODE_PATH}
 emcmake cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
-# Under make (cmake --build's coinroll_page target) the jobs are its jobserver's: a -j here would
-# start as many again beside it.
-if [[ "${MAKEFLAGS:-}" == *jobserver* ]]; then
-  cmake --build "$build" >&2
-else
-  cmake --build "$build" -j"${JOBS:-$(nproc)}" >&2
-fi
+# Run from cmake --build's coinroll_page target this is a make's child that its jobserver does not
+# reach (CMake 3.25's custom commands do not pass it on): its own make, with its own jobs.
+env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL cmake --build "$build" -j"${JOBS:-$(nproc)}" >&2
 echo "$build/coinroll_core.js"

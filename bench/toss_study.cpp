@@ -12,7 +12,9 @@
 // restitution of a long study, so that the cores share it.
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -132,6 +134,13 @@ LandedOutcome landedFace(nlohmann::json flip, bool decided) {
   return outcome;
 }
 
+double median(std::vector<double> values) {
+  if (values.empty()) return 0;
+  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+  std::nth_element(values.begin(), middle, values.end());
+  return *middle;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -196,7 +205,11 @@ int main(int argc, char** argv) {
     std::stringstream list(argv[3]);
     for (std::string item; std::getline(list, item, ',');) restitutions.push_back(std::stod(item));
   }
+  // Each restitution's flips to rest: the median's wall time on one core and evaluations of the
+  // right-hand side (the latter the same on any machine).
+  std::vector<std::string> restLines;
   for (const double restitution : restitutions) {
+    std::vector<double> restTimes, restEvaluations;
     std::mt19937 flips(2023);
     int same = 0, caught = 0, checked = 0, edges = 0;
     double decided = 0, decidedMs = 0, restMs = 0;
@@ -232,7 +245,10 @@ int main(int argc, char** argv) {
           ++endings[fmt::format("error to rest ({})", e.what())];
           continue;
         }
-        restMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - restBegin).count();
+        restTimes.push_back(
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - restBegin).count());
+        restMs += restTimes.back();
+        restEvaluations.push_back(static_cast<double>(atRest.evaluations));
         ++checked;
         if (atRest.headsUp != landed.headsUp) {
           throw std::runtime_error(fmt::format("flip {}: decided {} but rests {}", k, landed.headsUp, atRest.headsUp));
@@ -250,6 +266,10 @@ int main(int argc, char** argv) {
                endingText);
     landedCsv << fmt::format("{},{},{},{},{},{},{}\n", restitution, kLanded, landedFraction, caughtFraction,
                              decidedMs / kLanded, decided, restMs / std::max(checked, 1));
+    restLines.push_back(fmt::format("| {} | {} | {:.1f} | {:.0f} |", restitution, restTimes.size(), median(restTimes),
+                                    median(restEvaluations)));
   }
+  fmt::print("\nFlips to rest (every tenth decided flip)\n| restitution | flips | median ms | median evaluations |\n"
+             "|---|---|---|---|\n{}\n", fmt::join(restLines, "\n"));
   if (!landedCsv) throw std::runtime_error("could not write toss_landed.csv");
 }

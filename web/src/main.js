@@ -107,6 +107,11 @@ function settle() {
   waiters = [];
 }
 const timing = { firstFrameAt: undefined, last: undefined };
+// ms the picture holds still while a newer run is on its way: the CPU goes to that run rather than
+// to frames of the run it replaces (in software WebGL a frame costs as much as a default-scene run);
+// a longer run lets the old one play on, under the busy sign.
+const kHoldForRunMs = 250;
+let latestRequestAt = 0;
 
 // The title and caption as text (never markup), and the details folded: the scene file's box, with the
 // run's log moved in beside it, one click away.
@@ -142,6 +147,7 @@ function onControl(path) {
 async function start(text, sourceName, origin) {
   const id = ++request;
   const requestedAt = performance.now();
+  latestRequestAt = requestedAt;
   pending = true;
   controls.clearErrors();
   $('scene-error').textContent = '';
@@ -258,7 +264,7 @@ function frame(now) {
   lastFrameTime = now;
   resize();
   const trajectory = page.trajectory;
-  if (!trajectory) return;
+  if (!trajectory || (pending && performance.now() - latestRequestAt < kHoldForRunMs)) return;
   if (page.playing) {
     if (page.t >= trajectory.endTime) {
       if (!page.holdUntil) page.holdUntil = now + 1000 * trajectory.visual.clock.holdSeconds;

@@ -26,6 +26,7 @@
 #include "cli/commands.h"
 #include "cli/exit_codes.h"
 #include "cli/interrupts.h"
+#include "cli/nearest_name.h"
 #include "cli/version.h"
 #include "pipeline/resources.h"
 #include "pipeline/sweep.h"
@@ -420,49 +421,18 @@ CLI::App* addSchemaCommand(CLI::App& app, SchemaOptions& options) {
   return command;
 }
 
-// The Levenshtein distance: single-character insertions, deletions and substitutions from a to b.
-std::size_t editDistance(std::string_view a, std::string_view b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];  // the distance of a[0, i-1) and b[0, j-1)
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t above = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diagonal = above;
-    }
-  }
-  return row[b.size()];
-}
-
-// Edits at most that a misspelt command is taken to be a slip of: two catches a dropped and a
-// swapped letter ("simulat", "rendr", "stil"), and no two commands are that close to each other.
-constexpr std::size_t kMaxSuggestionEdits = 2;
-
 // CLI11 reports a misspelt command only as "a subcommand is required": the message naming it and
 // the choices, when argv[1] is no command, and the command it is a slip of, if one is close.
 std::optional<std::string> unknownCommandMessage(const CLI::App& app, int argc, char** argv) {
-  std::string commands;
-  bool known = false;
-  std::string given = argc > 1 ? argv[1] : "";
+  std::vector<std::string> names;
+  for (const CLI::App* command : app.get_subcommands({})) names.push_back(command->get_name());
+  if (argc < 2 || argv[1][0] == '-' || std::ranges::find(names, argv[1]) != names.end()) return std::nullopt;
+  std::string given = argv[1];
   std::transform(given.begin(), given.end(), given.begin(), [](unsigned char c) { return std::tolower(c); });
-  std::optional<std::string> nearest;
-  std::size_t nearestEdits = kMaxSuggestionEdits + 1;
-  for (const CLI::App* command : app.get_subcommands({})) {
-    commands += (commands.empty() ? "" : ", ") + command->get_name();
-    known = known || (argc > 1 && command->get_name() == argv[1]);
-    if (const std::size_t edits = editDistance(given, command->get_name());
-        edits < nearestEdits && edits < given.size()) {
-      nearest = command->get_name();
-      nearestEdits = edits;
-    }
-  }
-  if (argc > 1 && argv[1][0] != '-' && !known) {
-    return "coinroll: error: unknown command '" + coinroll::scene::printable(argv[1]) + "'; the commands are " +
-           commands + " (coinroll --help)" + (nearest ? "; did you mean '" + *nearest + "'?" : "") + "\n";
-  }
-  return std::nullopt;
+  const std::optional<std::string> nearest = nearestName(given, names);
+  return fmt::format("coinroll: error: unknown command '{}'; the commands are {} (coinroll --help){}\n",
+                     coinroll::scene::printable(argv[1]), fmt::join(names, ", "),
+                     nearest ? "; did you mean '" + *nearest + "'?" : "");
 }
 
 // CLI11 reads an empty value of a number as 0 (--time '' drew t = 0; --min-psnr '' dropped the

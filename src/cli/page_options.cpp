@@ -6,11 +6,13 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "cli/exit_codes.h"
+#include "cli/nearest_name.h"
 #include "scene/json_reader.h"
 #include "scene/scene_schema.h"
 
@@ -106,6 +108,12 @@ std::optional<std::vector<std::string>> chosenControls(const std::string& list,
     return fmt::format("give control keys as the page's tooltips name them ({}) or a group ({}), separated by commas",
                        fmt::join(every, ", "), fmt::join(names, ", "));
   };
+  const auto suggestion = [&](const std::string& item) {
+    std::vector<std::string> candidates = every;
+    candidates.insert(candidates.end(), names.begin(), names.end());
+    const std::optional<std::string> nearest = nearestName(item, candidates);
+    return nearest ? fmt::format("did you mean {}? ", *nearest) : std::string();
+  };
   if (list.empty()) throw UsageError(fmt::format("--controls: empty; {}, or leave --controls out for all", valid()));
   std::vector<std::string> chosen;
   bool all = false;
@@ -122,8 +130,8 @@ std::optional<std::vector<std::string>> chosenControls(const std::string& list,
     if (item == kAllControls) all = true;
     else if (group != groups.end()) chosen.insert(chosen.end(), group->keys.begin(), group->keys.end());
     else if (std::ranges::find(every, item) != every.end()) chosen.push_back(item);
-    else throw UsageError(fmt::format("--controls {}: no such control on the page; {}", scene::printable(item),
-                                      valid()));
+    else throw UsageError(fmt::format("--controls {}: no such control on the page; {}{}", scene::printable(item),
+                                      suggestion(item), valid()));
     if (comma == list.size()) break;
     start = comma + 1;
   }

@@ -1739,10 +1739,14 @@ CONTROLS_VALID = ("give control keys as the page's tooltips name them (initial.t
                   "or a group (all, initial, floor), separated by commas")
 case("export-controls-unknown", C, "--controls naming a key the page has no control for",
      EXPORT + "-o o.html --controls initial.theta,initial.thet", 2,
-     "--controls initial.thet: no such control on the page; " + CONTROLS_VALID, key="--controls", shell=True,
+     "--controls initial.thet: no such control on the page; did you mean initial.theta? " + CONTROLS_VALID,
+     key="--controls", shell=True,
      files=WITH_PAGE, na_before=NO_PAGE_OPTIONS)
+case("export-controls-group-slip", C, "--controls naming a group with a letter dropped (floo)",
+     EXPORT + "-o o.html --controls floo", 2, "--controls floo: no such control on the page; did you mean floor? ",
+     key="--controls", shell=True, files=WITH_PAGE, na_before=NO_PAGE_OPTIONS)
 case("export-controls-render-key", C, "--controls naming a scene key that has no control (render.fps)",
-     EXPORT + "-o o.html --controls render.fps", 2, "--controls render.fps: no such control on the page",
+     EXPORT + "-o o.html --controls render.fps", 2, "--controls render.fps: no such control on the page; give",
      key="--controls", shell=True, files=WITH_PAGE, na_before=NO_PAGE_OPTIONS)
 case("export-controls-empty-item", C, "--controls with an empty name between commas",
      EXPORT + "-o o.html --controls initial.theta,,friction", 2,

@@ -1,6 +1,6 @@
-// Anti-aliasing measured as quality per cost (issue 53): for each picture the program makes, each
-// method's error against a supersampled reference on the pixels where anti-aliasing matters, beside
-// its cost per frame, on each llvmpipe back end this build has.
+// Anti-aliasing measured as quality per cost (docs/quality.md "Anti-aliasing"): for each picture
+// the program makes, each method's error against a supersampled reference on the pixels where
+// anti-aliasing matters, beside its cost per frame, on each llvmpipe back end this build has.
 //
 // Reference: the same snapshot drawn at 4x the width and height with the most MSAA samples the
 // OpenGL allows and box-filtered down (64 samples per pixel on llvmpipe). Error: a pixel's RGB

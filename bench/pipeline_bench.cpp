@@ -2,11 +2,11 @@
 // 18) against its two stages alone, measured in the same run: render only (frames discarded),
 // encode only (the same frames, kept in memory, into the same MP4 sink), and the pipeline (render
 // on this thread, encode on the AsyncSink's), with the anti-aliasing `auto` chooses and with 4x
-// MSAA (the default before issue 53), paired in one run. Also the ffmpeg tool encoding its
-// testsrc2 pattern with the same settings, so the figure compares across machines; the default
-// scene's whole 12 s clip against real time; and the peak resident memory of a 10 s and a 60 s
-// render (child processes, 640x360). Wall and CPU seconds (this process's threads, or the child's).
-// Ratios matter; absolute seconds are noise.
+// MSAA (the default before `auto`, docs/quality.md "Performance"), paired in one run. Also the
+// ffmpeg tool encoding its testsrc2 pattern with the same settings, so the figure compares across
+// machines; the default scene's whole 12 s clip against real time; and the peak resident memory of
+// a 10 s and a 60 s render (child processes, 640x360). Wall and CPU seconds (this process's
+// threads, or the child's). Ratios matter; absolute seconds are noise.
 // Run: build/bench/pipeline_bench [--no-memory]   (LP_NUM_THREADS sets llvmpipe's threads)
 #include <fmt/format.h>
 #include <sys/resource.h>

@@ -1,4 +1,4 @@
-# Every header in src/ must compile on its own (issue 12): a header that leans on what its
+# Every header in src/ must compile on its own: a header that leans on what its
 # includer happened to include first (std::max without <algorithm>) breaks the next includer.
 #
 # coinroll_add_header_self_compile() generates, for each src/<folder>/<header>.h, a

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Makes every figure in docs/ from the built program, so the README's pictures are the program's
-# (issue 24). ctest figures_reproducible runs the quick set into a scratch folder and compares
-# each picture with the one in docs/.
+# (docs/usage.md "Examples"). ctest figures_reproducible runs the quick set into a scratch folder
+# and compares each picture with the one in docs/.
 #
 #   tools/make_figures.sh [--quick] [--coinroll BIN] [OUT_DIR]     (defaults: all, build/coinroll, docs/)
 #

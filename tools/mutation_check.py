@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Mutation check (issue 12): do the tests notice small, realistic bugs?
+"""Mutation check (docs/mutation_report.md): do the tests notice small, realistic bugs?
 
 Applies each mutation of the MUTATIONS table below, one at a time, to a separate git worktree of
 HEAD (never to the live tree), rebuilds, runs ctest, and reports which mutants the tests kill,

@@ -16,9 +16,10 @@ namespace coinroll::io {
 
 // The file an output is written under until it is complete. Where the directory's file system
 // allows it (O_TMPFILE: ext4, xfs, btrfs, tmpfs, ...) the file has no name while it is written, so
-// the kernel frees it however the process ends, SIGKILL included (issue 50); it gets a name only
-// when published. Elsewhere (NFS, CIFS, a system without /proc) it is a hidden name beside the
-// output, on the list of unfinished files until it is published or removed, as before.
+// the kernel frees it however the process ends, SIGKILL included (docs/outputs.md "Temporaries have
+// no name while they are written"); it gets a name only when published. Elsewhere (NFS, CIFS, a
+// system without /proc) it is a hidden name beside the output, on the list of unfinished files
+// until it is published or removed, as before.
 // Move-only; destroyed unpublished, it is closed and its name, if it has one, removed.
 class TemporaryFile {
  public:

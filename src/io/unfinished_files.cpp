@@ -22,8 +22,9 @@ struct UnfinishedFiles {
   // file), or for good by a removal. It holds the holder's thread id, not a flag: a handler that
   // interrupts a removal on its own thread (SIGPIPE raised by the forced end's message to a dead
   // stderr, a second stop during a broken pipe's removal) must see that the lock is its thread's,
-  // since waiting for it would spin for ever (issue 50). Taken by one compare-exchange, so no
-  // signal can land between taking the lock and saying whose it is.
+  // since waiting for it would spin for ever (docs/signals_and_limits.md "The staging area a
+  // handler can remove"). Taken by one compare-exchange, so no signal can land between taking the
+  // lock and saying whose it is.
   std::atomic<pid_t> holder{0};  // 0: free
   std::vector<std::string> paths;       // "" = a free slot
   std::vector<std::size_t> freeSlots;

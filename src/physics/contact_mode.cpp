@@ -172,9 +172,10 @@ double slideOnsetMargin(const CoinModel& model, const Forward& rolling) {
 // s. A slip closing at c m/s^2 reaches stoppedSlip(t) only stoppedSlip(t) / c before its zero: for a
 // hard skid (c = 3 mu g = 5.9e4 m/s^2 at mu = 2000) 1.7e-16 s, and the steps that approach the zero's
 // kink (rejected past it, docs/sliding.md §4.4) fell below the integrator's floor of 1e-14 max(1, |t|) s
-// first: "integration stalled" (issue 40). Ending the slide once the slip would stop within ten such
-// floors keeps the last steps above it. Only slips closing faster than 100 m/s^2 (10^-11 m/s over
-// 10^-13 s) end earlier than at stoppedSlip(t): a skid with mu g above about 33 m/s^2 (mu > 3.4).
+// first: "integration stalled" (docs/sliding.md §4.5, "Hard skids"). Ending the slide once the slip
+// would stop within ten such floors keeps the last steps above it. Only slips closing faster than
+// 100 m/s^2 (10^-11 m/s over 10^-13 s) end earlier than at stoppedSlip(t): a skid with mu g above
+// about 33 m/s^2 (mu > 3.4).
 double slipStopLead(double t) { return 1e-13 * std::max(1.0, std::abs(t)); }
 
 namespace {

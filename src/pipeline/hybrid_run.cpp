@@ -100,9 +100,9 @@ class SlidingSegment final : public TrajectoryMotion<kSlidingSize, SlidingKind, 
 // With flight the coin leaves the floor where N falls through zero, read inside each step as the cone
 // is (a hop shorter than a step shows no sign change), and lands its other corner at upright. Without,
 // both end the run: N < 0 is never integrated as a contact, whatever on_invalid says, since the
-// sliding law's friction -mu N s_hat would then push the coin along its slip and make energy (issue
-// 40: +46 % in one scene); on_invalid "warn" goes on past the rolling-only model's slip, which the
-// sliding model replaces.
+// sliding law's friction -mu N s_hat would then push the coin along its slip and make energy (+46 %
+// in one scene; docs/sliding.md §4.5); on_invalid "warn" goes on past the rolling-only model's slip,
+// which the sliding model replaces.
 template <int N>
 std::vector<integrate::Event<N>> heldContactEvents(const physics::CoinModel& model, bool flight,
                                                    std::function<double(const integrate::Vec<N>&)> theta,
@@ -159,7 +159,7 @@ HybridRun::HybridRun(const Simulation& simulation)
   const physics::Handover held = physics::heldContact(
       model, {.state = {.attitude = start, .slip = physics::slipOf(model, start, velocity)}, .forward = rolling});
   const Mode mode = physics::heldMode(model, held.state);
-  // A start off the rolling constraint is stated as a landing's is (issue 40).
+  // A start off the rolling constraint is stated as a landing's is (docs/contract.md §6).
   noteSwitch(Mode::Impact, mode, 0);
   if (mode == Mode::Rolling) {
     startRolling(held);

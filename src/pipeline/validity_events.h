@@ -52,7 +52,7 @@ physics::Forward forwardOf(const physics::CoinModel& model, const integrate::Vec
 
 // The friction cone is read at this many points inside each step as well as at its ends: a wobble
 // grazes it for a fraction of a step (F/N reached 0.24041 in a cone of 0.24 between two step ends
-// inside it, issue 40), and a missed crossing is a slide the run never makes.
+// inside it; docs/sliding.md §4.5), and a missed crossing is a slide the run never makes.
 inline constexpr int kConeGrazeChecks = 3;
 
 // A forward pass that remembers the last few states it was asked for, shared by the copies of the
@@ -121,7 +121,7 @@ integrate::Event<N> transitionEvent(physics::Transition transition,
 // passing 0: the events of the coin's geometry. The corner's crossing ends the run (corner-switch)
 // unless `landsTheOtherCorner`: a chain with flight lands that corner there (Transition::CornerLands).
 // `theta` reads the tilt of an integrated state, `tiltRate` its rate's sign (tiltRateOf): a corner
-// rolled past upright and back within one step is seen at the turn of the tilt (issue 49).
+// rolled past upright and back within one step is seen at the turn of the tilt (docs/flight.md §4a).
 template <int N>
 std::vector<integrate::Event<N>> geometryEvents(const physics::CoinModel& model, physics::Formulation formulation,
                                                 std::function<double(const integrate::Vec<N>&)> theta,

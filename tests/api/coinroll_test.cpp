@@ -1,6 +1,6 @@
-// The library's doors keep the command's rules (issue 50): an output never replaces the scene it
-// was read from, a run's size is refused before any work, and messages name what a C++ caller
-// types (the header's parameters), never a command-line flag or an internal struct.
+// The library's doors keep the command's rules (docs/contract.md §9): an output never replaces the
+// scene it was read from, a run's size is refused before any work, and messages name what a C++
+// caller types (the header's parameters), never a command-line flag or an internal struct.
 #include <coinroll/coinroll.h>
 
 #include <gtest/gtest.h>
@@ -71,9 +71,10 @@ TEST_F(ApiOutputs, RenderVideoNeverWritesAPngSequenceOverItsSceneFile) {
   EXPECT_EQ(scratch_->fileCount(), 1);
 }
 
-// A process using the library that ends unseen leaves nothing beside the output (issue 50): SIGKILL,
-// and SIGTERM, for which the library installs no handler (multiprocessing's Pool.terminate sends
-// it to workers that forked from the caller, as this child does). Each left `.x.mp4.partial-PID-0`.
+// A process using the library that ends unseen leaves nothing beside the output (docs/outputs.md
+// "Temporaries have no name while they are written"): SIGKILL, and SIGTERM, for which the library
+// installs no handler (multiprocessing's Pool.terminate sends it to workers that forked from the
+// caller, as this child does). Each left `.x.mp4.partial-PID-0`.
 TEST_F(ApiOutputs, ARenderKilledMidWriteLeavesNoFile) {
   const coinroll::Scene scene = coinroll::Scene::fromJson(kScene, {"duration=60"});
   for (const int signal : {SIGKILL, SIGTERM}) {

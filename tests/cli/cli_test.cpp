@@ -122,8 +122,8 @@ TEST_F(CliTest, BadCommandLinesGetExitTwo) {
   EXPECT_FALSE(fs::exists(csv));
 }
 
-// One set of conventions (issue 39.4): `coinroll help COMMAND` is `coinroll COMMAND --help`, and a
-// misspelt command is answered with the command it is a slip of.
+// One set of conventions (docs/usage.md "Commands"): `coinroll help COMMAND` is
+// `coinroll COMMAND --help`, and a misspelt command is answered with the command it is a slip of.
 TEST_F(CliTest, HelpCommandIsTheCommandsHelpAndAMisspeltCommandGetsASuggestion) {
   const RunResult help = run("help render"), flag = run("render --help");
   EXPECT_EQ(help.exitCode, 0) << help.output;
@@ -595,7 +595,7 @@ TEST_F(CliTest, AStrobesPanelsAreTheStillsAtItsTimesSideBySide) {
   }
   EXPECT_EQ(figure.pixel(kWidth, 0)[0], 255) << "the gutter is white";
   EXPECT_EQ(figure.pixel(figure.width - 1, figure.height - 1)[0], 255) << "the empty eighth cell is white";
-  // The summary gives the figure's size, not one panel's (issue 50).
+  // The summary gives the figure's size, not one panel's.
   const RunResult told = run("still s.json --time 0.6 --strobe 6 --strobe-from 0.3 --panels -o told.png", in);
   ASSERT_EQ(told.exitCode, 0) << told.output;
   const std::string size = std::to_string(figure.width) + "x" + std::to_string(figure.height);

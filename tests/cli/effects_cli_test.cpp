@@ -156,10 +156,11 @@ struct Recorded {
 };
 
 TEST_F(EffectsCliTest, ScenesWithoutEffectsGiveTheBytesTheyGaveBeforeEffectsExisted) {
-  // falling_flat integrates the quaternion formulation, whose CSV reads its own forward pass since
-  // issue 19 (it had read the Euler-angle equations): its state columns are those of before, its
-  // derived columns (y, contact, energy, N, F) differ in the last digits, at most 7e-12 of the weight
-  // in N where the Euler angles' tan(theta) had amplified round-off. Its still and clip are unchanged.
+  // falling_flat integrates the quaternion formulation, whose CSV now reads its own forward pass (it
+  // had read the Euler-angle equations; docs/physics.md "Formulations"): its state columns are those
+  // of before, its derived columns (y, contact, energy, N, F) differ in the last digits, at most
+  // 7e-12 of the weight in N where the Euler angles' tan(theta) had amplified round-off. Its still
+  // and clip are unchanged.
   // The pictures' hashes were recorded again when the floor's grid took trilinear filtering (its
   // mipmap seams removed); the CSVs, which carry the claim, are the bytes of before effects.
   const Recorded recorded[] = {
@@ -174,7 +175,8 @@ TEST_F(EffectsCliTest, ScenesWithoutEffectsGiveTheBytesTheyGaveBeforeEffectsExis
   // Provenance off: these bytes were recorded before files named their release and scene, and with
   // it on they would change with every release; the pictures and the stream are what is compared.
   // 4x MSAA named: the bytes were recorded with it, the default before anti-aliasing became `auto`
-  // (issue 53), and the claim is that effects changed no byte, not which method draws.
+  // (docs/quality.md "Anti-aliasing"), and the claim is that effects changed no byte, not which
+  // method draws.
   const std::string noProvenance = " --set render.provenance=false --set render.antialiasing=msaa";
   // A byte hash has no tolerance: on a CPU other than the recording one (COINROLL_GOLDEN_TOLERANT=1)
   // llvmpipe may round a few pixels differently and x264 then encodes other bytes, so there only the

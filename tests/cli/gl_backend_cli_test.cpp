@@ -1,6 +1,6 @@
-// $COINROLL_GL from outside (issue 22): every example's still and a short clip are the same bytes
-// on osmesa and egl, a bad value is refused before anything is written, and egl-device on a
-// machine without a GPU fails saying so instead of drawing on the CPU.
+// $COINROLL_GL from outside (docs/usage.md "OpenGL back ends"): every example's still and a short
+// clip are the same bytes on osmesa and egl, a bad value is refused before anything is written, and
+// egl-device on a machine without a GPU fails saying so instead of drawing on the CPU.
 
 #include <gtest/gtest.h>
 
@@ -129,7 +129,8 @@ TEST_F(GlBackendCliTest, VersionNamesTheReleaseTheRevisionAndTheBackEndsWithoutA
     EXPECT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("COINROLL_GL selects egl-device"), std::string::npos) << r.output;
   }
-  // A bad value is said, and the version still printed: only drawing refuses it (issue 50).
+  // A bad value is said, and the version still printed: only drawing refuses it (docs/usage.md
+  // "OpenGL back ends").
   r = runCoinroll("--version", "COINROLL_GL=bogus");
   EXPECT_EQ(r.exitCode, 0) << r.output;
   EXPECT_TRUE(r.output.starts_with("coinroll ")) << r.output;

@@ -1,5 +1,6 @@
-// What `coinroll simulate` says on stderr about a run's course (issue 40): where it starts off the
-// rolling constraint, its switches, impacts and warnings in the order the coin met them.
+// What `coinroll simulate` says on stderr about a run's course (docs/contract.md §6): where it
+// starts off the rolling constraint, its switches, impacts and warnings in the order the coin met
+// them.
 
 #include <gtest/gtest.h>
 

@@ -243,8 +243,8 @@ TEST_F(SignalsCliTest, ARequestToStopLeavesTheEarlierOutputsAndTheirSidecars) {
 }
 
 // SIGKILL cannot be caught, so no handler removes anything: an unnamed temporary is freed by the
-// kernel with the process (issue 50: each killed run left its `.o.mp4.partial-PID-0`, and a PNG
-// sequence every frame it had staged).
+// kernel with the process (docs/outputs.md "Temporaries have no name while they are written"; each
+// killed run used to leave its `.o.mp4.partial-PID-0`, and a PNG sequence every frame it had staged).
 TEST_F(SignalsCliTest, SigkillMidWriteLeavesNoFile) {
   for (const auto& [arguments, output] :
        {std::pair{std::vector<std::string>{"render", "scene.json", "-q", "-o", "o.mp4"}, std::string("o.mp4")},

@@ -208,8 +208,9 @@ TEST(Trajectory, AnEndOutOfReachAtThePaceSoFarFailsEarly) {
   EXPECT_EQ(reachable.stats().acceptedSteps, 1'000'000);
 }
 
-// Issue 50: an end so far that a hundredth of the way is itself out of reach (1e8 s: 1e10 steps)
-// is refused at a hundredth of maxSteps (2^13 steps, 82 s of 1e8), not run to maxSteps.
+// An end so far that a hundredth of the way is itself out of reach (1e8 s: 1e10 steps) is refused
+// at a hundredth of maxSteps (2^13 steps, 82 s of 1e8), not run to maxSteps (docs/bad_inputs.md
+// "absurd sizes": a hopeless pace is refused within seconds).
 TEST(Trajectory, AFarEndAtASteadyPaceFailsWithinAHundredthOfTheSteps) {
   Trajectory hopeless(Oscillator{}, 0.0, V2(0, 1),
                       SolverConfig{.method = Method::Rk4, .dt = 0.01, .maxSteps = 500'000, .endTime = 1e8});
@@ -241,7 +242,7 @@ TEST(Trajectory, ARisingPaceIsNotProjectedOverAFarEnd) {
 // segments, none hopeless alone) reports its steps in lumps. At a steady 100 steps per second, in
 // lumps of 37 steps, an end at 1e4 s (1e6 steps) is refused at the first lump past a hundredth of
 // maxSteps (5e5); the same lumps run on under maxSteps 2e6. Before, the hybrid run never judged
-// its steps as a whole and ran on for minutes (issue 50).
+// its steps as a whole and ran on for minutes (docs/bad_inputs.md "absurd sizes").
 TEST(PaceWatch, StepsReportedInLumpsAreJudgedAsOneRun) {
   const auto lumpsUntilRefused = [](long maxSteps) -> std::optional<long> {
     PaceWatch pace(0, 1e4, maxSteps);

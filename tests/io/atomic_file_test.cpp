@@ -123,8 +123,9 @@ TEST(OutputFile, AbandonedFileLeavesNothingBehind) {
   EXPECT_TRUE(fs::is_empty(scratch.path()));
 }
 
-// Unnamed (O_TMPFILE), so a process killed while it writes leaves nothing (issue 50): the scratch
-// directory (in /tmp, a file system that has it) shows no file until the commit.
+// Unnamed (O_TMPFILE), so a process killed while it writes leaves nothing (docs/outputs.md "Temporaries
+// have no name while they are written"): the scratch directory (in /tmp, a file system that has it)
+// shows no file until the commit.
 TEST(OutputFile, TheTemporaryHasNoNameUntilCommit) {
   const ScratchDirectory scratch;
   OutputFile file(scratch / "out.csv", "CSV");

@@ -46,7 +46,7 @@ TEST(RuntimeLibrary, AMissingFunctionNamesItAndTheLibrary) {
   EXPECT_NE(message.find("libz.so.1 has no function coinroll_no_such_function"), std::string::npos) << message;
 }
 
-// Issue 50: a broken libavcodec.so.59 was reported as "cannot load libavformat.so.59 (...): install
+// A broken libavcodec.so.59 was once reported as "cannot load libavformat.so.59 (...): install
 // libavformat59", the package that is fine. Here a library (the fixture libraries of tests/
 // CMakeLists.txt) whose needed library beside it is broken: the message names the needed one as what
 // to repair, and the intact pair loads.

@@ -105,7 +105,7 @@ TEST(UnfinishedFiles, RemovingThemLeavesTheDirectoryAsItWas) {
 
 // A handler run after (or inside) a removal on the same thread removes again rather than wait for
 // the lock its own thread keeps: SIGPIPE raised by the forced end's message to a dead stderr spun at
-// 100 % CPU for ever (issue 50).
+// 100 % CPU for ever (docs/signals_and_limits.md "The staging area a handler can remove").
 TEST(UnfinishedFiles, ARemovalOnTheThreadThatRemovedDoesNotWaitForItself) {
   const ScratchDirectory scratch;
   const pid_t child = ::fork();

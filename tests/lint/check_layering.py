@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Checks that every #include in src/ follows coinroll's layering (issue 12).
+"""Checks that every #include in src/ follows coinroll's layering (docs/architecture.md).
 
 Usage: check_layering.py [SRC_DIR]      (default: the src/ beside this script's tools/)
 
@@ -51,8 +51,8 @@ MAY_INCLUDE = {
         "physics": "a scene is turned into a CoinModel, CoinState and effect parameters",
         "integrate": "scene builds physics/integrate types (solver settings) from JSON",
         "io": "leaf utility for anything that reads or writes files",
-        # Settings-only headers (issue 12): a scene holds render/video options without seeing the
-        # renderer or the encoder.
+        # Settings-only headers (docs/architecture.md): a scene holds render/video options without
+        # seeing the renderer or the encoder.
         "render/render_settings.h": "a scene holds RenderSettings (camera, size), not the renderer",
         "video/video_options.h": "a scene holds VideoOptions (codec, crf), not the encoder",
     },

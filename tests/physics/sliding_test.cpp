@@ -87,7 +87,8 @@ TEST(ContactMode, AStartWithASlipSlidesAndOtherwiseRollsWhereTheRollingReactionF
   EXPECT_GT(slipStopMargin(0.5, Eigen::Vector2d(0, 2e-11), Eigen::Vector2d::Zero(), kDefaultResolved), 0);
   EXPECT_LT(slipStopMargin(10, Eigen::Vector2d(0, 2e-11), Eigen::Vector2d::Zero(), kDefaultResolved), 0);
   // A hard skid's slip, closing at 3 mu g (mu = 2000), ends once it would stop within 1e-13 s: at
-  // 5.9e-9 m/s, not at 1e-11 m/s, where its steps stalled (issue 40); an opening slip does not end.
+  // 5.9e-9 m/s, not at 1e-11 m/s, where its steps stalled (docs/sliding.md §4.5, "Hard skids"); an
+  // opening slip does not end.
   const Eigen::Vector2d hardClosing(-3 * 2000 * 9.81, 0);
   EXPECT_LT(slipStopMargin(0.5, Eigen::Vector2d(5e-9, 0), hardClosing, kDefaultResolved), 0);
   EXPECT_GT(slipStopMargin(0.5, Eigen::Vector2d(7e-9, 0), hardClosing, kDefaultResolved), 0);

@@ -144,7 +144,7 @@ std::pair<double, double> lowestGap(const physics::CoinModel& m, const physics::
 // No touchdown is missed, however shallow the dip: random tumbling flights are lifted so that their
 // lowest point over a hop lies a given depth under the floor (or, once, just above it), and
 // the flight must touch down no later than that point (or not at all). Readings of the gap every
-// eighth of a turn missed a graze of 0.26 mm for 9.7 ms (issue 49: a 2 cm disk at 40 rad/s).
+// eighth of a turn missed a graze of 0.26 mm for 9.7 ms (a 2 cm disk at 40 rad/s; docs/flight.md §2).
 TEST(Flight, NoGrazeOfTheFloorIsMissedHoweverShallow) {
   std::mt19937 random(5);
   std::uniform_real_distribution<double> unit(-1, 1);

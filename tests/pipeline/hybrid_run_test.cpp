@@ -75,9 +75,10 @@ TEST(Sliding, AnUprightSkidRollsAtTheClosedFormTimeSpeedAndWork) {
 
 TEST(Sliding, AHardShortSkidEndsAtItsClosedFormInsteadOfStalling) {
   // mu = 2000, and mu = 1000 from 0.1 m/s: the slip closes at 3 mu g (3e4-6e4 m/s^2) and stops within
-  // 1.7-34 us. At the default tolerances these runs stalled a few 1e-16 s short of the stop (issue 40:
-  // "integration stalled", steps of 8e-15 s); the slide now ends where the slip would stop within
-  // physics::slipStopLead (1e-13 s), and the coin rolls on at the closed form's speed (docs/sliding.md §5).
+  // 1.7-34 us. At the default tolerances these runs stalled a few 1e-16 s short of the stop
+  // ("integration stalled", steps of 8e-15 s; docs/sliding.md §4.5, "Hard skids"); the slide now ends
+  // where the slip would stop within physics::slipStopLead (1e-13 s), and the coin rolls on at the
+  // closed form's speed (docs/sliding.md §5).
   const double g = 9.81;
   for (const auto& [mu, v0] : {std::pair{2000.0, 1.0}, std::pair{2000.0, 0.1}, std::pair{1000.0, 0.1}}) {
     const pipeline::Simulation sim =
@@ -268,9 +269,10 @@ TEST(Sliding, TheCreepingDirectionFollowsAClosingFreeSlipToSecondOrder) {
 TEST(Sliding, LiftOffEndsASlidingRunEvenWhenTheSceneSaysWarn) {
   // A thick coin thrown down spinning and wobbling hard: it rolls, slides, and its normal force
   // falls through zero 11 ms in. Integrated on as a contact, N < 0 turned the sliding friction
-  // -mu N s_hat into a push along the slip (power -59 W, the energy up 4 % in 5 ms; issue 40).
-  // Free flight is not modelled, so the run must end there: every sample before it holds the
-  // contact (N >= 0) with friction taking energy (power >= 0), and no energy comes from nowhere.
+  // -mu N s_hat into a push along the slip (power -59 W, the energy up 4 % in 5 ms;
+  // docs/sliding.md §4.5). Free flight is not modelled, so the run must end there: every sample
+  // before it holds the contact (N >= 0) with friction taking energy (power >= 0), and no energy
+  // comes from nowhere.
   const nlohmann::json doc = {
       {"coin", {{"radius", 0.0375}, {"mass", 0.4}, {"thickness", 0.013}, {"edge_radius", 0.0015}}},
       {"initial", {{"theta", 18.19115672673155}, {"omega_X", 17.323401068130792}, {"omega_Y", -48.73684958709181},
@@ -301,10 +303,10 @@ TEST(Sliding, LiftOffEndsASlidingRunEvenWhenTheSceneSaysWarn) {
 }
 
 TEST(Sliding, AWobbleThatGrazesTheConeBetweenTwoStepEndsSlides) {
-  // A wobbling thin coin whose rolling reaction leaves the cone (F/N up to 0.27137 in a cone of
-  // 0.27) for a few milliseconds at t = 2.167 s, inside one step whose ends are both in the cone:
-  // read at the step ends only, the run rolled on through it (issue 40). Every rolling sample must
-  // lie in the cone, as the switch rule says.
+  // A wobbling thin coin whose rolling reaction leaves the cone (F/N up to 0.27137 in a cone of 0.27)
+  // for a few milliseconds at t = 2.167 s, inside one step whose ends are both in the cone: read at
+  // the step ends only, the run rolled on through it (docs/sliding.md §4.5). Every rolling sample
+  // must lie in the cone, as the switch rule says.
   const nlohmann::json doc = {
       {"coin", {{"radius", 0.0375}, {"mass", 0.4}, {"thickness", 0.002}}},
       {"initial", {{"theta", 23.649907572148113}, {"omega_X", -9.36372926770362}, {"omega_Y", 15.814515079174889},

@@ -1,7 +1,8 @@
-"""The Python door keeps the command's rules and speaks Python (issue 50): an output never replaces
-the scene it was read from, a run's size is refused before any work, messages name the keywords a
-Python user types, scene dicts take numpy's scalars and refuse NaN naming the key, the tables are
-read-only, and an interpreter without numpy is told what the package was built for."""
+"""The Python door keeps the command's rules and speaks Python (docs/usage.md "Python"): an output
+never replaces the scene it was read from, a run's size is refused before any work, messages name
+the keywords a Python user types, scene dicts take numpy's scalars and refuse NaN naming the key,
+the tables are read-only, and an interpreter without numpy is told what the package was built for.
+"""
 
 import json
 import os

@@ -1,7 +1,8 @@
 #!/usr/bin/python3
-"""The figures in docs/ are the program's (issue 24): tools/make_figures.sh --quick draws them into a
-scratch folder and each must equal the one in docs/, by `coinroll compare`'s golden rule (exact;
-with COINROLL_GOLDEN_TOLERANT=1, for another CPU, the tolerance of docs/snapshot_testing.md).
+"""The figures in docs/ are the program's (docs/usage.md "Examples"): tools/make_figures.sh --quick
+draws them into a scratch folder and each must equal the one in docs/, by `coinroll compare`'s
+golden rule (exact; with COINROLL_GOLDEN_TOLERANT=1, for another CPU, the tolerance of
+docs/snapshot_testing.md).
 
     tests/readme/figures_test.py --binary build/coinroll
 """

@@ -1,8 +1,8 @@
 #!/usr/bin/python3
-"""The README is tested (issue 24): every command it shows runs, or is exempted below by name with
-a reason; the synopsis names only options the program's --help knows; the Python session is run as
-a doctest; and the numbers listed in CLAIMS are computed from the program's own output and must be
-the ones the README quotes.
+"""The README is tested (the docs tier, docs/quality.md "Tests and CI"): every command it shows
+runs, or is exempted below by name with a reason; the synopsis names only options the
+program's --help knows; the Python session is run as a doctest; and the numbers listed in CLAIMS
+are computed from the program's own output and must be the ones the README quotes.
 
     tests/readme/readme_test.py --binary build/coinroll [--python-dir build/python] [--list]
 

@@ -1,7 +1,8 @@
-// The OpenGL back ends (render/gl_backend.h, issue 22): $COINROLL_GL's values and refusals, the
-// same bytes from osmesa and egl (both llvmpipe) with their contexts alive side by side, and
-// egl-device refusing a machine without a GPU instead of falling back. The goldens themselves run
-// once per back end (tests/CMakeLists.txt registers them again under COINROLL_GL=egl).
+// The OpenGL back ends (render/gl_backend.h, docs/usage.md "OpenGL back ends"): $COINROLL_GL's
+// values and refusals, the same bytes from osmesa and egl (both llvmpipe) with their contexts alive
+// side by side, and egl-device refusing a machine without a GPU instead of falling back. The
+// goldens themselves run once per back end (tests/CMakeLists.txt registers them again under
+// COINROLL_GL=egl).
 
 #include <gtest/gtest.h>
 #include <sys/wait.h>
@@ -195,11 +196,11 @@ TEST(GlBackends, EglDeviceWithoutAGpuFailsSayingSoAndNeverFallsBack) {
   EXPECT_NE(message.find("untested on GPU hardware"), std::string::npos) << message;
 }
 
-// Issue 50: a multiprocessing "fork" pool's child, forked after its parent drew, waited for ever on
-// llvmpipe's threads, which stayed in the parent. It is refused now, within the child's alarm (on
-// the old code the alarm kills it). Where the parent's Mesa draws on one thread there is nothing to
-// refuse, and the child must draw; that case needs a process whose first draw is under
-// LP_NUM_THREADS=0, so it lives in tests/python/test_doors.py.
+// A multiprocessing "fork" pool's child, forked after its parent drew, waited for ever on
+// llvmpipe's threads, which stayed in the parent (docs/usage.md "Python"). It is refused now,
+// within the child's alarm (on the old code the alarm kills it). Where the parent's Mesa draws on
+// one thread there is nothing to refuse, and the child must draw; that case needs a process whose
+// first draw is under LP_NUM_THREADS=0, so it lives in tests/python/test_doors.py.
 TEST(GlBackends, AChildForkedAfterADrawIsRefusedNotLeftWaiting) {
   if (const char* threads = std::getenv("LP_NUM_THREADS"); threads != nullptr && std::string(threads) == "0") {
     GTEST_SKIP() << "LP_NUM_THREADS=0: llvmpipe starts no threads, so a forked child may draw";

@@ -1,9 +1,9 @@
-// Live plots under the view (issue 52 §2): the run's own columns against time, as the WebAssembly
-// core handed them to the page (the CSV's numbers), in the units shown, with the playback time as
-// the cursor. Nothing here computes physics: a plotted value is a column times its unit's size, θ in
-// degrees, or |F| over μ_s N of the same row. uPlot draws them (a library, not canvas code of ours);
-// its own mouse handling is off, so that the cursor is always the motion's time and a press or drag
-// on a plot seeks the motion instead of zooming.
+// Live plots under the view (docs/web.md "Plots"): the run's own columns against time, as the
+// WebAssembly core handed them to the page (the CSV's numbers), in the units shown, with the
+// playback time as the cursor. Nothing here computes physics: a plotted value is a column times its
+// unit's size, θ in degrees, or |F| over μ_s N of the same row. uPlot draws them (a library, not
+// canvas code of ours); its own mouse handling is off, so that the cursor is always the motion's
+// time and a press or drag on a plot seeks the motion instead of zooming.
 import uPlot from 'uplot';
 import { element, symbol } from './controls.js';
 import { formatG } from './units.js';

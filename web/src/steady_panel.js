@@ -1,8 +1,9 @@
-// The seed's steady motions beside the motion (issue 52 §2): for the coin and the tilt of the run on
-// screen, each steady motion `coinroll steady` reports (straight, circle on either root, spin in
-// place), with its linear stability, and a button that starts it. The numbers are the WebAssembly
-// core's (core.steady in the worker, with the run), shown with the digits the command prints them
-// with, so that a student can hold the page against `coinroll steady`, in SI or in the seed's units.
+// The seed's steady motions beside the motion (docs/web.md "Steady motions"): for the coin and the
+// tilt of the run on screen, each steady motion `coinroll steady` reports (straight, circle on
+// either root, spin in place), with its linear stability, and a button that starts it. The numbers
+// are the WebAssembly core's (core.steady in the worker, with the run), shown with the digits the
+// command prints them with, so that a student can hold the page against `coinroll steady`, in SI or
+// in the seed's units.
 import { element, startFrom, symbol } from './controls.js';
 import { formatG, Units } from './units.js';
 

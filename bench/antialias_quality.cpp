@@ -16,7 +16,8 @@
 // is drawn with the background reused, as `render` draws it; a still and a moving camera's frame
 // shade it every time.
 //
-// Run: build/bench/antialias_quality [--repeats N] [--csv file]   (markdown table on stdout)
+// Run: build/bench/antialias_quality [--repeats N] [--csv FILE]   (markdown table on stdout; FILE
+// defaults to docs/data/antialias_quality.csv, run from the checkout)
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -294,7 +295,7 @@ void writeCsv(const std::vector<Row>& rows, const std::string& path) {
 
 int main(int argc, char** argv) {
   int repeats = 9;
-  std::string csvPath = "antialias_quality.csv";
+  std::string csvPath = "docs/data/antialias_quality.csv";
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string flag = argv[i];
     if (flag == "--repeats") repeats = std::atoi(argv[i + 1]);

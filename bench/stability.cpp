@@ -3,7 +3,7 @@
 // error over 10^4 wobble periods for each method. Writes two CSV files that
 // tools/plot_work_precision.py charts and tests/physics/stability_test.cpp quotes.
 //
-// Run: build/bench/stability [OUT_DIR]   (default docs/; writes stability_steps.csv,
+// Run: build/bench/stability [OUT_DIR]   (default docs/data/; writes stability_steps.csv,
 // stability_energy.csv)
 
 #include <fmt/format.h>
@@ -156,7 +156,7 @@ void printDefaultSolverDrift() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const std::filesystem::path outDir = argc > 1 ? argv[1] : "docs";
+  const std::filesystem::path outDir = argc > 1 ? argv[1] : "docs/data";
   fmt::print("Largest step keeping |dE/E| < {} over {} wobble periods, f+ circle at 20 deg + {} rad kick\n",
              kEnergyBound, kPeriods, kKick);
   writeStepLimits(outDir / "stability_steps.csv");

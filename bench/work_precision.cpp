@@ -5,7 +5,7 @@
 // and the best wall time; then our DOP853's time over each peer's at equal error.
 //
 // Run: build/bench/work_precision [CSV_PATH] [--quick]
-//   CSV_PATH  default docs/work_precision.csv; beside it go the ratio table (_ratios.csv) and
+//   CSV_PATH  default docs/data/work_precision.csv; beside it go the ratio table (_ratios.csv) and
 //             the cases with their reference end states (_cases.csv, read by
 //             tools/scipy_peer.py). tools/plot_work_precision.py charts them.
 //   --quick   one short timing batch per point (for trying things out, not for quoting)
@@ -261,7 +261,7 @@ void writeRatios(const std::filesystem::path& path, const std::vector<Point>& po
 
 int main(int argc, char** argv) {
   using namespace coinroll::bench;
-  std::filesystem::path csvPath = "docs/work_precision.csv";
+  std::filesystem::path csvPath = "docs/data/work_precision.csv";
   Timing timing{3, 0.1};
   for (int i = 1; i < argc; ++i) {
     const std::string argument = argv[i];

@@ -7,7 +7,7 @@
 #
 # --quick leaves out the two slow sets: the stability maps (thousands of runs, minutes) and the
 # spectrograms (the 138 s Euler's-disk clip is rendered whole for its sound). The work-precision
-# charts and the anti-aliasing chart are drawn from the benchmark tables in docs/*.csv (timings:
+# charts and the anti-aliasing chart are drawn from the benchmark tables in docs/data/ (timings:
 # build/bench/work_precision, build/bench/stability and build/bench/antialias_quality measure them anew).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -46,11 +46,9 @@ step "spin_down.png, energy_budget.png"
 $python tools/plot_spin_down.py "$coinroll" --out-dir "$out" >/dev/null
 
 step "work_precision.png, stability.png (from the benchmark tables)"
-if [[ "$out" != "$root/docs" ]]; then cp docs/work_precision*.csv docs/stability_*.csv "$out/"; fi
 $python tools/plot_work_precision.py "$out" >/dev/null
 
 step "antialias_quality.png (from build/bench/antialias_quality's table)"
-if [[ "$out" != "$root/docs" ]]; then cp docs/antialias_quality.csv "$out/"; fi
 $python tools/plot_antialias_quality.py "$out"
 
 if [[ $quick == 0 ]]; then

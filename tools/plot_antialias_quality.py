@@ -1,13 +1,13 @@
 #!/usr/bin/python3
 """Chart of the anti-aliasing benchmark (Debian's matplotlib; run with /usr/bin/python3).
 
-Reads docs/antialias_quality.csv, written by build/bench/antialias_quality, and writes
+Reads docs/data/antialias_quality.csv, written by build/bench/antialias_quality, and writes
   docs/antialias_quality.png  edge error against cost per frame (ratio to 4x MSAA in the same run),
                               one panel per picture, one marker per method, filled for the mean
                               error on edge pixels and hollow for their 99th percentile; osmesa
                               circles, egl squares
 
-Usage: tools/plot_antialias_quality.py [DOCS_DIR]   (default: docs/ beside this script's folder)
+Usage: tools/plot_antialias_quality.py [OUT_DIR]   (default: docs/ beside this script's folder)
 """
 
 import csv
@@ -23,8 +23,9 @@ BACKEND_MARKERS = {"osmesa": "o", "egl": "s"}
 
 
 def main():
-    docs = Path(sys.argv[1]) if len(sys.argv) > 1 else Path(__file__).resolve().parent.parent / "docs"
-    with open(docs / "antialias_quality.csv", newline="") as f:
+    data = Path(__file__).resolve().parent.parent / "docs" / "data"
+    docs = Path(sys.argv[1]) if len(sys.argv) > 1 else data.parent
+    with open(data / "antialias_quality.csv", newline="") as f:
         rows = [r for r in csv.DictReader(f) if int(r["samples"]) > 0]  # methods this OpenGL refused
     pictures = list(dict.fromkeys(r["picture"] for r in rows))
     methods = list(dict.fromkeys(r["method"] for r in rows))

@@ -1,14 +1,14 @@
 #!/usr/bin/python3
 """Charts of the integrator benchmarks (Debian's matplotlib; run with /usr/bin/python3).
 
-Reads the CSV files written by build/bench/work_precision, build/bench/stability and (if run)
-tools/scipy_peer.py, and writes
+Reads the CSV files in docs/data/ written by build/bench/work_precision, build/bench/stability and
+(if run) tools/scipy_peer.py, and writes
   docs/work_precision.png  relative state error at t_end against wall time, log-log, one panel
                            per case, one line per method; peers dashed
   docs/stability.png       RK4's and explicit Euler's largest stable step against spin, and the
                            energy error against time over 10^4 wobble periods
 
-Usage: tools/plot_work_precision.py [DOCS_DIR]   (default: docs/ beside this script's folder)
+Usage: tools/plot_work_precision.py [OUT_DIR]   (default: docs/ beside this script's folder)
 """
 
 import csv
@@ -35,9 +35,9 @@ def read_rows(path):
         return list(csv.DictReader(f))
 
 
-def plot_work_precision(docs):
-    rows = read_rows(docs / "work_precision.csv")
-    scipy_rows = docs / "work_precision_scipy.csv"  # written by tools/scipy_peer.py, if run
+def plot_work_precision(data, docs):
+    rows = read_rows(data / "work_precision.csv")
+    scipy_rows = data / "work_precision_scipy.csv"  # written by tools/scipy_peer.py, if run
     if scipy_rows.exists():
         rows += read_rows(scipy_rows)
     lines = defaultdict(list)  # (case, method) -> [(seconds, error)]
@@ -72,9 +72,9 @@ def plot_work_precision(docs):
     figure.savefig(docs / "work_precision.png", dpi=90)
 
 
-def plot_stability(docs):
-    steps = read_rows(docs / "stability_steps.csv")
-    energy = read_rows(docs / "stability_energy.csv")
+def plot_stability(data, docs):
+    steps = read_rows(data / "stability_steps.csv")
+    energy = read_rows(data / "stability_energy.csv")
     figure, (left, right) = plt.subplots(1, 2, figsize=(13, 5))
     by_method = defaultdict(list)
     limit = {}
@@ -108,9 +108,10 @@ def plot_stability(docs):
 
 
 def main():
-    docs = Path(sys.argv[1]) if len(sys.argv) > 1 else Path(__file__).resolve().parent.parent / "docs"
-    plot_work_precision(docs)
-    plot_stability(docs)
+    data = Path(__file__).resolve().parent.parent / "docs" / "data"
+    docs = Path(sys.argv[1]) if len(sys.argv) > 1 else data.parent
+    plot_work_precision(data, docs)
+    plot_stability(data, docs)
 
 
 if __name__ == "__main__":

@@ -3,15 +3,15 @@
 """scipy's DOP853 (solve_ivp) as one more peer of the work-precision benchmark.
 
 Reads the cases and reference end states that build/bench/work_precision wrote
-(docs/work_precision_cases.csv), integrates each case at rtol = atol = 10^-3 .. 10^-12 and
-writes docs/work_precision_scipy.csv in the benchmark's columns, then prints our DOP853's time
-over scipy's at equal error (our points from docs/work_precision.csv).
+(docs/data/work_precision_cases.csv), integrates each case at rtol = atol = 10^-3 .. 10^-12 and
+writes docs/data/work_precision_scipy.csv in the benchmark's columns, then prints our DOP853's time
+over scipy's at equal error (our points from docs/data/work_precision.csv).
 
 Not the same right-hand-side object as the C++ peers: a NumPy port of physics::rhs
 (src/physics/dynamics.cpp, seed eqs. 14-19), so the ratio includes Python's per-call overhead;
 it says what a user of scipy would see, not how the two DOP853 codes compare.
 
-Usage: /usr/bin/python3 tools/scipy_peer.py [DOCS_DIR]
+Usage: /usr/bin/python3 tools/scipy_peer.py [DATA_DIR]
 """
 
 import csv
@@ -62,8 +62,8 @@ def seconds_at_error(points, target):
 
 
 def main():
-    docs = Path(sys.argv[1]) if len(sys.argv) > 1 else Path(__file__).resolve().parent.parent / "docs"
-    with open(docs / "work_precision_cases.csv", newline="") as f:
+    data = Path(sys.argv[1]) if len(sys.argv) > 1 else Path(__file__).resolve().parent.parent / "docs" / "data"
+    with open(data / "work_precision_cases.csv", newline="") as f:
         cases = list(csv.DictReader(f))
     rows = []
     for case in cases:
@@ -84,12 +84,12 @@ def main():
                          solution.nfev, solution.t.size - 1, -1, f"{best:.6g}"])
             print(f"{case['case']:>10} scipy_dop853 {tol:9.1e} {error:10.3e} {energy_error:10.3e} "
                   f"{solution.nfev:9d} {best:10.3e}", flush=True)
-    with open(docs / "work_precision_scipy.csv", "w", newline="") as f:
+    with open(data / "work_precision_scipy.csv", "w", newline="") as f:
         writer = csv.writer(f)
         writer.writerow(["case", "method", "is_peer", "parameter", "rel_error", "max_energy_error",
                          "rhs_evaluations", "steps", "rejected_steps", "seconds"])
         writer.writerows(rows)
-    with open(docs / "work_precision.csv", newline="") as f:
+    with open(data / "work_precision.csv", newline="") as f:
         ours = [r for r in csv.DictReader(f) if r["method"] == "dop853" and float(r["seconds"]) > 0]
     print("\nOur DOP853 time / scipy DOP853 time at equal relative state error")
     for case in cases:

@@ -28,6 +28,7 @@
 #include "pipeline/still.h"
 #include "pipeline/trajectory_samples.h"
 #include "pipeline/video_frames.h"
+#include "render/camera.h"
 #include "video/async_sink.h"
 #include "video/make_sink.h"
 #include "video/png_sequence_sink.h"
@@ -446,6 +447,54 @@ pipeline::TimeWindow windowOf(const RenderOptions& options) {
   return window;
 }
 
+namespace {
+
+// The plan as data (render --plan --json): the clip's clock and, per frame, the camera and the overlay
+// render draws it with, so a tool (the WebAssembly core's drift test) compares numbers, not a table.
+nlohmann::json planJson(const pipeline::ClipViews& views, const pipeline::TimeWindow& window,
+                        const std::string& output) {
+  const pipeline::ClipPlan& plan = views.plan;
+  const auto slowedBy = [](pipeline::SlowedBy by) -> nlohmann::json {
+    switch (by) {
+      case pipeline::SlowedBy::Rate: return "rate";
+      case pipeline::SlowedBy::Flight: return "flight";
+      case pipeline::SlowedBy::Impact: return "impact";
+      case pipeline::SlowedBy::Nothing: break;
+    }
+    return nullptr;
+  };
+  // The floats' exact values as doubles: float's shortest text would read back as another double.
+  const auto vector = [](const glm::vec3& v) {
+    return nlohmann::json::array({static_cast<double>(v.x), static_cast<double>(v.y), static_cast<double>(v.z)});
+  };
+  const pipeline::FrameRange written = pipeline::framesIn(plan, window);
+  nlohmann::json frames = nlohmann::json::array();
+  for (std::size_t k = 0; k < views.frames.size(); ++k) {
+    const render::CameraView& camera = views.frames[k].camera;
+    frames.push_back({{"sim_time_s", plan.times[k]},
+                      {"playback_rate", plan.playbackRates[k]},
+                      {"slowed_by", slowedBy(plan.slowedBy[k])},
+                      {"camera",
+                       {{"eye", vector(camera.eye)},
+                        {"target", vector(camera.target)},
+                        {"up", vector(render::upOf(camera))},
+                        {"fov_y_degrees", static_cast<double>(camera.fovYDegrees)}}},
+                      {"overlay_lines", views.frames[k].overlayLines}});
+  }
+  return {{"output", output},
+          {"fps", plan.fps},
+          {"time_scale", plan.timeScale},
+          {"end_time", plan.endTime},
+          {"stopped_early", plan.stopDescription ? nlohmann::json(*plan.stopDescription) : nlohmann::json(nullptr)},
+          {"simulated_frames", plan.simulatedFrames},
+          {"landed", plan.landed},
+          {"hold_seconds", plan.landed ? pipeline::kLandingHoldSeconds : 0.0},
+          {"written", {{"first", written.first}, {"last", written.last}}},
+          {"frames", std::move(frames)}};
+}
+
+}  // namespace
+
 void runRender(const RenderOptions& options) {
   if (options.output) refuseEmptyOutputName("-o", *options.output, "clip.mp4");
   const SceneSource source = withPictureSize(options.scene, options.size);
@@ -453,6 +502,10 @@ void runRender(const RenderOptions& options) {
   if (options.plan && options.frameTimesPath) {
     throw UsageError("--plan and --frame-times cannot be combined: a plan draws and writes nothing; drop --frame-times "
                      "(the plan's table shows the playback rate; --frame-times lists it per frame of a render)");
+  }
+  if (options.json && !options.plan) {
+    throw UsageError("--json: prints the --plan as one JSON document, and there is no plan; give --plan too (a "
+                     "render's own frame times are --frame-times FILE.csv)");
   }
   const ResolvedScene resolved = resolveScene(source);  // named: clang 14 cannot capture a structured binding
   const scene::SceneConfig& scene = resolved.config;
@@ -477,6 +530,13 @@ void runRender(const RenderOptions& options) {
   const long maxFrames = options.maxFrames > 0 ? options.maxFrames : pipeline::kDefaultMaxFrames;
   if (options.plan) {
     try {
+      if (options.json) {
+        const nlohmann::json plan = planJson(pipeline::planClipViews(scene, maxFrames, &interruptRequested()), window,
+                                             output.string());
+        // Doubles as the shortest text that reads back as the same double; a name that is not UTF-8 is kept readable.
+        fmt::print("{}\n", plan.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
+        return;
+      }
       const pipeline::ClipPlan plan = pipeline::planClip(scene, maxFrames, &interruptRequested());
       fmt::print("plan of {} (nothing drawn, nothing written; frame k plays at video time k / fps)\n",
                  scene::printable(output.string()));

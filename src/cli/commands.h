@@ -60,6 +60,7 @@ struct RenderOptions {
   std::optional<double> fromVideo, toVideo;  // s of video (frame k plays at k / fps): the frames to write
   std::optional<double> last;                // s of video: write the clip's last seconds
   bool plan = false;                  // print the clip's plan (pipeline::planLines); draw and write nothing
+  bool json = false;                  // with plan: the plan as one JSON document, each frame's camera and overlay
   bool inset = false;                 // a plot of the contact rate and the tilt in each frame's corner
   bool quiet = false;                 // no progress line, no notes, no summary
   bool force = false;                 // replace a default-named output made from another scene

@@ -212,6 +212,12 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& options) {
   command->add_flag("--plan", options.plan,
                     "Print the clip's plan on stdout and stop, drawing and writing nothing: video length, frames, the "
                     "frames the window keeps on both clocks, the playback rate over the clip");
+  command->add_flag("--json", options.json,
+                    "With --plan: print the plan as one JSON document instead: fps, time_scale, end_time, "
+                    "simulated_frames, landed, hold_seconds, the frames written (first, last) and per frame of the "
+                    "clip sim_time_s, playback_rate, slowed_by (rate, flight, impact or null), the camera it is drawn "
+                    "with (eye, target, up as [x, y, z] in m, fov_y_degrees) and its overlay_lines (none with "
+                    "render.hud off); numbers read back as the same doubles");
   command->add_flag("--inset", options.inset,
                     "Draw a plot of the contact point's rate (log scale when it spans a factor 4) and the tilt above "
                     "the floor over the frames written in each frame's lower right corner, a marker at the frame: the "
@@ -240,6 +246,7 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& options) {
       "  coinroll render scene.json --set render.time_scale=0.25 --set render.camera.mode=follow\n"
       "  coinroll render scene.json -o loop.gif --size 480p --from 1 --to 3\n"
       "  coinroll render examples/euler_disk.json --last 20 --plan       (the finale's plan: frames, both clocks)\n"
+      "  coinroll render examples/coin_toss.json --plan --json > plan.json   (per frame: time, rate, camera, overlay)\n"
       "  coinroll render examples/euler_disk.json --last 20 -o finale.mp4  (the last 20 s of the video)\n"
       "  coinroll render examples/euler_disk.json --last 20 --inset -o finale.mp4   (with the rate and tilt plotted)\n"
       "  coinroll render scene.json -o coin.mov --set render.background=\\\"transparent\\\"   (alpha for an editor)\n"

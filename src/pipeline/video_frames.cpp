@@ -309,6 +309,37 @@ class ClipInset {
 
 }  // namespace
 
+std::vector<std::string> overlayExtraLines(const ClipPlan& plan, long k) {
+  // Simulated time stands still in the hold, so the overlay says so instead of the landing's playback rate.
+  if (k >= plan.simulatedFrames) return {fmt::format("landed, held {:g} s", kLandingHoldSeconds)};
+  const double slowdown = 1 / plan.playbackRates[static_cast<std::size_t>(k)];
+  if (slowdown > 1 + 1e-9) return {fmt::format("slow motion ×{:.3g}", slowdown)};
+  if (slowdown < 1 - 1e-9) return {fmt::format("fast forward ×{:.3g}", 1 / slowdown)};
+  return {};
+}
+
+ClipViews planClipViews(const scene::SceneConfig& scene, long maxFrames, const std::atomic<bool>* cancel) {
+  refuseAbsurdDuration(scene, maxFrames, kMaxFramesOption);
+  Simulation simulation = buildSimulation(scene);
+  simulation.cancel = cancel;
+  ClipRecord clip = recordClip(scene, simulation, maxFrames, kMaxFramesOption);
+  ClipViews views{.plan = planOf(scene, clip), .frames = {}};
+  const std::vector<FrameState>& frames = clip.record.frames;
+  // renderVideo's snapshot maker, fed the same frames in the same order: the camera and the overlay
+  // come from where render takes them, not from a second way of making them.
+  SnapshotMaker snapshots(scene, simulation.model, clip.record);
+  const long simulatedFrames = views.plan.simulatedFrames;
+  views.frames.reserve(static_cast<std::size_t>(views.plan.frames()));
+  for (long k = 0; k < views.plan.frames(); ++k) {
+    if (cancel != nullptr && cancel->load()) throw Cancelled();
+    // The hold shows the landing's frame again, as renderVideo draws it.
+    const FrameState& state = frames[static_cast<std::size_t>(std::min(k, simulatedFrames - 1))];
+    const render::FrameSnapshot& snapshot = snapshots.makeSnapshot(state, overlayExtraLines(views.plan, k));
+    views.frames.push_back({snapshot.camera, snapshot.hudLines});
+  }
+  return views;
+}
+
 VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& sink, const VideoRunOptions& options) {
   refuseAbsurdDuration(scene, options.maxFrames, options.maxFramesOption);
   Simulation simulation = buildSimulation(scene);
@@ -359,24 +390,17 @@ VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& si
     if (options.cancel != nullptr && options.cancel->load()) throw Cancelled();
     if (k >= simulatedFrames) {  // the hold: the landing's picture again, in silence
       if (sound) sound->rest(k, soundSink(k));
-      // Simulated time stands still here, so the overlay says so instead of the landing's playback rate;
-      // a window by video time may start inside the hold, with no picture drawn yet.
+      // A window by video time may start inside the hold, with no picture drawn yet.
       if (written(k) && ((k == simulatedFrames && scene.render.hud) || k == range.first || inset)) {
         if (inset) snapshots.markInset(inset->progress(k), inset->labels(k));
-        renderer.draw(snapshots.makeSnapshot(frames.back(), {fmt::format("landed, held {:g} s", kLandingHoldSeconds)}),
-                      frame);
+        renderer.draw(snapshots.makeSnapshot(frames.back(), overlayExtraLines(plan, k)), frame);
       }
       if (written(k)) push(k, plan.endTime, 0.0);
       continue;
     }
     const FrameState& state = frames[static_cast<std::size_t>(k)];
     const double playbackRate = plan.playbackRates[static_cast<std::size_t>(k)];
-    std::vector<std::string> speed;
-    if (scene.render.hud) {
-      const double slowdown = 1 / playbackRate;
-      if (slowdown > 1 + 1e-9) speed.push_back(fmt::format("slow motion ×{:.3g}", slowdown));
-      if (slowdown < 1 - 1e-9) speed.push_back(fmt::format("fast forward ×{:.3g}", 1 / slowdown));
-    }
+    const std::vector<std::string> speed = scene.render.hud ? overlayExtraLines(plan, k) : std::vector<std::string>();
     // Synthesised for every frame, so the sound is the full render's; the trace catches up at the next snapshot.
     if (sound) {
       // The impacts since the previous frame knock in the block that ends at this one.

@@ -20,6 +20,7 @@
 #include "pipeline/slow_motion.h"
 #include "scene/scene_config.h"
 #include "pipeline/cancelled.h"
+#include "render/frame_snapshot.h"
 #include "video/frame_sink.h"
 
 namespace coinroll::pipeline {
@@ -66,6 +67,26 @@ FrameRange framesIn(const ClipPlan& plan, const TimeWindow& window);
 // keeps on both clocks, and a small table of the playback rate (and the contact point's rate, as
 // measured and as seen on screen) over the clip, a row wherever either has changed by a quarter.
 std::vector<std::string> planLines(const ClipPlan& plan, const TimeWindow& window);
+
+// The lines render's overlay shows after its own at frame k of `plan`: the slow motion or fast
+// forward the frame plays at, or, in the landing's hold, that the landing is held.
+std::vector<std::string> overlayExtraLines(const ClipPlan& plan, long k);
+
+// What render draws a frame with besides the coin and the trace, as its snapshot holds it.
+struct FrameView {
+  render::CameraView camera;
+  std::vector<std::string> overlayLines;  // none with render.hud off
+};
+
+// The clip `renderVideo(scene, ...)` would draw (planClip) and each of its frames' views, from the
+// same pass over the run and the same snapshots, nothing drawn: what `render --plan --json` prints,
+// so that another build of the renderer's code can be held against the program frame by frame.
+struct ClipViews {
+  ClipPlan plan;
+  std::vector<FrameView> frames;  // one per frame of `plan`, the landing's hold included
+};
+ClipViews planClipViews(const scene::SceneConfig& scene, long maxFrames = kDefaultMaxFrames,
+                        const std::atomic<bool>* cancel = nullptr);
 
 struct VideoRunOptions {
   std::function<void(const FrameProgress&)> onFrame = {};  // called after each frame; may be empty

@@ -827,6 +827,11 @@ case("to-video-negative", C, "render --to-video -1", RW + "--to-video -1", 2,
 case("plan-and-frame-times", C, "render --plan --frame-times f.csv: a plan writes nothing",
      RW + "--plan --frame-times f.csv", 2, "--plan and --frame-times cannot be combined", key="--plan",
      na_before=VIDEO_TIME)
+# The plan as JSON (render --plan --json, read by the WebAssembly core's drift test).
+PLAN_JSON = "no --plan --json before"
+case("json-without-plan", C, "render --json without --plan: no plan to print", RW + "--json", 2,
+     "--json: prints the --plan as one JSON document, and there is no plan; give --plan too", key="--json",
+     gtest=("FrameTimesCliTest.ThePlanAsJsonHoldsTheRendersFramesAndTheirOverlay",), na_before=PLAN_JSON)
 for ext in ("mp4", "GIF"):
     case(f"transparent-{ext.lower()}", C, f"render.background transparent with .{ext}",
          f"render scene.json -q -o o.{ext} --set 'render.background=\"transparent\"'", 2,

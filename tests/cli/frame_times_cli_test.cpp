@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -216,6 +217,51 @@ TEST_F(FrameTimesCliTest, AWindowByVideoTimeWritesTheSameFramesAsTheSimulatedTim
       pngSequence(scene_, dir_, "f", fmt::format("--from {:.17g}", t[t.size() - 12]));
   ASSERT_EQ(last.size(), 12u);
   EXPECT_TRUE(last == fromThere) << "the last 0.4 s differ from the simulated window";
+}
+
+// render --plan --json against what a render writes: its frames' times and rates (--frame-times), and
+// the overlay's time line at each, computed here from those; with render.hud off, no overlay.
+TEST_F(FrameTimesCliTest, ThePlanAsJsonHoldsTheRendersFramesAndTheirOverlay) {
+  const CsvTable table = render("whole");
+  const std::vector<double> t = table.column("sim_time_s"), rate = table.column("playback_rate");
+  const RunResult r = run("render " + scene_.string() + " -q --plan --json", "cd " + dir_.string() + " &&");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const nlohmann::json plan = nlohmann::json::parse(r.output);
+  EXPECT_EQ(plan["fps"], kFps);
+  EXPECT_EQ(plan["time_scale"], kTimeScale);
+  EXPECT_EQ(plan["landed"], false);
+  EXPECT_EQ(plan["end_time"], 1.0);
+  const nlohmann::json& frames = plan["frames"];
+  ASSERT_EQ(frames.size(), t.size());
+  EXPECT_EQ(plan["simulated_frames"], t.size());
+  EXPECT_EQ(plan["written"]["first"], 0);
+  EXPECT_EQ(plan["written"]["last"], t.size() - 1);
+  for (std::size_t k = 0; k < t.size(); ++k) {
+    const nlohmann::json& frame = frames[k];
+    EXPECT_EQ(frame["sim_time_s"].get<double>(), t[k]) << "frame " << k;
+    EXPECT_EQ(frame["playback_rate"].get<double>(), rate[k]) << "frame " << k;
+    const bool slowed = rate[k] < kTimeScale - 1e-9;
+    EXPECT_EQ(frame["slowed_by"], slowed ? nlohmann::json("rate") : nlohmann::json(nullptr)) << "frame " << k;
+    const std::vector<std::string> lines = frame["overlay_lines"];
+    ASSERT_GE(lines.size(), 3u) << "frame " << k;
+    EXPECT_EQ(lines.front(), fmt::format("t        {:9.3f} s", t[k])) << "frame " << k;
+    EXPECT_EQ(lines.back().rfind("slow motion ×", 0) == 0, slowed) << lines.back();
+    const nlohmann::json& camera = frame["camera"];
+    const std::vector<double> eye = camera["eye"], target = camera["target"], up = camera["up"];
+    ASSERT_EQ(eye.size(), 3u);
+    EXPECT_GT(std::hypot(eye[0] - target[0], eye[1] - target[1], eye[2] - target[2]), 0.01) << "frame " << k;
+    EXPECT_NEAR(std::hypot(up[0], up[1], up[2]), 1.0, 1e-6) << "frame " << k;
+    EXPECT_GT(camera["fov_y_degrees"].get<double>(), 1.0);
+  }
+  const RunResult bare = run("render " + scene_.string() + " -q --plan --json --set render.hud=false");
+  ASSERT_EQ(bare.exitCode, 0) << bare.output;
+  for (const nlohmann::json& frame : nlohmann::json::parse(bare.output)["frames"])
+    EXPECT_TRUE(frame["overlay_lines"].empty()) << frame.dump();
+  // Without --plan there is no plan to print: refused naming both, nothing written.
+  const RunResult alone = run("render " + scene_.string() + " -q --json -o " + (dir_ / "alone.mp4").string());
+  EXPECT_EQ(alone.exitCode, 2) << alone.output;
+  EXPECT_NE(alone.output.find("--json: prints the --plan as one JSON document"), std::string::npos) << alone.output;
+  EXPECT_FALSE(fs::exists(dir_ / "alone.mp4"));
 }
 
 // One row of the plan's playback table.

@@ -9,6 +9,10 @@
 //   node tests/web/wasm_core_test.js --module M.js --binary build/coinroll bad-scenes CASES.json
 //       every scene refusal of tests/cli/bad_inputs.py (its --export-scene-cases file): the
 //       module's CoinrollError carries the program's message, byte for byte;
+//   node tests/web/wasm_core_test.js --module M.js --binary build/coinroll visual
+//       the visual track (core.visualRun) of a few scenes against `coinroll render SCENE --plan
+//       --json`: the clip's clock at every frame, and the camera and overlay at every frame that
+//       lies on a row of the track;
 //   node tests/web/wasm_core_test.js --module M.js api
 //       the JavaScript surface itself: default scene, options, progress and cancelling.
 //
@@ -55,9 +59,10 @@ function parseArguments(argv) {
     else rest.push(argv[i]);
   }
   [options.mode, options.cases] = rest;
-  if (!options.module || !['examples', 'bad-scenes', 'api'].includes(options.mode) ||
+  if (!options.module || !['examples', 'bad-scenes', 'visual', 'api'].includes(options.mode) ||
       (options.mode !== 'api' && !options.binary) || (options.mode === 'bad-scenes' && !options.cases)) {
-    console.error('usage: wasm_core_test.js --module M.js [--binary coinroll] examples [--markdown FILE] | bad-scenes CASES.json | api');
+    console.error('usage: wasm_core_test.js --module M.js [--binary coinroll] examples [--markdown FILE] | ' +
+                  'bad-scenes CASES.json | visual | api');
     process.exit(2);
   }
   return options;
@@ -307,6 +312,181 @@ function badScenes(core, options, checks) {
 }
 
 // ---------------------------------------------------------------------------------------------
+// visual
+
+// The scenes whose visual track is held against the program's plan: the default (fixed camera, no
+// remap), a toss (follow camera, flight and impact slow-downs, landing's hold), the Euler's disk's
+// first 20 s (the rate remap) and a skid to rolling (sliding). Under the Euler's disk's remap no
+// frame but the first falls on a row, so it runs again with the remap's limit out of reach: its
+// 20 s of overlay and camera are then compared at every frame.
+const kVisualScenes = [
+  { scene: null, overrides: [] },
+  { scene: 'examples/coin_toss.json', overrides: [] },
+  { scene: 'examples/euler_disk.json', overrides: ['duration=20'] },
+  { scene: 'examples/euler_disk.json', overrides: ['duration=20', 'render.time_remap.precession_rate=1e6'] },
+  { scene: 'examples/skid_and_spin.json', overrides: [] },
+];
+// The clock is the same code on the same doubles on both sides, but a frame time under a time remap
+// is a sum of steps from libm's pow and the integrator's dense output, so it may part by round-off
+// that the sum carries along: to this part of itself, or absolutely for a value that is 0.
+const kClockTolerance = 1e-9;
+const kClockFloor = 1e-12;
+// The camera is single precision (render::CameraView): a few of float's ulps of a position of order
+// 0.1-1 m, and of a field of view in degrees.
+const kCameraTolerance = 1e-5;
+// s: a frame "lies on" a row when their times agree to this (a frame time k time_scale / fps or a
+// sum of steps, a row time k sampleDt: the same instant computed two ways).
+const kOnRow = 1e-9;
+
+// The overlay's first line, the time to the millisecond. A frame time summed step by step may lie
+// a few ulps from its row's k sampleDt, and at a half millisecond the two then round apart (in
+// coin_toss 5 of the 89 frames on rows: 0.11249999999999999 s prints 0.112, the row's 0.1125 s
+// 0.113): the same instant computed two ways, not drift. Such a line passes when each side prints
+// its own time and the two are a millisecond apart.
+const kTimeLine = /^t +(\d+\.\d{3}) s$/;
+function timeLinesRoundApart(programLine, trackLine, frameTime, rowTime) {
+  const p = kTimeLine.exec(programLine);
+  const w = kTimeLine.exec(trackLine || '');
+  const half = 5e-4 * (1 + 1e-9);
+  return frameTime !== rowTime && p !== null && w !== null && Math.abs(Number(p[1]) - frameTime) <= half &&
+    Math.abs(Number(w[1]) - rowTime) <= half && Math.abs(Math.abs(Number(p[1]) - Number(w[1])) - 1e-3) < 1e-9;
+}
+
+const withinClock = (a, b) => Math.abs(a - b) <= Math.max(kClockTolerance * Math.abs(b), kClockFloor);
+
+// The lines render's overlay adds after the track's own (pipeline::overlayExtraLines): the speed
+// the frame plays at, or the landing's hold. How many there are follows the playback rate alone.
+function extraOverlayLines(rate) {
+  if (rate === 0) return { count: 1, prefix: 'landed, held ' };
+  const slowdown = 1 / rate;
+  if (slowdown > 1 + 1e-9) return { count: 1, prefix: 'slow motion ×' };
+  if (slowdown < 1 - 1e-9) return { count: 1, prefix: 'fast forward ×' };
+  return { count: 0, prefix: '' };
+}
+
+function compareVisual(core, binary, { scene, overrides }, checks) {
+  const label = `${scene || 'built-in default scene'}${overrides.length ? ' ' + overrides.join(' ') : ''}`;
+  const program = runProgram(binary, ['render', ...(scene ? [scene] : []), '--plan', '--json', '-q',
+                                      ...overrides.flatMap((o) => ['--set', o])], kRepo);
+  if (program.status !== 0) {
+    checks.record(label, [`render --plan --json exits ${program.status}: ${program.stderr.trim()}`]);
+    return;
+  }
+  const plan = JSON.parse(program.stdout);
+  const sceneText = scene ? fs.readFileSync(path.join(kRepo, scene), 'utf8') : null;
+  const result = core.visualRun(sceneText, overrides, {});
+  const { clock } = result.visual;
+  const problems = [];
+
+  // (a) The clock: the frames before the landing's hold, then every frame's time and rate.
+  const holdFrames = plan.landed ? Math.round(plan.hold_seconds * plan.fps) : 0;
+  const planSimulated = plan.frames.length - holdFrames;
+  if (planSimulated !== plan.simulated_frames) {
+    problems.push(`the plan's ${plan.frames.length} frames less ${holdFrames} held are not its simulated_frames ` +
+                  `${plan.simulated_frames}`);
+  }
+  if (clock.simulatedFrames !== planSimulated) {
+    problems.push(`${clock.simulatedFrames} simulated frames where the program plans ${planSimulated}`);
+  }
+  if (clock.times.length !== plan.frames.length || clock.playbackRates.length !== plan.frames.length) {
+    problems.push(`${clock.times.length} frames in all where the program plans ${plan.frames.length}`);
+  }
+  if (clock.fps !== plan.fps) problems.push(`fps ${clock.fps} where the program plans ${plan.fps}`);
+  const frames = Math.min(clock.times.length, plan.frames.length);
+  let maxTime = 0;
+  let maxRate = 0;
+  const relative = (a, b) => (a === b ? 0 : Math.abs(a - b) / Math.max(Math.abs(b), kClockFloor));
+  for (let k = 0; k < frames; ++k) {
+    const p = plan.frames[k];
+    const t = clock.times[k];
+    const rate = clock.playbackRates[k];
+    maxTime = Math.max(maxTime, relative(t, p.sim_time_s));
+    maxRate = Math.max(maxRate, relative(rate, p.playback_rate));
+    if (!withinClock(t, p.sim_time_s)) problems.push(`frame ${k}: time ${t} where the program plans ${p.sim_time_s}`);
+    if (!withinClock(rate, p.playback_rate)) {
+      problems.push(`frame ${k}: playback rate ${rate} where the program plans ${p.playback_rate}`);
+    }
+    if (problems.length > 20) break;
+  }
+
+  // (b) At each frame before the hold whose time lies on a row of the track: the camera, and the SI
+  // overlay without the lines render adds after it.
+  const rowTimes = result.columns.t;
+  const { cameras, overlay } = result.visual;
+  const rows = overlay.si.length;
+  if (cameras.fov.length !== rows || rowTimes.length !== rows) {
+    problems.push(`the track has ${cameras.fov.length} cameras and ${rowTimes.length} rows for ${rows} overlays`);
+  }
+  let onRows = 0;
+  let maxCamera = 0;
+  let overlayMismatches = 0;
+  let firstOverlayMismatch = null;
+  let cameraMismatches = 0;
+  let firstCameraMismatch = null;
+  let timesRoundedApart = 0;
+  for (let k = 0; k < Math.min(frames, planSimulated); ++k) {
+    const p = plan.frames[k];
+    const r = Math.round(p.sim_time_s / result.sampleDt);
+    if (r >= rows || Math.abs(rowTimes[r] - p.sim_time_s) > kOnRow) continue;
+    if (Math.abs(rowTimes[r] - r * result.sampleDt) > kOnRow) {
+      problems.push(`row ${r} lies at ${rowTimes[r]} s, not ${r} sampleDt = ${r * result.sampleDt} s`);
+      break;
+    }
+    ++onRows;
+    const camera = p.camera;
+    const differences = [
+      ...['eye', 'target', 'up'].flatMap((name) => camera[name].map((v, i) => Math.abs(cameras[name][3 * r + i] - v))),
+      Math.abs(cameras.fov[r] - camera.fov_y_degrees)];
+    const worst = Math.max(...differences);
+    maxCamera = Math.max(maxCamera, worst);
+    if (!(worst <= kCameraTolerance)) {
+      ++cameraMismatches;
+      if (!firstCameraMismatch) {
+        const at = (name) => cameras[name].slice(3 * r, 3 * r + 3).join(', ');
+        firstCameraMismatch = `frame ${k} (row ${r}, t = ${p.sim_time_s} s) by ${worst.toExponential(2)}: eye ` +
+          `${at('eye')}, target ${at('target')}, up ${at('up')}, fov ${cameras.fov[r]} where the program draws ` +
+          JSON.stringify(camera);
+      }
+    }
+    const extra = extraOverlayLines(p.playback_rate);
+    const lines = p.overlay_lines;
+    const own = lines.slice(0, lines.length - extra.count);
+    if (extra.count && !(lines[lines.length - 1] || '').startsWith(extra.prefix)) {
+      problems.push(`frame ${k}: the overlay's last line "${lines[lines.length - 1]}" is not ` +
+                    `"${extra.prefix}..." at rate ${p.playback_rate}`);
+    }
+    const track = overlay.si[r].split('\n');
+    if (own.length === track.length && own[0] !== track[0] &&
+        timeLinesRoundApart(own[0], track[0], p.sim_time_s, rowTimes[r]) &&
+        own.slice(1).join('\n') === track.slice(1).join('\n')) {
+      ++timesRoundedApart;
+    } else if (own.join('\n') !== overlay.si[r]) {
+      ++overlayMismatches;
+      if (!firstOverlayMismatch) {
+        const i = own.findIndex((line, j) => line !== track[j]);
+        const at = i < 0 ? own.length : i;
+        firstOverlayMismatch = `frame ${k} (row ${r}, t = ${p.sim_time_s} s) overlay line ${at + 1}: ` +
+          `"${track[at]}" where the program draws "${own[at]}"`;
+      }
+    }
+  }
+  if (firstCameraMismatch) problems.push(`${cameraMismatches} cameras differ, the first at ${firstCameraMismatch}`);
+  if (firstOverlayMismatch) problems.push(`${overlayMismatches} overlays differ, the first at ${firstOverlayMismatch}`);
+  if (onRows === 0) problems.push('no frame lies on a row of the track: nothing of the camera or overlay compared');
+  checks.record(label, problems,
+                `${plan.frames.length} frames (${planSimulated} before the hold), sampleDt ${result.sampleDt}; ` +
+                `clock: max relative difference ${maxTime.toExponential(1)} in time, ${maxRate.toExponential(1)} in ` +
+                `playback rate; ${onRows} frames on rows: camera max difference ${maxCamera.toExponential(1)}, ` +
+                `${onRows - overlayMismatches - timesRoundedApart} of ${onRows} overlays identical` +
+                (timesRoundedApart ? `, ${timesRoundedApart} but for the time rounded apart (frame and row ` +
+                                     'times a few ulps apart at a half millisecond)' : ''));
+}
+
+function visual(core, options, checks) {
+  for (const scene of kVisualScenes) compareVisual(core, options.binary, scene, checks);
+}
+
+// ---------------------------------------------------------------------------------------------
 // api
 
 function api(core, checks) {
@@ -400,6 +580,7 @@ async function main() {
   const checks = new Checks();
   if (options.mode === 'examples') examples(core, options, checks);
   else if (options.mode === 'bad-scenes') badScenes(core, options, checks);
+  else if (options.mode === 'visual') visual(core, options, checks);
   else api(core, checks);
   checks.finish();
 }

@@ -228,7 +228,7 @@ case("file-not-utf8", C, "Latin-1 byte in a string (not UTF-8)", SIM, 2,
      files={"scene.json": VALID.encode()[:-1] + b', "name": "caf\xe9"}'})
 case("file-bom", C, "UTF-8 byte-order mark before the JSON (must work)", SIM, 0, None,
      files={"scene.json": b"\xef\xbb\xbf" + VALID.encode()}, produces=("o.csv",))
-PROBE3 = "accepted or unclear before (issue 21, third probe)"
+PROBE3 = "accepted or unclear before"
 case("file-nul-then-garbage", C, "a valid scene, then a NUL byte and garbage (the NUL ended the parse)", SIM, 2,
      "scene.json: invalid JSON at line 1, column", key="NUL", files={"scene.json": VALID.encode() + b"\0 xyz {"},
      na_before=PROBE3)
@@ -240,23 +240,23 @@ case("file-deep-in-field", C, "a million nested arrays as render.camera.eye", SI
      "render.camera.eye: must be an array of three finite numbers", key="render.camera.eye",
      files={"scene.json": VALID[:-1] + ', "render": {"camera": {"eye": ' + "[" * 1_000_000 + "]" * 1_000_000 + "}}}"})
 
-# `-` as the scene is standard input for every command that takes one (issue 50: it was taken for
+# `-` as the scene is standard input for every command that takes one (before: it was taken for
 # a file named "-"); a file redirected in is an input no output may replace.
-ISSUE50_STDIN = "read a file named - before (issue 50)"
+STDIN_BEFORE = "read a file named - before"
 case("stdin-scene", C, "simulate - < scene.json (must work)", "exec {bin} simulate - --csv o.csv < scene.json", 0, None,
-     shell=True, produces=("o.csv",), na_before=ISSUE50_STDIN)
+     shell=True, produces=("o.csv",), na_before=STDIN_BEFORE)
 for command in ("simulate - --csv o.csv", "steady -", "render - -o o.mp4", "still - --time 0.1 -o o.png",
                 "sweep - --grid initial.theta=1:2:2 -o o.csv", "export - -o o.html"):
     case(f"stdin-bad-{command.split()[0]}", C, f"{command} < a scene with coin.radius -1: its message names stdin",
          "exec {bin} " + command + " < bad.json", 2, "standard input: coin.radius: must be in [1e-06, 1000] m, got -1",
-         key="standard input", shell=True, files={"bad.json": scene(coin={"radius": -1})}, na_before=ISSUE50_STDIN)
+         key="standard input", shell=True, files={"bad.json": scene(coin={"radius": -1})}, na_before=STDIN_BEFORE)
 case("stdin-closed", C, "simulate - with standard input closed", "exec {bin} simulate - --csv o.csv <&-", 2,
      "scene -: standard input is closed; give the scene on it (coinroll simulate - < scene.json), or name the scene "
-     "file instead of -", key="standard input", shell=True, na_before=ISSUE50_STDIN)
+     "file instead of -", key="standard input", shell=True, na_before=STDIN_BEFORE)
 case("stdin-output-is-input", C, "simulate - --csv scene.json < scene.json: the CSV would replace the scene read",
      "exec {bin} simulate - --csv scene.json < scene.json", 2,
      "--csv scene.json: that is the input /dev/stdin; choose another output name", key="--csv", shell=True,
-     na_before=ISSUE50_STDIN)
+     na_before=STDIN_BEFORE)
 
 # --- JSON syntax and values
 C = "scene values"
@@ -340,8 +340,8 @@ case("huge-spin", C, "initial.omega_Z 1e300 rad/s", SIM, 2, "initial.omega_Z", k
      files={"scene.json": scene(initial={"omega_Z": 1e300})})
 
 # --- the coin's rim: coin.thickness makes the coin a solid, coin.edge_radius rounds its rim (docs/contract.md §5)
-# Meaning (issue 21, section 5): what a scene says is what runs, or it is refused.
-MEANING = "accepted before, with another meaning (issue 21, section 5)"
+# Meaning: what a scene says is what runs, or it is refused.
+MEANING = "accepted before, with another meaning"
 case("theta-beyond-flat-euler", C, "initial.theta 89.5 in the Euler-angle formulation, whose flat stop is 89 deg",
      SIM + " --set initial.theta=89.5 --set solver.formulation=euler-angles", 2,
      'initial.theta: 89.5 deg is at or beyond ±89 deg, where this run stops (coin-flat: the formulation\'s limit near '
@@ -366,7 +366,7 @@ case("phi-huge", C, "initial.phi 1e20 deg (the heading froze)", SIM + " --set in
 case("duration-hopeless", C, "duration 1e6 s of a wobbling coin: 8.5e7 steps, more than a run may take",
      SIM + " --set duration=1e6 --sample-dt 1000", 1,
      "steps to reach t = 1000000 s at its pace so far", key="duration",
-     timeout=150, na_before="failed after 5e7 steps (30 s) before (issue 21, section 5)")
+     timeout=150, na_before="failed after 5e7 steps (30 s) before")
 case("steady-infinite-rate", C, "steady circle at 1e-200 deg without spin: omega_Y would be inf",
      "steady --kind circle --theta 1e-200 --omega-Z 0", 2,
      "initial.steady: this steady motion needs rates beyond any number (omega_X = 0, omega_Y = inf", key="initial.steady",
@@ -644,14 +644,14 @@ C = "--set"
 case("set-not-utf8", C, "--set name=<byte 0xFF> on a sweep (a scene is UTF-8)",
      "exec {bin} sweep scene.json -q -o o.csv --grid initial.theta=5:10:2 --set $'name=\\xff'", 2,
      "--set name: the value is not UTF-8 text; scene values are UTF-8, as in a JSON file", key="--set name", shell=True,
-     na_before="a library's message, exit 1, before (issue 21, second probe)")
+     na_before="a library's message, exit 1, before")
 case("set-negative", C, "--set coin.radius=-1", SIM + " --set coin.radius=-1", 2,
      "scene.json: coin.radius: must be in [1e-06, 1000] m, got -1", key="coin.radius")
 case("set-unknown-key", C, "--set nosuch=1", SIM + " --set nosuch=1", 2, "nosuch: unknown key; allowed here:",
      key="nosuch")
 case("set-unknown-nested", C, "--set coin.nosuch=1", SIM + " --set coin.nosuch=1", 2,
      "coin.nosuch: unknown key; allowed here: shape,", key="coin.nosuch")
-NULL_KEY = "accepted in silence before (issue 50)"
+NULL_KEY = "accepted in silence before"
 case("set-unknown-key-null", C, "--set nosuch=null (null removes a key: there is no such key)",
      SIM + " --set nosuch=null", 2, "--set nosuch=null: nosuch: unknown key; allowed here: name,", key="nosuch",
      na_before=NULL_KEY)
@@ -679,8 +679,8 @@ case("set-wrong-type", C, "--set initial=[1,2]", SIM + " --set 'initial=[1,2]'",
      "initial: must be an object, got an array", key="initial")
 case("set-range", C, "--set initial.theta=100", SIM + " --set initial.theta=100", 2, "initial.theta: must be in",
      key="theta", gtest=(G_CMDLINE,))
-# Messages (issue 21, section 6): each says what happened and what to do.
-MESSAGES = "a misleading message before (issue 21, section 6)"
+# Messages: each says what happened and what to do.
+MESSAGES = "a misleading message before"
 EFFECTS2 = scene(effects=[{"type": "air_drag"}, {"type": "rolling_resistance", "length": 1e-6}])
 case("set-list-index", C, "--set effects.1.length=2e-6 changes the second effect (must work)",
      SIM + " --set effects.1.length=2e-6", 0, None, files={"scene.json": EFFECTS2}, produces=("o.csv",))
@@ -697,7 +697,7 @@ case("set-unsigned-64", C, "--set render.width=18446744073709551615 (read as -1 
 case("key-control-characters", C, "a scene key holding a NUL and a terminal escape: shown escaped, never raw", SIM, 2,
      'scene.json: "ab\\u0000c\\u001b[31m": unknown key', key="unknown key",
      files={"scene.json": VALID[:-1] + ', "ab\\u0000c\\u001b[31m": 1}'}, na_before=MESSAGES)
-ESCAPED = "shown raw before (issue 21, second probe)"
+ESCAPED = "shown raw before"
 case("name-escape-in-summary", C, "still -o with a terminal escape in the name: the summary shows it escaped",
      "exec {bin} still scene.json --time 0.1 " + SMALL + " -o $'\\e[31mred.png'", 0,
      "coinroll: wrote \\x1b[31mred.png (64x48", key="wrote", shell=True, produces=("\x1b[31mred.png",), na_before=ESCAPED)
@@ -715,7 +715,7 @@ case("shader-dir-directory", C, "$COINROLL_SHADER_DIR holding a directory named 
 
 # --- the command line
 C = "command line"
-EMPTY = "read as 0 or as absent before (issue 21, second probe)"
+EMPTY = "read as 0 or as absent before"
 for command, option in (("still scene.json -o s.png --time ''", "--time"),
                         ("compare a.png b.png --min-psnr ''", "--min-psnr"),
                         ("sweep scene.json -o o.csv --grid initial.theta=1:2:2 --threads ''", "--threads")):
@@ -730,7 +730,7 @@ case("cmd-misspelt", C, "misspelt command simulat", "simulat scene.json", 2,
      "unknown command 'simulat'; the commands are simulate,", key="simulat", gtest=(G_ABSURD,))
 case("cmd-case", C, "command in capitals (Simulate)", "Simulate scene.json --csv o.csv", 2,
      "unknown command 'Simulate'", key="Simulate")
-CONVENTIONS = "no such behaviour before (issue 39.4)"
+CONVENTIONS = "no such behaviour before"
 G_CONVENTIONS = "CliTest.HelpCommandIsTheCommandsHelpAndAMisspeltCommandGetsASuggestion"
 case("cmd-suggestion", C, "misspelt command rendr: the command it is a slip of is suggested", "rendr scene.json", 2,
      "(coinroll --help); did you mean 'render'?", key="rendr", na_before=CONVENTIONS, gtest=(G_CONVENTIONS,))
@@ -780,7 +780,7 @@ case("max-frames-text", C, "--max-frames abc", REN.replace("--set ", "") + "--ma
      "--max-frames: must be a whole number >= 1, got abc", key="--max-frames", na_before="no --max-frames before")
 case("render-avi", C, "render -o o.avi", "render scene.json -o o.avi", 2,
      "o.avi: unknown output kind: expected a video ending in .mp4, .gif, .webm or .mov", key=".mp4", gtest=(G_RENDER,))
-FORMATS = "no such option or scene field before (issue 24)"
+FORMATS = "no such option or scene field before"
 RW = "render scene.json -q -o o.mp4 "
 case("size-unknown", C, "render --size 4k", RW + "--size 4k", 2,
      "--size 4k: unknown size; give 480p, 720p, 1080p, 1440p or 2160p", key="--size", gtest=(G_RENDER,),
@@ -801,8 +801,8 @@ case("from-empty", C, "render --from ''", RW + "--from ''", 2, "--from: the valu
 case("window-without-frames", C, "render --from 0.21 --to 0.22: no frame at 30 fps in between",
      RW + "--from 0.21 --to 0.22", 2, "--from 0.21 --to 0.22: no frame's simulated time lies in this window",
      key="--from", gtest=(G_RENDER,), na_before=FORMATS)
-# Windows by video time and the dry run (issue 39.2): one clock at a time, each refusal naming both options.
-VIDEO_TIME = "no video-time windows and no --plan before (issue 39.2)"
+# Windows by video time and the dry run: one clock at a time, each refusal naming both options.
+VIDEO_TIME = "no video-time windows and no --plan before"
 case("from-and-from-video", C, "render --from 1 --from-video 2: two clocks", RW + "--from 1 --from-video 2", 2,
      "--from and --from-video cannot be combined: --from counts simulated seconds, --from-video seconds of video",
      key="--from-video", na_before=VIDEO_TIME)
@@ -871,14 +871,14 @@ case("still-time-nan", C, "still --time nan", "still scene.json --time nan -o o.
 case("still-no-time", C, "still without --time", "still scene.json -o o.png", 2, "--time is required")
 case("still-jpg", C, "still -o o.jpg", "still scene.json --time 0.1 -o o.jpg", 2,
      'a still is written as PNG; give a name ending in .png, got "o.jpg"', key=".png")
-# One rule for every output name (issue 39): an extension in any case, as render takes clip.GIF.
+# One rule for every output name: an extension in any case, as render takes clip.GIF.
 case("still-upper-png", C, "still -o UP.PNG (.png in any case)", f"still scene.json --time 0.1 {SMALL} -o UP.PNG", 0, None,
      produces=("UP.PNG",))
 case("render-seq-upper-png", C, "render -o F_%03d.PNG (.png in any case)",
      f"render scene.json -q {SMALL} --set duration=0.1 -o F_%03d.PNG", 0, None, produces=("F_00[0-3].PNG",))
 case("panels-without-strobe", C, "still --panels without --strobe", "still scene.json --time 0.1 -o o.png --panels", 2,
      "--panels: lays out the --strobe copies side by side, and there are none; give --strobe N too", key="--panels",
-     na_before="no --panels before (issue 39.2)")
+     na_before="no --panels before")
 case("strobe-negative", C, "still --strobe -3", "still scene.json --time 0.1 -o o.png --strobe -3", 2,
      "--strobe: must be 0 to 500 copies, got -3", key="--strobe")
 case("strobe-from-late", C, "--strobe-from after --time",
@@ -901,19 +901,19 @@ case("steady-branch", C, "steady --branch x", "steady --kind circle --theta 20 -
 for option, value in (("--theta", "nan"), ("--omega-Z", "-inf")):
     case(f"steady-{option[2:].lower()}-{value.strip('-')}", C, f"steady {option} {value}",
          f"steady --kind circle {'--omega-Z 10' if option == '--theta' else '--theta 20'} {option} {value}", 2,
-         f"{option}: must be a finite number, got {value}", key=option, na_before="said 'got null' before (issue 21)")
+         f"{option}: must be a finite number, got {value}", key=option, na_before="said 'got null' before")
 case("steady-kind-with-set", C, "steady --kind circle with --set initial.phi=45: the --set lands on the kind's block",
      "exec {bin} steady --kind circle --omega-Z 10 --set initial.theta=20 --set initial.phi=45 > out.txt", 0, None,
      shell=True, produces=("out.txt",),
      check=lambda d: None if '"theta": 20, "phi": 45,' in (d / "out.txt").read_text() else "the --set values were dropped",
-     na_before="--set initial.* was dropped before (issue 21)")
+     na_before="--set initial.* was dropped before")
 
-# Issue 50: "inf" was refused as if it were a negative time.
+# Before, "inf" was refused as if it were a negative time.
 case("to-video-inf", C, "render --to-video inf (meant: to the end)", RW + "--to-video inf", 2,
      "--to-video inf: must be a finite number of seconds (video time >= 0 s); leave --to-video out for the clip's end",
      key="--to-video", na_before=VIDEO_TIME)
 
-# Issue 50: --version was refused under a COINROLL_GL that only drawing needs.
+# Before, --version was refused under a COINROLL_GL that only drawing needs.
 case("version-bad-gl", C, "COINROLL_GL=bogus coinroll --version: the version all the same, the value named",
      "COINROLL_GL=bogus exec {bin} --version 1>&2", 0,
      "; COINROLL_GL=bogus: not an OpenGL back end; accepted values: ", key="COINROLL_GL", shell=True)
@@ -941,7 +941,7 @@ case("grid-repeated-key", C, "the same key on two --grid axes",
      SW + "--grid initial.theta=1:2:2 --grid initial.theta=3:4:2", 2, "initial.theta")
 case("grid-unknown-key", C, "--grid over a key the scene does not have", SW + "--grid nosuch.key=1:2:3", 2,
      "nosuch")
-PROBE = "exit 0 with an error on every row before (issue 21, probes)"
+PROBE = "exit 0 with an error on every row before"
 for key, holds, message in (("coin", "an object", "coin: must be an object, got 1"),
                             ("name", "text", "name: must be a string, got 1"),
                             ("sliding", "true or false", "sliding: must be true or false, got 1"),
@@ -964,22 +964,22 @@ for value, gt in (("4/3", True), ("0/3", True), ("1/0", False), ("x", False)):
          SW + "--grid initial.theta=1:2:3 --shard " + value, 2,
          f"--shard {value}: expected K/N with 1 <= K <= N, e.g. --shard 2/8", key="--shard",
          gtest=(G_SWEEP,) if gt else ())
-# Listed and geometric axes, --shard auto/N (issue 25).
-ISSUE25 = "no listed or geometric axes, no --shard auto/N before (issue 25)"
+# Listed and geometric axes, --shard auto/N.
+AXES_BEFORE = "no listed or geometric axes, no --shard auto/N before"
 case("grid-list-repeated", C, "a value listed twice", SW + "--grid initial.theta=5,10,5", 2,
      "--grid initial.theta=5,10,5: 5 is listed twice; list each value once", key="--grid", gtest=(G_SWEEP,),
-     na_before=ISSUE25)
+     na_before=AXES_BEFORE)
 case("grid-list-empty-value", C, "an empty value in a list", SW + "--grid initial.theta=5,,10", 2,
-     '--grid initial.theta=5,,10: value 2 must be a finite number, got ""', key="--grid", na_before=ISSUE25)
+     '--grid initial.theta=5,,10: value 2 must be a finite number, got ""', key="--grid", na_before=AXES_BEFORE)
 case("grid-list-text", C, "a value that is no number in a list", SW + "--grid initial.theta=5,ten", 2,
-     '--grid initial.theta=5,ten: value 2 must be a finite number, got "ten"', key="--grid", na_before=ISSUE25)
+     '--grid initial.theta=5,ten: value 2 must be a finite number, got "ten"', key="--grid", na_before=AXES_BEFORE)
 case("grid-list-and-range", C, "a list mixed into a range", SW + "--grid initial.theta=1:10:3,4", 2,
      "--grid initial.theta=1:10:3,4: expected KEY.PATH=START:STOP:COUNT, KEY.PATH=START:STOP:COUNT:log or "
      "KEY.PATH=V1,V2,...", key="--grid")
 case("grid-log-zero", C, "a log axis from 0", SW + "--grid coin.mass=0:1:3:log", 2,
-     "--grid coin.mass=0:1:3:log: a log axis needs START > 0 and STOP > 0", key="--grid", na_before=ISSUE25)
+     "--grid coin.mass=0:1:3:log: a log axis needs START > 0 and STOP > 0", key="--grid", na_before=AXES_BEFORE)
 case("grid-log-negative", C, "a log axis to a negative STOP", SW + "--grid initial.theta=1:-10:3:log", 2,
-     "a log axis needs START > 0 and STOP > 0", key="--grid", na_before=ISSUE25)
+     "a log axis needs START > 0 and STOP > 0", key="--grid", na_before=AXES_BEFORE)
 case("grid-not-log", C, "a fourth field other than log", SW + "--grid initial.theta=1:10:3:lin", 2,
      '--grid initial.theta=1:10:3:lin: the field after COUNT must be log (geometric spacing), got "lin"', key="--grid",
      gtest=(G_SWEEP,))
@@ -987,16 +987,16 @@ case("shard-auto-no-task", C, "--shard auto/4 outside a Slurm array task",
      "exec env -u SLURM_ARRAY_TASK_ID {bin} " + SW + "--grid initial.theta=1:2:3 --shard auto/4", 2,
      "--shard auto/4: auto takes K from $SLURM_ARRAY_TASK_ID, which is not set: this is not a task of a Slurm job "
      "array; submit it with sbatch --array=1-4, or give K, e.g. --shard 1/4", key="--shard", shell=True,
-     gtest=("SweepCliTest.ShardAutoTakesKFromTheSlurmArrayTask",), na_before=ISSUE25)
+     gtest=("SweepCliTest.ShardAutoTakesKFromTheSlurmArrayTask",), na_before=AXES_BEFORE)
 for task in ("0", "5", "x"):
     case(f"shard-auto-task-{task}", C, f"--shard auto/4 in array task {task}",
          f"SLURM_ARRAY_TASK_ID={task} exec {{bin}} " + SW + "--grid initial.theta=1:2:3 --shard auto/4", 2,
          f'--shard auto/4: $SLURM_ARRAY_TASK_ID is "{task}", not a shard number 1 to 4; submit the array as '
          "--array=1-4 (task K computes shard K/4)", key="--shard", shell=True,
-         gtest=("SweepCliTest.ShardAutoTakesKFromTheSlurmArrayTask",) if task == "5" else (), na_before=ISSUE25)
+         gtest=("SweepCliTest.ShardAutoTakesKFromTheSlurmArrayTask",) if task == "5" else (), na_before=AXES_BEFORE)
 case("shard-auto-zero", C, "--shard auto/0", SW + "--grid initial.theta=1:2:3 --shard auto/0", 2,
      "--shard auto/0: expected K/N with 1 <= K <= N, e.g. --shard 2/8, or auto/N in a Slurm array task", key="--shard",
-     na_before=ISSUE25)
+     na_before=AXES_BEFORE)
 case("threads-negative", C, "--threads -1", SW + "--grid initial.theta=1:2:3 --threads -1", 2,
      "--threads: must be 1 to 1024 (0: every hardware thread), got -1", key="--threads", gtest=(G_SWEEP,))
 case("threads-huge", C, "--threads 100000", SW + "--grid initial.theta=1:2:3 --threads 100000", 2,
@@ -1009,7 +1009,7 @@ case("merge-repeated", C, "sweep-merge with a shard given twice", MERGE + "p1.cs
 case("merge-stdin-closed", C, "sweep-merge - with standard input closed (it read as an empty shard)",
      "exec {bin} " + MERGE + "p1.csv - <&-", 1,
      "standard input: closed, so there is no shard to read from it", key="standard input", shell=True, files=SHARDS,
-     na_before="called an empty shard before (issue 21, second probe)")
+     na_before="called an empty shard before")
 case("merge-empty-name", C, "sweep-merge with an empty shard name", MERGE + "p1.csv ''", 2,
      "a shard name is empty; give the shard files", key="shard name", files=SHARDS, na_before=PROBE3)
 case("merge-no-file", C, "sweep-merge of a shard that does not exist", MERGE + "p1.csv p3.csv", 1,
@@ -1028,7 +1028,7 @@ case("merge-truncated", C, "a shard cut off mid-row", MERGE + "p1.csv p2.csv", 1
 case("merge-no-point", C, "a row without its point number", MERGE + "bad.csv", 1,
      "bad.csv:2: a row must start with its point number", key="bad.csv",
      files={"bad.csv": HEADER + "\nx,1,duration,0.5,0.1,0.2,0.3,0.3,0.15,40,0123456789abcdef\n"})
-# Shards that know their sweep (issue 21 section 4): the identity columns grid_points and sweep.
+# Shards that know their sweep: the identity columns grid_points and sweep.
 case("merge-cut-at-line-break", C, "the last shard cut after a whole row (an interrupted `sweep -o - > part.csv`)",
      MERGE + "p1.csv p2.csv", 1, "sweep-merge: points missing (of 40 in the grid): 39", key="missing",
      files={**SHARDS, "p2.csv": shard(range(1, 39, 2))})
@@ -1077,8 +1077,8 @@ case("merge-from-pipes", C, "shards read from a pipe, a process substitution and
 case("merge-stdin-twice", C, "- (standard input) given twice", MERGE + "- -", 2,
      "sweep-merge: - (standard input) is given more than once", key="standard input", files=SHARDS)
 
-# Every cell of a row is of its column's type (issue 50: a theta_end edited to "abc" merged, exit 0).
-DAMAGED = "merged as it was before (issue 50)"
+# Every cell of a row is of its column's type (before: a theta_end edited to "abc" merged, exit 0).
+DAMAGED = "merged as it was before"
 
 
 def damaged_shard(row, column, value):
@@ -1112,25 +1112,25 @@ case("merge-failed-point-ok", C, "a shard with a failed point (end quoted, its s
      na_before=DAMAGED)
 case("merge-summary", C, "sweep-merge says what it wrote (must work)", MERGE + "p1.csv p2.csv", 0,
      "coinroll: wrote m.csv (40 points from 2 shards)", key="wrote", files=SHARDS, produces=("m.csv",),
-     na_before="no summary before (issue 50)")
+     na_before="no summary before")
 case("merge-quiet", C, "sweep-merge -q, like the other commands: nothing on stderr (must work)",
      "set -o pipefail; {bin} sweep-merge -q -o m.csv p1.csv p2.csv 2>&1 | (! grep .)", 0, None, shell=True,
-     files=SHARDS, produces=("m.csv",), na_before="no -q before (issue 50)")
+     files=SHARDS, produces=("m.csv",), na_before="no -q before")
 
-# The range's twin of a value listed twice (issue 50: three identical points before).
+# The range's twin of a value listed twice (before: three identical points before).
 case("grid-range-equal-ends", C, "--grid initial.theta=5:5:3: three points of one value",
      SW + "--grid initial.theta=5:5:3", 2,
      "--grid initial.theta=5:5:3: START and STOP are equal, so its 3 points would all be 5; give COUNT 1 for that one "
-     "value, or a STOP other than START", key="--grid", na_before="three identical points before (issue 50)")
+     "value, or a STOP other than START", key="--grid", na_before="three identical points before")
 case("grid-log-equal-ends", C, "--grid coin.mass=0.4:0.4:2:log", SW + "--grid coin.mass=0.4:0.4:2:log", 2,
      "--grid coin.mass=0.4:0.4:2:log: START and STOP are equal, so its 2 points would all be 0.4", key="--grid",
-     na_before="two identical points before (issue 50)")
+     na_before="two identical points before")
 
 # --- output paths
 C = "output paths"
-# A default output name (no -o) is never taken over from another scene's output (issue 39.4): the scene
+# A default output name (no -o) is never taken over from another scene's output: the scene
 # digest its provenance carries tells; a file that names no scene is not replaced either.
-DEFAULT_NAMES = "replaced silently before (issue 39.4)"
+DEFAULT_NAMES = "replaced silently before"
 
 
 def png_of_scene(digest):
@@ -1243,7 +1243,7 @@ case("name-255-utf8", C, "255-byte name of two-byte characters",
 case("name-256", C, "256-byte CSV name (one past the limit), refused before the run", f"simulate scene.json --csv a{LONG}.csv", 1,
      "cannot write: File name too long (256 bytes; this file system allows 255)", key="File name too long (256 bytes")
 
-# --- outputs that behave like Unix files (issue 21 part 1; docs/outputs.md): links are written through,
+# --- outputs that behave like Unix files (docs/outputs.md): links are written through,
 # devices, FIFOs and descriptors are streamed to, a replaced file keeps its mode, names are checked first
 C = "outputs as Unix files"
 CSV_HEAD = b"t,theta,phi,psi,"
@@ -1337,10 +1337,10 @@ case("dev-null-mp4", C, "render -o /dev/null (MP4 made in $TMPDIR, then copied; 
      check=lambda d: None if not any((d / "tmp").iterdir()) else "left a file in $TMPDIR")
 case("tmpdir-empty", C, "render -o /dev/null with TMPDIR='' (POSIX: as if unset, so /tmp)",
      "TMPDIR= exec {bin} " + SEQ + "/dev/null", 0, None, shell=True,
-     na_before="refused as 'no temporary directory' before (issue 21, second probe)")
+     na_before="refused as 'no temporary directory' before")
 case("mp4-name-with-percent", C, "render -o '100%.mp4': an MP4 named with a literal %", "exec {bin} " + SEQ + "'100%.mp4'", 0, None,
      shell=True, produces=("100%.mp4",), check=lambda d: None if is_mp4(d / "100%.mp4") else "100%.mp4 is not an MP4",
-     na_before="called a bad PNG sequence pattern before (issue 21, second probe)")
+     na_before="called a bad PNG sequence pattern before")
 case("procsub-csv", C, "--csv >(gzip > t.csv.gz) (a pipe under /dev/fd)",
      "{bin} simulate scene.json --csv >(gzip > t.csv.gz); rc=$?; wait $!; exit $rc", 0, None, shell=True,
      produces=("t.csv.gz",), check=lambda d: None if gzip.decompress((d / "t.csv.gz").read_bytes()).startswith(CSV_HEAD)
@@ -1390,12 +1390,12 @@ case("seq-frame-link", C, "a frame name that is a link: its target gets the fram
      SEQ + "f_%03d.png", 0, None, produces=("f_00[1-3].png",),
      files={"scene.json": VALID, "keep/zero.png": "old", "f_000.png": ("symlink", "keep/zero.png")},
      alters=("keep/zero.png",), check=check_link("f_000.png", "keep/zero.png", is_png))
-PROBE2 = "lost data before (issue 21, second probe)"
+PROBE2 = "lost data before"
 case("seq-stale-name-is-dir", C, "a directory named like a stale frame (f_005.png/ over 4 frames): left as it is",
      SEQ + "f_%03d.png", 0, None, produces=("f_00[0-3].png",), files={"scene.json": VALID, "f_005.png/keep.txt": "precious"},
      check=lambda d: None if (d / "f_005.png/keep.txt").read_text() == "precious" and
      not any(p.name.startswith(".") for p in d.iterdir()) else "the directory f_005.png was moved or a hidden name left",
-     na_before="hidden under .f_005.png.previous-* before (issue 21, second probe)")
+     na_before="hidden under .f_005.png.previous-* before")
 case("seq-frame-link-to-scene", C, "a frame name that is a link to the scene: refused before rendering, the scene kept",
      SEQ + "f_%03d.png", 2, "f_001.png: cannot write: it leads to scene.json, an input of this command",
      key="f_001.png", files={"scene.json": VALID, "f_001.png": ("symlink", "scene.json")}, na_before=PROBE2)
@@ -1421,7 +1421,7 @@ case("default-name-unsafe", C, "scenes named 'a/b' and 'a_b': two files",
 case("default-name-scene-file", C, "render without -o, two scenes without a name: named after their files, not both coinroll.mp4",
      f"{{bin}} render a.json -q {SMALL} --set duration=0.1 && exec {{bin}} render b.json -q {SMALL} --set duration=0.1",
      0, None, shell=True, files={"a.json": VALID, "b.json": VALID}, produces=("a.mp4", "b.mp4"),
-     check=check_files("*.mp4", is_mp4, count=2), na_before="no such behaviour before (issue 39.4)",
+     check=check_files("*.mp4", is_mp4, count=2), na_before="no such behaviour before",
      gtest=("CliTest.RenderWithoutANameOrOutputNamesTheVideoAfterTheSceneFile",))
 case("default-name-dot", C, "render without -o, scene named '.hidden': no hidden file",
      SEQ.replace("-o ", "") + "--set 'name=\".hidden\"'", 0, None, produces=("_hidden+*.mp4",),
@@ -1528,10 +1528,10 @@ case("sigint-sweep", C, "SIGINT during a sweep", "sweep scene.json --grid initia
 case("sigterm-sweep", C, "SIGTERM during a sweep", "sweep scene.json --grid initial.theta=1:20:100000 -o o.csv", 1,
      interrupted(TERM, "o.csv"), key="interrupted", signal=TERM)
 
-# Every signal whose default is to end the process is a request to stop, like SIGINT (issue 21,
+# Every signal whose default is to end the process is a request to stop, like SIGINT (
 # section 2: SIGHUP left 1491 hidden frames after 3 s); a second one, or the first left unanswered
 # for 3 s, ends the run at once, and neither leaves a file (docs/outputs.md, "Signals").
-ISSUE21 = "no such behaviour before (issue 21, section 2)"
+SIGNALS_BEFORE = "no such behaviour before"
 EARLIER = {"scene.json": VALID, "f_000.png": "earlier frame, must survive"}
 for sig in (signal.SIGHUP, signal.SIGQUIT, signal.SIGTERM, signal.SIGUSR1, signal.SIGXCPU):
     case(f"{sig.name.lower()}-sequence", C, f"{sig.name} during a PNG sequence over earlier frames",
@@ -1555,27 +1555,27 @@ FIFO_SIM = "simulate scene.json --csv fifo"
 case("sigint-twice-fifo", C, "a second SIGINT while opening a FIFO nobody reads", FIFO_SIM, 1,
      "interrupted by SIGINT twice: stopped at once; no unfinished file is left", key="interrupted",
      files={"scene.json": VALID, "fifo": Fifo}, signal=INT, then=((INT, 0.5),), wait_for="fifo", settle=0.1,
-     na_before=ISSUE21)
+     na_before=SIGNALS_BEFORE)
 case("sigterm-grace-fifo", C, "one SIGTERM while opening a FIFO nobody reads: ends after the 3 s grace", FIFO_SIM, 1,
      "interrupted by SIGTERM and not stopped within 3 s", key="interrupted", files={"scene.json": VALID, "fifo": Fifo},
-     signal=TERM, wait_for="fifo", settle=0.1, timeout=10, na_before=ISSUE21,
+     signal=TERM, wait_for="fifo", settle=0.1, timeout=10, na_before=SIGNALS_BEFORE,
      gtest=("SignalsCliTest.ARequestToStopNotAnsweredInTimeEndsTheRunAtOnce",))
-# Standard error a pipe whose reader is gone (issue 50): the forced end's line raised SIGPIPE inside
+# Standard error a pipe whose reader is gone: the forced end's line raised SIGPIPE inside
 # the handler that had just locked the list of unfinished files to remove them, and the SIGPIPE
 # handler waited for that lock, spinning at 100 % CPU until SIGKILL. No message can arrive; the exit
 # code, the time and the directory say it. A stop the loop answers writes its line from the program,
 # not a handler: SIGPIPE ends it silently, as a reader gone always does, after the removal.
 DEAD_STDERR = " 2> >(exit 0)"
-ISSUE50 = "spun for ever before (issue 50)"
+SPUN_BEFORE = "spun for ever before"
 case("sigterm-grace-fifo-stderr-gone", C, "one SIGTERM while opening a FIFO nobody reads, stderr a pipe nobody reads",
      "exec {bin} " + FIFO_SIM + DEAD_STDERR, 1, None, shell=True, files={"scene.json": VALID, "fifo": Fifo},
-     signal=TERM, wait_for="fifo", settle=0.1, timeout=10, na_before=ISSUE50)
+     signal=TERM, wait_for="fifo", settle=0.1, timeout=10, na_before=SPUN_BEFORE)
 case("sigint-twice-fifo-stderr-gone", C, "a second SIGINT while opening a FIFO nobody reads, stderr a pipe nobody reads",
      "exec {bin} " + FIFO_SIM + DEAD_STDERR, 1, None, shell=True, files={"scene.json": VALID, "fifo": Fifo},
-     signal=INT, then=((INT, 0.5),), wait_for="fifo", settle=0.1, timeout=10, na_before=ISSUE50)
+     signal=INT, then=((INT, 0.5),), wait_for="fifo", settle=0.1, timeout=10, na_before=SPUN_BEFORE)
 case("sigint-sequence-stderr-gone", C, "SIGINT during a PNG sequence, stderr a pipe nobody reads: no frame left",
      "exec {bin} " + LONG_RENDER + "f_%03d.png -q" + DEAD_STDERR, -signal.SIGPIPE, None, shell=True, files=EARLIER,
-     signal=INT, na_before=ISSUE50)
+     signal=INT, na_before=SPUN_BEFORE)
 # A signal ignored when coinroll starts stays ignored: nohup's SIGHUP.
 case("nohup-sighup", C, "SIGHUP under nohup (ignored from the start): the run goes on to its end",
      "trap '' HUP; exec {bin} simulate scene.json --csv o.csv --sample-dt 0.0005 --set duration=150", 0, None,
@@ -1589,19 +1589,19 @@ for sig in (signal.SIGSEGV, signal.SIGABRT):
          unsanitized="AddressSanitizer handles SIGSEGV itself: it reports, then aborts"
          if sig == signal.SIGSEGV else None)
 
-# A strobe's copies are drawn in one call that cannot poll (issue 50: exit 0 and the PNG): the
+# A strobe's copies are drawn in one call that cannot poll (before: exit 0 and the PNG): the
 # request is answered after the draw, before the file; panels are drawn one by one, each polled.
 # A draw on a loaded machine may outlast the 3 s grace: its forced end leaves no file either.
-STROBE50 = "exit 0 and the PNG before (issue 50)"
+STROBE_BEFORE = "exit 0 and the PNG before"
 case("sigint-still-strobe", C, "SIGINT while a still draws 500 strobe copies",
      "still scene.json --time 0.4 --strobe 500 -o o.png", 1, interrupted(INT, "o.png"),
      or_msg="interrupted by SIGINT and not stopped within 3 s", key="interrupted", signal=INT, wait_for="sleep",
-     na_before=STROBE50)
+     na_before=STROBE_BEFORE)
 case("sigterm-still-panels", C, "SIGTERM while a still draws 501 panels",
      "still scene.json --time 0.4 --strobe 500 --panels -o o.png --set render.width=320 --set render.height=180", 1,
-     interrupted(TERM, "o.png"), key="interrupted", signal=TERM, wait_for="sleep", na_before=STROBE50)
+     interrupted(TERM, "o.png"), key="interrupted", signal=TERM, wait_for="sleep", na_before=STROBE_BEFORE)
 
-# --- sidecars (issue 39.1): render --frame-times and simulate --provenance are outputs of their run like
+# --- sidecars: render --frame-times and simulate --provenance are outputs of their run like
 # the video or the CSV: one group, compared by the file a name leads to (not its spelling), published
 # with the rest or not at all, earlier files kept on a failure and on a signal (docs/outputs.md).
 C = "sidecars"
@@ -1669,7 +1669,7 @@ case("sigint-simulate-provenance", C, "SIGINT during simulate --provenance over 
      files={"scene.json": VALID, "o.csv": "an earlier CSV\n", "p.json": "an earlier provenance\n"},
      na_before=NO_SIDECARS, gtest=(G_SIDECAR_SIGNAL,))
 
-# --- export (issue 50): the page template is an input like the scene, read within a bound; the page
+# --- export: the page template is an input like the scene, read within a bound; the page
 # goes only under an HTML name, and its embedded scene cannot end or swallow the page's script.
 C = "export"
 PAGE_SLOT = '<script type="application/json" id="coinroll-scene">'
@@ -1682,7 +1682,7 @@ PAGE_TAIL = f"{PAGE_CONTROLS}<script>start()</script></html>"
 PAGE = f"<html>{PAGE_SLOT}null</script>{OPTIONS_SLOT}null</script>{PAGE_TAIL}"
 EXPORT = "COINROLL_PAGE=page.html exec {bin} export scene.json -q "
 WITH_PAGE = {"scene.json": VALID, "page.html": PAGE}
-EATEN = "no such check before (issue 50)"
+EATEN = "no such check before"
 
 
 def check_embedded_scene(name, scene_name):
@@ -1737,9 +1737,9 @@ case("export-name-comment-script", C, "a scene name holding '<!--' then '<script
      files={"scene.json": scene(name=HOSTILE_NAME), "page.html": PAGE},
      check=check_embedded_scene("o.html", HOSTILE_NAME), na_before=EATEN)
 
-# --- export's options for a course page (issue 52): each refused, naming the option and the fix,
+# --- export's options for a course page: each refused, naming the option and the fix,
 # before anything is written; the title and caption go into the page as JSON with no '<' in it.
-NO_PAGE_OPTIONS = "no page options before (issue 52)"
+NO_PAGE_OPTIONS = "no page options before"
 CONTROLS_VALID = ("give control keys as the page's tooltips name them (initial.theta, initial.omega_Z, friction) "
                   "or a group (all, initial, floor), separated by commas")
 case("export-controls-unknown", C, "--controls naming a key the page has no control for",
@@ -1834,14 +1834,14 @@ case("compare-different", C, "every pixel differs by 2 levels", "compare a.png b
      "", key=None, files=PNGS, na_before=NO_COMPARE)
 case("compare-within-tolerance", C, "the same pictures within --channel-tolerance 2",
      "compare a.png b.png --channel-tolerance 2", 0, "", key=None, files=PNGS, na_before=NO_COMPARE)
-ISSUE21_5 = "accepted before (issue 21, section 5)"
+ACCEPTED_BEFORE = "accepted before"
 case("compare-16-bit", C, "two 16-bit PNGs that differ in every low byte (read as 8 bits they were equal)",
      "compare a16.png b16.png", 2, "a16.png: 16 bits per channel; compare reads 8-bit PNGs", key="16 bits",
-     files={"a16.png": png(8, 8, 10, bit_depth=16), "b16.png": png(8, 8, 20, bit_depth=16)}, na_before=ISSUE21_5)
+     files={"a16.png": png(8, 8, 10, bit_depth=16), "b16.png": png(8, 8, 20, bit_depth=16)}, na_before=ACCEPTED_BEFORE)
 case("compare-bad-crc", C, "a PNG whose IDAT chunk fails its CRC (the decoder ignores CRCs)",
      "compare a.png bad.png", 2, "bad.png: chunk IDAT fails its CRC check at byte 33: a damaged or truncated PNG",
-     key="CRC", files={"a.png": png(64, 48), "bad.png": png(64, 48, damage_at=14)}, na_before=ISSUE21_5)
-UNCLEAR_BEFORE = "a library's message before (issue 21, second probe)"
+     key="CRC", files={"a.png": png(64, 48), "bad.png": png(64, 48, damage_at=14)}, na_before=ACCEPTED_BEFORE)
+UNCLEAR_BEFORE = "a library's message before"
 case("compare-empty-name", C, "compare '' a.png", "compare '' a.png", 2, "a PNG name is empty", key="PNG name",
      files={"a.png": png(8, 8)}, na_before=PROBE3)
 case("compare-bad-zlib", C, "a PNG whose IDAT is not zlib data (its CRC right)", "compare a.png bad.png", 2,
@@ -1884,11 +1884,11 @@ def big_png(width, height, shade=128):
     return make
 
 
-# A PNG of one colour is tiny on disk for any size it declares (issue 21: 389 KB for 20000x20000,
+# A PNG of one colour is tiny on disk for any size it declares (before: 389 KB for 20000x20000,
 # 1.5 GiB decoded); sizes are judged from the headers, and what will not fit is refused, before
 # anything is decoded. The address-space limit (1 GB, above what the binary maps to start) makes
 # any decoding of these fail loudly.
-ISSUE21_3 = "no such check before (issue 21, section 3)"
+UNCHECKED_BEFORE = "no such check before"
 HUGE = {"huge.png": png_header_only(20000, 20000), "a.png": png(64, 48), "max.png": png_header_only(7680, 7680),
         "max2.png": png_header_only(7680, 7680)}
 case("compare-header-size-first", C, "a PNG declaring 20000x20000 against a 64x48 one: refused by the headers",
@@ -1897,11 +1897,11 @@ case("compare-header-size-first", C, "a PNG declaring 20000x20000 against a 64x4
 case("compare-too-large", C, "two PNGs declaring 20000x20000: more than compare decodes",
      "ulimit -v 1000000; exec {bin} compare huge.png huge.png", 2,
      "are 20000x20000, more than the 58982400 pixels compare decodes (7680x7680, the largest picture coinroll draws)",
-     key="20000x20000", shell=True, files=HUGE, timeout=5, na_before=ISSUE21_3)
+     key="20000x20000", shell=True, files=HUGE, timeout=5, na_before=UNCHECKED_BEFORE)
 case("compare-memory", C, "two 7680x7680 PNGs under a 650 MB address-space limit: refused before decoding",
      "ulimit -v 650000; exec {bin} compare max.png max2.png", 2,
      "not enough memory for comparing two 7680x7680 pictures: it needs about 675 MiB", key="memory", shell=True,
-     files=HUGE, timeout=5, na_before=ISSUE21_3)
+     files=HUGE, timeout=5, na_before=UNCHECKED_BEFORE)
 # A decode cannot stop half-way; on a loaded machine one can outlast the 3 s grace, and then the
 # grace's own ending (exit 2, nothing left, no verdict) is the designed outcome, not a failure.
 case("compare-sigint", C, "SIGINT while decoding two 7680x7680 pictures: stops, exit 2 (never a verdict)",
@@ -1925,38 +1925,38 @@ case("points-absurd", C, "one grid axis of 10^9 points", SW + "--grid initial.th
 case("strobe-absurd", C, "still --strobe 100000000", f"still scene.json --time 0.1 -o o.png --strobe 100000000", 2,
      "--strobe: must be 0 to 500 copies, got 100000000", key="--strobe", timeout=5)
 
-# Issue 50: 5e8 rows ran without a word (150 GB of CSV); the count was a fraction ("1.5 rows").
-ISSUE50_ROWS = "ran, or counted rows as a fraction, before (issue 50)"
+# Before, 5e8 rows ran without a word (150 GB of CSV); the count was a fraction ("1.5 rows").
+ROWS_BEFORE = "ran, or counted rows as a fraction, before"
 case("rows-sample-dt-1e-9", C, "--sample-dt 1e-9 on a 0.5 s run: 5e8 rows", SIM + " --sample-dt 1e-9", 2,
      "--sample-dt 1e-09: duration 0.5 s gives 500000001 rows (about 150 GB of CSV), more than the limit 100000000; "
-     "raise --sample-dt, or the limit with --max-rows", key="rows", timeout=5, na_before=ISSUE50_ROWS)
+     "raise --sample-dt, or the limit with --max-rows", key="rows", timeout=5, na_before=ROWS_BEFORE)
 case("rows-whole-count", C, "--sample-dt 1 --max-rows 1 on a 0.5 s run: one row, t = 0 (must work)",
-     SIM + " --sample-dt 1 --max-rows 1", 0, None, produces=("o.csv",), na_before=ISSUE50_ROWS)
+     SIM + " --sample-dt 1 --max-rows 1", 0, None, produces=("o.csv",), na_before=ROWS_BEFORE)
 case("rows-whole-count-refused", C, "--sample-dt 0.3 --max-rows 1 on a 0.5 s run: 2 rows, not 2.667",
      SIM + " --sample-dt 0.3 --max-rows 1", 2, "--sample-dt 0.3: duration 0.5 s gives 2 rows (about 0.6 kB of CSV), "
-     "more than the limit 1", key="rows", na_before=ISSUE50_ROWS)
+     "more than the limit 1", key="rows", na_before=ROWS_BEFORE)
 
-# Issue 50: the hopeless-pace refusal took 31-42 s; the toss at 1e6 s ran on past 60 s (now more
+# Before, the hopeless-pace refusal took 31-42 s; the toss at 1e6 s ran on past 60 s (now more
 # rows than the limit at the default --sample-dt).
 EXAMPLES = REPO / "examples"
 case("pace-hopeless-ring", C, "the ring at omega_Z 1e6 rad/s for 1000 s: 2.7e8 steps, refused within seconds",
      "simulate ring.json --set initial.omega_Z=1e6 --set duration=1000 --csv /dev/null", 1,
      "integration would need about 2.7e+08 steps to reach t = 1000 s at its pace so far", key="steps",
-     files={"ring.json": (EXAMPLES / "ring.json").read_text()}, timeout=15, na_before="refused after 31-42 s before (issue 50)",
+     files={"ring.json": (EXAMPLES / "ring.json").read_text()}, timeout=15, na_before="refused after 31-42 s before",
      unsanitized="the check is the time, and the sanitizers run the integration several times slower")
 case("toss-no-effects-1e6", C, "the toss without effects for 1e6 s at the default 0.01 s: 1e8 rows, refused up front",
      "simulate coin_toss.json --set effects=[] --set duration=1e6 --csv o.csv", 2,
      "--sample-dt 0.01: duration 1000000 s gives 100000001 rows", key="rows",
      files={"coin_toss.json": (EXAMPLES / "coin_toss.json").read_text()}, timeout=5,
-     na_before="ran on past 60 s before (issue 50)")
+     na_before="ran on past 60 s before")
 case("toss-no-effects-1e6-coarse", C, "the same toss sampled every 1000 s: 2.6e8 steps over thousands of segments",
      "simulate coin_toss.json --set effects=[] --set duration=1e6 --sample-dt 1000 --csv o.csv", 1,
      "steps to reach t = 1000000 s at its pace so far", key="steps",
      files={"coin_toss.json": (EXAMPLES / "coin_toss.json").read_text()}, timeout=20,
-     na_before="ran on past 5 minutes before: each segment's pace was judged alone (issue 50)",
+     na_before="ran on past 5 minutes before: each segment's pace was judged alone",
      unsanitized="the check is the time, and the sanitizers run the integration several times slower")
 
-# --- resources (issue 21, section 3): what a command needs is checked before it starts, and what
+# --- resources: what a command needs is checked before it starts, and what
 # runs out is named. OpenGL on llvmpipe does not check its allocations (it segfaulted or hung);
 # the pictures here need about 2 GiB, more than a 1.5 GB address-space limit leaves after the
 # binary's own 0.35 GB.
@@ -1988,10 +1988,10 @@ case("out-of-memory-named", C, "an 8 MiB scene under a 16 MB address-space limit
      "ulimit -v 16000; exec {bin} simulate big.json --csv o.csv", 1,
      "out of memory: the address-space limit of 16 MiB (ulimit -v 16000) is used up", key="memory", shell=True,
      files={"big.json": VALID[:-1] + " " * (8 << 20) + "}"}, timeout=10)
-# Issue 50: the scene reader took 16 MiB for any scene, so a 400-byte one could not run under 16 MB.
+# Before, the scene reader took 16 MiB for any scene, so a 400-byte one could not run under 16 MB.
 case("small-scene-small-limit", C, "a small scene under a 12 MB address-space limit runs (reads in chunks)",
      "ulimit -v 12000; exec {bin} simulate scene.json --csv o.csv", 0, None, produces=("o.csv",), shell=True,
-     timeout=10, na_before="out of memory under 16 MB before (issue 50)")
+     timeout=10, na_before="out of memory under 16 MB before")
 # A 16 MiB array is eight million JSON values: parsed, it took 128 MB, and as much again to free,
 # which under a 250 MB limit ended the program in std::terminate as the scene's error unwound.
 case("scene-too-many-values", C, "a 16 MB scene array of zeros under a 250 MB address-space limit",

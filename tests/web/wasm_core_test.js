@@ -530,7 +530,7 @@ function api(core, checks) {
               (e) => e.kind === 'request' && e.exitCode === 2 && e.message === 'sampleDt: must be a finite number > 0 s, got 0');
   expectThrow('a run past maxRows is refused before it starts', () => core.simulateCsv(null, [], { maxRows: 100 }),
               (e) => e.kind === 'request' && /gives 601 rows, more than the limit 100/.test(e.message));
-  // The command's rule, not a copy of it (issue 50): rows are whole, as the run writes them.
+  // The command's rule, not a copy of it: rows are whole, as the run writes them.
   checks.record('one row at sampleDt 1 on a 0.5 s run fits maxRows 1',
                 core.simulateCsv(null, ['duration=0.5'], { sampleDt: 1, maxRows: 1 }).rows === 1 ? [] : ['refused']);
   expectThrow('sampleDt 0.3 on a 0.5 s run is 2 whole rows, past maxRows 1',

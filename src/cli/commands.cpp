@@ -27,6 +27,7 @@
 #include "pipeline/simulation.h"
 #include "pipeline/still.h"
 #include "pipeline/trajectory_samples.h"
+#include "pipeline/plan_report.h"
 #include "pipeline/video_frames.h"
 #include "render/camera.h"
 #include "video/async_sink.h"

@@ -20,6 +20,7 @@
 #include "pipeline/slow_motion.h"
 #include "scene/scene_config.h"
 #include "pipeline/cancelled.h"
+#include "pipeline/clip_window.h"
 #include "render/frame_snapshot.h"
 #include "video/frame_sink.h"
 
@@ -40,37 +41,6 @@ struct FrameTiming {
   // the next frame times fps (the last simulated frames keep the pace before; 0 in a landing's hold).
   double playbackRate = 0;
 };
-
-// The frames a render writes: those whose simulated time lies in [from, to] (render --from/--to), or
-// whose video time k / fps does (--from-video/--to-video), or the last `last` s of video (--last),
-// each within kWindowTolerance, exactly as the full render draws them. `to` past the end means the end.
-struct TimeWindow {
-  enum class Clock { Simulated, Video };
-  double from = 0;                                      // s on `clock`
-  double to = std::numeric_limits<double>::infinity();  // s on `clock`
-  Clock clock = Clock::Simulated;
-  // s of video: instead of from and to, the frames that play in the clip's last `last` seconds
-  // (frame k plays from k / fps to (k + 1) / fps, so the window lasts exactly `last` s of video).
-  std::optional<double> last = std::nullopt;
-};
-inline constexpr double kWindowTolerance = 1e-9;  // s: a frame time computed as a sum may miss a bound by round-off
-
-// The frames [first, last] of `plan` that `window` keeps (frame times only grow, so they are a run of
-// frames). Throws std::invalid_argument naming the window's options when it keeps none.
-struct FrameRange {
-  long first = 0;
-  long last = -1;
-};
-FrameRange framesIn(const ClipPlan& plan, const TimeWindow& window);
-
-// `render --plan`'s report: the video's length and frames, the simulated span, the frames `window`
-// keeps on both clocks, and a small table of the playback rate (and the contact point's rate, as
-// measured and as seen on screen) over the clip, a row wherever either has changed by a quarter.
-std::vector<std::string> planLines(const ClipPlan& plan, const TimeWindow& window);
-
-// The lines render's overlay shows after its own at frame k of `plan`: the slow motion or fast
-// forward the frame plays at, or, in the landing's hold, that the landing is held.
-std::vector<std::string> overlayExtraLines(const ClipPlan& plan, long k);
 
 // What render draws a frame with besides the coin and the trace, as its snapshot holds it.
 struct FrameView {

@@ -53,7 +53,7 @@ constexpr int kReferenceScale = 4;  // the reference's width and height, times t
 struct Picture {
   std::string name;
   scene::SceneConfig scene;
-  double time = 0;      // s of simulated time shown
+  double time = 0;  // s of simulated time shown
   bool isVideoFrame = false;
 };
 
@@ -64,9 +64,12 @@ struct Method {
 };
 
 std::vector<Method> methods() {
-  return {{"none", Antialiasing::Msaa, 1},    {"msaa 2x", Antialiasing::Msaa, 2},
-          {"msaa 4x", Antialiasing::Msaa, 4}, {"msaa 8x", Antialiasing::Msaa, 8},
-          {"fxaa", Antialiasing::Fxaa, 1},    {"ssaa 2x2", Antialiasing::Ssaa, 1},
+  return {{"none", Antialiasing::Msaa, 1},
+          {"msaa 2x", Antialiasing::Msaa, 2},
+          {"msaa 4x", Antialiasing::Msaa, 4},
+          {"msaa 8x", Antialiasing::Msaa, 8},
+          {"fxaa", Antialiasing::Fxaa, 1},
+          {"ssaa 2x2", Antialiasing::Ssaa, 1},
           {"ssaa 2x2 + msaa 4x", Antialiasing::Ssaa, 4}};
 }
 
@@ -264,8 +267,9 @@ std::vector<Row> measurePicture(render::GlBackend backend, const Picture& pictur
 }
 
 void printTable(const std::vector<Row>& rows) {
-  fmt::print("| back end | picture | method | samples | edge mean | edge p99 | edge PSNR dB | all mean | ms/frame "
-             "| cost / msaa 4x |\n|---|---|---|---|---|---|---|---|---|---|\n");
+  fmt::print(
+      "| back end | picture | method | samples | edge mean | edge p99 | edge PSNR dB | all mean | ms/frame "
+      "| cost / msaa 4x |\n|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Row& r : rows) {
     if (r.samplesGranted == 0) {
       fmt::print("| {} | {} | {} | n/a | | | | | | |\n", r.backend, r.picture, r.method);
@@ -298,8 +302,10 @@ int main(int argc, char** argv) {
   std::string csvPath = "docs/data/antialias_quality.csv";
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string flag = argv[i];
-    if (flag == "--repeats") repeats = std::atoi(argv[i + 1]);
-    else if (flag == "--csv") csvPath = argv[i + 1];
+    if (flag == "--repeats")
+      repeats = std::atoi(argv[i + 1]);
+    else if (flag == "--csv")
+      csvPath = argv[i + 1];
     else {
       fmt::print(stderr, "usage: antialias_quality [--repeats N] [--csv file]\n");
       return 2;
@@ -323,9 +329,10 @@ int main(int argc, char** argv) {
       for (const Row& row : measurePicture(backend, picture, repeats)) rows.push_back(row);
     }
   }
-  fmt::print("antialias_quality: error in 8-bit levels against a {0}x{0}-size reference; edge pixels: reference "
-             "contrast > {1} levels; cost: median of {2} draws\n\n",
-             kReferenceScale, kEdgeContrast, repeats);
+  fmt::print(
+      "antialias_quality: error in 8-bit levels against a {0}x{0}-size reference; edge pixels: reference "
+      "contrast > {1} levels; cost: median of {2} draws\n\n",
+      kReferenceScale, kEdgeContrast, repeats);
   printTable(rows);
   writeCsv(rows, csvPath);
   fmt::print("\nCSV: {}\n", csvPath);

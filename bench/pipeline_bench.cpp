@@ -157,8 +157,9 @@ int main(int argc, char** argv) {
   fmt::print("pipeline_bench: 10 s at 30 fps, 1280x720, x264 veryfast crf 18; llvmpipe threads: {}\n\n",
              lpThreads ? lpThreads : "default");
   const WallAndCpu reference = ffmpegTestPattern();
-  fmt::print("| camera, anti-aliasing, x264 threads | render s | encode s | both s | both CPU s | both / slower | "
-             "real time x | both / ffmpeg, wall | both / ffmpeg, CPU |\n|---|---|---|---|---|---|---|---|---|\n");
+  fmt::print(
+      "| camera, anti-aliasing, x264 threads | render s | encode s | both s | both CPU s | both / slower | "
+      "real time x | both / ffmpeg, wall | both / ffmpeg, CPU |\n|---|---|---|---|---|---|---|---|---|\n");
   struct Case {
     std::string camera, antialiasing;
     int threads;
@@ -172,9 +173,10 @@ int main(int argc, char** argv) {
                t.pipelineCpu, t.pipeline / slower, 10.0 / t.pipeline, t.pipeline / reference.wall,
                t.pipelineCpu / reference.cpu);
   }
-  fmt::print("\nffmpeg -f lavfi -i testsrc2=size=1280x720:rate=30 -frames:v 300 -c:v libx264 -preset veryfast -crf 18 "
-             "-f null -: wall {:.2f} s, CPU {:.2f} s\n",
-             reference.wall, reference.cpu);
+  fmt::print(
+      "\nffmpeg -f lavfi -i testsrc2=size=1280x720:rate=30 -frames:v 300 -c:v libx264 -preset veryfast -crf 18 "
+      "-f null -: wall {:.2f} s, CPU {:.2f} s\n",
+      reference.wall, reference.cpu);
   fmt::print("\n| default scene, 12 s clip | wall s | CPU s | faster than real time x |\n|---|---|---|---|\n");
   for (const std::string antialiasing : {"msaa", ""}) {
     const WallAndCpu clip = defaultClip(antialiasing, out);

@@ -166,8 +166,7 @@ void antialiasingQuality() {
     int msaa;
   };
   for (const Mode& mode : {Mode{"none", Antialiasing::Msaa, 1}, Mode{"msaa 2", Antialiasing::Msaa, 2},
-                           Mode{"msaa 4", Antialiasing::Msaa, 4},
-                           Mode{"fxaa", Antialiasing::Fxaa, 1}}) {
+                           Mode{"msaa 4", Antialiasing::Msaa, 4}, Mode{"fxaa", Antialiasing::Fxaa, 1}}) {
     RenderSettings small;
     small.width = kWidth;
     small.height = kHeight;
@@ -262,10 +261,10 @@ void frameSplit(int frames) {
     Renderer renderer(settings);
     coinroll::image::Image frame;
     return 1000.0 / framesPerSecond(frames, [&](int i) {
-      FrameSnapshot s = benchSnapshot(i / 30.0);
-      edit(s);
-      renderer.draw(s, frame);
-    });
+             FrameSnapshot s = benchSnapshot(i / 30.0);
+             edit(s);
+             renderer.draw(s, frame);
+           });
   };
   const auto unchanged = [](FrameSnapshot&) {};
   const auto noTrace = [](FrameSnapshot& s) { s.trace.clear(); };

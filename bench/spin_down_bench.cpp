@@ -23,11 +23,11 @@ namespace {
 using namespace coinroll;
 
 struct Measurement {
-  double seconds = 0;   // wall, best of five
+  double seconds = 0;  // wall, best of five
   long evaluations = 0;
   long steps = 0;
-  double end = 0;       // s of simulated time
-  double budget = 0;    // |E + dissipated - E0| / E0 at the end
+  double end = 0;     // s of simulated time
+  double budget = 0;  // |E + dissipated - E0| / E0 at the end
 };
 
 Measurement measure(const pipeline::Simulation& simulation) {
@@ -59,8 +59,7 @@ Measurement measure(const pipeline::Simulation& simulation) {
 }  // namespace
 
 int main() {
-  const scene::SceneConfig toy =
-      scene::loadScene(std::string(COINROLL_SOURCE_DIR) + "/examples/euler_disk.json", {});
+  const scene::SceneConfig toy = scene::loadScene(std::string(COINROLL_SOURCE_DIR) + "/examples/euler_disk.json", {});
 
   struct Case {
     std::string name;

@@ -86,8 +86,11 @@ nlohmann::json landedFlip(double psi, double turns, double upSpeed, double resti
   const double L = m.I_X * turns * 2 * std::numbers::pi;
   return {{"coin", {{"radius", m.a}, {"mass", m.M}, {"thickness", 1.75e-3}, {"edge_radius", 0.3e-3}}},
           {"initial",
-           {{"theta", -89.999}, {"omega_X", L * std::sin(psi) / m.I_X}, {"omega_Z", L * std::cos(psi) / m.I_Z},
-            {"y", 0.3}, {"v_y", upSpeed}}},
+           {{"theta", -89.999},
+            {"omega_X", L * std::sin(psi) / m.I_X},
+            {"omega_Z", L * std::cos(psi) / m.I_Z},
+            {"y", 0.3},
+            {"v_y", upSpeed}}},
           {"friction", 0.3},
           {"sliding", true},
           {"flight", true},
@@ -100,8 +103,8 @@ nlohmann::json landedFlip(double psi, double turns, double upSpeed, double resti
 struct LandedOutcome {
   bool headsUp = false;
   bool onEdge = false;  // the event on-edge: no face up (docs/flight.md §4a)
-  std::string end;  // the event's name, or "duration"
-  double t = 0;     // s, simulated
+  std::string end;      // the event's name, or "duration"
+  double t = 0;         // s, simulated
   long evaluations = 0;
 };
 
@@ -196,8 +199,9 @@ int main(int argc, char** argv) {
   std::ofstream landedCsv(out / "toss_landed.csv");
   landedCsv << "restitution,tosses,same_side,caught_same_side,ms_per_toss,decided_at_s,to_rest_ms_per_toss\n";
   fmt::print("\nNatural flips (spread 15 deg) landing on a table 0.3 m below the hand, friction 0.3\n");
-  fmt::print("| restitution | tosses | same side, landed | same side, caught | ms per toss, decided | "
-             "decided after (s) | ms per toss, to rest | endings |\n|---|---|---|---|---|---|---|---|\n");
+  fmt::print(
+      "| restitution | tosses | same side, landed | same side, caught | ms per toss, decided | "
+      "decided after (s) | ms per toss, to rest | endings |\n|---|---|---|---|---|---|---|---|\n");
   const int kLanded = argc > 2 ? std::stoi(argv[2]) : 2000;
   std::vector<double> restitutions = {0.2, 0.5, 0.8};
   if (argc > 3) {
@@ -269,7 +273,9 @@ int main(int argc, char** argv) {
     restLines.push_back(fmt::format("| {} | {} | {:.1f} | {:.0f} |", restitution, restTimes.size(), median(restTimes),
                                     median(restEvaluations)));
   }
-  fmt::print("\nFlips to rest (every tenth decided flip)\n| restitution | flips | median ms | median evaluations |\n"
-             "|---|---|---|---|\n{}\n", fmt::join(restLines, "\n"));
+  fmt::print(
+      "\nFlips to rest (every tenth decided flip)\n| restitution | flips | median ms | median evaluations |\n"
+      "|---|---|---|---|\n{}\n",
+      fmt::join(restLines, "\n"));
   if (!landedCsv) throw std::runtime_error("could not write toss_landed.csv");
 }

@@ -76,7 +76,8 @@ double encodeSeconds(const std::vector<Image>& distinctFrames, int threads, cons
 double ffmpegTestPatternSeconds(const std::string& extraOptions) {
   const std::string command =
       "ffmpeg -hide_banner -loglevel error -nostdin -f lavfi -i testsrc2=size=1280x720:rate=30 -frames:v 300 "
-      "-c:v libx264 -preset veryfast " + extraOptions + " -f null -";
+      "-c:v libx264 -preset veryfast " +
+      extraOptions + " -f null -";
   const Clock::time_point start = Clock::now();
   if (std::system(command.c_str()) != 0) return NAN;
   return secondsSince(start);
@@ -85,9 +86,10 @@ double ffmpegTestPatternSeconds(const std::string& extraOptions) {
 // The ffmpeg tool given our frames through a pipe: the same content and the same RGBA -> yuv420p
 // job, so the ratio compares the code paths rather than how hard the pictures are to compress.
 double ffmpegSameFramesSeconds(const std::vector<Image>& frames, int threads) {
-  const std::string command = "ffmpeg -hide_banner -loglevel error -f rawvideo -pix_fmt rgba -s 1280x720 -r 30 -i - "
-                              "-c:v libx264 -preset veryfast -crf 18 -threads " +
-                              std::to_string(threads) + " -f null -";
+  const std::string command =
+      "ffmpeg -hide_banner -loglevel error -f rawvideo -pix_fmt rgba -s 1280x720 -r 30 -i - "
+      "-c:v libx264 -preset veryfast -crf 18 -threads " +
+      std::to_string(threads) + " -f null -";
   const Clock::time_point start = Clock::now();
   FILE* pipe = popen(command.c_str(), "w");
   if (pipe == nullptr) return NAN;
@@ -197,9 +199,8 @@ void compareScalerFlags(const Image& source) {
     const double cbRms = rmsError(reference.cb, yuv->data[1], kWidth / 2, kHeight / 2, yuv->linesize[1]);
     const double crRms = rmsError(reference.cr, yuv->data[2], kWidth / 2, kHeight / 2, yuv->linesize[2]);
     const double chromaRms = std::sqrt((cbRms * cbRms + crRms * crRms) / 2);
-    std::printf("%-44s %9.2f %8.3f %8.2f %8.3f %8.2f dB%s\n", candidate.name, milliseconds, lumaRms, lumaMax,
-                chromaRms, roundTripPsnr(source, *yuv),
-                candidate.flags == detail::kRgbaToYuvScalerFlags ? "  <- used" : "");
+    std::printf("%-44s %9.2f %8.3f %8.2f %8.3f %8.2f dB%s\n", candidate.name, milliseconds, lumaRms, lumaMax, chromaRms,
+                roundTripPsnr(source, *yuv), candidate.flags == detail::kRgbaToYuvScalerFlags ? "  <- used" : "");
   }
 }
 

@@ -144,8 +144,9 @@ std::vector<Point> sweepCase(const Case& c, const StateVec& reference, const Tim
   for (Method method : {Method::Dopri5, Method::Dop853}) {
     for (double tol : tolerances) {
       const SolverConfig config{.method = method, .rtol = tol, .atol = tol};
-      record(measure(c, std::string(integrate::nameOf(method)), false, tol, reference,
-                     [&](bool track) { return runOurs(c, config, track); }, timing));
+      record(measure(
+          c, std::string(integrate::nameOf(method)), false, tol, reference,
+          [&](bool track) { return runOurs(c, config, track); }, timing));
     }
   }
   const double T = physics::naturalTime(c.model);
@@ -153,14 +154,15 @@ std::vector<Point> sweepCase(const Case& c, const StateVec& reference, const Tim
     Method method;
     int firstHalving, lastHalving, stride;  // dt = T / 2^k
   };
-  for (const FixedSweep& sweep : {FixedSweep{Method::Euler, 4, 16, 2}, FixedSweep{Method::Rk4, 1, 10, 1},
-                                  FixedSweep{Method::Gauss4, 1, 9, 1}}) {
+  for (const FixedSweep& sweep :
+       {FixedSweep{Method::Euler, 4, 16, 2}, FixedSweep{Method::Rk4, 1, 10, 1}, FixedSweep{Method::Gauss4, 1, 9, 1}}) {
     for (int k = sweep.firstHalving; k <= sweep.lastHalving; k += sweep.stride) {
       const double dt = T / std::pow(2.0, k);
       if (c.tEnd / dt > kMaxFixedSteps) break;
       const SolverConfig config{.method = sweep.method, .dt = dt};
-      record(measure(c, std::string(integrate::nameOf(sweep.method)), false, dt, reference,
-                     [&](bool track) { return runOurs(c, config, track); }, timing));
+      record(measure(
+          c, std::string(integrate::nameOf(sweep.method)), false, dt, reference,
+          [&](bool track) { return runOurs(c, config, track); }, timing));
     }
   }
   const std::pair<const char*, PeerRun> peers[] = {{"odeint_dopri5", boostDopri5},
@@ -169,7 +171,8 @@ std::vector<Point> sweepCase(const Case& c, const StateVec& reference, const Tim
                                                    {"cvode_adams", cvodeAdams}};
   for (const auto& [name, peer] : peers) {
     for (double tol : tolerances) {
-      record(measure(c, name, true, tol, reference, [&](bool track) { return peer(c, tol, track); }, timing));
+      record(measure(
+          c, name, true, tol, reference, [&](bool track) { return peer(c, tol, track); }, timing));
     }
   }
   return points;
@@ -228,10 +231,8 @@ void writeCases(const std::filesystem::path& path, const std::vector<Case>& case
 void writeRatios(const std::filesystem::path& path, const std::vector<Point>& points, const std::vector<Case>& cases) {
   std::ofstream out(path);
   out << "case,target_error,peer,our_dop853_seconds,peer_seconds,ratio\n";
-  const std::pair<const char*, double> peers[] = {{"odeint_dopri5", 0.5},
-                                                  {"odeint_fehlberg78", 1.0},
-                                                  {"odeint_bulirsch_stoer", 0.0},
-                                                  {"cvode_adams", 0.1}};
+  const std::pair<const char*, double> peers[] = {
+      {"odeint_dopri5", 0.5}, {"odeint_fehlberg78", 1.0}, {"odeint_bulirsch_stoer", 0.0}, {"cvode_adams", 0.1}};
   fmt::print("\nOur DOP853 time / peer time at equal relative state error (target ratio in brackets)\n");
   fmt::print("{:>10} {:>7} {:>22} {:>22} {:>22} {:>22}\n", "case", "error", "odeint_dopri5 [0.5]",
              "odeint_fehlberg78 [1]", "odeint_bulirsch_stoer", "cvode_adams [0.1]");
@@ -265,8 +266,10 @@ int main(int argc, char** argv) {
   Timing timing{3, 0.1};
   for (int i = 1; i < argc; ++i) {
     const std::string argument = argv[i];
-    if (argument == "--quick") timing = {1, 0.01};
-    else csvPath = argument;
+    if (argument == "--quick")
+      timing = {1, 0.01};
+    else
+      csvPath = argument;
   }
   const std::vector<Case> cases = benchmarkCases();
   std::vector<Point> points;

@@ -121,10 +121,10 @@ py::dict steady(const coinroll::Scene& scene) {
 }
 
 py::tuple sweep(const coinroll::Scene& scene, const std::vector<std::string>& axes, int threads) {
-  coinroll::SweepTable table = interruptible(
-      [&](const std::atomic<bool>* cancel) { return coinroll::sweep(scene, axes, threads, cancel); });
-  return py::make_tuple(table.columns.names, arraysOwning(std::move(table.columns.values)), table.end,
-                        table.gridPoints, table.digest);
+  coinroll::SweepTable table =
+      interruptible([&](const std::atomic<bool>* cancel) { return coinroll::sweep(scene, axes, threads, cancel); });
+  return py::make_tuple(table.columns.names, arraysOwning(std::move(table.columns.values)), table.end, table.gridPoints,
+                        table.digest);
 }
 
 // The Python keyword of each argument the C++ API names in an ArgumentError, so a message names

@@ -8,6 +8,7 @@ here=$(cd "$(dirname "$0")" && pwd)
 
 packages=(
   cmake g++ pkg-config make
+  clang-format-14  # the lint tier's layout check (tests/lint/check_format.py); another version lays code out otherwise
   libeigen3-dev nlohmann-json3-dev libcli11-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libosmesa6-dev libglm-dev libstb-dev zlib1g-dev

@@ -184,8 +184,10 @@ void renderVideo(const Scene& scene, const std::filesystem::path& output, const 
     // The command's rules for its -o, checked in the same order before any work.
     const std::string outputName = marked("output");
     if (output.empty()) {
-      throw std::invalid_argument(fmt::format("{}: the file name is empty; give the file to write, e.g. \"clip.mp4\" "
-                                              "(or \"frame_%05d.png\" for a PNG sequence)", outputName));
+      throw std::invalid_argument(
+          fmt::format("{}: the file name is empty; give the file to write, e.g. \"clip.mp4\" "
+                      "(or \"frame_%05d.png\" for a PNG sequence)",
+                      outputName));
     }
     const scene::SceneConfig& config = scene.impl().config;
     const video::VideoOptions encoding = config.render.mp4Options();
@@ -206,25 +208,41 @@ void renderVideo(const Scene& scene, const std::filesystem::path& output, const 
 SteadyState steady(const Scene& scene) {
   const scene::SceneConfig& config = scene.impl().config;
   if (!std::holds_alternative<scene::SteadyInitial>(config.initial)) {
-    throw std::invalid_argument(fmt::format("{}: initial: names no steady state; give {{\"steady\": \"straight\" | "
-                                            "\"circle\" | \"spin-in-place\", ...}}", scene.impl().sourceName));
+    throw std::invalid_argument(
+        fmt::format("{}: initial: names no steady state; give {{\"steady\": \"straight\" | "
+                    "\"circle\" | \"spin-in-place\", ...}}",
+                    scene.impl().sourceName));
   }
   const pipeline::Simulation simulation = translatingErrors([&] { return pipeline::buildSimulation(config); });
   const physics::CoinModel& m = simulation.model;
   const physics::CoinState& s = simulation.initial;
   const physics::SteadyReport report = physics::steadyReport(m, s);
   constexpr std::array<const char*, 3> kVerdicts = {"stable", "unstable", "marginal"};  // TiltStability::Kind's order
-  SteadyState state{
-      .mass = m.M, .radius = m.a, .gravity = m.g, .inertiaX = m.I_X, .inertiaZ = m.I_Z,
-      .thickness = m.rim.thickness, .edgeRadius = m.rim.edgeRadius,
-      .naturalRate = report.naturalRate, .criticalSpin = report.criticalSpin,
-      .theta = s.theta * kDegreesPerRadian, .phi = s.phi * kDegreesPerRadian, .psi = s.psi * kDegreesPerRadian,
-      .omega_X = s.omega_X, .omega_Y = s.omega_Y, .omega_Z = s.omega_Z, .x = s.x, .z = s.z,
-      .precessionRate = report.precessionRate, .spinRate = report.spinRate,
-      .centreOfMassRadius = report.radii.centreOfMass, .contactRadius = report.radii.contact,
-      .normalForce = report.reaction.N, .frictionForce = report.reaction.F,
-      .stiffness = report.stiffness,
-      .stability = kVerdicts[static_cast<std::size_t>(report.stability.kind)]};
+  SteadyState state{.mass = m.M,
+                    .radius = m.a,
+                    .gravity = m.g,
+                    .inertiaX = m.I_X,
+                    .inertiaZ = m.I_Z,
+                    .thickness = m.rim.thickness,
+                    .edgeRadius = m.rim.edgeRadius,
+                    .naturalRate = report.naturalRate,
+                    .criticalSpin = report.criticalSpin,
+                    .theta = s.theta * kDegreesPerRadian,
+                    .phi = s.phi * kDegreesPerRadian,
+                    .psi = s.psi * kDegreesPerRadian,
+                    .omega_X = s.omega_X,
+                    .omega_Y = s.omega_Y,
+                    .omega_Z = s.omega_Z,
+                    .x = s.x,
+                    .z = s.z,
+                    .precessionRate = report.precessionRate,
+                    .spinRate = report.spinRate,
+                    .centreOfMassRadius = report.radii.centreOfMass,
+                    .contactRadius = report.radii.contact,
+                    .normalForce = report.reaction.N,
+                    .frictionForce = report.reaction.F,
+                    .stiffness = report.stiffness,
+                    .stability = kVerdicts[static_cast<std::size_t>(report.stability.kind)]};
   return state;
 }
 
@@ -251,17 +269,20 @@ SweepTable sweep(const Scene& scene, const std::vector<std::string>& axes, int t
     table.columns.names.push_back(name);
   table.columns.values.resize(table.columns.names.size());
   translatingErrors([&] {
-    return pipeline::runSweep(spec, [&table](const pipeline::SweepPoint& point) {
-      std::vector<std::vector<double>>& values = table.columns.values;
-      std::size_t column = 0;
-      values[column++].push_back(static_cast<double>(point.point));
-      for (const double v : point.values) values[column++].push_back(v);
-      for (const double v :
-           {point.tEnd, point.thetaMin, point.thetaMax, point.energyStart, point.energyEnd, point.thetaEnd}) {
-        values[column++].push_back(v);
-      }
-      table.end.push_back(point.end);
-    }, {}, cancel);
+    return pipeline::runSweep(
+        spec,
+        [&table](const pipeline::SweepPoint& point) {
+          std::vector<std::vector<double>>& values = table.columns.values;
+          std::size_t column = 0;
+          values[column++].push_back(static_cast<double>(point.point));
+          for (const double v : point.values) values[column++].push_back(v);
+          for (const double v :
+               {point.tEnd, point.thetaMin, point.thetaMax, point.energyStart, point.energyEnd, point.thetaEnd}) {
+            values[column++].push_back(v);
+          }
+          table.end.push_back(point.end);
+        },
+        {}, cancel);
   });
   return table;
 }

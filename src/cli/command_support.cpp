@@ -32,8 +32,9 @@ bool readsStandardInput(const SceneSource& source) { return source.file == "-"; 
 nlohmann::json readStandardInputScene() {
   // Read, a closed descriptor would look like an empty scene ("invalid JSON at line 1, column 1").
   if (::fcntl(STDIN_FILENO, F_GETFD) == -1) {
-    throw UsageError("scene -: standard input is closed; give the scene on it (coinroll simulate - < scene.json), or "
-                     "name the scene file instead of -");
+    throw UsageError(
+        "scene -: standard input is closed; give the scene on it (coinroll simulate - < scene.json), or "
+        "name the scene file instead of -");
   }
   return scene::readSceneDocument(std::cin, "standard input");
 }
@@ -42,11 +43,11 @@ nlohmann::json readStandardInputScene() {
 
 std::pair<nlohmann::json, std::string> loadSceneDocument(const SceneSource& source,
                                                          const std::optional<nlohmann::json>& initial) {
-  nlohmann::json document = !source.file                ? scene::builtInDefaultScene()
+  nlohmann::json document = !source.file                 ? scene::builtInDefaultScene()
                             : readsStandardInput(source) ? readStandardInputScene()
                                                          : scene::readSceneDocument(*source.file);
   scene::applyOverrides(document, source.overrides, initial);
-  const std::string sourceName = !source.file                ? "built-in default scene"
+  const std::string sourceName = !source.file                 ? "built-in default scene"
                                  : readsStandardInput(source) ? "standard input"
                                                               : *source.file;
   return {std::move(document), sourceName};
@@ -119,10 +120,10 @@ std::string fileNameFrom(const std::string& sceneName) {
 std::filesystem::path defaultOutputName(bool named, const std::string& sceneName, const SceneSource& source,
                                         std::string_view extension) {
   std::error_code error;
-  const std::string stem = named || !source.file || readsStandardInput(source) ||
-                                   !std::filesystem::is_regular_file(*source.file, error)
-                               ? sceneName
-                               : std::filesystem::path(*source.file).stem().string();
+  const std::string stem =
+      named || !source.file || readsStandardInput(source) || !std::filesystem::is_regular_file(*source.file, error)
+          ? sceneName
+          : std::filesystem::path(*source.file).stem().string();
   return fileNameFrom(stem) + std::string(extension);
 }
 
@@ -133,12 +134,13 @@ void refuseTakingOverDefaultName(
   if (!std::filesystem::is_regular_file(output, error)) return;
   const std::optional<std::string> existing = readDigest(output);
   if (existing == digest) return;
-  const std::string made = existing ? fmt::format("made from another scene (its digest {}, this scene's {})",
-                                                  *existing, digest)
-                                    : std::string("does not say which scene made it (no coinroll provenance)");
-  throw UsageError(fmt::format("{}: exists, {}, and is only this scene's default output name; give -o NAME to write "
-                               "elsewhere, or --force to replace it",
-                               scene::printable(output.string()), made));
+  const std::string made =
+      existing ? fmt::format("made from another scene (its digest {}, this scene's {})", *existing, digest)
+               : std::string("does not say which scene made it (no coinroll provenance)");
+  throw UsageError(
+      fmt::format("{}: exists, {}, and is only this scene's default output name; give -o NAME to write "
+                  "elsewhere, or --force to replace it",
+                  scene::printable(output.string()), made));
 }
 
 void finishStandardOutput(std::string_view what) {

@@ -147,9 +147,10 @@ void refuseFrameTimesName(const std::string& path, const std::filesystem::path& 
     if (!sidecar->path.empty() && std::filesystem::equivalent(sidecar->path.parent_path(), framesDirectory, error) &&
         frames->frameNumberOf(sidecar->path.filename().string())) {
       const std::string sequenceExample = frames->prefix + "frames.csv";
-      throw UsageError(fmt::format("--frame-times {}: that is named like a frame of -o {}, which would replace it or "
-                                   "remove it; give a name the pattern cannot make, e.g. {}",
-                                   path, video.string(), sequenceExample));
+      throw UsageError(
+          fmt::format("--frame-times {}: that is named like a frame of -o {}, which would replace it or "
+                      "remove it; give a name the pattern cannot make, e.g. {}",
+                      path, video.string(), sequenceExample));
     }
     return;
   }
@@ -187,7 +188,6 @@ std::string approximateBytes(double bytes) {
 
 }  // namespace
 
-
 void runSimulate(const SimulateOptions& options) {
   refuseEmptyOutputName("--csv", options.csvPath, "out.csv (or - for standard output)");
   if (options.csvPath != "-") refuseOverwritingInput("--csv", options.csvPath, inputsOf(options.scene));
@@ -202,10 +202,11 @@ void runSimulate(const SimulateOptions& options) {
       .sampleDtName = "--sample-dt",
       .maxRows = options.maxRows > 0 ? options.maxRows : pipeline::kDefaultMaxRows,
       .maxRowsOption = "--max-rows",
-      .rowsCost = [](double rows, std::size_t columns) {
-        return fmt::format("about {} of CSV",
-                           approximateBytes(rows * static_cast<double>(columns) * kCsvBytesPerValue));
-      },
+      .rowsCost =
+          [](double rows, std::size_t columns) {
+            return fmt::format("about {} of CSV",
+                               approximateBytes(rows * static_cast<double>(columns) * kCsvBytesPerValue));
+          },
       .cancel = &interruptRequested()};
 
   // The outputs open only once the run is accepted, so a refused run touches no file. With a
@@ -237,9 +238,9 @@ void runSimulate(const SimulateOptions& options) {
     pipeline::SceneTable run = pipeline::simulateScene(scene, request, {.begin = begin, .row = row});
     if (!csv) finishStandardOutput("CSV");
     if (provenance) {
-      provenance->stream() << csvProvenance(document, options, run)
-                                  .dump(2, ' ', false, nlohmann::json::error_handler_t::replace)
-                           << '\n';
+      provenance->stream()
+          << csvProvenance(document, options, run).dump(2, ' ', false, nlohmann::json::error_handler_t::replace)
+          << '\n';
     }
     if (csv) csv->commit();
     if (provenance) {
@@ -308,14 +309,17 @@ void runSteady(const SteadyOptions& options) {
         rateUnit);
   } else {
     const double omega_c = *report.criticalSpin;
-    fmt::print("natural rate sqrt(g/a) = {:.6g} rad/s; critical spin for straight rolling omega_c = {:.6g} rad/s "
-               "({:.6f} sqrt(g/a){})\n\n", rateUnit, omega_c, omega_c / rateUnit, thick ? "; docs/rim.md eq. 5.9" : "");
+    fmt::print(
+        "natural rate sqrt(g/a) = {:.6g} rad/s; critical spin for straight rolling omega_c = {:.6g} rad/s "
+        "({:.6f} sqrt(g/a){})\n\n",
+        rateUnit, omega_c, omega_c / rateUnit, thick ? "; docs/rim.md eq. 5.9" : "");
   }
   fmt::print("initial conditions (scene units):\n");
-  fmt::print("  \"initial\": {{\"theta\": {:.12g}, \"phi\": {:.12g}, \"psi\": {:.12g}, \"omega_X\": {:.12g}, "
-             "\"omega_Y\": {:.12g}, \"omega_Z\": {:.12g}, \"x\": {:.12g}, \"z\": {:.12g}}}\n",
-             s.theta * kDegreesPerRadian, s.phi * kDegreesPerRadian, s.psi * kDegreesPerRadian, s.omega_X, s.omega_Y,
-             s.omega_Z, s.x, s.z);
+  fmt::print(
+      "  \"initial\": {{\"theta\": {:.12g}, \"phi\": {:.12g}, \"psi\": {:.12g}, \"omega_X\": {:.12g}, "
+      "\"omega_Y\": {:.12g}, \"omega_Z\": {:.12g}, \"x\": {:.12g}, \"z\": {:.12g}}}\n",
+      s.theta * kDegreesPerRadian, s.phi * kDegreesPerRadian, s.psi * kDegreesPerRadian, s.omega_X, s.omega_Y,
+      s.omega_Z, s.x, s.z);
   fmt::print("  in units of sqrt(g/a): omega_Y = {:.9g}, omega_Z = {:.9g}\n", s.omega_Y / rateUnit,
              s.omega_Z / rateUnit);
   fmt::print("  phi-dot = {:.9g} rad/s, psi-dot = {:.9g} rad/s\n", report.precessionRate, report.spinRate);
@@ -336,9 +340,7 @@ void runSteady(const SteadyOptions& options) {
           "verdict: UNSTABLE: a small tilt perturbation grows like exp({:.9g} t / s) (e-folding time {:.9g} s)\n",
           stability.rate, stability.time);
       break;
-    case physics::TiltStability::Kind::Marginal:
-      fmt::print("verdict: MARGINAL (K = 0)\n");
-      break;
+    case physics::TiltStability::Kind::Marginal: fmt::print("verdict: MARGINAL (K = 0)\n"); break;
   }
 }
 
@@ -357,9 +359,9 @@ void runStill(const StillOptions& options) {
     throw UsageError("--panels: lays out the --strobe copies side by side, and there are none; give --strobe N too");
   }
   const auto [scene, provenance, named, digest] = resolveScene(withPictureSize(options.scene, options.size));
-  const std::filesystem::path output =
-      options.output ? std::filesystem::path(*options.output)
-                     : defaultOutputName(named, scene.name, options.scene, video::kPngExtension);
+  const std::filesystem::path output = options.output
+                                           ? std::filesystem::path(*options.output)
+                                           : defaultOutputName(named, scene.name, options.scene, video::kPngExtension);
   refuseOverwritingInput("-o", output, inputsOf(options.scene));
   if (!options.output && !options.force) refuseTakingOverDefaultName(output, digest, video::readSceneDigest);
   io::checkOutputName(output);  // the PNG is written after the rendering: a name that cannot work fails first
@@ -401,9 +403,10 @@ pipeline::TimeWindow windowOf(const RenderOptions& options) {
     // "--to-video inf" most likely means "to the end", which is what leaving the option out gives.
     if (value && !std::isfinite(*value)) {
       const char* bound = i == 1 || i == 3 ? "end" : i == 4 ? "whole length" : "start";
-      throw UsageError(fmt::format("{} {}: must be a finite number of seconds ({} >= 0 s); leave {} out for the "
-                                   "clip's {}",
-                                   name, *value, clock, name, bound));
+      throw UsageError(
+          fmt::format("{} {}: must be a finite number of seconds ({} >= 0 s); leave {} out for the "
+                      "clip's {}",
+                      name, *value, clock, name, bound));
     }
     if (value && *value < 0) throw UsageError(fmt::format("{} {}: must be a {} >= 0 s", name, *value, clock));
   }
@@ -419,14 +422,16 @@ pipeline::TimeWindow windowOf(const RenderOptions& options) {
   const char* simulated = firstGiven(0, 2);
   const char* video = firstGiven(2, 5);
   if (simulated && video) {
-    throw UsageError(fmt::format("{} and {} cannot be combined: {} counts simulated seconds, {} seconds of video "
-                                 "(frame k plays at k / fps); give the window on one clock (render --plan prints both)",
-                                 simulated, video, simulated, video));
+    throw UsageError(
+        fmt::format("{} and {} cannot be combined: {} counts simulated seconds, {} seconds of video "
+                    "(frame k plays at k / fps); give the window on one clock (render --plan prints both)",
+                    simulated, video, simulated, video));
   }
   if (options.last && (options.fromVideo || options.toVideo)) {
-    throw UsageError(fmt::format("--last and {} cannot be combined: --last L is the window from L s of video before "
-                                 "the clip's end to its end; give --last, or --from-video and --to-video",
-                                 options.fromVideo ? "--from-video" : "--to-video"));
+    throw UsageError(
+        fmt::format("--last and {} cannot be combined: --last L is the window from L s of video before "
+                    "the clip's end to its end; give --last, or --from-video and --to-video",
+                    options.fromVideo ? "--from-video" : "--to-video"));
   }
   pipeline::TimeWindow window;
   if (options.last) {
@@ -501,12 +506,14 @@ void runRender(const RenderOptions& options) {
   const SceneSource source = withPictureSize(options.scene, options.size);
   const pipeline::TimeWindow window = windowOf(options);
   if (options.plan && options.frameTimesPath) {
-    throw UsageError("--plan and --frame-times cannot be combined: a plan draws and writes nothing; drop --frame-times "
-                     "(the plan's table shows the playback rate; --frame-times lists it per frame of a render)");
+    throw UsageError(
+        "--plan and --frame-times cannot be combined: a plan draws and writes nothing; drop --frame-times "
+        "(the plan's table shows the playback rate; --frame-times lists it per frame of a render)");
   }
   if (options.json && !options.plan) {
-    throw UsageError("--json: prints the --plan as one JSON document, and there is no plan; give --plan too (a "
-                     "render's own frame times are --frame-times FILE.csv)");
+    throw UsageError(
+        "--json: prints the --plan as one JSON document, and there is no plan; give --plan too (a "
+        "render's own frame times are --frame-times FILE.csv)");
   }
   const ResolvedScene resolved = resolveScene(source);  // named: clang 14 cannot capture a structured binding
   const scene::SceneConfig& scene = resolved.config;
@@ -514,10 +521,9 @@ void runRender(const RenderOptions& options) {
   reportSteadyStart(scene, options.quiet);
   video::VideoOptions encoding = scene.render.mp4Options();
   encoding.provenance = provenance;
-  const std::filesystem::path output =
-      options.output ? std::filesystem::path(*options.output)
-                     : defaultOutputName(resolved.named, scene.name, options.scene,
-                                         video::videoKind(encoding.format).extension);
+  const std::filesystem::path output = options.output ? std::filesystem::path(*options.output)
+                                                      : defaultOutputName(resolved.named, scene.name, options.scene,
+                                                                          video::videoKind(encoding.format).extension);
   if (const std::optional<video::VideoFormat> format = video::videoFormatOf(output)) {
     try {
       video::refuseOutputThatCannotCarry(encoding, *format);
@@ -532,8 +538,8 @@ void runRender(const RenderOptions& options) {
   if (options.plan) {
     try {
       if (options.json) {
-        const nlohmann::json plan = planJson(pipeline::planClipViews(scene, maxFrames, &interruptRequested()), window,
-                                             output.string());
+        const nlohmann::json plan =
+            planJson(pipeline::planClipViews(scene, maxFrames, &interruptRequested()), window, output.string());
         // Doubles as the shortest text that reads back as the same double; a name that is not UTF-8 is kept readable.
         fmt::print("{}\n", plan.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
         return;

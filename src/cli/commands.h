@@ -17,9 +17,9 @@ struct SceneSource {
 
 struct SimulateOptions {
   SceneSource scene;
-  std::string csvPath;    // "-" = stdout
-  double sampleDt = 0.01; // s
-  long maxRows = 0;       // 0: pipeline::kDefaultMaxRows
+  std::string csvPath;     // "-" = stdout
+  double sampleDt = 0.01;  // s
+  long maxRows = 0;        // 0: pipeline::kDefaultMaxRows
   // A JSON file naming what made the CSV (the contract fixes the CSV's header, so its provenance
   // goes beside it): program, release, scene digest, the resolved scene, the sampling and how the
   // run ended. Unset: none.
@@ -33,7 +33,7 @@ struct SteadyOptions {
   SceneSource scene;
   std::optional<std::string> kind;  // "straight" | "circle" | "spin-in-place"; default: the scene's steady initial
   std::optional<double> thetaDegrees;
-  std::optional<double> omega_Z;    // rad/s
+  std::optional<double> omega_Z;      // rad/s
   std::optional<std::string> branch;  // "+" | "-"
   bool quiet = false;                 // no note on stderr (the report on stdout stays)
 };
@@ -41,14 +41,14 @@ void runSteady(const SteadyOptions& options);
 
 struct StillOptions {
   SceneSource scene;
-  double time = 0;       // s of simulated time
+  double time = 0;                    // s of simulated time
   std::optional<std::string> output;  // PNG path; default <scene name>.png
-  int strobe = 0;        // earlier copies of the coin overlaid, evenly spaced over [strobeFrom, time)
-  std::optional<double> strobeFrom;  // s; 0 when absent, and only with strobe >= 1
-  bool panels = false;               // the strobe's times as panels side by side; only with strobe >= 1
-  std::optional<std::string> size;   // "480p" .. "2160p": render.width and render.height
-  bool quiet = false;                // no notes and no summary on stderr
-  bool force = false;                // replace a default-named output made from another scene
+  int strobe = 0;                     // earlier copies of the coin overlaid, evenly spaced over [strobeFrom, time)
+  std::optional<double> strobeFrom;   // s; 0 when absent, and only with strobe >= 1
+  bool panels = false;                // the strobe's times as panels side by side; only with strobe >= 1
+  std::optional<std::string> size;    // "480p" .. "2160p": render.width and render.height
+  bool quiet = false;                 // no notes and no summary on stderr
+  bool force = false;                 // replace a default-named output made from another scene
 };
 void runStill(const StillOptions& options);
 
@@ -59,23 +59,23 @@ struct RenderOptions {
   std::optional<double> from, to;     // s of simulated time: the frames to write
   std::optional<double> fromVideo, toVideo;  // s of video (frame k plays at k / fps): the frames to write
   std::optional<double> last;                // s of video: write the clip's last seconds
-  bool plan = false;                  // print the clip's plan (pipeline::planLines); draw and write nothing
-  bool json = false;                  // with plan: the plan as one JSON document, each frame's camera and overlay
-  bool inset = false;                 // a plot of the contact rate and the tilt in each frame's corner
-  bool quiet = false;                 // no progress line, no notes, no summary
-  bool force = false;                 // replace a default-named output made from another scene
-  long maxFrames = 0;                 // 0: pipeline::kDefaultMaxFrames
+  bool plan = false;                         // print the clip's plan (pipeline::planLines); draw and write nothing
+  bool json = false;   // with plan: the plan as one JSON document, each frame's camera and overlay
+  bool inset = false;  // a plot of the contact rate and the tilt in each frame's corner
+  bool quiet = false;  // no progress line, no notes, no summary
+  bool force = false;  // replace a default-named output made from another scene
+  long maxFrames = 0;  // 0: pipeline::kDefaultMaxFrames
   std::optional<std::string> frameTimesPath;  // --frame-times: the sidecar CSV of frame times (cli/frame_times.h)
 };
 void runRender(const RenderOptions& options);
 
 struct SweepOptions {
   SceneSource scene;
-  std::vector<std::string> grid;  // KEY.PATH=START:STOP:COUNT[:log] or KEY.PATH=V1,V2,...
-  std::string output;             // CSV path
+  std::vector<std::string> grid;     // KEY.PATH=START:STOP:COUNT[:log] or KEY.PATH=V1,V2,...
+  std::string output;                // CSV path
   std::optional<std::string> shard;  // "K/N" or "auto/N"
-  int threads = 0;                // 0: every hardware thread
-  long maxPoints = 0;             // 0: pipeline::kDefaultMaxPoints
+  int threads = 0;                   // 0: every hardware thread
+  long maxPoints = 0;                // 0: pipeline::kDefaultMaxPoints
   bool quiet = false;
 };
 void runSweep(const SweepOptions& options);

@@ -57,9 +57,11 @@ image::PngSize checkComparedPng(const std::string& name) {
   // The decoder would read 16 bits per channel as 8, so two pictures that differ everywhere in
   // their low bytes would compare equal.
   if (size.bitDepth == 16) {
-    throw UsageError(fmt::format("{}: 16 bits per channel; compare reads 8-bit PNGs (what coinroll writes): convert "
-                                 "both, e.g. ffmpeg -i {} -pix_fmt rgba out8.png, or compare the 16-bit files with "
-                                 "another tool", name, name));
+    throw UsageError(
+        fmt::format("{}: 16 bits per channel; compare reads 8-bit PNGs (what coinroll writes): convert "
+                    "both, e.g. ffmpeg -i {} -pix_fmt rgba out8.png, or compare the 16-bit files with "
+                    "another tool",
+                    name, name));
   }
   return size;
 }

@@ -74,8 +74,10 @@ PageTemplate pageTemplate() {
 std::optional<std::string> readPage(const std::filesystem::path& path, const std::string& name) {
   std::error_code ignored;
   if (std::filesystem::is_directory(path, ignored)) {
-    throw std::runtime_error(fmt::format("{}: is a directory; name the built page, coinroll.html (tools/build_page.sh "
-                                         "writes it to build/web/)", name));
+    throw std::runtime_error(
+        fmt::format("{}: is a directory; name the built page, coinroll.html (tools/build_page.sh "
+                    "writes it to build/web/)",
+                    name));
   }
   std::ifstream in(path, std::ios::binary);
   const auto refuse = [&name] {
@@ -102,8 +104,10 @@ std::optional<std::string> readPage(const std::filesystem::path& path, const std
 std::string scriptSafe(const std::string& json) {
   std::string safe;
   for (const char c : json) {
-    if (c == '<') safe += "\\u003c";
-    else safe += c;
+    if (c == '<')
+      safe += "\\u003c";
+    else
+      safe += c;
   }
   return safe;
 }
@@ -157,35 +161,42 @@ void runExport(const ExportOptions& options) {
 
   std::optional<std::string> text = readPage(page.path, page.name);
   if (!text) {
-    throw std::runtime_error(fmt::format("{}: more than {} bytes, far more than a built page: name the page "
-                                         "tools/build_page.sh builds (build/web/coinroll.html)", page.name,
-                                         kMaxPageBytes));
+    throw std::runtime_error(
+        fmt::format("{}: more than {} bytes, far more than a built page: name the page "
+                    "tools/build_page.sh builds (build/web/coinroll.html)",
+                    page.name, kMaxPageBytes));
   }
   std::string html = std::move(*text);
   const std::size_t slot = html.find(kScenePlaceholder);
   if (slot == std::string::npos) {
-    throw std::runtime_error(fmt::format("{}: not a coinroll page (it has no scene placeholder); rebuild it with "
-                                         "tools/build_page.sh", page.name));
+    throw std::runtime_error(
+        fmt::format("{}: not a coinroll page (it has no scene placeholder); rebuild it with "
+                    "tools/build_page.sh",
+                    page.name));
   }
   const std::size_t optionsSlot = html.find(kOptionsPlaceholder, slot);
   if (optionsSlot == std::string::npos) {
-    throw std::runtime_error(fmt::format("{}: not a coinroll page of this version (it has no page-options "
-                                         "placeholder); rebuild it with tools/build_page.sh", page.name));
+    throw std::runtime_error(
+        fmt::format("{}: not a coinroll page of this version (it has no page-options "
+                    "placeholder); rebuild it with tools/build_page.sh",
+                    page.name));
   }
   // Every option is checked before the page is written: the controls against the page's own list.
   const nlohmann::json pageOptions =
       pageOptionsJson(options.page, html, page.name, named ? std::optional(scene.name) : std::nullopt);
   // The options' slot first: it lies after the scene's, whose filling would move it.
-  html.replace(optionsSlot, kOptionsPlaceholder.size(),
-               std::string(kOptionsPlaceholder).replace(kOptionsPlaceholder.find("null"), 4,
-                                                        scriptSafe(pageOptions.dump())));
-  const std::string filled = std::string(kScenePlaceholder).replace(kScenePlaceholder.find("null"), 4,
-                                                                    scriptSafe(document.dump()));
+  html.replace(
+      optionsSlot, kOptionsPlaceholder.size(),
+      std::string(kOptionsPlaceholder).replace(kOptionsPlaceholder.find("null"), 4, scriptSafe(pageOptions.dump())));
+  const std::string filled =
+      std::string(kScenePlaceholder).replace(kScenePlaceholder.find("null"), 4, scriptSafe(document.dump()));
   html.replace(slot, kScenePlaceholder.size(), filled);
   writeTextOutput(output, "page", [&html](std::ostream& out) { out << html; });
   if (output != "-" && !options.quiet) {
-    std::cerr << fmt::format("coinroll: wrote {} ({:.2f} MB: the scene, the WebAssembly core and three.js; opens from "
-                             "file:// with no network)\n", scene::printable(output), html.size() / 1e6);
+    std::cerr << fmt::format(
+        "coinroll: wrote {} ({:.2f} MB: the scene, the WebAssembly core and three.js; opens from "
+        "file:// with no network)\n",
+        scene::printable(output), html.size() / 1e6);
   }
 }
 

@@ -127,8 +127,10 @@ InterruptGuard::InterruptGuard(int exitCode) {
   exitCodeWhenForced = exitCode;
   crashNote[0] = '\0';
   if (const std::optional<std::uint64_t> limit = pipeline::addressSpaceLimit()) {
-    std::snprintf(crashNote, sizeof crashNote, ") under %s: most likely memory ran out inside a library (OpenGL, "
-                  "the encoder); raise the limit\n", pipeline::memoryLimitDescription().c_str());
+    std::snprintf(crashNote, sizeof crashNote,
+                  ") under %s: most likely memory ran out inside a library (OpenGL, "
+                  "the encoder); raise the limit\n",
+                  pipeline::memoryLimitDescription().c_str());
   }
 
   // Installs `action` for `signal` if the signal is at its default action (or `always`), keeping

@@ -42,13 +42,13 @@ namespace {
 using namespace coinroll::cli;
 
 void addSceneOptions(CLI::App& command, SceneSource& scene, bool fileRequired) {
-  CLI::Option* file =
-      command.add_option("scene", scene.file,
-                         "Scene file (JSON; its keys: docs/scene.md, or coinroll schema); - reads standard input");
+  CLI::Option* file = command.add_option(
+      "scene", scene.file, "Scene file (JSON; its keys: docs/scene.md, or coinroll schema); - reads standard input");
   if (fileRequired) file->required();
-  command.add_option("--set", scene.overrides,
-                     "Override one scene field, KEY.PATH=VALUE (e.g. --set initial.theta=12 --set solver.rtol=1e-9); "
-                     "repeatable")
+  command
+      .add_option("--set", scene.overrides,
+                  "Override one scene field, KEY.PATH=VALUE (e.g. --set initial.theta=12 --set solver.rtol=1e-9); "
+                  "repeatable")
       ->type_name("KEY=VALUE");
 }
 
@@ -61,8 +61,9 @@ void addQuietFlag(CLI::App& command, bool& quiet, const std::string& what) {
 // the scene (a default name that holds another scene's output is refused, --force replaces it).
 void addOutputOptions(CLI::App& command, std::optional<std::string>& output, bool& force, const std::string& what) {
   command.add_option("-o,--output", output,
-                     what + "; default: the scene's name (or its file's, for a scene without one) + the extension, "
-                            "coinroll + it for the built-in scene");
+                     what +
+                         "; default: the scene's name (or its file's, for a scene without one) + the extension, "
+                         "coinroll + it for the built-in scene");
   command.add_flag("--force", force,
                    "Without -o: replace the file under the default name even when another scene made it (or it "
                    "names none); an -o name is always replaced");
@@ -117,13 +118,11 @@ CLI::App* addSimulateCommand(CLI::App& app, SimulateOptions& options) {
       "simulate", "Integrate a scene and write the trajectory CSV (t, angles, rates, positions, energy, N, F)");
   addSceneOptions(*command, options.scene, false);  // no file: the built-in default scene
   command->add_option("--csv", options.csvPath, "Output CSV path, or - for stdout")->required();
-  command->add_option("--sample-dt", options.sampleDt, "Time between rows, s (rows at t = k S)")
-      ->capture_default_str();
+  command->add_option("--sample-dt", options.sampleDt, "Time between rows, s (rows at t = k S)")->capture_default_str();
   command
-      ->add_option(
-          "--max-rows", options.maxRows,
-          fmt::format("Refuse runs whose duration / sample step exceeds this many rows (default {})",
-                      coinroll::pipeline::kDefaultMaxRows))
+      ->add_option("--max-rows", options.maxRows,
+                   fmt::format("Refuse runs whose duration / sample step exceeds this many rows (default {})",
+                               coinroll::pipeline::kDefaultMaxRows))
       ->check(kAtLeastOne);
   command->add_option("--provenance", options.provenancePath,
                       "Also write FILE.json naming what made the CSV: coinroll's version, the scene's digest and the "
@@ -156,8 +155,11 @@ void addSizeOption(CLI::App& command, std::optional<std::string>& size) {
   std::string sizes, sizeNames;
   for (const coinroll::scene::PictureSize& picture : coinroll::scene::kPictureSizes) {
     const bool last = &picture == &coinroll::scene::kPictureSizes.back();
-    sizes += fmt::format("{}{} ({}x{})", sizes.empty() ? "" : last ? " or " : ", ", picture.name, picture.width,
-                         picture.height);
+    sizes += fmt::format("{}{} ({}x{})",
+                         sizes.empty() ? ""
+                         : last        ? " or "
+                                       : ", ",
+                         picture.name, picture.width, picture.height);
     sizeNames += fmt::format("{}{}", sizeNames.empty() ? "" : "|", picture.name);
   }
   command.add_option("--size", size, "Picture size, setting render.width x render.height: " + sizes)
@@ -223,11 +225,12 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& options) {
                     "the floor over the frames written in each frame's lower right corner, a marker at the frame: the "
                     "speed-up a time remap slows down, and a tilt of a degree, read off it");
   addQuietFlag(*command, options.quiet, "No progress line, notes or summary on stderr");
-  command->add_option("--frame-times", options.frameTimesPath,
-                      "Also write the CSV FILE, one row per frame written: frame (index in the video), video_time_s "
-                      "(frame / fps), clip_frame (index in the full render), sim_time_s (simulated time shown) and "
-                      "playback_rate (simulated s per video s; 0 while a landing is held); published with the video, "
-                      "never without it")
+  command
+      ->add_option("--frame-times", options.frameTimesPath,
+                   "Also write the CSV FILE, one row per frame written: frame (index in the video), video_time_s "
+                   "(frame / fps), clip_frame (index in the full render), sim_time_s (simulated time shown) and "
+                   "playback_rate (simulated s per video s; 0 while a landing is held); published with the video, "
+                   "never without it")
       ->type_name("FILE");
   command
       ->add_option("--max-frames", options.maxFrames,
@@ -255,17 +258,18 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& options) {
 }
 
 CLI::App* addStillCommand(CLI::App& app, StillOptions& options) {
-  CLI::App* command = app.add_subcommand(
-      "still", "Render one PNG of a scene at a simulated time (optionally a stroboscopic figure)");
+  CLI::App* command =
+      app.add_subcommand("still", "Render one PNG of a scene at a simulated time (optionally a stroboscopic figure)");
   addSceneOptions(*command, options.scene, false);  // no file: the built-in default scene
   command->add_option("--time", options.time, "Simulated time to show, s (0 to the scene's duration)")->required();
   addOutputOptions(*command, options.output, options.force, "Output PNG path (written atomically)");
-  command->add_option("--strobe", options.strobe,
-                           "Overlay N semi-transparent copies of the coin at evenly spaced earlier times (a figure); a "
-                           "follow or orbit camera gives way to a fixed one that frames them all")
+  command
+      ->add_option("--strobe", options.strobe,
+                   "Overlay N semi-transparent copies of the coin at evenly spaced earlier times (a figure); a "
+                   "follow or orbit camera gives way to a fixed one that frames them all")
       ->capture_default_str();
   command->add_option("--strobe-from", options.strobeFrom,
-                           "Simulated time of the first copy, s (default 0): e.g. the last second of a spin-down");
+                      "Simulated time of the first copy, s (default 0): e.g. the last second of a spin-down");
   command->add_flag("--panels", options.panels,
                     "With --strobe N: N + 1 panels side by side (the copies' times and --time, each the whole picture "
                     "labelled with its time, tilt and contact rate, or rim height in the air) instead of copies over "
@@ -295,9 +299,10 @@ CLI::App* addSweepCommand(CLI::App& app, SweepOptions& options) {
       ->type_name("KEY=START:STOP:COUNT[:log]|KEY=V1,V2,...");
   command->add_option("-o,--output", options.output, "Output CSV path (written atomically), or - for standard output")
       ->required();
-  command->add_option("--shard", options.shard,
-                           "Compute only the points p with p mod N = K - 1 (K/N, 1 <= K <= N); auto/N: K from a Slurm "
-                           "array task ($SLURM_ARRAY_TASK_ID, sbatch --array=1-N)")
+  command
+      ->add_option("--shard", options.shard,
+                   "Compute only the points p with p mod N = K - 1 (K/N, 1 <= K <= N); auto/N: K from a Slurm "
+                   "array task ($SLURM_ARRAY_TASK_ID, sbatch --array=1-N)")
       ->type_name("K/N|auto/N");
   command->add_option("--threads", options.threads, "Worker threads (default 0: every hardware thread)");
   command
@@ -305,8 +310,8 @@ CLI::App* addSweepCommand(CLI::App& app, SweepOptions& options) {
                    fmt::format("Refuse grids larger than this (default {})", coinroll::pipeline::kDefaultMaxPoints))
       ->check(kAtLeastOne);
   command->add_flag("-q,--quiet", options.quiet,
-                         "No progress and no summary on stderr (progress is a line in place on a terminal, else a line "
-                         "per tenth of the points and at least one every 30 s)");
+                    "No progress and no summary on stderr (progress is a line in place on a terminal, else a line "
+                    "per tenth of the points and at least one every 30 s)");
   command->footer(
       "Rows: point, the grid values, end (duration, or the event that ended the run, or error: why), t_end, "
       "theta_min,\n"
@@ -324,14 +329,15 @@ CLI::App* addSweepCommand(CLI::App& app, SweepOptions& options) {
 }
 
 CLI::App* addSweepMergeCommand(CLI::App& app, SweepMergeOptions& options) {
-  CLI::App* command = app.add_subcommand(
-      "sweep-merge", "Merge the shard files of one sweep into the file the unsharded sweep writes");
+  CLI::App* command =
+      app.add_subcommand("sweep-merge", "Merge the shard files of one sweep into the file the unsharded sweep writes");
   command->add_option("-o,--output", options.output, "Output CSV path (written atomically), or - for standard output")
       ->required();
   command->add_option("shards", options.shards, "Shard CSV files (any order)")->required();
   addQuietFlag(*command, options.quiet, "No summary on stderr");
-  command->footer("Fails, naming the points, if a point is missing or repeated, or the file, row and column of a "
-                  "cell that is not of its column's type.");
+  command->footer(
+      "Fails, naming the points, if a point is missing or repeated, or the file, row and column of a "
+      "cell that is not of its column's type.");
   return command;
 }
 
@@ -346,11 +352,13 @@ CLI::App* addCompareCommand(CLI::App& app, CompareOptions& options) {
       ->add_option("--max-differing-pixels", options.maxDifferingPixels,
                    "Pass with at most N differing pixels (default 0 unless --max-differing-fraction is given)")
       ->type_name("N");
-  command->add_option("--max-differing-fraction", options.maxDifferingFraction,
-                             "Pass with at most this fraction of the pixels differing, 0..1 (0.01 = 1 %)")
+  command
+      ->add_option("--max-differing-fraction", options.maxDifferingFraction,
+                   "Pass with at most this fraction of the pixels differing, 0..1 (0.01 = 1 %)")
       ->type_name("F");
-  command->add_option("--channel-tolerance", options.channelTolerance,
-                             "A pixel differs only when a channel (R, G, B, A) differs by more than T levels, 0..255")
+  command
+      ->add_option("--channel-tolerance", options.channelTolerance,
+                   "A pixel differs only when a channel (R, G, B, A) differs by more than T levels, 0..255")
       ->type_name("T")
       ->capture_default_str();
   command->add_option("--min-psnr", options.minPsnr, "Pass only with a PSNR (over R, G, B) of at least DB decibels")
@@ -385,8 +393,9 @@ CLI::App* addExportCommand(CLI::App& app, ExportOptions& options) {
   addQuietFlag(*command, options.quiet, "No summary on stderr");
   command->add_option("--title", options.page.title, "The page's title and heading; default: the scene's name")
       ->type_name("TEXT");
-  command->add_option("--caption", options.page.caption,
-                      "A paragraph under the heading, shown as plain text (at most 1000 characters); default: none")
+  command
+      ->add_option("--caption", options.page.caption,
+                   "A paragraph under the heading, shown as plain text (at most 1000 characters); default: none")
       ->type_name("TEXT");
   command
       ->add_option("--controls", options.page.controls,
@@ -492,7 +501,6 @@ void addExamplesFooter(CLI::App& app) {
       "  coinroll sweep examples/straight_stable.json --grid initial.omega_Z=2:20:10 -o sweep.csv\n"
       "Exit codes: 0 success, 2 bad command line or scene (nothing written), 1 other failure.\n"
       "Run 'coinroll COMMAND --help' for a command's options.");
-
 }
 
 }  // namespace
@@ -502,8 +510,9 @@ int main(int argc, char** argv) {
   coinroll::pipeline::fitAllocatorToAddressSpaceLimit();
   CLI::App app{"coinroll: a coin rolling without slipping on a table, simulated, rendered headless to MP4 and PNG."};
   app.require_subcommand(1);
-  app.set_version_flag("--version", [] { return versionText(); },
-                       "Print the version, the git revision and the OpenGL back ends (COINROLL_GL), and exit");
+  app.set_version_flag(
+      "--version", [] { return versionText(); },
+      "Print the version, the git revision and the OpenGL back ends (COINROLL_GL), and exit");
   addExamplesFooter(app);
 
   // In the order --help lists them.

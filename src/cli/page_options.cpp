@@ -69,14 +69,16 @@ bool isSchemaKey(const std::string& key) {
 // The page's control list: [{"group": "coin", "title": "Coin", "keys": ["coin.shape", ...]}, ...].
 std::vector<ControlGroup> pageControls(std::string_view html, const std::string& pageName) {
   const auto refuse = [&pageName](const std::string& why) {
-    return std::runtime_error(fmt::format("{}: not a coinroll page of this version ({}); rebuild it with "
-                                          "tools/build_page.sh", pageName, why));
+    return std::runtime_error(
+        fmt::format("{}: not a coinroll page of this version ({}); rebuild it with "
+                    "tools/build_page.sh",
+                    pageName, why));
   };
   const std::size_t from = html.find(kControlsOpen);
   const std::size_t to = from == std::string_view::npos ? from : html.find("</script>", from);
   if (to == std::string_view::npos) throw refuse("it has no list of its controls");
-  const nlohmann::json list = nlohmann::json::parse(
-      html.substr(from + kControlsOpen.size(), to - from - kControlsOpen.size()), nullptr, false);
+  const nlohmann::json list =
+      nlohmann::json::parse(html.substr(from + kControlsOpen.size(), to - from - kControlsOpen.size()), nullptr, false);
   if (!list.is_array()) throw refuse("its list of controls is not a JSON array");
   std::vector<ControlGroup> groups;
   for (const nlohmann::json& group : list) {
@@ -127,11 +129,15 @@ std::optional<std::vector<std::string>> chosenControls(const std::string& list,
       throw UsageError(fmt::format("--controls {}: an empty name between commas; {}", scene::printable(list), valid()));
     }
     const auto group = std::ranges::find(groups, item, &ControlGroup::name);
-    if (item == kAllControls) all = true;
-    else if (group != groups.end()) chosen.insert(chosen.end(), group->keys.begin(), group->keys.end());
-    else if (std::ranges::find(every, item) != every.end()) chosen.push_back(item);
-    else throw UsageError(fmt::format("--controls {}: no such control on the page; {}{}", scene::printable(item),
-                                      suggestion(item), valid()));
+    if (item == kAllControls)
+      all = true;
+    else if (group != groups.end())
+      chosen.insert(chosen.end(), group->keys.begin(), group->keys.end());
+    else if (std::ranges::find(every, item) != every.end())
+      chosen.push_back(item);
+    else
+      throw UsageError(fmt::format("--controls {}: no such control on the page; {}{}", scene::printable(item),
+                                   suggestion(item), valid()));
     if (comma == list.size()) break;
     start = comma + 1;
   }
@@ -155,8 +161,8 @@ void checkPageText(const PageOptions& options) {
               "course page around the page");
   }
   if (options.details != "folded" && options.details != "shown") {
-    throw UsageError(fmt::format("--details {}: must be folded (one click away) or shown",
-                                 scene::printable(options.details)));
+    throw UsageError(
+        fmt::format("--details {}: must be folded (one click away) or shown", scene::printable(options.details)));
   }
 }
 

@@ -34,7 +34,10 @@ ProgressLine::Style ProgressLine::terminalStyleFor(bool quiet) {
 }
 
 ProgressLine::ProgressLine(Style style, std::string task, std::string unit)
-    : style_(style), task_(std::move(task)), unit_(std::move(unit)), start_(std::chrono::steady_clock::now()),
+    : style_(style),
+      task_(std::move(task)),
+      unit_(std::move(unit)),
+      start_(std::chrono::steady_clock::now()),
       lastPrint_(start_) {}
 
 void ProgressLine::update(long done, long total) {

@@ -8,9 +8,12 @@ namespace coinroll::cli {
 
 void runSchema(const SchemaOptions& options) {
   writeTextOutput("-", "scene schema", [&options](std::ostream& out) {
-    if (options.markdown) out << scene::schema::toMarkdown();
-    else if (options.contract) out << scene::schema::toContractMarkdown();
-    else out << scene::schema::toJson().dump(2) << '\n';
+    if (options.markdown)
+      out << scene::schema::toMarkdown();
+    else if (options.contract)
+      out << scene::schema::toContractMarkdown();
+    else
+      out << scene::schema::toJson().dump(2) << '\n';
   });
 }
 

@@ -83,8 +83,9 @@ void runSweepMerge(const SweepMergeOptions& options) {
   // Checked before any file is opened: a closed descriptor 0 is the first one open() hands out, and
   // then reads as an empty shard (or as the output's temporary file).
   if (std::find(shards.begin(), shards.end(), "-") != shards.end() && ::fcntl(STDIN_FILENO, F_GETFD) == -1) {
-    throw std::runtime_error("standard input: closed, so there is no shard to read from it; redirect the shard into it "
-                             "(- < part.csv) or give its file name instead of -");
+    throw std::runtime_error(
+        "standard input: closed, so there is no shard to read from it; redirect the shard into it "
+        "(- < part.csv) or give its file name instead of -");
   }
   refuseEmptyOutputName("-o", options.output, "merged.csv (or - for standard output)");
   if (std::find(shards.begin(), shards.end(), "") != shards.end()) {

@@ -23,11 +23,11 @@ namespace coinroll::image {
 inline constexpr long kMaxComparedPixels = 7680L * 7680L;
 
 struct ImageComparison {
-  long pixels = 0;                 // width * height
-  long differingPixels = 0;        // pixels with a channel off by more than the tolerance
-  int maxChannelDifference = 0;    // 0..255, over R, G, B, A and every pixel
-  double psnr = 0;                 // dB over R, G, B; +infinity when those are identical
-  int channelTolerance = 0;        // the tolerance the pixels were counted with
+  long pixels = 0;               // width * height
+  long differingPixels = 0;      // pixels with a channel off by more than the tolerance
+  int maxChannelDifference = 0;  // 0..255, over R, G, B, A and every pixel
+  double psnr = 0;               // dB over R, G, B; +infinity when those are identical
+  int channelTolerance = 0;      // the tolerance the pixels were counted with
   double differingFraction() const {
     return pixels == 0 ? 0.0 : static_cast<double>(differingPixels) / static_cast<double>(pixels);
   }
@@ -36,7 +36,7 @@ struct ImageComparison {
 // What a comparison may show and still pass. Every limit given must hold. With neither pixel
 // limit given, no pixel may differ: the default-constructed thresholds are an exact match.
 struct CompareThresholds {
-  std::optional<long> maxDifferingPixels;     // >= 0
+  std::optional<long> maxDifferingPixels;      // >= 0
   std::optional<double> maxDifferingFraction;  // of all pixels, in [0, 1]
   int channelTolerance = 0;                    // 0..255: a channel off by at most this is equal
   std::optional<double> minPsnr;               // dB

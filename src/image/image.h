@@ -13,17 +13,15 @@
 namespace coinroll::image {
 
 struct Image {
-  int width = 0;   // pixels
-  int height = 0;  // pixels
+  int width = 0;                   // pixels
+  int height = 0;                  // pixels
   std::vector<std::uint8_t> rgba;  // width * height * 4 bytes, row 0 is the top
 
   Image() = default;
   Image(int w, int h) : width(w), height(h), rgba(static_cast<std::size_t>(w) * h * 4, 0) {}
 
   std::uint8_t* pixel(int x, int y) { return rgba.data() + (static_cast<std::size_t>(y) * width + x) * 4; }
-  const std::uint8_t* pixel(int x, int y) const {
-    return rgba.data() + (static_cast<std::size_t>(y) * width + x) * 4;
-  }
+  const std::uint8_t* pixel(int x, int y) const { return rgba.data() + (static_cast<std::size_t>(y) * width + x) * 4; }
 };
 
 // Key and text pairs a PNG carries as tEXt chunks, in order, right after its header (keys of 1 to

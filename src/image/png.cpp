@@ -136,10 +136,10 @@ PngSize readPngSize(const std::filesystem::path& path) {
   const auto depthAllowed = [&](std::initializer_list<int> depths) {
     return std::find(depths.begin(), depths.end(), depth) != depths.end();
   };
-  const bool allowed = colourType == 0   ? depthAllowed({1, 2, 4, 8, 16})
-                       : colourType == 3 ? depthAllowed({1, 2, 4, 8})
+  const bool allowed = colourType == 0                                         ? depthAllowed({1, 2, 4, 8, 16})
+                       : colourType == 3                                       ? depthAllowed({1, 2, 4, 8})
                        : colourType == 2 || colourType == 4 || colourType == 6 ? depthAllowed({8, 16})
-                                                                                 : false;
+                                                                               : false;
   if (!allowed) {
     throw std::runtime_error(path.string() + ": cannot read the PNG header: bit depth " + std::to_string(depth) +
                              " with colour type " + std::to_string(colourType) + " is not allowed in PNG");

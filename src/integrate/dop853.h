@@ -96,8 +96,8 @@ inline constexpr double d71 = -0.25693933462703749003312586129e+02, d76 = -0.154
 
 template <int N>
 struct Dop853Result {
-  Vec<N> y1, f1;              // solution and slope (FSAL stage 13) at t + h
-  Vec<N> error5, error3;      // 5th- and 3rd-order error estimates, without the factor h
+  Vec<N> y1, f1;                         // solution and slope (FSAL stage 13) at t + h
+  Vec<N> error5, error3;                 // 5th- and 3rd-order error estimates, without the factor h
   Vec<N> k6, k7, k8, k9, k10, k11, k12;  // stages the dense output reuses
 };
 
@@ -113,18 +113,18 @@ Dop853Result<N> dop853Step(Rhs& f, double t, const Vec<N>& y, const Vec<N>& k1, 
   r.k7 = f(t + c7 * h, Vec<N>(y + h * (a71 * k1 + a74 * k4 + a75 * k5 + a76 * r.k6)));
   r.k8 = f(t + c8 * h, Vec<N>(y + h * (a81 * k1 + a84 * k4 + a85 * k5 + a86 * r.k6 + a87 * r.k7)));
   r.k9 = f(t + c9 * h, Vec<N>(y + h * (a91 * k1 + a94 * k4 + a95 * k5 + a96 * r.k6 + a97 * r.k7 + a98 * r.k8)));
-  r.k10 = f(t + c10 * h, Vec<N>(y + h * (a101 * k1 + a104 * k4 + a105 * k5 + a106 * r.k6 + a107 * r.k7 +
-                                         a108 * r.k8 + a109 * r.k9)));
-  r.k11 = f(t + c11 * h, Vec<N>(y + h * (a111 * k1 + a114 * k4 + a115 * k5 + a116 * r.k6 + a117 * r.k7 +
-                                         a118 * r.k8 + a119 * r.k9 + a1110 * r.k10)));
+  r.k10 =
+      f(t + c10 * h,
+        Vec<N>(y + h * (a101 * k1 + a104 * k4 + a105 * k5 + a106 * r.k6 + a107 * r.k7 + a108 * r.k8 + a109 * r.k9)));
+  r.k11 = f(t + c11 * h, Vec<N>(y + h * (a111 * k1 + a114 * k4 + a115 * k5 + a116 * r.k6 + a117 * r.k7 + a118 * r.k8 +
+                                         a119 * r.k9 + a1110 * r.k10)));
   r.k12 = f(t + h, Vec<N>(y + h * (a121 * k1 + a124 * k4 + a125 * k5 + a126 * r.k6 + a127 * r.k7 + a128 * r.k8 +
                                    a129 * r.k9 + a1210 * r.k10 + a1211 * r.k11)));
-  const Vec<N> increment = b1 * k1 + b6 * r.k6 + b7 * r.k7 + b8 * r.k8 + b9 * r.k9 + b10 * r.k10 + b11 * r.k11 +
-                           b12 * r.k12;
+  const Vec<N> increment =
+      b1 * k1 + b6 * r.k6 + b7 * r.k7 + b8 * r.k8 + b9 * r.k9 + b10 * r.k10 + b11 * r.k11 + b12 * r.k12;
   r.y1 = y + h * increment;
   r.error3 = increment - bhh1 * k1 - bhh2 * r.k9 - bhh3 * r.k12;
-  r.error5 = er1 * k1 + er6 * r.k6 + er7 * r.k7 + er8 * r.k8 + er9 * r.k9 + er10 * r.k10 + er11 * r.k11 +
-             er12 * r.k12;
+  r.error5 = er1 * k1 + er6 * r.k6 + er7 * r.k7 + er8 * r.k8 + er9 * r.k9 + er10 * r.k10 + er11 * r.k11 + er12 * r.k12;
   r.f1 = f(t + h, r.y1);
   return r;
 }
@@ -137,11 +137,11 @@ DenseInterval<N> dop853Interval(Rhs& f, double t0, double h, const Vec<N>& y0, c
   DenseInterval<N> d = hermiteInterval<N>(t0, h, y0, k1, r.y1, r.f1);
   const Vec<N>& k13 = r.f1;
   const Vec<N> k14 = f(t0 + c14 * h, Vec<N>(y0 + h * (a141 * k1 + a147 * r.k7 + a148 * r.k8 + a149 * r.k9 +
-                                                       a1410 * r.k10 + a1411 * r.k11 + a1412 * r.k12 + a1413 * k13)));
+                                                      a1410 * r.k10 + a1411 * r.k11 + a1412 * r.k12 + a1413 * k13)));
   const Vec<N> k15 = f(t0 + c15 * h, Vec<N>(y0 + h * (a151 * k1 + a156 * r.k6 + a157 * r.k7 + a158 * r.k8 +
-                                                       a1511 * r.k11 + a1512 * r.k12 + a1513 * k13 + a1514 * k14)));
+                                                      a1511 * r.k11 + a1512 * r.k12 + a1513 * k13 + a1514 * k14)));
   const Vec<N> k16 = f(t0 + c16 * h, Vec<N>(y0 + h * (a161 * k1 + a166 * r.k6 + a167 * r.k7 + a168 * r.k8 +
-                                                       a169 * r.k9 + a1613 * k13 + a1614 * k14 + a1615 * k15)));
+                                                      a169 * r.k9 + a1613 * k13 + a1614 * k14 + a1615 * k15)));
   d.r5 = h * (d41 * k1 + d46 * r.k6 + d47 * r.k7 + d48 * r.k8 + d49 * r.k9 + d410 * r.k10 + d411 * r.k11 +
               d412 * r.k12 + d413 * k13 + d414 * k14 + d415 * k15 + d416 * k16);
   d.r6 = h * (d51 * k1 + d56 * r.k6 + d57 * r.k7 + d58 * r.k8 + d59 * r.k9 + d510 * r.k10 + d511 * r.k11 +

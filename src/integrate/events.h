@@ -10,11 +10,11 @@ namespace coinroll::integrate {
 
 template <int N>
 struct Event {
-  std::string name;                                    // e.g. "lift-off", for messages
-  int id = 0;            // the caller's own identity for the event (an enum's value): compared, never the name
+  std::string name;  // e.g. "lift-off", for messages
+  int id = 0;        // the caller's own identity for the event (an enum's value): compared, never the name
   std::function<double(double t, const Vec<N>& y)> g;  // the event is a root of g
-  int direction = 0;     // 0 any crossing, +1 only g rising through 0, -1 only falling
-  bool terminal = true;  // stop the run at the root
+  int direction = 0;                                   // 0 any crossing, +1 only g rising through 0, -1 only falling
+  bool terminal = true;                                // stop the run at the root
   // g is also read at this many evenly spaced points inside each step, on the dense output: a
   // crossing there and back within one step (a friction cone grazed for a millisecond) shows no
   // sign change at the step's ends. Each point costs one g; 0 checks the ends only.

@@ -54,9 +54,10 @@ class GaussLegendre4 {
       isJacobianStale_ = true;  // Newton failed on an old Jacobian: retry with a fresh one
       Z = startingGuess(f0, h);
     }
-    throw std::runtime_error(fmt::format("gauss4: Newton iteration diverges at t = {} s with step {} s; "
-                                         "the step is too large for this right-hand side",
-                                         t, h));
+    throw std::runtime_error(
+        fmt::format("gauss4: Newton iteration diverges at t = {} s with step {} s; "
+                    "the step is too large for this right-hand side",
+                    t, h));
   }
 
  private:

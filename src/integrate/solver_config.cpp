@@ -31,12 +31,14 @@ constexpr std::array<std::string_view, kMethods.size()> kMethodNames = [] {
 
 // A loop, not std::ranges::all_of: the libc++ of Emscripten 3.1.6, which builds the WebAssembly core
 // (docs/web.md), has no ranges algorithms.
-static_assert([] {
-  for (std::size_t i = 0; i < kMethods.size(); ++i) {
-    if (kMethods[i].method != static_cast<Method>(i)) return false;
-  }
-  return true;
-}(), "kMethods is in the order of the Method enum");
+static_assert(
+    [] {
+      for (std::size_t i = 0; i < kMethods.size(); ++i) {
+        if (kMethods[i].method != static_cast<Method>(i)) return false;
+      }
+      return true;
+    }(),
+    "kMethods is in the order of the Method enum");
 
 const MethodEntry& entryOf(Method method) { return kMethods.at(static_cast<std::size_t>(method)); }
 

@@ -34,8 +34,8 @@ int errorEstimateOrder(Method method);  // adaptive methods: the order of the lo
 // More than 10^7 fixed steps per simulated second, or steps longer than the coin's own time scale
 // sqrt(a/g) ~ 0.06 s many times over, are typos rather than choices.
 inline constexpr double kMinRtol = 1e-14, kMaxRtol = 1e-2;
-inline constexpr double kMaxAtol = 1e-2;             // atol in (0, kMaxAtol]
-inline constexpr double kMinDt = 1e-7, kMaxDt = 1;   // s
+inline constexpr double kMaxAtol = 1e-2;            // atol in (0, kMaxAtol]
+inline constexpr double kMinDt = 1e-7, kMaxDt = 1;  // s
 
 struct SolverConfig {
   Method method = Method::Dop853;

@@ -94,8 +94,8 @@ inline constexpr double d1 = -12715105075.0 / 11282082432, d3 = 87487479700.0 / 
 
 template <int N>
 struct Dopri5Result {
-  Vec<N> y1, f1;   // solution and slope at t + h
-  Vec<N> error;    // local error estimate (5th minus 4th order)
+  Vec<N> y1, f1;          // solution and slope at t + h
+  Vec<N> error;           // local error estimate (5th minus 4th order)
   Vec<N> k3, k4, k5, k6;  // kept for the dense output of an accepted step
 };
 

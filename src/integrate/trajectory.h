@@ -255,8 +255,8 @@ class Trajectory {
         const bool dip = e.direction <= 0 && gFrom > 0 && gEnd > 0 && rateFrom < 0 && rateEnd > 0;
         const bool peak = e.direction >= 0 && gFrom < 0 && gEnd < 0 && rateFrom > 0 && rateEnd < 0;
         if (!dip && !peak) continue;
-        const double tExtremum = locateRoot([&](double t) { return e.rate(t, interval().at(t)); }, from, rateFrom,
-                                            t_, rateEnd);
+        const double tExtremum =
+            locateRoot([&](double t) { return e.rate(t, interval().at(t)); }, from, rateFrom, t_, rateEnd);
         const double gExtremum = e.g(tExtremum, interval().at(tExtremum));
         if (!crosses(e, gFrom, gExtremum)) continue;
         to = tExtremum, gTo = gExtremum;
@@ -294,14 +294,14 @@ class Trajectory {
   Rhs f_;
   SolverConfig config_;
   std::vector<Event<N>> events_;
-  std::vector<double> gAtStart_;  // each event's g at the start of the current step
+  std::vector<double> gAtStart_;     // each event's g at the start of the current step
   std::vector<double> rateAtStart_;  // and its rate, for the events that give one
-  double t_;                      // s, end of the last accepted step
-  PaceWatch pace_;                // measured from the run's start
-  Vec<N> y_, f0_;                 // state and slope at t_
-  double gridOrigin_ = t_;        // s, origin of the fixed-step grid
-  double h_ = 0;                  // s, next step to try
-  double previousError_ = 1e-4;   // PI controller memory
+  double t_;                         // s, end of the last accepted step
+  PaceWatch pace_;                   // measured from the run's start
+  Vec<N> y_, f0_;                    // state and slope at t_
+  double gridOrigin_ = t_;           // s, origin of the fixed-step grid
+  double h_ = 0;                     // s, next step to try
+  double previousError_ = 1e-4;      // PI controller memory
   double lastQuery_ = -std::numeric_limits<double>::infinity();
   DenseInterval<N> interval_;
   struct PendingDop853Interval {

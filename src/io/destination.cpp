@@ -179,7 +179,8 @@ bool sameOutput(const Destination& a, const Destination& b) {
     if (destination.kind == Destination::Kind::Descriptor) return ::fstat(destination.descriptor, &info) == 0;
     return destination.kind != Destination::Kind::NewFile && ::stat(destination.path.c_str(), &info) == 0;
   };
-  struct stat first {}, second {};
+  struct stat first {
+  }, second{};
   return identify(a, first) && identify(b, second) && first.st_dev == second.st_dev && first.st_ino == second.st_ino;
 }
 

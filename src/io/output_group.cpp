@@ -90,8 +90,9 @@ void OutputGroup::refuseSharedTarget(const Destination& destination, const std::
   if (::stat(destination.path.c_str(), &info) != 0) return;  // a new file: no other name has it yet
   const FileIdentity identity{info.st_dev, info.st_ino};
   if (const auto input = protected_.find(identity); input != protected_.end()) {
-    refuse(input->second.string() + ", an input of this command (through a link, or as another name of that file); "
-                                    "choose another output name");
+    refuse(input->second.string() +
+           ", an input of this command (through a link, or as another name of that file); "
+           "choose another output name");
   }
   if (const auto earlier = stagedIdentities_.find(identity); earlier != stagedIdentities_.end())
     sameFileAs(earlier->second);
@@ -171,9 +172,9 @@ void OutputGroup::commit() {
       }
     } catch (const std::runtime_error& error) {
       const std::string problems = rollBack();
-      throw std::runtime_error(std::string(error.what()) +
-                               (problems.empty() ? "; nothing was published and the earlier files are as they were"
-                                                 : problems));
+      throw std::runtime_error(
+          std::string(error.what()) +
+          (problems.empty() ? "; nothing was published and the earlier files are as they were" : problems));
     }
     committed_ = true;
   }

@@ -20,9 +20,10 @@ std::string RuntimeLibrary::loadFailure(std::string_view reason) const {
   const std::string_view failedName = failed.substr(failed.rfind('/') + 1);
   const std::string_view ownName = std::string_view(soname_).substr(soname_.rfind('/') + 1);
   if (failed.size() < reason.size() && failedName.find(".so") != std::string_view::npos && failedName != ownName) {
-    return fmt::format("cannot load {}: a library it needs, {}, cannot be loaded ({}); rendering needs both: reinstall "
-                       "the package that provides {} (`dpkg -S {}` names it), or {} (tools/setup.sh)",
-                       soname_, failedName, reason, failedName, failedName, package_);
+    return fmt::format(
+        "cannot load {}: a library it needs, {}, cannot be loaded ({}); rendering needs both: reinstall "
+        "the package that provides {} (`dpkg -S {}` names it), or {} (tools/setup.sh)",
+        soname_, failedName, reason, failedName, failedName, package_);
   }
   return fmt::format("cannot load {} ({}), which rendering needs: install {} (tools/setup.sh)", soname_, reason,
                      package_);

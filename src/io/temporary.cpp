@@ -198,8 +198,8 @@ TemporaryFile createTemporaryFor(const Destination& destination, bool unnamedAll
   if (::fchmod(file.descriptor(), destination.mode) != 0) {
     const int error = errno;
     file.remove();
-    throw std::runtime_error(destination.name.string() + ": cannot keep its permissions on the new content: " +
-                             std::strerror(error));
+    throw std::runtime_error(destination.name.string() +
+                             ": cannot keep its permissions on the new content: " + std::strerror(error));
   }
   return file;
 }

@@ -25,8 +25,8 @@ struct UnfinishedFiles {
   // since waiting for it would spin for ever (docs/signals_and_limits.md "The staging area a
   // handler can remove"). Taken by one compare-exchange, so no signal can land between taking the
   // lock and saying whose it is.
-  std::atomic<pid_t> holder{0};  // 0: free
-  std::vector<std::string> paths;       // "" = a free slot
+  std::atomic<pid_t> holder{0};    // 0: free
+  std::vector<std::string> paths;  // "" = a free slot
   std::vector<std::size_t> freeSlots;
 };
 static_assert(std::atomic<pid_t>::is_always_lock_free);

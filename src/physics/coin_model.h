@@ -25,16 +25,16 @@ struct ImpactLaw {
 };
 
 struct CoinModel {
-  double M = 0;    // kg, mass
-  double a = 0;    // m, outer radius
-  double g = 0;    // m/s^2, gravitational acceleration
-  double I_X = 0;  // kg m^2, moment about a diameter (I_X = I_Y by symmetry)
-  double I_Z = 0;  // kg m^2, moment about the symmetry axis
-  Rim rim;         // thickness 0 (the default): the seed's thin coin, bit for bit
+  double M = 0;           // kg, mass
+  double a = 0;           // m, outer radius
+  double g = 0;           // m/s^2, gravitational acceleration
+  double I_X = 0;         // kg m^2, moment about a diameter (I_X = I_Y by symmetry)
+  double I_Z = 0;         // kg m^2, moment about the symmetry axis
+  Rim rim;                // thickness 0 (the default): the seed's thin coin, bit for bit
   double holeRadius = 0;  // m, b: a ring's hole, open to the room under the face (air drag, docs/euler_disk.md 2.5a)
   std::vector<Effect> effects;  // empty: the seed's ideal rolling, energy conserved
-  Friction friction{};  // the default: no cone (no slip monitor) and no sliding friction
-  ImpactLaw impact{};   // the landings' law ("flight": true); the default: plastic and frictionless
+  Friction friction{};          // the default: no cone (no slip monitor) and no sliding friction
+  ImpactLaw impact{};           // the landings' law ("flight": true); the default: plastic and frictionless
 };
 
 // Thin uniform disk: I_X = M a^2 / 4, I_Z = M a^2 / 2 (seed eq. 12).

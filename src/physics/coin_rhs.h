@@ -26,8 +26,10 @@ struct CoinRhs {
     constexpr int kMotion = kMotionSize<F>;
     static_assert(N == kMotion || N == kMotion + 1, "a formulation's state, optionally with the dissipated energy");
     if constexpr (N == kMotion) {
-      if constexpr (F == Formulation::EulerAngles) return rhs(model, t, y);
-      else return quaternionRhs(model, t, y);
+      if constexpr (F == Formulation::EulerAngles)
+        return rhs(model, t, y);
+      else
+        return quaternionRhs(model, t, y);
     } else {
       const Eigen::Matrix<double, kMotion, 1> motion = y.template head<kMotion>();
       Eigen::Matrix<double, N, 1> dy;

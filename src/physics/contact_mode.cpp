@@ -168,7 +168,6 @@ double slideOnsetMargin(const CoinModel& model, const Forward& rolling) {
   return slipMargin(model, rolling, *model.friction.cone);
 }
 
-
 // s. A slip closing at c m/s^2 reaches stoppedSlip(t) only stoppedSlip(t) / c before its zero: for a
 // hard skid (c = 3 mu g = 5.9e4 m/s^2 at mu = 2000) 1.7e-16 s, and the steps that approach the zero's
 // kink (rejected past it, docs/sliding.md §4.4) fell below the integrator's floor of 1e-14 max(1, |t|) s
@@ -181,9 +180,7 @@ double slipStopLead(double t) { return 1e-13 * std::max(1.0, std::abs(t)); }
 namespace {
 
 // m/s: the slip at which a slide ends, given how fast the slip closes along its direction (m/s^2).
-double stopThreshold(double t, double closingRate) {
-  return std::max(stoppedSlip(t), slipStopLead(t) * closingRate);
-}
+double stopThreshold(double t, double closingRate) { return std::max(stoppedSlip(t), slipStopLead(t) * closingRate); }
 
 }  // namespace
 

@@ -16,9 +16,9 @@ Eigen::Vector3d thinAngularAcceleration(const CoinModel& m, double sinTheta, dou
   const double Ma2 = m.M * m.a * m.a;
   const double Mga = m.M * m.g * m.a;
   return {(-(m.I_Z + Ma2) * omega_Y * omega_Z - m.I_X * omega_Y * omega_Y * tanTheta + Mga * sinTheta) /
-              (m.I_X + Ma2),                                                                 // (14)
-          omega_X * omega_Y * tanTheta + (m.I_Z / m.I_X) * omega_Z * omega_X,                // (15)
-          Ma2 * omega_X * omega_Y / (m.I_Z + Ma2)};                                          // (16)
+              (m.I_X + Ma2),                                                   // (14)
+          omega_X * omega_Y * tanTheta + (m.I_Z / m.I_X) * omega_Z * omega_X,  // (15)
+          Ma2 * omega_X * omega_Y / (m.I_Z + Ma2)};                            // (16)
 }
 
 // What a rim's geometry and the rates fix before the angular acceleration is known, in XYZ
@@ -97,14 +97,14 @@ Reaction reactionFrom(const CoinModel& m, const Eigen::Matrix3d& axes, const Eig
 StateVec pack(const StateVec& y, double sinTheta, double cosTheta, const Eigen::Vector3d& dOmega, double vx,
               double vz) {
   StateVec dy;
-  dy[kTheta]   = y[kOmega_X];                                          // (17), docs/seed.md §3
-  dy[kPhi]     = y[kOmega_Y] / cosTheta;                               // (18)
-  dy[kPsi]     = y[kOmega_Z] + (sinTheta / cosTheta) * y[kOmega_Y];    // (19)
+  dy[kTheta] = y[kOmega_X];                                      // (17), docs/seed.md §3
+  dy[kPhi] = y[kOmega_Y] / cosTheta;                             // (18)
+  dy[kPsi] = y[kOmega_Z] + (sinTheta / cosTheta) * y[kOmega_Y];  // (19)
   dy[kOmega_X] = dOmega.x();
   dy[kOmega_Y] = dOmega.y();
   dy[kOmega_Z] = dOmega.z();
-  dy[kX]       = vx;
-  dy[kZ]       = vz;
+  dy[kX] = vx;
+  dy[kZ] = vz;
   return dy;
 }
 
@@ -114,8 +114,8 @@ StateVec packThin(const CoinModel& model, const StateVec& y, double sinTheta, do
   const double omega_X = y[kOmega_X], omega_Z = y[kOmega_Z];
   const double a = model.a;
   return pack(y, sinTheta, cosTheta, dOmega,
-              a * (-omega_Z * cosPhi + omega_X * cosTheta * sinPhi),   // section 4, v_x
-              a * (omega_Z * sinPhi + omega_X * cosTheta * cosPhi));   // section 4, v_z
+              a * (-omega_Z * cosPhi + omega_X * cosTheta * sinPhi),  // section 4, v_x
+              a * (omega_Z * sinPhi + omega_X * cosTheta * cosPhi));  // section 4, v_z
 }
 
 StateVec packRim(const StateVec& y, double sinTheta, double cosTheta, const Eigen::Vector3d& dOmega,

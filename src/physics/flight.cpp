@@ -55,7 +55,7 @@ FlightStateVec flightRhs(const CoinModel& m, const FlightStateVec& y) {
   dy[kFlightQw + 3] = 0.5 * spin.z() + restoring * q.z();
   const Eigen::Vector3d inertia = principalMoments(m);
   dy.segment<3>(kFlightOmega) = -w.cross(inertia.cwiseProduct(w)).cwiseQuotient(inertia);  // (1.3)
-  dy.segment<3>(kFlightCentre) = y.segment<3>(kFlightVelocity);                          // (1.1)
+  dy.segment<3>(kFlightCentre) = y.segment<3>(kFlightVelocity);                            // (1.1)
   dy.segment<3>(kFlightVelocity) = Eigen::Vector3d(0, -m.g, 0);
   return dy;
 }
@@ -75,9 +75,7 @@ FlightState flightAfter(const CoinModel& m, const FlightState& start, double ela
   return s;
 }
 
-double uprightEnergy(const CoinModel& m) {
-  return m.M * m.g * lowestPointDepth(m, Eigen::Quaterniond::Identity());
-}
+double uprightEnergy(const CoinModel& m) { return m.M * m.g * lowestPointDepth(m, Eigen::Quaterniond::Identity()); }
 
 double reachBelowCentre(const CoinModel& m) { return std::hypot(m.a, 0.5 * m.rim.thickness); }
 

@@ -23,16 +23,16 @@ struct Reaction {
 
 struct Forward {
   double theta = 0;  // rad, the seed's tilt from vertical, signed (positive: the e_Z face is the lower one)
-  Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();  // rows: e_X, e_Y, e_Z in floor components
-  Eigen::Vector3d omega = Eigen::Vector3d::Zero();     // rad/s, floor components
+  Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();       // rows: e_X, e_Y, e_Z in floor components
+  Eigen::Vector3d omega = Eigen::Vector3d::Zero();          // rad/s, floor components
   Eigen::Vector3d contactVector = Eigen::Vector3d::Zero();  // m, c: centre of mass to contact point
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();         // m, centre of mass
   Eigen::Vector3d velocity = Eigen::Vector3d::Zero();       // m/s, centre of mass
   Eigen::Vector3d contactPoint = Eigen::Vector3d::Zero();   // m, on the floor (y = 0 up to round-off)
-  double spinRate = 0;        // rad/s, psi-dot: the contact point running round the rim
-  double precessionRate = 0;  // rad/s, phi-dot = Omega: the contact point going round the floor
+  double spinRate = 0;                                      // rad/s, psi-dot: the contact point running round the rim
+  double precessionRate = 0;                         // rad/s, phi-dot = Omega: the contact point going round the floor
   Eigen::Vector3d dOmega = Eigen::Vector3d::Zero();  // rad/s^2, in the formulation's own components
-  Reaction reaction;  // with friction's part while sliding
+  Reaction reaction;                                 // with friction's part while sliding
   Loads loads;        // the effects' couple and dissipated power (and friction's mu N |s| while sliding)
   double energy = 0;  // J, kinetic plus potential
   // The contact (docs/sliding.md): the velocity of the coin's material point there (zero while
@@ -48,9 +48,7 @@ struct Forward {
 
 // alpha, rad: the coin plane's tilt above the floor, pi/2 - |theta|, from e_Y's rise and e_Z's, so it
 // stays accurate near flat where pi/2 - |theta| would cancel.
-inline double tiltAboveFloor(const Forward& f) {
-  return std::atan2(f.axes(1, 1), std::abs(f.axes(2, 1)));
-}
+inline double tiltAboveFloor(const Forward& f) { return std::atan2(f.axes(1, 1), std::abs(f.axes(2, 1))); }
 
 // Whether Omega = phi-dot is a rate something goes round at: the coin's axis (e_Z) circles the
 // vertical faster than it nods towards or away from it. A coin rocking through flat (falling_flat)

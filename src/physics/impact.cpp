@@ -243,7 +243,7 @@ ImpactOutcome resolveImpact(const CoinModel& m, const FlightState& state, const 
   const Eigen::Vector3d inertia(m.I_X, m.I_X, m.I_Z);
   outcome.impulse = s.P;
   outcome.after = state;
-  outcome.after.velocity += s.P / m.M;                                                         // (3.1)
+  outcome.after.velocity += s.P / m.M;  // (3.1)
   outcome.after.omegaBody += (R.transpose() * r.cross(s.P)).cwiseQuotient(inertia);
   const Eigen::Vector3d uAfter = u0 + K * s.P;
   outcome.reboundSpeed = std::max(0.0, uAfter.y());

@@ -11,7 +11,7 @@
 namespace coinroll::physics {
 
 struct ImpactOutcome {
-  FlightState after;                                 // velocities changed, attitude and centre as before
+  FlightState after;                                  // velocities changed, attitude and centre as before
   Eigen::Vector3d impulse = Eigen::Vector3d::Zero();  // P, N s, floor components, at the contact
   double approachSpeed = 0;  // m/s, -u_n before: how fast the contact point closed on the floor
   double reboundSpeed = 0;   // m/s, u_n after (>= 0)

@@ -80,10 +80,8 @@ SlidingState contactStateOf(const CoinModel& model, const FlightState& state) {
 }
 
 Handover flightHandover(const CoinModel& model, double t, const FlightState& state, double dissipated) {
-  return {.t = t,
-          .state = contactStateOf(model, state),
-          .forward = flightForward(model, state),
-          .dissipated = dissipated};
+  return {
+      .t = t, .state = contactStateOf(model, state), .forward = flightForward(model, state), .dissipated = dissipated};
 }
 
 bool belowUpright(const CoinModel& model, const FlightState& state) {

@@ -10,9 +10,9 @@ Eigen::Matrix3d coinAxesInFloor(const CoinState& s) {
   const double st = std::sin(s.theta), ct = std::cos(s.theta);
   const double sp = std::sin(s.phi), cp = std::cos(s.phi);
   Eigen::Matrix3d R;
-  R << cp,      0,   -sp,       // e_X
-       st * sp, ct,  st * cp,   // e_Y
-       ct * sp, -st, ct * cp;   // e_Z
+  R << cp, 0, -sp,            // e_X
+      st * sp, ct, st * cp,   // e_Y
+      ct * sp, -st, ct * cp;  // e_Z
   return R;
 }
 

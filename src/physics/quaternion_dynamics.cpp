@@ -124,7 +124,7 @@ QuaternionState fromEulerState(const CoinState& s) {
 
 CoinState toEulerState(const QuaternionState& s, const CoinState& continuation) {
   const Eigen::Matrix3d floorFromBody = s.q.toRotationMatrix();
-  const Eigen::Vector3d normal = floorFromBody.col(2);    // e_Z = (cos th sin phi, -sin th, cos th cos phi)
+  const Eigen::Vector3d normal = floorFromBody.col(2);          // e_Z = (cos th sin phi, -sin th, cos th cos phi)
   const Eigen::Vector3d up = floorFromBody.row(1).transpose();  // e_y in material components
   const auto nearest = [](double angle, double reference) {
     return angle + 2 * std::numbers::pi * std::round((reference - angle) / (2 * std::numbers::pi));
@@ -132,10 +132,10 @@ CoinState toEulerState(const QuaternionState& s, const CoinState& continuation) 
   CoinState e;
   e.theta = thetaOf(s.q);
   e.phi = nearest(std::atan2(normal.x(), normal.z()), continuation.phi);
-  e.psi = nearest(std::atan2(up.x(), up.y()), continuation.psi);                  // e_Y = (sin psi, cos psi, 0)
+  e.psi = nearest(std::atan2(up.x(), up.y()), continuation.psi);  // e_Y = (sin psi, cos psi, 0)
   const double c = std::cos(e.psi), sn = std::sin(e.psi);
   const Eigen::Vector3d& w = s.omegaBody;
-  e.omega_X = c * w.x() - sn * w.y();                                             // (1.5)
+  e.omega_X = c * w.x() - sn * w.y();  // (1.5)
   e.omega_Y = sn * w.x() + c * w.y();
   e.omega_Z = w.z();
   e.x = s.x;
@@ -174,7 +174,7 @@ QuaternionRates quaternionRates(const CoinModel& model, const QuaternionStateVec
   dy[kQz] = 0.5 * spin.z() + restoring * q.z();
   const Eigen::Vector3d cDot = contactDrift(model, geo, omega);
   if (model.effects.empty()) {
-    dy.segment<3>(kOmegaBody1) = angularAcceleration(model, geo, omega, cDot);           // (3.4)
+    dy.segment<3>(kOmegaBody1) = angularAcceleration(model, geo, omega, cDot);  // (3.4)
   } else {
     const QuaternionState s{.q = q, .omegaBody = omega, .x = y[kCentreX], .z = y[kCentreZ]};
     const EulerSystem euler(model, geo, omega, cDot);

@@ -28,10 +28,10 @@ struct Rim {
 // reach = a - rho + rho cos(theta), lift = sign(theta) (h/2 - rho) + rho sin(theta),
 // with the derivatives d/dtheta (away from theta = 0 for a cornered rim, where lift jumps).
 struct ContactOffset {
-  double reach = 0;        // m, -c . e_Y
-  double lift = 0;         // m, c . e_Z
-  double dReach = 0;       // m/rad, d(reach)/d(theta)
-  double dLift = 0;        // m/rad, d(lift)/d(theta)
+  double reach = 0;   // m, -c . e_Y
+  double lift = 0;    // m, c . e_Z
+  double dReach = 0;  // m/rad, d(reach)/d(theta)
+  double dLift = 0;   // m/rad, d(lift)/d(theta)
 };
 
 inline ContactOffset contactOffset(const Rim& rim, double a, double sinTheta, double cosTheta) {

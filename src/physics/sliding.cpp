@@ -19,13 +19,13 @@ constexpr int kMaxNormalForcePasses = 6;
 
 struct Sliding {
   ContactGeometry geo;
-  Eigen::Vector3d spinAtContact;  // floor: omega x c
-  Eigen::Vector3d cDot;      // material derivative of c
-  Eigen::Vector3d velocity;  // floor: (v_x, from the held contact, v_z)  (docs/sliding.md eq. 1.2)
-  Eigen::Vector3d slip;      // floor, horizontal: v + omega x c          (1.3)
-  Eigen::Vector3d slipHat;   // floor, unit
-  double N0 = 0;             // N, the normal force without omega-dot's part (1.5)
-  Eigen::Vector3d m, k;      // body: c x e_y and c x (e_y - mu s_hat)     (1.6)
+  Eigen::Vector3d spinAtContact;    // floor: omega x c
+  Eigen::Vector3d cDot;             // material derivative of c
+  Eigen::Vector3d velocity;         // floor: (v_x, from the held contact, v_z)  (docs/sliding.md eq. 1.2)
+  Eigen::Vector3d slip;             // floor, horizontal: v + omega x c          (1.3)
+  Eigen::Vector3d slipHat;          // floor, unit
+  double N0 = 0;                    // N, the normal force without omega-dot's part (1.5)
+  Eigen::Vector3d m, k;             // body: c x e_y and c x (e_y - mu s_hat)     (1.6)
   Eigen::Vector3d inverseInertiaK;  // body: I_G^-1 k
   double D = 1;                     // the normal effective mass (3.2)
 };

@@ -16,8 +16,7 @@ Eigen::Vector3d SlidingRhs::searchFrictionDirection(const SlidingStateVec& y) co
     return creep->slipHat;
   }
   const Eigen::Vector2d slip = y.tail<2>();
-  return slip.norm() > kSlipRoundOff ? Eigen::Vector3d(slip.x() / slip.norm(), 0, slip.y() / slip.norm())
-                                     : direction;
+  return slip.norm() > kSlipRoundOff ? Eigen::Vector3d(slip.x() / slip.norm(), 0, slip.y() / slip.norm()) : direction;
 }
 
 Forward SlidingRhs::forward(const SlidingStateVec& y) const {

@@ -9,9 +9,9 @@ namespace coinroll::physics {
 PrincipalMoments filletedCylinderInertia(double M, double a, double b, double h, double rho) {
   // Written as !(ok) so that NaN inputs are rejected too.
   if (!(M > 0) || !(a > 0) || !(b >= 0 && b <= a) || !(h >= 0)) {
-    throw std::invalid_argument("filletedCylinderInertia: need M > 0, a > 0, 0 <= b <= a, h >= 0; got M = " +
-                                std::to_string(M) + ", a = " + std::to_string(a) + ", b = " + std::to_string(b) +
-                                ", h = " + std::to_string(h));
+    throw std::invalid_argument(
+        "filletedCylinderInertia: need M > 0, a > 0, 0 <= b <= a, h >= 0; got M = " + std::to_string(M) +
+        ", a = " + std::to_string(a) + ", b = " + std::to_string(b) + ", h = " + std::to_string(h));
   }
   // Beyond h/2 the two fillets overlap; beyond a - b the fillet would cut into the (square) hole edge.
   if (!(rho >= 0 && rho <= 0.5 * h && rho <= a - b)) {
@@ -28,11 +28,11 @@ PrincipalMoments filletedCylinderInertia(double M, double a, double b, double h,
   const double kappa = 1 - pi / 4;  // fillet area / rho^2 (I.4)
 
   // One fillet's integrals of r, r^3 and r z^2 over the area it removes; the two fillets are mirror images in z.
-  const double cornerV = kappa * c * rho2 + rho3 / 6;                                                   // (I.6)
+  const double cornerV = kappa * c * rho2 + rho3 / 6;  // (I.6)
   const double cornerR =
       kappa * c * c * c * rho2 + c * c * rho3 / 2 + (1 - 3 * pi / 16) * c * rho4 + 7 * rho5 / 60;  // (I.7)
   const double cornerZ = c * (kappa * d * d * rho2 + d * rho3 / 3 + (1.0 / 3 - pi / 16) * rho4) + d * d * rho3 / 6 +
-                         d * rho4 / 4 + rho5 / 10;                                                     // (I.8)
+                         d * rho4 / 4 + rho5 / 10;  // (I.8)
 
   // Everything is divided by the square-edged volume / pi so that rho = 0 gives the ring's moments exactly
   // (the corner terms vanish identically) and small fillets appear as small corrections. (a - b)(a + b) rather
@@ -43,7 +43,7 @@ PrincipalMoments filletedCylinderInertia(double M, double a, double b, double h,
   const double sumOfSquares = a * a + b * b;
   const double volumeFraction = 1 - share * cornerV;  // V / (pi h (a^2 - b^2)), (I.9)
   return {.I_X = M * (sumOfSquares / 4 + h * h / 12 - share * (cornerR / 2 + cornerZ)) / volumeFraction,  // (I.11)
-          .I_Z = M * (sumOfSquares / 2 - share * cornerR) / volumeFraction};                                  // (I.11)
+          .I_Z = M * (sumOfSquares / 2 - share * cornerR) / volumeFraction};                              // (I.11)
 }
 
 }  // namespace coinroll::physics

@@ -104,10 +104,10 @@ CoinState rimSpinInPlace(const CoinModel& m, double theta) {
   // denominator carry a factor sin(theta), so small tilts lose nothing.
   const double omegaSquared = m.M * m.g * r.A * r.Lambda / (m.I_X * r.A * r.tanTheta - m.I_Z * r.B);
   if (!(omegaSquared >= 0) || !std::isfinite(omegaSquared)) {
-    throw std::invalid_argument("steady state spin-in-place: this rim has no spin in place at theta = " +
-                                std::to_string(degrees(theta)) +
-                                " degrees (docs/rim.md eq. 5.3: between a corner's balance angle and the root of "
-                                "I_X A tan(theta) = I_Z B the required omega_Y^2 is negative)");
+    throw std::invalid_argument(
+        "steady state spin-in-place: this rim has no spin in place at theta = " + std::to_string(degrees(theta)) +
+        " degrees (docs/rim.md eq. 5.3: between a corner's balance angle and the root of "
+        "I_X A tan(theta) = I_Z B the required omega_Y^2 is negative)");
   }
   const double omega_Y = std::sqrt(omegaSquared);
   return {.theta = theta, .omega_Y = omega_Y, .omega_Z = -r.B / r.A * omega_Y};
@@ -119,7 +119,7 @@ double rimWobbleStiffness(const CoinModel& m, double theta0, double omega_Y0, do
   const double rho = m.rim.edgeRadius, M = m.M;
   const double A = r.A, B = r.B, L = r.L, s = r.sinTheta, co = r.cosTheta, t = r.tanTheta;
   const double H = L * co;
-  const double V = A * omega_Z0 + B * omega_Y0;                      // speed of G (eq. 2.4)
+  const double V = A * omega_Z0 + B * omega_Y0;                            // speed of G (eq. 2.4)
   const double G_X = omega_Y0 * (m.a - rho + B * t) + rho * s * omega_Z0;  // f_Y, f_Z per omega_X (eq. 2.9)
   // The rate perturbations follow the tilt, d(omega_Y) = alpha d(theta), d(omega_Z) = beta d(theta):
   // the Y-Z block of the mass matrix (2.8) solved for d(f_Y, f_Z)/d(omega_X).
@@ -129,7 +129,7 @@ double rimWobbleStiffness(const CoinModel& m, double theta0, double omega_Y0, do
   const double beta = M * A * (m.I_X * G_X - B * k) / det;
   const double dfdTheta = -m.I_X * omega_Y0 * omega_Y0 / (co * co) -
                           M * omega_Y0 * (B * V / (co * co) + L * rho * (omega_Y0 * co - omega_Z0 * s)) +
-                          M * m.g * (H - rho);                                          // (5.7)
+                          M * m.g * (H - rho);  // (5.7)
   const double dfdOmega_Y = -m.I_Z * omega_Z0 - 2 * m.I_X * t * omega_Y0 - M * L * (A * omega_Z0 + 2 * B * omega_Y0);
   const double dfdOmega_Z = -(m.I_Z + M * A * L) * omega_Y0;
   return -(dfdTheta + alpha * dfdOmega_Y + beta * dfdOmega_Z) / (m.I_X + M * (A * A + B * B));  // (5.8)
@@ -201,12 +201,12 @@ double wobbleStiffness(const CoinModel& m, double theta0, double omega_Y0, doubl
   const double tanTheta = std::tan(theta0), cosTheta = std::cos(theta0);
   // Perturbations of omega_Y and omega_Z follow the tilt: d(omega_Y) = alpha d(theta),
   // d(omega_Z) = beta d(theta) (linearised eqs. 15, 16 with d(theta)-dot = d(omega_X)).
-  const double alpha = (m.I_X * omega_Y0 * tanTheta + m.I_Z * omega_Z0) / m.I_X;       // (3.3)
-  const double beta = Ma2 * omega_Y0 / (m.I_Z + Ma2);                                  // (3.4)
+  const double alpha = (m.I_X * omega_Y0 * tanTheta + m.I_Z * omega_Z0) / m.I_X;  // (3.3)
+  const double beta = Ma2 * omega_Y0 / (m.I_Z + Ma2);                             // (3.4)
   // Linearised eq. (14): (I_X + M a^2) d(theta)'' = -K (I_X + M a^2) d(theta).
   return ((m.I_Z + Ma2) * (omega_Z0 * alpha + omega_Y0 * beta) + 2 * m.I_X * omega_Y0 * tanTheta * alpha +
           m.I_X * omega_Y0 * omega_Y0 / (cosTheta * cosTheta) - Mga * cosTheta) /
-         (m.I_X + Ma2);                                                                 // (3.6)
+         (m.I_X + Ma2);  // (3.6)
 }
 
 CircleRadii circleRadii(const CoinModel& m, const CoinState& s) {

@@ -73,8 +73,8 @@ CircleRadii circleRadii(const CoinModel& model, const CoinState& steadyState);
 
 // What `coinroll steady` prints and the library's steady() returns, computed in one place.
 struct SteadyReport {
-  double naturalRate = 0;              // rad/s, sqrt(g/a)
-  std::optional<double> criticalSpin;  // rad/s; absent for a rim with corners, which has no straight rolling
+  double naturalRate = 0;                   // rad/s, sqrt(g/a)
+  std::optional<double> criticalSpin;       // rad/s; absent for a rim with corners, which has no straight rolling
   double precessionRate = 0, spinRate = 0;  // rad/s, phi-dot and psi-dot
   CircleRadii radii;
   Reaction reaction;

@@ -48,8 +48,7 @@ double fittingDistance(const Eigen::Vector3d& lower, const Eigen::Vector3d& uppe
 CameraRig::CameraRig(const scene::CameraSpec& spec, const MotionSurvey& survey, const physics::CoinModel& model,
                      int width, int height, const std::optional<Eigen::Vector3d>& towardsEye)
     : spec_(spec),
-      towardsEye_(towardsEye.value_or(
-          viewDirection(radians(kDefaultAzimuthDegrees), radians(spec.elevationDegrees)))) {
+      towardsEye_(towardsEye.value_or(viewDirection(radians(kDefaultAzimuthDegrees), radians(spec.elevationDegrees)))) {
   // The box of all centres and contact points, widened by the coin itself, from the floor up.
   const Eigen::Vector3d margin(model.a, 0, model.a);
   Eigen::Vector3d lower = survey.lower - margin, upper = survey.upper + margin;

@@ -29,8 +29,8 @@ class CameraRig {
   scene::CameraSpec spec_;
   Eigen::Vector3d target_;
   Eigen::Vector3d towardsEye_;  // unit, the framing's direction from the target to the eye
-  double distance_ = 1;        // m
-  double followDistance_ = 1;  // m
+  double distance_ = 1;         // m
+  double followDistance_ = 1;   // m
 };
 
 }  // namespace coinroll::pipeline

@@ -85,5 +85,4 @@ class ClipInset {
   bool logRate_ = false;
 };
 
-
 }  // namespace coinroll::pipeline

@@ -14,9 +14,10 @@ FrameRange framesIn(const ClipPlan& plan, const TimeWindow& window) {
     return byVideo ? static_cast<double>(k) / plan.fps : plan.times[static_cast<std::size_t>(k)];
   };
   if (window.last && *window.last > length + kWindowTolerance) {
-    throw std::invalid_argument(fmt::format("--last {}: longer than the clip, which lasts {:.9g} s of video; give at "
-                                            "most that, or no window for the whole clip",
-                                            *window.last, length));
+    throw std::invalid_argument(
+        fmt::format("--last {}: longer than the clip, which lasts {:.9g} s of video; give at "
+                    "most that, or no window for the whole clip",
+                    *window.last, length));
   }
   const double from = window.last ? length - *window.last : window.from;
   const double to = window.last ? length : window.to;
@@ -30,14 +31,16 @@ FrameRange framesIn(const ClipPlan& plan, const TimeWindow& window) {
   if (range.first <= range.last) return range;
   const double lastFrameAt = static_cast<double>(plan.frames() - 1) / plan.fps;  // s of video
   if (window.last) {
-    throw std::invalid_argument(fmt::format("--last {}: no frame plays in the last {} s of the {:.6g} s clip; give "
-                                            "at least one frame's length, 1 / fps = {:.6g} s",
-                                            *window.last, *window.last, length, 1.0 / plan.fps));
+    throw std::invalid_argument(
+        fmt::format("--last {}: no frame plays in the last {} s of the {:.6g} s clip; give "
+                    "at least one frame's length, 1 / fps = {:.6g} s",
+                    *window.last, *window.last, length, 1.0 / plan.fps));
   }
   if (byVideo && from > lastFrameAt + kWindowTolerance) {
-    throw std::invalid_argument(fmt::format("--from-video {}: beyond the clip's last frame at {:.9g} s of video (the "
-                                            "clip lasts {:.9g} s); give a time in [0, {:.9g}]",
-                                            from, lastFrameAt, length, lastFrameAt));
+    throw std::invalid_argument(
+        fmt::format("--from-video {}: beyond the clip's last frame at {:.9g} s of video (the "
+                    "clip lasts {:.9g} s); give a time in [0, {:.9g}]",
+                    from, lastFrameAt, length, lastFrameAt));
   }
   if (byVideo) {
     throw std::invalid_argument(fmt::format(
@@ -45,15 +48,15 @@ FrameRange framesIn(const ClipPlan& plan, const TimeWindow& window) {
         window.from, window.to, plan.fps));
   }
   if (window.from > plan.endTime + kWindowTolerance) {
-    throw std::invalid_argument(fmt::format("--from {}: beyond the run's end at {:.9g} s{}; give a time in [0, {:.9g}]",
-                                            window.from, plan.endTime,
-                                            plan.stopDescription ? " (" + *plan.stopDescription + ")" : "",
-                                            plan.endTime));
+    throw std::invalid_argument(
+        fmt::format("--from {}: beyond the run's end at {:.9g} s{}; give a time in [0, {:.9g}]", window.from,
+                    plan.endTime, plan.stopDescription ? " (" + *plan.stopDescription + ")" : "", plan.endTime));
   }
-  throw std::invalid_argument(fmt::format("--from {} --to {}: no frame's simulated time lies in this window (frames "
-                                          "are {:.6g} s of simulated time apart{}); widen it",
-                                          window.from, window.to, plan.timeScale / plan.fps,
-                                          plan.remapped ? ", less where render.time_remap slows them" : ""));
+  throw std::invalid_argument(
+      fmt::format("--from {} --to {}: no frame's simulated time lies in this window (frames "
+                  "are {:.6g} s of simulated time apart{}); widen it",
+                  window.from, window.to, plan.timeScale / plan.fps,
+                  plan.remapped ? ", less where render.time_remap slows them" : ""));
 }
 
 }  // namespace coinroll::pipeline

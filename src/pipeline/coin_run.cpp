@@ -49,10 +49,9 @@ std::optional<RunSample> CoinRun::sampleAt(double t) {
     throwIfCancelled(cancel_);
     // In flight phi-dot and psi-dot are unbounded where the tumbling coin passes flat, which they
     // cannot be unwrapped through anyway; the body's own turn keeps the samples finite there.
-    const double turnRate =
-        last_.forward.flying
-            ? last_.forward.omega.norm()
-            : std::max(std::abs(physics::precessionRate(last_.state)), std::abs(physics::spinRate(last_.state)));
+    const double turnRate = last_.forward.flying ? last_.forward.omega.norm()
+                                                 : std::max(std::abs(physics::precessionRate(last_.state)),
+                                                            std::abs(physics::spinRate(last_.state)));
     const double next = turnRate > 0 ? std::min(t, lastTime_ + kUnwrapTurn / turnRate) : t;
     std::optional<RunSample> sample = motion_->sampleAt(next, last_.state);
     if (!sample) return std::nullopt;

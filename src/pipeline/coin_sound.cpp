@@ -57,8 +57,10 @@ void CoinSound::addImpact(std::vector<float>& samples, std::size_t at, double st
     const auto value = static_cast<float>(amplitude * std::sin(2 * std::numbers::pi * kKnockFrequency * time) *
                                           std::exp(-time / kKnockDecay));
     const std::size_t i = at + n;
-    if (i < samples.size()) samples[i] += value;
-    else ringing_[i - samples.size()] += value;
+    if (i < samples.size())
+      samples[i] += value;
+    else
+      ringing_[i - samples.size()] += value;
   }
 }
 

@@ -40,7 +40,7 @@ class CoinSound {
 
   scene::AudioSpec spec_;
   int sampleRate_;
-  double phase_ = 0;  // cycles, in [0, 1)
+  double phase_ = 0;            // cycles, in [0, 1)
   std::vector<float> ringing_;  // the impacts' sound still to come, from the next sample on
 };
 

@@ -57,8 +57,8 @@ std::optional<double> touchdownBetween(const Read& read, const GapReading& a, co
   const auto g = [&](double elapsed) { return read(elapsed).g; };
   if (b.g <= 0) return integrate::locateRoot(g, a.elapsed, a.g, b.elapsed, b.g);
   if (a.rate < 0 && b.rate > 0) {
-    const double low = integrate::locateRoot([&](double elapsed) { return read(elapsed).rate; }, a.elapsed, a.rate,
-                                             b.elapsed, b.rate);
+    const double low =
+        integrate::locateRoot([&](double elapsed) { return read(elapsed).rate; }, a.elapsed, a.rate, b.elapsed, b.rate);
     const double gLow = g(low);
     if (gLow > 0) return std::nullopt;
     return integrate::locateRoot(g, a.elapsed, a.g, low, gLow);
@@ -74,8 +74,8 @@ std::optional<double> touchdownBetween(const Read& read, const GapReading& a, co
 // the search starts there. From then on g and its rate are read every eighth of a turn of the coin
 // (its rim dips towards the floor twice a turn) and every quarter of a rebound's hop, and each pair
 // of readings searched by touchdownBetween, so that no dip is missed however shallow (docs/flight.md §2).
-std::optional<double> touchdownOfBranch(const physics::CoinModel& model, double t0,
-                                        const physics::FlightState& start, double until) {
+std::optional<double> touchdownOfBranch(const physics::CoinModel& model, double t0, const physics::FlightState& start,
+                                        double until) {
   const auto read = [&](double elapsed) {
     const physics::FlightState s = physics::flightAfter(model, start, elapsed);
     return GapReading{.elapsed = elapsed,
@@ -84,8 +84,7 @@ std::optional<double> touchdownOfBranch(const physics::CoinModel& model, double 
   };
   const double high = start.centre.y() - physics::reachBelowCentre(model), up = start.velocity.y();
   double elapsed = high > 0 ? (up + std::sqrt(up * up + 2 * model.g * high)) / model.g : 0.0;
-  const double rising =
-      std::max(physics::pointVelocity(start, physics::lowestPointVector(model, start.q)).y(), 0.0);
+  const double rising = std::max(physics::pointVelocity(start, physics::lowestPointVector(model, start.q)).y(), 0.0);
   const double turn = start.omegaBody.norm();
   const bool fromTheFloor = physics::rimGap(model, start) <= kTouchDepth * model.a;
   const double hop = fromTheFloor ? std::max(0.5 * rising / model.g, kShortestHop * physics::naturalTime(model))
@@ -125,9 +124,12 @@ std::optional<double> touchdownAfter(const physics::CoinModel& model, double t0,
 
 }  // namespace
 
-FreeFlight::FreeFlight(const physics::CoinModel& model, double t0, const physics::FlightState& start,
-                       double dissipated, double until)
-    : model_(model), t0_(t0), start_(start), dissipated_(dissipated),
+FreeFlight::FreeFlight(const physics::CoinModel& model, double t0, const physics::FlightState& start, double dissipated,
+                       double until)
+    : model_(model),
+      t0_(t0),
+      start_(start),
+      dissipated_(dissipated),
       touchdown_(touchdownAfter(model, t0, start, until)) {}
 
 RunSample flightSample(const physics::CoinModel& model, const physics::FlightState& s, double dissipated,

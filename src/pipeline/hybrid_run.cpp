@@ -189,8 +189,8 @@ void HybridRun::startRolling(const physics::Handover& start) {
   }
   Y y0;
   y0 << physics::toVector(start.state.attitude), start.dissipated;
-  segment_ = std::make_unique<RollingSegment>(RollingKind{model}, start.t, y0, simulation_.solver,
-                                              std::move(events), simulation_.duration);
+  segment_ = std::make_unique<RollingSegment>(RollingKind{model}, start.t, y0, simulation_.solver, std::move(events),
+                                              simulation_.duration);
 }
 
 void HybridRun::startSliding(const physics::Handover& start, Mode mode) {
@@ -279,8 +279,8 @@ bool HybridRun::strike(Mode from, const physics::Handover& handover) {
   for (const ImpactRecord& impact : impacts_) recent += impact.t > handover.t - 1 ? 1 : 0;
   const bool chattering = recent >= kMaxImpactsPerSecond;
   const bool corner = from != Mode::Flight;
-  const physics::Landing landing = corner ? physics::cornerLanding(model, handover, chattering)
-                                          : physics::touchdown(model, handover, chattering);
+  const physics::Landing landing =
+      corner ? physics::cornerLanding(model, handover, chattering) : physics::touchdown(model, handover, chattering);
   impacts_.push_back({.t = handover.t,
                       .normalSpeed = landing.normalSpeed,
                       .reboundSpeed = landing.reboundSpeed,
@@ -298,10 +298,8 @@ bool HybridRun::strike(Mode from, const physics::Handover& handover) {
 }
 
 void HybridRun::endAt(ModelEvent event, const physics::Handover& handover) {
-  ending_ = Ending{.event = event,
-                   .t = handover.t,
-                   .state = physics::flightStateOf(handover),
-                   .dissipated = handover.dissipated};
+  ending_ = Ending{
+      .event = event, .t = handover.t, .state = physics::flightStateOf(handover), .dissipated = handover.dissipated};
 }
 
 void HybridRun::noteSwitch(Mode from, Mode to, double t) {
@@ -333,8 +331,7 @@ bool HybridRun::switchIfDue() {
   if (!end) return false;
   // The rolling-sliding switches count towards stick-slip's bound; the slide's own hand-overs between
   // free and creeping, and the flight's, do not.
-  const bool countsToStickSlip =
-      end->transition == Transition::SlideOnset || end->transition == Transition::SlipStops;
+  const bool countsToStickSlip = end->transition == Transition::SlideOnset || end->transition == Transition::SlipStops;
   if (countsToStickSlip && tooManySwitches(end->handover)) return false;
   // The finished segment's crossings gone past and its work, kept before it is replaced; the run's
   // pace is judged on all its segments' steps.

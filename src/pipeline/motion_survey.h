@@ -19,7 +19,7 @@ double traceInterval(double duration);
 struct MotionSurvey {
   Eigen::Vector3d lower = Eigen::Vector3d::Zero(),
                   upper = Eigen::Vector3d::Zero();  // m, box around every centre of mass and contact point
-  double endTime = 0;            // s, the duration, or when a validity event stopped the run
+  double endTime = 0;                               // s, the duration, or when a validity event stopped the run
   std::optional<RunEvent> stoppedBy = {};
 };
 

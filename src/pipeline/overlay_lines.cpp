@@ -61,8 +61,7 @@ class Writer {
   Shown time(double s) const { return u_.seed ? Shown{s / std::sqrt(u_.a / u_.g), "√(a/g)"} : Shown{s, "s"}; }
   // Rates: the seed's radians per its unit of time; in SI turns per second, as the ear hears them.
   Shown rate(double radiansPerSecond) const {
-    return u_.seed ? Shown{radiansPerSecond / std::sqrt(u_.g / u_.a), "√(g/a)"}
-                   : Shown{radiansPerSecond / kTurn, "Hz"};
+    return u_.seed ? Shown{radiansPerSecond / std::sqrt(u_.g / u_.a), "√(g/a)"} : Shown{radiansPerSecond / kTurn, "Hz"};
   }
   int rateDigits() const { return u_.seed ? 3 : 2; }
   Shown energy(double joules) const {

@@ -44,12 +44,11 @@ std::string slowMotionLine(const ClipPlan& plan) {
     stretches.resize(kListed);
     stretches.emplace_back("...");
   }
-  return fmt::format("slow motion: {} frames by flight, in the air {} time{} ({}); {} frames by impact, {} impact{}{}",
-                     framesBy(SlowedBy::Flight), plan.flights.size(), plan.flights.size() == 1 ? "" : "s",
-                     fmt::join(stretches, ", "), framesBy(SlowedBy::Impact), plan.impacts.size(),
-                     plan.impacts.size() == 1 ? "" : "s",
-                     plan.impacts.empty() ? "" : fmt::format(" from {:.6f} to {:.6f} s", plan.impacts.front(),
-                                                             plan.impacts.back()));
+  return fmt::format(
+      "slow motion: {} frames by flight, in the air {} time{} ({}); {} frames by impact, {} impact{}{}",
+      framesBy(SlowedBy::Flight), plan.flights.size(), plan.flights.size() == 1 ? "" : "s", fmt::join(stretches, ", "),
+      framesBy(SlowedBy::Impact), plan.impacts.size(), plan.impacts.size() == 1 ? "" : "s",
+      plan.impacts.empty() ? "" : fmt::format(" from {:.6f} to {:.6f} s", plan.impacts.front(), plan.impacts.back()));
 }
 
 }  // namespace
@@ -57,21 +56,21 @@ std::string slowMotionLine(const ClipPlan& plan) {
 std::vector<std::string> planLines(const ClipPlan& plan, const TimeWindow& window) {
   const long holdFrames = plan.frames() - plan.simulatedFrames;
   std::vector<std::string> lines;
-  lines.push_back(fmt::format("video: {} frames at {} fps, {:.3f} s{}", plan.frames(), plan.fps, plan.videoSeconds(),
-                              holdFrames > 0 ? fmt::format(" (the last {} hold the landing, {:g} s)", holdFrames,
-                                                           kLandingHoldSeconds)
-                                             : ""));
+  lines.push_back(fmt::format(
+      "video: {} frames at {} fps, {:.3f} s{}", plan.frames(), plan.fps, plan.videoSeconds(),
+      holdFrames > 0 ? fmt::format(" (the last {} hold the landing, {:g} s)", holdFrames, kLandingHoldSeconds) : ""));
   lines.push_back(fmt::format("simulated: 0 to {:.6f} s{}", plan.endTime,
                               plan.stopDescription ? "; the run stops early: " + *plan.stopDescription : ""));
   if (plan.byEvents) lines.push_back(slowMotionLine(plan));
   const FrameRange range = framesIn(plan, window);
   const auto first = static_cast<std::size_t>(range.first), last = static_cast<std::size_t>(range.last);
   const long written = range.last - range.first + 1;
-  lines.push_back(fmt::format("written: {} frames {} to {}, {:.3f} s of video from {:.3f} s; simulated {:.6f} to "
-                              "{:.6f} s",
-                              written == plan.frames() ? "all" : std::to_string(written), range.first, range.last,
-                              static_cast<double>(written) / plan.fps, static_cast<double>(range.first) / plan.fps,
-                              plan.times[first], plan.times[last]));
+  lines.push_back(
+      fmt::format("written: {} frames {} to {}, {:.3f} s of video from {:.3f} s; simulated {:.6f} to "
+                  "{:.6f} s",
+                  written == plan.frames() ? "all" : std::to_string(written), range.first, range.last,
+                  static_cast<double>(written) / plan.fps, static_cast<double>(range.first) / plan.fps,
+                  plan.times[first], plan.times[last]));
   // A row where the playback rate or the contact point's rate has changed by kRowChange since the
   // last row; a wobbling run whose rates swing by more would list most of its frames, so the step
   // grows until the table is small.
@@ -91,16 +90,17 @@ std::vector<std::string> planLines(const ClipPlan& plan, const TimeWindow& windo
       }
     }
   }
-  lines.emplace_back("playback over the clip (a row where a rate changed by 25 % or more; rate: simulated s per "
-                     "video s; contact: the contact point round the floor, turns per s; slowed_by: the time remap's "
-                     "rule that set the rate):");
+  lines.emplace_back(
+      "playback over the clip (a row where a rate changed by 25 % or more; rate: simulated s per "
+      "video s; contact: the contact point round the floor, turns per s; slowed_by: the time remap's "
+      "rule that set the rate):");
   lines.emplace_back(
       "    frame    video_s        sim_s       rate        speed  contact_Hz  contact_turns_per_video_s  slowed_by");
   for (const std::size_t k : rows) {
     const double rate = plan.playbackRates[k], turns = plan.contactRates[k] / (2 * std::numbers::pi);
     lines.push_back(fmt::format("{:9d} {:10.3f} {:12.6f} {:10.6f} {:>12} {:11.3f} {:26.3f}  {:>9}", k,
-                                static_cast<double>(k) / plan.fps, plan.times[k], rate,
-                                speedOf(rate), turns, turns * rate, ruleOf(plan.slowedBy[k])));
+                                static_cast<double>(k) / plan.fps, plan.times[k], rate, speedOf(rate), turns,
+                                turns * rate, ruleOf(plan.slowedBy[k])));
   }
   return lines;
 }

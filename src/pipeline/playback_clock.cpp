@@ -56,12 +56,14 @@ namespace {
 [[noreturn]] void refuseFrames(const scene::SceneConfig& scene, long maxFrames, std::string_view raisedWith,
                                const std::string& count) {
   const std::string fixes = raisedWith.empty() ? "shorten the duration, raise time_scale or lower fps"
-                                               : fmt::format("shorten the duration, raise time_scale or lower fps, or "
-                                                             "raise the limit with {}", raisedWith);
-  throw std::invalid_argument(fmt::format(
-      "render: duration {} s at time_scale {}, fps {}{} gives {} frames, more than the limit {}; {}", scene.duration,
-      scene.render.timeScale, scene.render.fps, isRemapped(scene.render) ? " and the time remap" : "", count, maxFrames,
-      fixes));
+                                               : fmt::format(
+                                                     "shorten the duration, raise time_scale or lower fps, or "
+                                                     "raise the limit with {}",
+                                                     raisedWith);
+  throw std::invalid_argument(
+      fmt::format("render: duration {} s at time_scale {}, fps {}{} gives {} frames, more than the limit {}; {}",
+                  scene.duration, scene.render.timeScale, scene.render.fps,
+                  isRemapped(scene.render) ? " and the time remap" : "", count, maxFrames, fixes));
 }
 
 // The clip's frames, chosen inside the pass: k time_scale / fps, or with a time remap
@@ -88,8 +90,8 @@ class ClipFrameTimes final : public FramePlan {
     if (k == 0) return 0.0;
     if (previous == nullptr) return std::nullopt;  // the run ended at frame k - 1
     // Frame k - 1's rates: the step to frame k is its playback rate.
-    const ClipRate clip = clipRateAt(render, schedule_, lastTime_, previous->forward.spinRate,
-                                     previous->forward.precessionRate);
+    const ClipRate clip =
+        clipRateAt(render, schedule_, lastTime_, previous->forward.spinRate, previous->forward.precessionRate);
     slowedBy_.push_back(clip.by);
     return lastTime_ += clip.rate / render.fps;
   }
@@ -113,8 +115,8 @@ class ClipFrameTimes final : public FramePlan {
   const SlowMotionSchedule& schedule_;
   long maxFrames_;
   std::string_view maxFramesOption_;
-  double perFrame_;    // s of simulated time, without a remap
-  long ofDuration_;    // frames of a run that lasts its duration, without a remap
+  double perFrame_;      // s of simulated time, without a remap
+  long ofDuration_;      // frames of a run that lasts its duration, without a remap
   double lastTime_ = 0;  // s, the remapped frame time last given
   std::vector<SlowedBy> slowedBy_;
 };
@@ -139,7 +141,6 @@ ClipRecord recordClip(const scene::SceneConfig& scene, const Simulation& simulat
 RunRecord recordFrames(const scene::SceneConfig& scene, const Simulation& simulation, long maxFrames) {
   return recordClip(scene, simulation, maxFrames, kMaxFramesOption).record;
 }
-
 
 void refuseAbsurdDuration(const scene::SceneConfig& scene, long maxFrames, std::string_view maxFramesOption) {
   if (const double atMost = static_cast<double>(scene.duration) / scene.render.timeScale * scene.render.fps;
@@ -171,7 +172,7 @@ ClipPlan planOf(const scene::SceneConfig& scene, ClipRecord& clip) {
   // motion), not that of the short step to the landing; simulated time stands still in the hold.
   const std::size_t lastPlanned = frames.size() - (landingFrameAdded ? 2 : 1);
   for (std::size_t k = 0; k < frames.size(); ++k) {
-    const double step = k < lastPlanned  ? frames[k + 1].time - frames[k].time
+    const double step = k < lastPlanned   ? frames[k + 1].time - frames[k].time
                         : lastPlanned > 0 ? frames[lastPlanned].time - frames[lastPlanned - 1].time
                                           : scene.render.timeScale / scene.render.fps;
     plan.times.push_back(frames[k].time);

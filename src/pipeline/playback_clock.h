@@ -69,9 +69,9 @@ ClipRate clipRateAt(const scene::RenderSpec& render, const SlowMotionSchedule& s
 // `render --plan` prints and the frame loop then draws. Frame k plays at video time k / fps.
 struct ClipPlan {
   int fps = 0;
-  double timeScale = 1;   // render.time_scale: simulated s per video s without a remap
-  bool remapped = false;  // render.time_remap is set: the playback rate follows the motion
-  bool byEvents = false;  // render.time_remap.flight or .impact is set
+  double timeScale = 1;       // render.time_scale: simulated s per video s without a remap
+  bool remapped = false;      // render.time_remap is set: the playback rate follows the motion
+  bool byEvents = false;      // render.time_remap.flight or .impact is set
   std::vector<double> times;  // s of simulated time shown by each frame; the landing's hold repeats endTime
   // Simulated s per video s at each frame, as the overlay and the sound's pitch use it (FrameTiming).
   std::vector<double> playbackRates;
@@ -79,10 +79,10 @@ struct ClipPlan {
   std::vector<SlowedBy> slowedBy;    // the time remap's rule that set each frame's playback rate
   // What render.time_remap.flight and .impact followed (slow_motion.h): empty without them.
   std::vector<SlowMotionSchedule::Span> flights;
-  std::vector<double> impacts;       // s
-  long simulatedFrames = 0;          // frames before the landing's hold
-  bool landed = false;               // the coin landed on its face: kLandingHoldSeconds of hold follow
-  double endTime = 0;                // s of simulated time where the run ends (its duration, or an event)
+  std::vector<double> impacts;  // s
+  long simulatedFrames = 0;     // frames before the landing's hold
+  bool landed = false;          // the coin landed on its face: kLandingHoldSeconds of hold follow
+  double endTime = 0;           // s of simulated time where the run ends (its duration, or an event)
   std::optional<std::string> stopDescription;
 
   long frames() const { return static_cast<long>(times.size()); }

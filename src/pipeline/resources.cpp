@@ -26,10 +26,10 @@ constexpr std::uint64_t kMiB = 1024 * 1024;
 // plus 8.6 per MSAA sample (1280x720 with 1 and 4 samples: 88 and 111 MiB; 1920x1080 and
 // 3840x2160 with 4: 162 and 432 MiB). The constants below are those rounded up, so the estimate
 // stays above every measurement (118, 144, 594 MiB for the last three pictures).
-constexpr std::uint64_t kGlContextBytes = 48 * kMiB;        // the context without its threads
+constexpr std::uint64_t kGlContextBytes = 48 * kMiB;          // the context without its threads
 constexpr std::uint64_t kPerLlvmpipeThreadBytes = 12 * kMiB;  // besides the thread's stack
-constexpr std::uint64_t kBytesPerPixel = 24;                 // resolved picture, readback, image
-constexpr std::uint64_t kBytesPerSample = 10;                // colour and depth-stencil, per pixel
+constexpr std::uint64_t kBytesPerPixel = 24;                  // resolved picture, readback, image
+constexpr std::uint64_t kBytesPerSample = 10;                 // colour and depth-stencil, per pixel
 
 std::string mebibytes(std::uint64_t bytes) { return fmt::format("{} MiB", (bytes + kMiB - 1) / kMiB); }
 
@@ -77,8 +77,10 @@ std::string memoryLimitDescription() {
 
 std::string outOfMemoryMessage() {
   if (addressSpaceLimit()) {
-    return fmt::format("out of memory: {} is used up; raise it, or ask for less (a smaller picture, fewer frames "
-                       "or threads)", memoryLimitDescription());
+    return fmt::format(
+        "out of memory: {} is used up; raise it, or ask for less (a smaller picture, fewer frames "
+        "or threads)",
+        memoryLimitDescription());
   }
   return "out of memory: the machine's memory is used up; ask for less (a smaller picture, fewer frames or threads), "
          "or free memory";
@@ -90,9 +92,10 @@ void requireAddressSpace(std::uint64_t bytes, std::string_view what, std::string
   const std::uint64_t used = addressSpaceInUse();
   const std::uint64_t left = used < *limit ? *limit - used : 0;
   if (left >= bytes) return;
-  throw std::runtime_error(fmt::format("not enough memory for {}: it needs about {}, and {} of {} are left; raise the "
-                                       "limit, or {}", what, mebibytes(bytes), mebibytes(left),
-                                       memoryLimitDescription(), remedy));
+  throw std::runtime_error(
+      fmt::format("not enough memory for {}: it needs about {}, and {} of {} are left; raise the "
+                  "limit, or {}",
+                  what, mebibytes(bytes), mebibytes(left), memoryLimitDescription(), remedy));
 }
 
 std::uint64_t rendererAddressSpace(const render::RenderSettings& settings) {

@@ -57,16 +57,22 @@ namespace {
 class Pass {
  public:
   Pass(const Simulation& simulation, FramePlan& plan)
-      : run_(simulation), plan_(plan), duration_(simulation.duration), dt_(traceInterval(simulation.duration)),
-        lastGrid_(static_cast<long>(std::floor(simulation.duration / dt_)) + 1), end_(simulation.duration) {}
+      : run_(simulation),
+        plan_(plan),
+        duration_(simulation.duration),
+        dt_(traceInterval(simulation.duration)),
+        lastGrid_(static_cast<long>(std::floor(simulation.duration / dt_)) + 1),
+        end_(simulation.duration) {}
 
   RunRecord record() {
     nextFrame_ = plan_.timeOf(0, nullptr);
     while (!gridDone_ || nextFrame_) {
       const double gridTime = gridDone_ ? std::numeric_limits<double>::infinity()
                                         : std::min(static_cast<double>(gridIndex_) * dt_, duration_);
-      if (nextFrame_ && *nextFrame_ < gridTime) takeFrame(*nextFrame_);
-      else takeGridPoint(gridTime);
+      if (nextFrame_ && *nextFrame_ < gridTime)
+        takeFrame(*nextFrame_);
+      else
+        takeGridPoint(gridTime);
     }
     if (const std::optional<RunEvent> stop = run_.stoppedBy()) {
       record_.survey.stoppedBy = stop;
@@ -125,15 +131,15 @@ class Pass {
 
   CoinRun run_;
   FramePlan& plan_;
-  double duration_;         // s
-  double dt_;               // s, traceInterval
-  long lastGrid_;           // the survey's last point, at the duration
+  double duration_;  // s
+  double dt_;        // s, traceInterval
+  long lastGrid_;    // the survey's last point, at the duration
   long gridIndex_ = 0;
   bool gridDone_ = false;
   long frameIndex_ = 0;
   std::optional<double> nextFrame_;  // s, the next frame's time
-  bool ended_ = false;      // a query went past the run's end
-  double end_;              // s, the duration, or the event's time once a query went past it
+  bool ended_ = false;               // a query went past the run's end
+  double end_;                       // s, the duration, or the event's time once a query went past it
   std::optional<RunSample> endSample_, atDuration_;
   RunRecord record_;
 };

@@ -22,20 +22,20 @@ namespace coinroll::pipeline {
 // The coin at one frame time, as compact as the frame needs (a whole RunSample is 432 bytes): 112 bytes,
 // so a clip at the default limit of 1 000 000 frames keeps at most 112 MB of them.
 struct FrameState {
-  double time = 0;                                        // s of simulated time
-  Eigen::Vector3d centre = Eigen::Vector3d::Zero();       // m, centre of mass (coin pose, camera)
-  glm::quat attitude{1.0f, 0.0f, 0.0f, 0.0f};             // body axes -> floor frame, as drawn
-  glm::vec2 contact{0.0f};                                // m, contact point on the floor (x, z)
-  double theta = 0;                                       // rad
-  double omega_Z = 0;                                     // rad/s
-  double precessionRate = 0;                              // rad/s, phi-dot (overlay, sound)
-  double energy = 0;                                      // J
-  double power = 0;                                       // W dissipated by the effects
-  double slipSpeed = 0;                                   // m/s, of the contact while sliding
+  double time = 0;                                   // s of simulated time
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();  // m, centre of mass (coin pose, camera)
+  glm::quat attitude{1.0f, 0.0f, 0.0f, 0.0f};        // body axes -> floor frame, as drawn
+  glm::vec2 contact{0.0f};                           // m, contact point on the floor (x, z)
+  double theta = 0;                                  // rad
+  double omega_Z = 0;                                // rad/s
+  double precessionRate = 0;                         // rad/s, phi-dot (overlay, sound)
+  double energy = 0;                                 // J
+  double power = 0;                                  // W dissipated by the effects
+  double slipSpeed = 0;                              // m/s, of the contact while sliding
   bool sliding = false;
-  bool flying = false;                                    // "flight": true, between the floor's contacts
-  bool axisGoesRound = false;                             // physics::axisGoesRound
-  int impacts = 0;                                        // the rim's impacts so far ("flight": true)
+  bool flying = false;         // "flight": true, between the floor's contacts
+  bool axisGoesRound = false;  // physics::axisGoesRound
+  int impacts = 0;             // the rim's impacts so far ("flight": true)
 };
 
 FrameState frameStateOf(double time, const RunSample& sample);
@@ -69,11 +69,11 @@ struct RunRecord {
   // The contact point every traceInterval from t = 0 while the run lasts (point j at j * interval).
   std::vector<glm::vec2> trace;
   std::vector<bool> traceSlides;
-  std::vector<bool> traceFlies;    // "flight": true: the points the coin was in the air at
-  std::vector<FrameState> frames;  // the plan's frames, in time order
+  std::vector<bool> traceFlies;       // "flight": true: the points the coin was in the air at
+  std::vector<FrameState> frames;     // the plan's frames, in time order
   std::vector<ImpactRecord> impacts;  // "flight": true: the rim's impacts, for the sound track
-  FrameState end;                  // the coin at survey.endTime
-  integrate::Stats stats;          // of the pass's one CoinRun
+  FrameState end;                     // the coin at survey.endTime
+  integrate::Stats stats;             // of the pass's one CoinRun
 };
 
 // Adds a sample of the run to `record`'s survey (the box round every centre and contact point; `first`

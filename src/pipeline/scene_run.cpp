@@ -16,7 +16,8 @@ namespace {
 
 RunEnd endOf(const TrajectoryReport& run, double duration) {
   if (!run.stoppedBy) return {.event = "duration", .time = duration, .description = {}};
-  return {.event = physics::eventName(run.stoppedBy->event), .time = run.stoppedBy->t,
+  return {.event = physics::eventName(run.stoppedBy->event),
+          .time = run.stoppedBy->t,
           .description = describeStop(*run.stoppedBy)};
 }
 
@@ -53,9 +54,8 @@ SceneTable simulateScene(const scene::SceneConfig& scene, const SceneRunRequest&
   SceneTable table;
   table.start.columns = trajectoryColumns(simulation);
   const std::string rowsCost =
-      request.rowsCost
-          ? request.rowsCost(sampleCountUnbounded(scene.duration, sampleDt), table.start.columns.size())
-          : std::string();
+      request.rowsCost ? request.rowsCost(sampleCountUnbounded(scene.duration, sampleDt), table.start.columns.size())
+                       : std::string();
   refuseTooManyRows(scene.duration, sampleDt, request.maxRows, request.sampleDtName, request.maxRowsOption, rowsCost);
   simulation.cancel = request.cancel;
   table.start.expectedRows = sampleCount(scene.duration, sampleDt);

@@ -32,9 +32,9 @@ struct SceneRunRequest {
 
 // A run that passed every refusal and is about to take its first sample.
 struct RunStart {
-  std::vector<std::string_view> columns;  // trajectoryColumns: what each row holds, in order
-  long expectedRows = 0;                  // sampleCount: the rows of a run that reaches its duration
-  std::vector<std::string> notes;         // stderr lines about the scene itself ("coinroll: note: ...")
+  std::vector<std::string_view> columns;      // trajectoryColumns: what each row holds, in order
+  long expectedRows = 0;                      // sampleCount: the rows of a run that reaches its duration
+  std::vector<std::string> notes;             // stderr lines about the scene itself ("coinroll: note: ...")
   const physics::CoinModel* model = nullptr;  // the run's coin, valid until simulateScene returns
 };
 
@@ -55,9 +55,9 @@ struct RunEnd {
 
 // A moment of the run a page or a log marks.
 struct RunMark {
-  std::string_view kind;  // "switch" (rolling <-> sliding), "warning" (on_invalid "warn") or "stop"
-  std::string_view name;  // "slides" or "rolls" for a switch, else the event's name
-  double time = 0;        // s
+  std::string_view kind;    // "switch" (rolling <-> sliding), "warning" (on_invalid "warn") or "stop"
+  std::string_view name;    // "slides" or "rolls" for a switch, else the event's name
+  double time = 0;          // s
   std::string description;  // describeStop for a warning or the stop; empty for a switch
 };
 
@@ -65,7 +65,7 @@ struct RunMark {
 struct SceneTable {
   RunStart start;
   RunEnd end;
-  std::vector<RunMark> marks;  // the switches and warnings in time order, then the stop
+  std::vector<RunMark> marks;       // the switches and warnings in time order, then the stop
   std::vector<std::string> report;  // reportLines: what `coinroll simulate` prints on stderr after the run
   TrajectoryReport run;             // the rest a door may show: rows, impacts, singular time, step counts
 };

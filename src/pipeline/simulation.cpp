@@ -87,7 +87,8 @@ physics::CoinState steadyState(const physics::CoinModel& model, const scene::Ste
   if (!std::isfinite(s.omega_X) || !std::isfinite(s.omega_Y) || !std::isfinite(s.omega_Z)) {
     throw scene::SceneError(fmt::format(
         "initial.steady: this steady motion needs rates beyond any number (omega_X = {}, omega_Y = {}, omega_Z = {} "
-        "rad/s); tilt it more, or give it more spin", s.omega_X, s.omega_Y, s.omega_Z));
+        "rad/s); tilt it more, or give it more spin",
+        s.omega_X, s.omega_Y, s.omega_Z));
   }
   s.phi = steady.phi;
   s.psi = steady.psi;
@@ -149,7 +150,8 @@ bool leavesTheFloor(const Simulation& sim) {
   if (rising < -floorTolerance(sim.model) * physics::naturalRate(sim.model)) {
     throw scene::SceneError(fmt::format(
         "initial.v_y: the coin's rim would move into the floor at {:.4g} m/s; a coin on the floor can only rest on "
-        "it or leave it: raise v_y by at least that, or start above the floor (initial.y)", -rising));
+        "it or leave it: raise v_y by at least that, or start above the floor (initial.y)",
+        -rising));
   }
   if (rising > floorTolerance(sim.model) * physics::naturalRate(sim.model)) return true;
   const physics::QuaternionState attitude = physics::fromEulerState(sim.initial);
@@ -186,7 +188,8 @@ void requireValidStart(const Simulation& sim) {
     const double quaternionLimit = physics::flatStopFor(sim.model, physics::Formulation::Quaternion).tilt;
     throw scene::SceneError(fmt::format(
         "initial.theta: {:.10g} deg is at or beyond ±{} deg, where this run stops ({}: {}); start inside (-{}, {}) "
-        "deg{}", degrees(sim.initial.theta), degrees(flat.tilt), physics::eventName(flat.event),
+        "deg{}",
+        degrees(sim.initial.theta), degrees(flat.tilt), physics::eventName(flat.event),
         flat.event == physics::ModelEvent::FaceDown ? "the coin lies on its face" : "the formulation's limit near flat",
         degrees(flat.tilt), degrees(flat.tilt),
         quaternionLimit > flat.tilt
@@ -198,7 +201,8 @@ void requireValidStart(const Simulation& sim) {
   if (physics::liftOffMargin(sim.model, f) <= 0) {
     throw scene::SceneError(fmt::format(
         "initial: the floor would have to pull the coin down (normal force N = {:.4g} N <= 0): the coin lifts off at "
-        "once; lower the spin or the tilt", r.N));
+        "once; lower the spin or the tilt",
+        r.N));
   }
   // With sliding on, a start outside the cone or with a slip simply starts sliding, unless that
   // sliding has no unique normal force (the event painleve, which a run can only meet by crossing).
@@ -225,7 +229,8 @@ void requireValidStart(const Simulation& sim) {
   if (mu && physics::slipMargin(sim.model, f, *mu) < 0) {
     throw scene::SceneError(fmt::format(
         "initial: the contact needs friction F = {:.4g} N > mu N = {:.4g} N: the coin slips at once; raise friction or "
-        "lower the rates", r.F, *mu * r.N));
+        "lower the rates",
+        r.F, *mu * r.N));
   }
 }
 
@@ -301,25 +306,29 @@ std::string describeStop(const RunEvent& hit) {
     case ModelEvent::LiftOff: meaning = "the normal force reached zero; the coin would leave the floor"; break;
     case ModelEvent::Slip: meaning = "friction reached mu N; the contact would start slipping"; break;
     case ModelEvent::StickSlip:
-      meaning = "the coin switched between rolling and sliding more than 1000 times in one simulated second "
-                "(stick-slip faster than the model resolves, docs/sliding.md §4)";
+      meaning =
+          "the coin switched between rolling and sliding more than 1000 times in one simulated second "
+          "(stick-slip faster than the model resolves, docs/sliding.md §4)";
       break;
     case ModelEvent::Painleve:
-      meaning = "the sliding contact has no unique normal force (Painleve's paradox: friction too large for this "
-                "attitude; the model would need an impact, docs/sliding.md §3)";
+      meaning =
+          "the sliding contact has no unique normal force (Painleve's paradox: friction too large for this "
+          "attitude; the model would need an impact, docs/sliding.md §3)";
       break;
     case ModelEvent::Rest:
       meaning = fmt::format("the coin landed flat on a face (tilt above the floor below {} deg) and lies there, {} up",
                             physics::kFaceDownDegrees, physics::faceName(physics::faceUp(hit.state.theta)));
       break;
     case ModelEvent::ImpactJam:
-      meaning = "an impact whose friction keeps the normal impulse from stopping the rim (Painleve's paradox in an "
-                "impact, docs/flight.md §3); lower impact_friction";
+      meaning =
+          "an impact whose friction keeps the normal impulse from stopping the rim (Painleve's paradox in an "
+          "impact, docs/flight.md §3); lower impact_friction";
       break;
     case ModelEvent::Decided:
-      meaning = fmt::format("the coin has less energy than standing upright on its rim takes, so it can no longer "
-                            "turn over: {} up from here on (stop_when_decided)",
-                            physics::faceName(physics::faceUp(hit.state.theta)));
+      meaning = fmt::format(
+          "the coin has less energy than standing upright on its rim takes, so it can no longer "
+          "turn over: {} up from here on (stop_when_decided)",
+          physics::faceName(physics::faceUp(hit.state.theta)));
       break;
     case ModelEvent::OnEdge:
       meaning = fmt::format(

@@ -31,11 +31,11 @@ struct Simulation {
   // "flight": lift-off goes on in flight and the rim's impacts follow model.impact (docs/flight.md);
   // false: lift-off ends a sliding run.
   bool flight = false;
-  bool stopWhenDecided = false;  // flight: end at the event decided (docs/flight.md §5a)
-  std::optional<double> initialHeight;  // m, initial.y: the centre's height (flight only); none: on the floor
+  bool stopWhenDecided = false;                   // flight: end at the event decided (docs/flight.md §5a)
+  std::optional<double> initialHeight;            // m, initial.y: the centre's height (flight only); none: on the floor
   std::optional<double> initialVerticalVelocity;  // m/s, initial.v_y (flight only)
-  bool validityIsTerminal = true;  // on_invalid: "stop" ends the run at lift-off or slip
-  double duration = 0;             // s
+  bool validityIsTerminal = true;                 // on_invalid: "stop" ends the run at lift-off or slip
+  double duration = 0;                            // s
   // When set and true, runs of this simulation stop at their next sample with Cancelled.
   const std::atomic<bool>* cancel = nullptr;
 };

@@ -50,11 +50,11 @@ class SnapshotMaker {
   const RunRecord& record_;
   scene::CameraSpec camera_;  // the scene's, whose elevation and field of view frameCopies keeps
   CameraRig rig_;
-  double traceDt_;       // s, traceInterval(duration)
+  double traceDt_;  // s, traceInterval(duration)
   std::size_t nextTracePoint_ = 0;
   bool traceEndsWithNow_ = false;  // the trace's last point is the last snapshot's contact point
   bool showTrace_, showHud_;
-  int width_, height_;   // pixels, of the picture: the framing's aspect, the trace's width on screen
+  int width_, height_;  // pixels, of the picture: the framing's aspect, the trace's width on screen
   render::FrameSnapshot snapshot_;
 };
 

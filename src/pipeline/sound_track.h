@@ -49,15 +49,15 @@ class SoundTrack {
 
   // The last frame's block, so the track lasts exactly as long as the video.
   void finish(long frames, video::FrameSink* sink, bool resting) {
-    if (resting) rest(frames, sink);
-    else emit(frames, frequency_, sink, true);
+    if (resting)
+      rest(frames, sink);
+    else
+      emit(frames, frequency_, sink, true);
   }
 
  private:
   // Sample index at which frame k starts: k * rate / fps, exact in integers.
-  std::int64_t sampleAt(long k) const {
-    return static_cast<std::int64_t>(k) * video::kAudioSampleRate / fps_;
-  }
+  std::int64_t sampleAt(long k) const { return static_cast<std::int64_t>(k) * video::kAudioSampleRate / fps_; }
 
   void emit(long k, double f, video::FrameSink* sink, bool last) {
     block_.clear();

@@ -81,9 +81,8 @@ image::Image drawPanels(const scene::SceneConfig& scene, const physics::CoinMode
 
 StillPicture drawStill(const scene::SceneConfig& scene, const StillRequest& request) {
   if (!std::isfinite(request.time) || request.time < 0 || request.time > scene.duration) {
-    throw std::invalid_argument(
-        fmt::format("{}: must be within the scene's duration, 0 to {} s, got {}", request.timeName, scene.duration,
-                    request.time));
+    throw std::invalid_argument(fmt::format("{}: must be within the scene's duration, 0 to {} s, got {}",
+                                            request.timeName, scene.duration, request.time));
   }
   if (request.ghosts < 0 || request.ghosts > 500) {
     throw std::invalid_argument(fmt::format("--strobe: must be 0 to 500 copies, got {}", request.ghosts));
@@ -122,8 +121,8 @@ StillPicture drawStill(const scene::SceneConfig& scene, const StillRequest& requ
     // A strobe still is a figure: its overlay says how to read the copies and gives the scale.
     std::vector<std::string> legend;
     if (request.ghosts > 0) {
-      legend = {fmt::format("copies   {:5d} every {:.4g} ms from t = {:.3f} s, blue first, yellow last",
-                            request.ghosts, 1e3 * (result.shownTime - from) / request.ghosts, from),
+      legend = {fmt::format("copies   {:5d} every {:.4g} ms from t = {:.3f} s, blue first, yellow last", request.ghosts,
+                            1e3 * (result.shownTime - from) / request.ghosts, from),
                 fmt::format("grid     {:5g} mm squares", 1e3 * render::kFloorGridMetres)};
       // A camera that moves looks at one time: the figure is seen from one place that holds all of it.
       if (scene.render.camera.mode != scene::CameraMode::Fixed) snapshots.frameCopies(record.frames, legend);

@@ -12,16 +12,16 @@
 namespace coinroll::pipeline {
 
 struct StillRequest {
-  double time = 0;                 // s of simulated time, in [0, duration]
+  double time = 0;                  // s of simulated time, in [0, duration]
   std::string timeName = "--time";  // names `time` in messages, as the caller's user gives it
-  int ghosts = 0;                  // > 0: this many earlier poses, evenly spaced over [ghostsFrom, time)
-  double ghostsFrom = 0;           // s, the first ghost's time, in [0, time)
+  int ghosts = 0;                   // > 0: this many earlier poses, evenly spaced over [ghostsFrom, time)
+  double ghostsFrom = 0;            // s, the first ghost's time, in [0, time)
   // The ghosts' times and `time` as panels side by side (a grid of ghosts + 1 pictures, each the
   // scene's full picture, labelled by panelLabel) instead of copies drawn over one picture, which
   // pile up where the coin stays in place.
   bool panels = false;
-  std::filesystem::path output;    // .png, written atomically
-  image::PngText text = {};        // tEXt chunks of the PNG (its provenance)
+  std::filesystem::path output;               // .png, written atomically
+  image::PngText text = {};                   // tEXt chunks of the PNG (its provenance)
   const std::atomic<bool>* cancel = nullptr;  // when set and true, stops with Cancelled
 };
 

@@ -230,10 +230,11 @@ SweepResult runSweep(const SweepSpec& spec, const std::function<void(const Sweep
           helpers.emplace_back(work);
         } catch (const std::system_error& e) {
           next = blockSize;
-          throw std::runtime_error(fmt::format("cannot start sweep thread {} of {}: {}: a thread needs memory for its "
-                                               "stack, within {}, and counts against the processes a user may run "
-                                               "(ulimit -u); give fewer --threads", t + 1, threads, e.code().message(),
-                                               memoryLimitDescription()));
+          throw std::runtime_error(
+              fmt::format("cannot start sweep thread {} of {}: {}: a thread needs memory for its "
+                          "stack, within {}, and counts against the processes a user may run "
+                          "(ulimit -u); give fewer --threads",
+                          t + 1, threads, e.code().message(), memoryLimitDescription()));
         }
       }
       work();
@@ -241,8 +242,10 @@ SweepResult runSweep(const SweepSpec& spec, const std::function<void(const Sweep
     if (failure) std::rethrow_exception(failure);
     for (const SweepPoint& point : points) {
       row(point);
-      if (point.failed) ++result.failed;
-      else ++result.ends[point.end];
+      if (point.failed)
+        ++result.failed;
+      else
+        ++result.ends[point.end];
       ++result.points;
     }
   }
@@ -256,17 +259,21 @@ SweepResult writeSweepCsv(const SweepSpec& spec, std::ostream& out, const std::f
   const std::string rowEnd = fmt::format(",{},{}\n", identity.gridPoints, identity.digest);
   out << sweepHeader(spec.axes) << '\n';
   std::string text;
-  const SweepResult result = runSweep(spec, [&](const SweepPoint& point) {
-    text = fmt::format("{}", point.point);
-    for (const double v : point.values) text += fmt::format(",{}", v);
-    if (point.failed) text += "," + csvField(point.end) + ",,,,,,";  // the six numbers empty
-    else
-      text += fmt::format(",{},{},{},{},{},{},{}", point.end, point.tEnd, point.thetaMin, point.thetaMax,
-                          point.energyStart, point.energyEnd, point.thetaEnd);
-    out << text << rowEnd;
-    // Checked per row: a full disk is found before the rest of a long sweep is computed for nothing.
-    if (!out) throw std::runtime_error("writing the sweep's rows failed");
-  }, onPoint, cancel);
+  const SweepResult result = runSweep(
+      spec,
+      [&](const SweepPoint& point) {
+        text = fmt::format("{}", point.point);
+        for (const double v : point.values) text += fmt::format(",{}", v);
+        if (point.failed)
+          text += "," + csvField(point.end) + ",,,,,,";  // the six numbers empty
+        else
+          text += fmt::format(",{},{},{},{},{},{},{}", point.end, point.tEnd, point.thetaMin, point.thetaMax,
+                              point.energyStart, point.energyEnd, point.thetaEnd);
+        out << text << rowEnd;
+        // Checked per row: a full disk is found before the rest of a long sweep is computed for nothing.
+        if (!out) throw std::runtime_error("writing the sweep's rows failed");
+      },
+      onPoint, cancel);
   return result;
 }
 

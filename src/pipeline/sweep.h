@@ -22,8 +22,8 @@ namespace coinroll::pipeline {
 inline constexpr long kDefaultMaxPoints = 10'000'000;
 
 struct SweepSpec {
-  nlohmann::json scene;      // the scene document, --set overrides applied
-  std::string sourceName;    // names the scene in the messages of failed points
+  nlohmann::json scene;    // the scene document, --set overrides applied
+  std::string sourceName;  // names the scene in the messages of failed points
   std::vector<GridAxis> axes;
   Shard shard;
   int threads = 1;
@@ -66,15 +66,15 @@ struct SweepPoint {
   std::vector<double> values;  // each axis' value at the point, in the axes' order
   std::string end;             // "duration", the event that ended the run, or "error: <the loader's or run's message>"
   bool failed = false;         // `end` is an error; the numbers below are then NaN
-  double tEnd = 0;                         // s
-  double thetaMin = 0, thetaMax = 0;       // rad, over samples every 0.01 s and the last state
-  double energyStart = 0, energyEnd = 0;   // J
-  double thetaEnd = 0;                     // rad, of the last state: at the event that ended the run, or the duration
+  double tEnd = 0;             // s
+  double thetaMin = 0, thetaMax = 0;      // rad, over samples every 0.01 s and the last state
+  double energyStart = 0, energyEnd = 0;  // J
+  double thetaEnd = 0;                    // rad, of the last state: at the event that ended the run, or the duration
 };
 
 struct SweepResult {
-  long points = 0;  // rows handed on
-  long failed = 0;  // points whose end is an error
+  long points = 0;                   // rows handed on
+  long failed = 0;                   // points whose end is an error
   std::map<std::string, long> ends;  // how the other points ended: "duration", "coin-flat", ... and their counts
 };
 

@@ -46,16 +46,14 @@ double between(double a, double b, long k, long n) {
 
 double GridAxis::valueAt(long i) const {
   switch (spacing) {
-    case Spacing::Listed:
-      return listed[static_cast<std::size_t>(i)];
+    case Spacing::Listed: return listed[static_cast<std::size_t>(i)];
     case Spacing::Geometric:
       // Interpolated between the decimal logarithms, so decades come out as the numbers one would
       // type: 1e-3:1e-9:7:log gives 1e-4, not 9.999999999999999e-05 as start * ratio^k does.
       if (count == 1 || i == 0) return start;
       if (i == count - 1) return stop;
       return std::pow(10.0, between(std::log10(start), std::log10(stop), i, count - 1));
-    case Spacing::Even:
-      break;
+    case Spacing::Even: break;
   }
   return count == 1 ? start : between(start, stop, i, count - 1);
 }
@@ -112,9 +110,10 @@ GridAxis parseGridAxis(std::string_view text) {
   }
   // The range's twin of a value listed twice: every point would be the same run.
   if (axis.count > 1 && axis.start == axis.stop) {
-    throw std::invalid_argument(fmt::format("--grid {}: START and STOP are equal, so its {} points would all be {}; "
-                                            "give COUNT 1 for that one value, or a STOP other than START",
-                                            text, axis.count, fields[0]));
+    throw std::invalid_argument(
+        fmt::format("--grid {}: START and STOP are equal, so its {} points would all be {}; "
+                    "give COUNT 1 for that one value, or a STOP other than START",
+                    text, axis.count, fields[0]));
   }
   return axis;
 }
@@ -123,19 +122,21 @@ Shard parseShard(std::string_view text, std::optional<std::string_view> slurmArr
   Shard shard;
   const auto slash = text.find('/');
   const std::string_view index = text.substr(0, std::min(slash, text.size()));
-  const bool countGiven = slash != std::string_view::npos && parseWholeNumber(text.substr(slash + 1), shard.count) &&
-                          shard.count >= 1;
+  const bool countGiven =
+      slash != std::string_view::npos && parseWholeNumber(text.substr(slash + 1), shard.count) && shard.count >= 1;
   if (index == "auto" && countGiven) {
     const long n = shard.count;
     if (!slurmArrayTaskId) {
       throw std::invalid_argument(fmt::format(
           "--shard {}: auto takes K from $SLURM_ARRAY_TASK_ID, which is not set: this is not a task of a Slurm job "
-          "array; submit it with sbatch --array=1-{}, or give K, e.g. --shard 1/{}", text, n, n));
+          "array; submit it with sbatch --array=1-{}, or give K, e.g. --shard 1/{}",
+          text, n, n));
     }
     if (!parseWholeNumber(*slurmArrayTaskId, shard.index) || shard.index < 1 || shard.index > n) {
-      throw std::invalid_argument(fmt::format("--shard {}: $SLURM_ARRAY_TASK_ID is \"{}\", not a shard number 1 to {}; "
-                                              "submit the array as --array=1-{} (task K computes shard K/{})",
-                                              text, *slurmArrayTaskId, n, n, n));
+      throw std::invalid_argument(
+          fmt::format("--shard {}: $SLURM_ARRAY_TASK_ID is \"{}\", not a shard number 1 to {}; "
+                      "submit the array as --array=1-{} (task K computes shard K/{})",
+                      text, *slurmArrayTaskId, n, n, n));
     }
     return shard;
   }

@@ -29,7 +29,8 @@ void splitCsvRow(std::string_view row, std::vector<std::string_view>& fields) {
   bool quoted = false;
   std::size_t start = 0;
   for (std::size_t i = 0; i < row.size(); ++i) {
-    if (row[i] == '"') quoted = !quoted;
+    if (row[i] == '"')
+      quoted = !quoted;
     else if (row[i] == ',' && !quoted) {
       fields.push_back(row.substr(start, i - start));
       start = i + 1;
@@ -45,9 +46,8 @@ bool isNumber(std::string_view cell) {
 }
 
 bool isDigest(std::string_view cell) {
-  return cell.size() == 16 && std::all_of(cell.begin(), cell.end(), [](char c) {
-           return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f');
-         });
+  return cell.size() == 16 &&
+         std::all_of(cell.begin(), cell.end(), [](char c) { return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'); });
 }
 
 // Every cell of a row must be what the sweep writes in its column: a shard edited by hand or
@@ -58,8 +58,8 @@ bool isDigest(std::string_view cell) {
 void refuseDamagedCells(const std::vector<std::string_view>& cells, const std::vector<std::string_view>& columns,
                         const std::string& name, long lineNumber) {
   const auto refuse = [&](std::size_t column, std::string_view rule) {
-    return std::runtime_error(fmt::format("{}:{}: {}: {}; a damaged or edited shard, run it again", name, lineNumber,
-                                          columns[column], rule));
+    return std::runtime_error(
+        fmt::format("{}:{}: {}: {}; a damaged or edited shard, run it again", name, lineNumber, columns[column], rule));
   };
   const auto quoted = [](std::string_view cell) { return fmt::format("\"{}\"", scene::printable(cell)); };
   const std::size_t end = columns.size() - 9;  // the column after the grid values
@@ -100,14 +100,15 @@ void refuseOtherSummaryColumns(std::string_view header, std::string_view name) {
     throw std::invalid_argument(fmt::format(
         "{}: its header has no theta_end column (\"...,energy_end,grid_points,sweep\" where this coinroll writes "
         "\"...,energy_end,theta_end,grid_points,sweep\"): written by an older coinroll; run that shard again with "
-        "this one", name));
+        "this one",
+        name));
   }
   // The keys end where the summary begins: a grid key is a scene field, never "end".
   const std::size_t summary = columns.find(",end,");
   throw std::invalid_argument(fmt::format(
       "{}: its header's columns after the grid keys are \"{}\" where this coinroll writes \"{}\": written by "
-      "another coinroll, or edited; run that shard again with this one", name,
-      summary == std::string_view::npos ? columns : columns.substr(summary + 1), kSweepSummaryColumns.substr(1)));
+      "another coinroll, or edited; run that shard again with this one",
+      name, summary == std::string_view::npos ? columns : columns.substr(summary + 1), kSweepSummaryColumns.substr(1)));
 }
 
 // A list of point numbers for a message: the first 20, then how many more.
@@ -158,9 +159,11 @@ long mergeSweepShards(const std::vector<std::filesystem::path>& shards, std::ost
     // getline leaves eof set after a line that had no line break: the shard was cut inside it.
     const auto refuseCutLine = [&] {
       if (in.eof()) {
-        throw std::runtime_error(fmt::format("{}:{}: cut short inside a row (no line break at its end): an unfinished "
-                                             "or damaged shard, e.g. an interrupted `sweep -o - > part.csv`; run that "
-                                             "shard again", name, lineNumber));
+        throw std::runtime_error(
+            fmt::format("{}:{}: cut short inside a row (no line break at its end): an unfinished "
+                        "or damaged shard, e.g. an interrupted `sweep -o - > part.csv`; run that "
+                        "shard again",
+                        name, lineNumber));
       }
     };
     std::string line;
@@ -171,17 +174,21 @@ long mergeSweepShards(const std::vector<std::filesystem::path>& shards, std::ost
     }
     refuseCutLine();
     if (!line.ends_with(kSweepIdentityColumns)) {
-      throw std::invalid_argument(fmt::format("{}: its header has no grid_points and sweep columns, which tell a merge "
-                                              "which sweep a shard belongs to: written by an older coinroll, or "
-                                              "edited; run the sweep again", name));
+      throw std::invalid_argument(
+          fmt::format("{}: its header has no grid_points and sweep columns, which tell a merge "
+                      "which sweep a shard belongs to: written by an older coinroll, or "
+                      "edited; run the sweep again",
+                      name));
     }
     refuseOtherSummaryColumns(line, name);
     if (header.empty()) {
       header = line;
       firstHeaderSource = name;
     } else if (line != header) {
-      throw std::runtime_error(fmt::format("{}: its header differs from {}'s: shards of sweeps over different axes; "
-                                           "merge only the shards of one sweep", name, firstHeaderSource));
+      throw std::runtime_error(
+          fmt::format("{}: its header differs from {}'s: shards of sweeps over different axes; "
+                      "merge only the shards of one sweep",
+                      name, firstHeaderSource));
     }
     std::vector<std::string_view> columns, cells;
     splitCsvRow(header, columns);
@@ -205,16 +212,18 @@ long mergeSweepShards(const std::vector<std::filesystem::path>& shards, std::ost
         const std::string_view count = rowIdentity.substr(1, rowIdentity.find(',', 1) - 1);
         const auto [countEnd, countError] = std::from_chars(count.data(), count.data() + count.size(), gridPoints);
         if (countError != std::errc() || countEnd != count.data() + count.size() || gridPoints < 1) {
-          throw std::runtime_error(fmt::format("{}:{}: grid_points must be a whole number >= 1, got \"{}\": a damaged "
-                                               "shard; run it again", name, lineNumber, count));
+          throw std::runtime_error(
+              fmt::format("{}:{}: grid_points must be a whole number >= 1, got \"{}\": a damaged "
+                          "shard; run it again",
+                          name, lineNumber, count));
         }
         identity = rowIdentity;
         identitySource = fmt::format("{}:{}", name, lineNumber);
       } else if (rowIdentity != identity) {
         throw std::runtime_error(fmt::format(
             "{}:{}: from another sweep than {} (grid_points,sweep: {} here, {} there): the scene, its --set values or "
-            "the grid differ; merge only the shards of one sweep", name, lineNumber, identitySource,
-            rowIdentity.substr(1), std::string_view(identity).substr(1)));
+            "the grid differ; merge only the shards of one sweep",
+            name, lineNumber, identitySource, rowIdentity.substr(1), std::string_view(identity).substr(1)));
       }
       if (point >= gridPoints) {
         throw std::runtime_error(

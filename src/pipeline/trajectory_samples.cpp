@@ -27,9 +27,10 @@ void refuseTooManyRows(double duration, double sampleDt, long maxRows, std::stri
                                   ? std::string(sampleDtName)
                                   : fmt::format("{}, or the limit with {}", sampleDtName, maxRowsOption);
     const std::string cost = rowsCost.empty() ? std::string() : fmt::format(" ({})", rowsCost);
-    throw std::invalid_argument(fmt::format("{} {}: duration {} s gives {:.0f} rows{}, more than the limit {}; "
-                                            "raise {}",
-                                            sampleDtName, sampleDt, duration, rows, cost, maxRows, raise));
+    throw std::invalid_argument(
+        fmt::format("{} {}: duration {} s gives {:.0f} rows{}, more than the limit {}; "
+                    "raise {}",
+                    sampleDtName, sampleDt, duration, rows, cost, maxRows, raise));
   }
 }
 
@@ -74,8 +75,9 @@ TrajectoryReport sampleTrajectory(const Simulation& simulation, double sampleDt,
     const physics::CoinState& s = sample->state;
     const physics::Forward& f = sample->forward;
     const physics::Reaction& r = f.reaction;
-    values = {t, s.theta, s.phi, s.psi, s.omega_X, s.omega_Y, s.omega_Z, s.x, f.centre.y(), s.z,
-              f.contactPoint.x(), f.contactPoint.z(), f.energy, r.N, r.F};
+    values = {t,         s.theta, s.phi,        s.psi, s.omega_X,          s.omega_Y,
+              s.omega_Z, s.x,     f.centre.y(), s.z,   f.contactPoint.x(), f.contactPoint.z(),
+              f.energy,  r.N,     r.F};
     if (dissipative) {
       values.push_back(f.loads.power);
       values.push_back(sample->dissipated);

@@ -21,8 +21,8 @@ namespace coinroll::pipeline {
 
 // The contract's fixed columns (docs/contract.md §3), in order.
 inline constexpr std::array<std::string_view, 15> kTrajectoryColumns = {
-    "t", "theta", "phi", "psi", "omega_X", "omega_Y", "omega_Z", "x", "y", "z",
-    "contact_x", "contact_z", "energy", "normal_force", "friction_force"};
+    "t", "theta", "phi",       "psi",       "omega_X", "omega_Y",      "omega_Z",       "x",
+    "y", "z",     "contact_x", "contact_z", "energy",  "normal_force", "friction_force"};
 // After them when the scene has effects or slides: power dissipated now (W) and since t = 0 (J).
 inline constexpr std::array<std::string_view, 2> kDissipationColumns = {"power", "dissipated"};
 // With "sliding": true, after those: the contact point's slip speed and 1 while sliding, else 0.
@@ -70,10 +70,10 @@ struct FrictionNeeded {
 struct TrajectoryReport {
   long rows = 0;
   std::optional<RunEvent> stoppedBy;
-  std::vector<RunEvent> warnings;  // on_invalid "warn": crossings gone past
-  std::vector<ModeSwitch> switches;  // "sliding": true: each switch between rolling and sliding
-  std::vector<ImpactRecord> impacts;  // "flight": true: each impact of the rim
-  bool flight = false;                // "flight": true: a run that ends lying on a face says which
+  std::vector<RunEvent> warnings;                    // on_invalid "warn": crossings gone past
+  std::vector<ModeSwitch> switches;                  // "sliding": true: each switch between rolling and sliding
+  std::vector<ImpactRecord> impacts;                 // "flight": true: each impact of the rim
+  bool flight = false;                               // "flight": true: a run that ends lying on a face says which
   std::optional<SingularTimeEstimate> singularTime;  // a spin-down that reached coin-flat or face-down
   std::optional<FrictionNeeded> frictionNeeded;      // no `friction` in the scene: the cone it needed
   integrate::Stats stats;

@@ -94,8 +94,11 @@ double thetaOf(const integrate::Vec<N>& y) {
 template <int N>
 integrate::Event<N> modelEvent(physics::ModelEvent kind, std::function<double(double, const integrate::Vec<N>&)> g,
                                int direction, bool terminal) {
-  return {.name = std::string(physics::eventName(kind)), .id = static_cast<int>(kind), .g = std::move(g),
-          .direction = direction, .terminal = terminal};
+  return {.name = std::string(physics::eventName(kind)),
+          .id = static_cast<int>(kind),
+          .g = std::move(g),
+          .direction = direction,
+          .terminal = terminal};
 }
 
 template <physics::Formulation F, int N>
@@ -113,8 +116,11 @@ double tiltRateOf(const integrate::Vec<N>& y) {
 template <int N>
 integrate::Event<N> transitionEvent(physics::Transition transition,
                                     std::function<double(double, const integrate::Vec<N>&)> g, int direction = -1) {
-  return {.name = std::string(physics::transitionName(transition)), .id = switchId(transition), .g = std::move(g),
-          .direction = direction, .terminal = true};
+  return {.name = std::string(physics::transitionName(transition)),
+          .id = switchId(transition),
+          .g = std::move(g),
+          .direction = direction,
+          .terminal = true};
 }
 
 // coin-flat or face-down (|theta| reaches physics::flatStopFor) and, for a rim with corners, theta

@@ -112,8 +112,7 @@ VideoRunResult renderVideo(const scene::SceneConfig& scene, video::FrameSink& si
         const double span = state.time - previous;
         sound->knock(span > 0 ? (nextImpact->t - previous) / span : 1.0, nextImpact->energyLost);
       }
-      sound->reachFrame(k, state.precessionRate, playbackRate, soundSink(k),
-                        plan.landed && k + 1 == simulatedFrames);
+      sound->reachFrame(k, state.precessionRate, playbackRate, soundSink(k), plan.landed && k + 1 == simulatedFrames);
     }
     if (!written(k)) continue;
     if (inset) snapshots.markInset(inset->progress(k), inset->labels(k));

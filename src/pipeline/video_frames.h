@@ -34,9 +34,9 @@ struct FrameProgress {
 // A frame as written (render --frame-times): where it lies in the output and in the whole clip,
 // and the time it shows.
 struct FrameTiming {
-  long frame = 0;             // index in the output, from 0: it plays at video time frame / fps
-  long clipFrame = 0;         // index in the full render (differs from `frame` inside a --from/--to window)
-  double simulatedTime = 0;   // s, the simulated time shown
+  long frame = 0;            // index in the output, from 0: it plays at video time frame / fps
+  long clipFrame = 0;        // index in the full render (differs from `frame` inside a --from/--to window)
+  double simulatedTime = 0;  // s, the simulated time shown
   // Simulated s per video s at this frame, as the overlay and the sound's pitch use it: the step to
   // the next frame times fps (the last simulated frames keep the pace before; 0 in a landing's hold).
   double playbackRate = 0;
@@ -59,10 +59,10 @@ ClipViews planClipViews(const scene::SceneConfig& scene, long maxFrames = kDefau
                         const std::atomic<bool>* cancel = nullptr);
 
 struct VideoRunOptions {
-  std::function<void(const FrameProgress&)> onFrame = {};  // called after each frame; may be empty
+  std::function<void(const FrameProgress&)> onFrame = {};      // called after each frame; may be empty
   std::function<void(const FrameTiming&)> onFrameTiming = {};  // called for each frame pushed, in order; may be empty
-  const std::atomic<bool>* cancel = nullptr;          // when set and true, the loop stops (Cancelled)
-  long maxFrames = kDefaultMaxFrames;                 // more frames: std::invalid_argument, before any work
+  const std::atomic<bool>* cancel = nullptr;                   // when set and true, the loop stops (Cancelled)
+  long maxFrames = kDefaultMaxFrames;                          // more frames: std::invalid_argument, before any work
   // How the caller's user raises maxFrames, named in that refusal; empty when they cannot.
   std::string maxFramesOption = std::string(kMaxFramesOption);
   bool reuseStaticBackground = true;  // render::RenderSettings; off only to measure what it saves
@@ -75,7 +75,7 @@ struct VideoRunOptions {
 };
 
 struct VideoRunResult {
-  long frames = 0;  // frames written
+  long frames = 0;              // frames written
   double simulatedSeconds = 0;  // s shown; less than the duration when a validity event ended the run
   std::optional<std::string> stopDescription;
 };

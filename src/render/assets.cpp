@@ -18,8 +18,10 @@ image::Image loadAssetImage(std::string_view name) {
     try {
       return image::readPng(std::filesystem::path(dir) / name);
     } catch (const std::runtime_error& e) {
-      throw std::runtime_error(fmt::format("{} ($COINROLL_ASSET_DIR names the directory it is read from; put a PNG {} "
-                                           "there, or unset it for the built-in one)", e.what(), name));
+      throw std::runtime_error(
+          fmt::format("{} ($COINROLL_ASSET_DIR names the directory it is read from; put a PNG {} "
+                      "there, or unset it for the built-in one)",
+                      e.what(), name));
     }
   }
   const std::optional<std::span<const std::uint8_t>> embedded = embeddedAsset(name);

@@ -22,11 +22,16 @@ namespace {
 
 std::string eglErrorName(EGLint code) {
   constexpr std::pair<EGLint, const char*> kNames[] = {
-      {EGL_NOT_INITIALIZED, "EGL_NOT_INITIALIZED"}, {EGL_BAD_ACCESS, "EGL_BAD_ACCESS"},
-      {EGL_BAD_ALLOC, "EGL_BAD_ALLOC"},             {EGL_BAD_ATTRIBUTE, "EGL_BAD_ATTRIBUTE"},
-      {EGL_BAD_CONFIG, "EGL_BAD_CONFIG"},           {EGL_BAD_CONTEXT, "EGL_BAD_CONTEXT"},
-      {EGL_BAD_DISPLAY, "EGL_BAD_DISPLAY"},         {EGL_BAD_MATCH, "EGL_BAD_MATCH"},
-      {EGL_BAD_PARAMETER, "EGL_BAD_PARAMETER"},     {EGL_BAD_SURFACE, "EGL_BAD_SURFACE"},
+      {EGL_NOT_INITIALIZED, "EGL_NOT_INITIALIZED"},
+      {EGL_BAD_ACCESS, "EGL_BAD_ACCESS"},
+      {EGL_BAD_ALLOC, "EGL_BAD_ALLOC"},
+      {EGL_BAD_ATTRIBUTE, "EGL_BAD_ATTRIBUTE"},
+      {EGL_BAD_CONFIG, "EGL_BAD_CONFIG"},
+      {EGL_BAD_CONTEXT, "EGL_BAD_CONTEXT"},
+      {EGL_BAD_DISPLAY, "EGL_BAD_DISPLAY"},
+      {EGL_BAD_MATCH, "EGL_BAD_MATCH"},
+      {EGL_BAD_PARAMETER, "EGL_BAD_PARAMETER"},
+      {EGL_BAD_SURFACE, "EGL_BAD_SURFACE"},
       {EGL_CONTEXT_LOST, "EGL_CONTEXT_LOST"},
   };
   for (const auto& [value, name] : kNames) {
@@ -116,8 +121,9 @@ class EglContext final : public GlContext {
       throw eglFailure(label_, "eglChooseConfig");
     }
     if (configCount == 0) throw std::runtime_error(fmt::format("{}: no EGL configuration renders OpenGL", label_));
-    const EGLint contextAttributes[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 3,
-                                        EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+    const EGLint contextAttributes[] = {
+        EGL_CONTEXT_MAJOR_VERSION,           3,       EGL_CONTEXT_MINOR_VERSION, 3, EGL_CONTEXT_OPENGL_PROFILE_MASK,
+        EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
     context_ = eglCreateContext(display_, config, EGL_NO_CONTEXT, contextAttributes);
     if (context_ == EGL_NO_CONTEXT) throw eglFailure(label_, "eglCreateContext (OpenGL 3.3 core)");
     try {

@@ -13,13 +13,13 @@
 namespace coinroll::render {
 
 struct CoinPose {
-  glm::vec3 centre{0.0f};                       // m, centre of mass
-  glm::quat attitude{1.0f, 0.0f, 0.0f, 0.0f};   // body axes -> floor frame; the coin's normal is body Z
+  glm::vec3 centre{0.0f};                      // m, centre of mass
+  glm::quat attitude{1.0f, 0.0f, 0.0f, 0.0f};  // body axes -> floor frame; the coin's normal is body Z
 };
 
 struct CameraView {
-  glm::vec3 eye{0.0f, 0.3f, 0.6f};  // m
-  glm::vec3 target{0.0f};           // m
+  glm::vec3 eye{0.0f, 0.3f, 0.6f};          // m
+  glm::vec3 target{0.0f};                   // m
   float fovYDegrees = kDefaultFovYDegrees;  // vertical field of view
 
   bool operator==(const CameraView&) const = default;

@@ -93,11 +93,11 @@ std::vector<CoinVertex> coinTriangles(const CoinShape& shape, int segments) {
     } else {
       const glm::vec3 centreFront(0, 0, halfThickness), centreBack(0, 0, -halfThickness);
       append<CoinVertex>(triangles, {{centreFront, up, front},
-                                         {glm::vec3(faceOuter * u0, halfThickness), up, front},
-                                         {glm::vec3(faceOuter * u1, halfThickness), up, front}});
+                                     {glm::vec3(faceOuter * u0, halfThickness), up, front},
+                                     {glm::vec3(faceOuter * u1, halfThickness), up, front}});
       append<CoinVertex>(triangles, {{centreBack, down, back},
-                                         {glm::vec3(faceOuter * u1, -halfThickness), down, back},
-                                         {glm::vec3(faceOuter * u0, -halfThickness), down, back}});
+                                     {glm::vec3(faceOuter * u1, -halfThickness), down, back},
+                                     {glm::vec3(faceOuter * u0, -halfThickness), down, back}});
     }
     // The outer rim, ring by ring from the back face's edge up to the front face's: each quad
     // runs up the profile, so it winds counter-clockwise seen from outside like the straight band.

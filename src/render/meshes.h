@@ -16,7 +16,7 @@ enum class CoinPart : int { FrontFace = 0, BackFace = 1, OuterRim = 2, InnerRim 
 struct CoinVertex {
   glm::vec3 position;  // m, body frame: the coin plane is body XY, its normal body Z
   glm::vec3 normal;
-  float part;          // a CoinPart, as float for the vertex attribute
+  float part;  // a CoinPart, as float for the vertex attribute
 };
 
 // Facets round the rim of the coin the renderer draws (and the page, from the same triangles).

@@ -13,9 +13,19 @@ namespace {
 class OsMesaContext final : public GlContext {
  public:
   OsMesaContext() : GlContext(GlBackend::OsMesa) {
-    const int attributes[] = {OSMESA_FORMAT,        OSMESA_RGBA,         OSMESA_DEPTH_BITS, 0,  OSMESA_STENCIL_BITS, 0,
-                              OSMESA_PROFILE,       OSMESA_CORE_PROFILE, OSMESA_CONTEXT_MAJOR_VERSION, 3,
-                              OSMESA_CONTEXT_MINOR_VERSION, 3, 0};
+    const int attributes[] = {OSMESA_FORMAT,
+                              OSMESA_RGBA,
+                              OSMESA_DEPTH_BITS,
+                              0,
+                              OSMESA_STENCIL_BITS,
+                              0,
+                              OSMESA_PROFILE,
+                              OSMESA_CORE_PROFILE,
+                              OSMESA_CONTEXT_MAJOR_VERSION,
+                              3,
+                              OSMESA_CONTEXT_MINOR_VERSION,
+                              3,
+                              0};
     context_ = OSMesaCreateContextAttribs(attributes, nullptr);
     if (context_ == nullptr) {
       throw std::runtime_error(

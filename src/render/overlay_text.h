@@ -20,9 +20,9 @@ float overlayTextPixels(int height);
 
 // Where one glyph lies in the atlas and how it sits on the baseline.
 struct AtlasGlyph {
-  glm::vec2 atlasMin{0.0f}, atlasMax{0.0f};  // texels, the glyph's box in the atlas
+  glm::vec2 atlasMin{0.0f}, atlasMax{0.0f};    // texels, the glyph's box in the atlas
   glm::vec2 offsetMin{0.0f}, offsetMax{0.0f};  // pixels, that box relative to the pen on the baseline (y down)
-  float advance = 0;                          // pixels, to the next glyph's pen
+  float advance = 0;                           // pixels, to the next glyph's pen
 };
 
 // Every glyph the overlay can show, rasterised at one size: ASCII, the Latin-1 signs (° × ± µ ²),
@@ -37,8 +37,8 @@ class GlyphAtlas {
   int width() const { return width_; }
   int height() const { return height_; }
   const std::vector<unsigned char>& coverage() const { return coverage_; }
-  float ascent() const { return ascent_; }          // pixels above the baseline
-  float lineHeight() const { return lineHeight_; }  // pixels from one baseline to the next
+  float ascent() const { return ascent_; }              // pixels above the baseline
+  float lineHeight() const { return lineHeight_; }      // pixels from one baseline to the next
   glm::vec2 solidTexel() const { return solidTexel_; }  // a fully covered texel's centre
   // The glyph for `codepoint`, or U+FFFD's when the atlas has none.
   const AtlasGlyph& glyph(char32_t codepoint) const;

@@ -46,11 +46,11 @@ inline constexpr int kSupersampleFactor = 2;
 // with the outer corners replaced by quarter circles of radius edgeRadius centred at
 // (radius - edgeRadius, +-(h/2 - edgeRadius)): the physics' torus rim (physics/rim.h).
 struct CoinShape {
-  float radius = 0.0375f;     // m
-  float innerRadius = 0.0f;   // m, 0 for a solid disk
-  float thickness = 0.00225f; // m
-  float edgeRadius = 0.0f;    // m, rho: the fillet rounding the outer rim, in [0, min(thickness/2, radius -
-                            // innerRadius)]; 0 a sharp-edged cylinder, thickness/2 a fully rounded (half-torus) rim
+  float radius = 0.0375f;      // m
+  float innerRadius = 0.0f;    // m, 0 for a solid disk
+  float thickness = 0.00225f;  // m
+  float edgeRadius = 0.0f;     // m, rho: the fillet rounding the outer rim, in [0, min(thickness/2, radius -
+                               // innerRadius)]; 0 a sharp-edged cylinder, thickness/2 a fully rounded (half-torus) rim
 };
 
 // render.theme. Classic: a dark floor under a pale sky, light text on dark panels. Paper: for print,
@@ -70,7 +70,7 @@ struct RenderSettings {
   int width = image::kDefaultPictureWidth,
       height = image::kDefaultPictureHeight;  // pixels, in [kMinImageSide, kMaxImageSide]
   Antialiasing antialiasing = Antialiasing::Msaa;
-  int msaa = 4;                    // samples per pixel, one of kMsaaSampleCounts (1: none)
+  int msaa = 4;  // samples per pixel, one of kMsaaSampleCounts (1: none)
   CoinShape coin;
   bool showShadow = true;
   // render.background "transparent": no sky and no visible floor (it still hides what lies below

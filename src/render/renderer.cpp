@@ -26,8 +26,9 @@ void validate(const RenderSettings& s) {
     }
   }
   if (s.antialiasing == Antialiasing::Auto) {
-    throw std::invalid_argument("render.antialiasing: auto names a choice per output, made before drawing "
-                                "(scene::RenderSpec::pictureFor), not a method a Renderer can draw with");
+    throw std::invalid_argument(
+        "render.antialiasing: auto names a choice per output, made before drawing "
+        "(scene::RenderSpec::pictureFor), not a method a Renderer can draw with");
   }
   if (!isMsaaSampleCount(s.msaa) && s.antialiasing != Antialiasing::Fxaa) {
     throw std::invalid_argument(
@@ -42,10 +43,10 @@ void validate(const RenderSettings& s) {
   // most the rim's width (the flat face then shrinks to the hole's edge or the centre).
   const float maxEdgeRadius = std::min(0.5f * s.coin.thickness, s.coin.radius - s.coin.innerRadius);
   if (!(s.coin.edgeRadius >= 0 && s.coin.edgeRadius <= maxEdgeRadius)) {
-    throw std::invalid_argument(fmt::format("coin: edge radius {} m cannot be drawn: must be 0..{} m (at most half the "
-                                            "thickness {} m and the width radius - inner radius {} m)",
-                                            s.coin.edgeRadius, maxEdgeRadius, s.coin.thickness,
-                                            s.coin.radius - s.coin.innerRadius));
+    throw std::invalid_argument(
+        fmt::format("coin: edge radius {} m cannot be drawn: must be 0..{} m (at most half the "
+                    "thickness {} m and the width radius - inner radius {} m)",
+                    s.coin.edgeRadius, maxEdgeRadius, s.coin.thickness, s.coin.radius - s.coin.innerRadius));
   }
 }
 
@@ -92,9 +93,10 @@ Renderer::Renderer(const RenderSettings& settings, GlBackend backend) : settings
   const int samples = multisampled ? settings_.msaa : 0;
   const int drawWidth = w * drawScale(settings_), drawHeight = h * drawScale(settings_);
   if (std::max(drawWidth, drawHeight) > maxRenderbufferSide) {
-    throw std::invalid_argument(fmt::format("render.antialiasing: ssaa draws {}x{} pixels, and this OpenGL allows at "
-                                            "most {} a side; use msaa for a {}x{} picture",
-                                            drawWidth, drawHeight, maxRenderbufferSide, w, h));
+    throw std::invalid_argument(
+        fmt::format("render.antialiasing: ssaa draws {}x{} pixels, and this OpenGL allows at "
+                    "most {} a side; use msaa for a {}x{} picture",
+                    drawWidth, drawHeight, maxRenderbufferSide, w, h));
   }
   state.drawTarget = makeFramebuffer(gl);
   state.drawDepthStencil = makeRenderbuffer(gl);

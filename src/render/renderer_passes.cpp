@@ -148,8 +148,10 @@ void Renderer::drawBackground(const CameraView& camera, const glm::mat4& viewPro
   const float cameraDistance = glm::length(camera.eye - camera.target);
   const bool transparent = settings_.transparentBackground;
   const glm::vec3 background = palette(settings_.theme).backgroundSrgb;
-  if (transparent) gl.ClearColor(0.0f, 0.0f, 0.0f, 0.0f);
-  else gl.ClearColor(background.r, background.g, background.b, 1.0f);
+  if (transparent)
+    gl.ClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+  else
+    gl.ClearColor(background.r, background.g, background.b, 1.0f);
   gl.ClearStencil(0);
   gl.ClearDepth(1.0);
   gl.DepthMask(GL_TRUE);
@@ -174,7 +176,6 @@ void Renderer::drawBackground(const CameraView& camera, const glm::mat4& viewPro
   gl.DrawArrays(GL_TRIANGLES, 0, 6);
   if (transparent) gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 }
-
 
 // Decals on the floor: nothing but the coins can hide them, and those are drawn afterwards.
 std::optional<ScaleBarPlacement> Renderer::drawFloorDecals(const FrameSnapshot& snapshot,

@@ -21,7 +21,7 @@ namespace coinroll::render {
 inline const glm::vec3 kLightDirection = glm::normalize(glm::vec3(-0.35f, 1.0f, 0.45f));
 
 // A floor decal's square: [-1/2, 1/2] along x and z, scaled and turned per frame.
-inline const std::vector<glm::vec3> kUnitFloorSquare = {{-0.5f, 0, -0.5f}, {0.5f, 0, 0.5f}, {0.5f, 0, -0.5f},
+inline const std::vector<glm::vec3> kUnitFloorSquare = {{-0.5f, 0, -0.5f}, {0.5f, 0, 0.5f},  {0.5f, 0, -0.5f},
                                                         {-0.5f, 0, -0.5f}, {-0.5f, 0, 0.5f}, {0.5f, 0, 0.5f}};
 
 template <class Vertex>

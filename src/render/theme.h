@@ -22,7 +22,7 @@ struct Palette {
   glm::vec3 backgroundSrgb{0.0f};  // the sky behind the floor, which the floor fades into
   FloorColours floor;
   TraceColours trace;
-  TextStyle overlay;      // the corner overlay and the scale bar's label
+  TextStyle overlay;  // the corner overlay and the scale bar's label
   glm::vec4 scaleBar{0.0f};
 };
 

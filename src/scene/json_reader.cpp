@@ -38,9 +38,12 @@ bool isControl(char c) {
 std::string printable(std::string_view text) {
   std::string shown;
   for (const char c : text) {
-    if (c == '\n') shown += "\\n";
-    else if (isControl(c) && c != '\t') shown += fmt::format("\\x{:02x}", static_cast<unsigned char>(c));
-    else shown += c;
+    if (c == '\n')
+      shown += "\\n";
+    else if (isControl(c) && c != '\t')
+      shown += fmt::format("\\x{:02x}", static_cast<unsigned char>(c));
+    else
+      shown += c;
   }
   return shown;
 }
@@ -100,9 +103,9 @@ void JsonReader::checkTypes() const {
           }
         } else if (!value.is_number_integer()) {
           fail(key, "must be an integer, got " + got);
-        } else if (value.is_number_unsigned() ? value.get<unsigned long long>() > kIntegerLimit
-                                              : value.get<long long>() < -kIntegerLimit ||
-                                                    value.get<long long>() > kIntegerLimit) {
+        } else if (value.is_number_unsigned()
+                       ? value.get<unsigned long long>() > kIntegerLimit
+                       : value.get<long long>() < -kIntegerLimit || value.get<long long>() > kIntegerLimit) {
           // JSON integers from 2^63 up arrive unsigned; read as signed they would wrap to negatives.
           fail(key, fmt::format("out of range [{}, {}], got {}", -kIntegerLimit, kIntegerLimit, got));
         }
@@ -152,8 +155,8 @@ bool JsonReader::holds(const schema::Condition& condition) const {
     // A misspelt name is the fault to name, not the rule that reads it ("rign" and an inner_radius).
     if (value != nullptr && value->is_string() && !other.names.empty() &&
         std::find(other.names.begin(), other.names.end(), value->get<std::string>()) == other.names.end()) {
-      const std::string rule = fmt::format("must be {}, got \"{}\"", schema::quotedAlternatives(other.names),
-                                           value->get<std::string>());
+      const std::string rule =
+          fmt::format("must be {}, got \"{}\"", schema::quotedAlternatives(other.names), value->get<std::string>());
       if (other.block() == block_) fail(other.name(), rule);
       throw SceneError(fmt::format("{}: {}: {}", source_, path, rule));
     }
@@ -245,8 +248,8 @@ void JsonReader::fail(std::string_view key, const std::string& rule, SceneError:
 const nlohmann::json* JsonReader::given(std::string_view key, std::initializer_list<schema::Type> types) const {
   const schema::Type type = spec(key).type;
   if (std::find(types.begin(), types.end(), type) == types.end()) {
-    throw std::logic_error(fmt::format("scene reader: {} is a {}, not read this way", spec(key).path,
-                                       schema::typeName(type)));
+    throw std::logic_error(
+        fmt::format("scene reader: {} is a {}, not read this way", spec(key).path, schema::typeName(type)));
   }
   return child(key);
 }
@@ -260,8 +263,9 @@ std::optional<double> JsonReader::optionalNumber(std::string_view key) const {
 
 double JsonReader::requiredNumber(std::string_view key) const {
   const std::optional<double> value = optionalNumber(key);
-  if (!value) throw std::logic_error(fmt::format("scene reader: {} is read as required, and its row does not say so",
-                                                 spec(key).path));
+  if (!value)
+    throw std::logic_error(
+        fmt::format("scene reader: {} is read as required, and its row does not say so", spec(key).path));
   return *value;
 }
 

@@ -35,9 +35,9 @@ struct CoinSpec {
 };
 
 struct ExplicitInitial {
-  double theta = 0, phi = 0, psi = 0;              // rad (degrees in the file)
-  double omega_X = 0, omega_Y = 0, omega_Z = 0;    // rad/s
-  double x = 0, z = 0;                             // m
+  double theta = 0, phi = 0, psi = 0;            // rad (degrees in the file)
+  double omega_X = 0, omega_Y = 0, omega_Z = 0;  // rad/s
+  double x = 0, z = 0;                           // m
   // m/s, initial.v_x and v_z (only with "sliding": true): the centre's velocity; absent, the rolling one.
   std::optional<std::array<double, 2>> velocity;
   // Only with "flight": true. m, initial.y: the centre's height (absent: resting on the floor);
@@ -49,9 +49,9 @@ enum class SteadyKind { Straight, Circle, SpinInPlace };
 
 struct SteadyInitial {
   SteadyKind kind = SteadyKind::Straight;
-  double theta = 0;    // rad; circle and spin-in-place
-  double omega_Z = 0;  // rad/s; straight and circle
-  int branch = +1;     // circle: +1 for the f+ root, -1 for f-
+  double theta = 0;                       // rad; circle and spin-in-place
+  double omega_Z = 0;                     // rad/s; straight and circle
+  int branch = +1;                        // circle: +1 for the f+ root, -1 for f-
   double phi = 0, psi = 0, x = 0, z = 0;  // rad, rad, m, m
 };
 
@@ -80,9 +80,9 @@ enum class CameraMode {
 struct CameraSpec {
   CameraMode mode = CameraMode::Fixed;
   std::optional<std::array<double, 3>> eye, target;  // m; absent = framed from the motion
-  double fovDegrees = render::kDefaultFovYDegrees;  // vertical field of view
-  double orbitPeriod = 10;       // s of simulated time per revolution (orbit)
-  double elevationDegrees = 30;  // camera elevation above the floor for automatic framing
+  double fovDegrees = render::kDefaultFovYDegrees;   // vertical field of view
+  double orbitPeriod = 10;                           // s of simulated time per revolution (orbit)
+  double elevationDegrees = 30;                      // camera elevation above the floor for automatic framing
 };
 
 // render.time_remap: which rate drives the slow motion.
@@ -99,7 +99,7 @@ struct TimeRemap {
 // render.time_remap.flight and render.time_remap.impact: slow motion while the coin is in the air and
 // around each impact of its rim ("flight": true), eased in and out (pipeline/video_frames.h eventSlowDown).
 struct EventSlowDown {
-  double slow = 1;    // in (0, 1]: time_scale's multiplier in the air, or at the impact's instant
+  double slow = 1;  // in (0, 1]: time_scale's multiplier in the air, or at the impact's instant
   // s of simulated time over which the multiplier eases back to 1 on either side. The rate then changes
   // by at most a factor exp(1.5 (1 - slow) time_scale / (window fps)) from one frame to the next
   // (slow_motion.h): 1.27 at time_scale 1 and 60 fps for 0.1 s, which plays a toss's ease in 0.4 s.
@@ -134,7 +134,7 @@ struct RenderSpec {
     return settings;
   }();
   int fps = video::VideoOptions{}.fps;  // frames per second of video, 1..kMaxFps; the encoder's default
-  double timeScale = 1.0;          // video seconds per simulated second
+  double timeScale = 1.0;               // video seconds per simulated second
   // When set, playback slows further whenever the chosen rate exceeds its limit, so that rate seen
   // on screen never exceeds the limit times time_scale (an Euler's disk stays readable).
   std::optional<TimeRemap> timeRemap;
@@ -161,8 +161,8 @@ struct RenderSpec {
   render::RenderSettings pictureFor(Output output) const {
     render::RenderSettings settings = picture;
     if (settings.antialiasing != render::Antialiasing::Auto) return settings;
-    const bool doubledFits = render::kSupersampleFactor * std::max(picture.width, picture.height) <=
-                             render::kMaxImageSide;
+    const bool doubledFits =
+        render::kSupersampleFactor * std::max(picture.width, picture.height) <= render::kMaxImageSide;
     settings.antialiasing = doubledFits ? render::Antialiasing::Ssaa : render::Antialiasing::Msaa;
     if (output == Output::Video && camera.mode != CameraMode::Fixed) settings.antialiasing = render::Antialiasing::Msaa;
     if (output == Output::Video && settings.antialiasing == render::Antialiasing::Ssaa) settings.msaa = 1;
@@ -191,17 +191,17 @@ enum class OnInvalid {
 struct SceneConfig {
   std::string name = "coinroll";
   CoinSpec coin;
-  double gravity = 9.81;            // m/s^2
-  std::optional<double> friction;   // mu: the slip monitor's cone, and Coulomb's kinetic coefficient when sliding
+  double gravity = 9.81;                 // m/s^2
+  std::optional<double> friction;        // mu: the slip monitor's cone, and Coulomb's kinetic coefficient when sliding
   std::optional<double> frictionStatic;  // friction_static >= friction: the rolling cone; absent = friction
-  bool sliding = false;             // "sliding": true, the coin slides instead of stopping at slip (needs friction)
+  bool sliding = false;  // "sliding": true, the coin slides instead of stopping at slip (needs friction)
   // "flight": true (needs sliding): lift-off goes on in flight, and the rim's impacts bounce (docs/flight.md).
   bool flight = false;
   double restitution = 0;                // e in [0, 1], required with flight
   std::optional<double> impactFriction;  // mu during impacts; absent = friction
   bool stopWhenDecided = false;          // flight: end once the face up can no longer change (docs/flight.md §5a)
   InitialSpec initial;
-  double duration = 0;              // s, required
+  double duration = 0;  // s, required
   SolverSpec solver;
   std::vector<physics::Effect> effects;  // empty: the seed's ideal rolling
   OnInvalid onInvalid = OnInvalid::Stop;

@@ -44,7 +44,6 @@ Enum enumValue(const JsonReader& r, std::string_view key, Enum fallback, std::st
   return static_cast<Enum>(found - names.begin());
 }
 
-
 double positive(const JsonReader& r, std::string_view key, double value) {
   if (!(value > 0)) r.fail(key, fmt::format("must be > 0, got {}", value));
   return value;
@@ -191,8 +190,8 @@ std::array<double, 3> parsePoint(const JsonReader& r, std::string_view key) {
   // squares of its distance would overflow.
   const double lower = r.spec(key).lower->value, upper = r.spec(key).upper->value;
   if (std::any_of(point.begin(), point.end(), [&](double v) { return !(v >= lower && v <= upper); })) {
-    r.fail(key, fmt::format("coordinates must be within [{:g}, {:g}] m, got [{}, {}, {}]", lower, upper,
-                            point[0], point[1], point[2]));
+    r.fail(key, fmt::format("coordinates must be within [{:g}, {:g}] m, got [{}, {}, {}]", lower, upper, point[0],
+                            point[1], point[2]));
   }
   return point;
 }
@@ -213,8 +212,9 @@ CameraSpec parseCamera(const JsonReader& render) {
     const double length = std::sqrt(dx * dx + dy * dy + dz * dz), horizontal = std::hypot(dx, dz);
     if (!(length > 1e-6)) r.fail("target", "must differ from eye (the camera needs a direction to look in)");
     if (!(horizontal > 1e-3 * length)) {
-      r.fail("target", "must not lie straight above or below eye (the picture's up is the floor normal; tilt the view "
-                       "slightly)");
+      r.fail("target",
+             "must not lie straight above or below eye (the picture's up is the floor normal; tilt the view "
+             "slightly)");
     }
   }
   camera.fovDegrees = boundedNumber(r, "fov", camera.fovDegrees);
@@ -231,8 +231,7 @@ std::optional<AudioSpec> parseAudio(const JsonReader& render) {
   if (!node->is_object())
     render.fail("audio", "must be true, false or an object of options, got " + describeJson(*node));
   const JsonReader a = render.nested(*node, "render.audio", "render.audio");
-  audio.pitch = enumValue(a, "pitch", audio.pitch,
-                          "must be \"video\" (follows slow motion) or \"real\", got \"{}\"");
+  audio.pitch = enumValue(a, "pitch", audio.pitch, "must be \"video\" (follows slow motion) or \"real\", got \"{}\"");
   audio.timbre = enumValue(a, "timbre", audio.timbre);
   audio.frequencyScale = boundedNumber(a, "frequency_scale", audio.frequencyScale);
   audio.volume = boundedNumber(a, "volume", audio.volume);
@@ -365,11 +364,15 @@ physics::Effect parseEffect(const JsonReader& top, const nlohmann::json& node, c
 void refuseLeverArmsPastTheRim(const std::vector<physics::Effect>& effects, double radius) {
   for (std::size_t i = 0; i < effects.size(); ++i) {
     double length = 0;
-    if (const auto* rolling = std::get_if<physics::RollingResistance>(&effects[i])) length = rolling->length;
-    else if (const auto* pivoting = std::get_if<physics::SpinFriction>(&effects[i])) length = pivoting->length;
+    if (const auto* rolling = std::get_if<physics::RollingResistance>(&effects[i]))
+      length = rolling->length;
+    else if (const auto* pivoting = std::get_if<physics::SpinFriction>(&effects[i]))
+      length = pivoting->length;
     if (!(length < radius)) {
-      throw SceneError(fmt::format("effects[{}].length: must be below coin.radius = {} m (the couple's lever arm lies "
-                                   "inside the contact patch), got {}", i, radius, length));
+      throw SceneError(
+          fmt::format("effects[{}].length: must be below coin.radius = {} m (the couple's lever arm lies "
+                      "inside the contact patch), got {}",
+                      i, radius, length));
     }
   }
 }
@@ -426,9 +429,10 @@ SceneConfig parseScene(const nlohmann::json& document, std::string_view sourceNa
     if (!integrate::isAdaptive(scene.solver.method)) {
       const double steps = scene.duration / scene.solver.dt;
       if (const long maxSteps = integrate::SolverConfig{}.maxSteps; steps > static_cast<double>(maxSteps)) {
-        throw SceneError(fmt::format("solver.dt: duration / dt = {:.3g} steps of {}, more than the {} a run may take; "
-                                     "raise solver.dt, shorten the duration or use an adaptive method (dop853)",
-                                     steps, integrate::nameOf(scene.solver.method), maxSteps));
+        throw SceneError(
+            fmt::format("solver.dt: duration / dt = {:.3g} steps of {}, more than the {} a run may take; "
+                        "raise solver.dt, shorten the duration or use an adaptive method (dop853)",
+                        steps, integrate::nameOf(scene.solver.method), maxSteps));
       }
     }
     scene.effects = parseEffects(top);

@@ -21,9 +21,12 @@ std::string withoutVariants(std::string_view path) {
   std::string plain;
   bool inVariant = false;
   for (const char c : path) {
-    if (c == '[') inVariant = true;
-    else if (c == ']') inVariant = false;
-    else if (!inVariant) plain += c;
+    if (c == '[')
+      inVariant = true;
+    else if (c == ']')
+      inVariant = false;
+    else if (!inVariant)
+      plain += c;
   }
   return plain;
 }
@@ -105,8 +108,10 @@ void applyOverride(nlohmann::json& document, std::string_view assignment) {
             SceneError::Kind::UnknownKey);
       }
       if (dot == std::string_view::npos) {
-        if (value.is_null()) node->erase(index);
-        else (*node)[index] = std::move(value);
+        if (value.is_null())
+          node->erase(index);
+        else
+          (*node)[index] = std::move(value);
         return;
       }
       node = &(*node)[index];
@@ -125,16 +130,18 @@ void applyOverride(nlohmann::json& document, std::string_view assignment) {
         return;
       }
       if (dot == std::string_view::npos) {
-        if (removal) node->erase(key);
-        else (*node)[key] = std::move(value);
+        if (removal)
+          node->erase(key);
+        else
+          (*node)[key] = std::move(value);
         return;
       }
       node = &(*node)[key];
       if (node->is_null()) *node = nlohmann::json::object();
     } else {
-      throw SceneError(fmt::format("--set {}: {} is {}, which has no field '{}'", assignment, walked,
-                                   describeJson(*node), key),
-                       SceneError::Kind::UnknownKey);
+      throw SceneError(
+          fmt::format("--set {}: {} is {}, which has no field '{}'", assignment, walked, describeJson(*node), key),
+          SceneError::Kind::UnknownKey);
     }
     walked += (walked.empty() ? "" : ".") + key;
     rest = rest.substr(dot + 1);

@@ -89,6 +89,8 @@ std::vector<Key> buildTable() {
   const physics::SpinFriction pivoting;
   using T = Type;
 
+  // A row's fields are packed as a table reads, not laid out one a line.
+  // clang-format off
   std::vector<Key> table = {
       {.path = "name", .type = T::Text, .unit = "", .defaultText = jsonString(scene.name),
        .doc = "text; default output files are named after it"},
@@ -440,6 +442,7 @@ std::vector<Key> buildTable() {
        .lower = open(0), .upper = closed(1), .doc = "the peak amplitude"},
   };
   table.insert(table.end(), rendering.begin(), rendering.end());
+  // clang-format on
   return table;
 }
 

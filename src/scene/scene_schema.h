@@ -51,12 +51,12 @@ enum class Type {
   Number,
   Integer,
   Boolean,
-  Text,    // any string
-  Name,    // one of `names`
-  Point,   // [x, y, z]
-  Object,  // a block of keys of its own
-  List,    // effects
-  Audio,   // true, false or an object of options
+  Text,      // any string
+  Name,      // one of `names`
+  Point,     // [x, y, z]
+  Object,    // a block of keys of its own
+  List,      // effects
+  Audio,     // true, false or an object of options
   ScaleBar,  // true, false or a length
 };
 
@@ -80,7 +80,7 @@ struct Key {
   Type type;
   std::string unit;         // as the docs write it: "m", "rad/s", "degrees"; empty when dimensionless
   std::string defaultText;  // the default as JSON text, taken from the structs; empty: required or absent
-  bool required = false;  // given wherever its block is and its `onlyWith` hold
+  bool required = false;    // given wherever its block is and its `onlyWith` hold
   // The range a number must lie in, when it is fixed (bounds that depend on other keys, such as
   // inner_radius <= radius, are the loader's and the doc's).
   std::optional<Bound> lower = std::nullopt, upper = std::nullopt;
@@ -90,12 +90,12 @@ struct Key {
   std::vector<Condition> needs = {};         // on (given, not false) only where these hold: "sliding": false is off
   std::vector<std::string> excludes = {};    // keys of its block never given beside it
   std::vector<std::string> needsOneOf = {};  // an object: at least one of these of its keys
-  std::string presenceWhy = {};  // the reason a presence message gives in parentheses
-  std::string example = {};  // JSON text a message and the page suggest for a key without a default
-  std::string why = {};  // the reason a range message gives in parentheses
-  bool unitInRule = true;  // false where the range message has always been bare ("must be in [1, 240]")
+  std::string presenceWhy = {};              // the reason a presence message gives in parentheses
+  std::string example = {};                  // JSON text a message and the page suggest for a key without a default
+  std::string why = {};                      // the reason a range message gives in parentheses
+  bool unitInRule = true;    // false where the range message has always been bare ("must be in [1, 240]")
   bool powersOfTen = false;  // bounds written 1e-14 rather than 1e-14's %g form (the solver's tolerances)
-  std::string doc = {};  // one line: what the key does, for docs/scene.md and the page's controls
+  std::string doc = {};      // one line: what the key does, for docs/scene.md and the page's controls
 
   // The object the key sits in ("coin", "effects[air_drag]", "" for the top level) and its own name.
   std::string_view block() const;

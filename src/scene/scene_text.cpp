@@ -22,8 +22,10 @@ namespace {
 std::pair<std::size_t, std::size_t> lineAndColumn(std::string_view text, std::size_t byte) {
   std::size_t line = 1, column = 1;
   for (std::size_t i = 0; i < std::min(byte, text.size()); ++i) {
-    if (text[i] == '\n') ++line, column = 1;
-    else ++column;
+    if (text[i] == '\n')
+      ++line, column = 1;
+    else
+      ++column;
   }
   return {line, column};
 }
@@ -38,8 +40,10 @@ std::string parseErrorReason(const nlohmann::json::parse_error& error) {
   std::string reason;
   for (const char c : what) {
     const auto byte = static_cast<unsigned char>(c);
-    if (byte < 0x20 || byte >= 0x7f) reason += fmt::format("\\x{:02x}", byte);
-    else reason += c;
+    if (byte < 0x20 || byte >= 0x7f)
+      reason += fmt::format("\\x{:02x}", byte);
+    else
+      reason += c;
   }
   return reason;
 }
@@ -78,9 +82,7 @@ class DuplicateKeyGuard {
                            .pendingKey = {}});
         break;
       case Event::object_end:
-      case Event::array_end:
-        frames_.pop_back();
-        break;
+      case Event::array_end: frames_.pop_back(); break;
       case Event::key: {
         std::string key = parsed.get<std::string>();
         if (!frames_.back().keys.insert(key).second) throw DuplicateKey{joinedPath(key)};
@@ -88,9 +90,7 @@ class DuplicateKeyGuard {
         frames_.back().pendingKey = std::move(key);
         break;
       }
-      case Event::value:
-        nameOfNextValue();
-        break;
+      case Event::value: nameOfNextValue(); break;
     }
     return true;
   }
@@ -137,8 +137,9 @@ class DuplicateKeyGuard {
 
 nlohmann::json readSceneDocument(const std::filesystem::path& file) {
   if (file.empty()) {
-    throw SceneError("the scene file name is empty; give a scene file (e.g. examples/steady_circle.json), or none for "
-                     "the built-in scene");
+    throw SceneError(
+        "the scene file name is empty; give a scene file (e.g. examples/steady_circle.json), or none for "
+        "the built-in scene");
   }
   std::error_code error;
   if (std::filesystem::is_directory(file, error)) {
@@ -174,8 +175,10 @@ nlohmann::json parseSceneText(std::string_view text, std::string_view sourceName
   // unread: a damaged file, or a binary one, would pass as the scene before it.
   if (const std::size_t nul = text.find('\0'); nul != std::string_view::npos) {
     const auto [line, column] = lineAndColumn(text, nul);
-    throw SceneError(fmt::format("{}: invalid JSON at line {}, column {}: a NUL byte; a scene file is JSON text "
-                                 "(a damaged or binary file?)", sourceName, line, column));
+    throw SceneError(
+        fmt::format("{}: invalid JSON at line {}, column {}: a NUL byte; a scene file is JSON text "
+                    "(a damaged or binary file?)",
+                    sourceName, line, column));
   }
   try {
     return nlohmann::json::parse(text, DuplicateKeyGuard());
@@ -183,8 +186,8 @@ nlohmann::json parseSceneText(std::string_view text, std::string_view sourceName
     throw SceneError(fmt::format("{}: {}: more than {} values in one array or object; {}", sourceName, wide.path,
                                  kMaxSceneWidth, "a scene file is a small JSON document"));
   } catch (const DuplicateKey& duplicate) {
-    throw SceneError(fmt::format("{}: {}: given twice; give each key once (which value was meant?)", sourceName,
-                                 duplicate.path));
+    throw SceneError(
+        fmt::format("{}: {}: given twice; give each key once (which value was meant?)", sourceName, duplicate.path));
   } catch (const nlohmann::json::parse_error& e) {
     // nlohmann reports the byte just past the offending token; its own text says what was expected.
     const auto [line, column] = lineAndColumn(text, e.byte == 0 ? 0 : e.byte - 1);

@@ -33,8 +33,10 @@ void AsyncSink::runWorker() {
     }
     queueChanged_.notify_all();  // a slot is free
     try {
-      if (const auto* frame = std::get_if<image::Image>(&item)) inner_->push(*frame);
-      else inner_->pushAudio(std::get<std::vector<float>>(item));
+      if (const auto* frame = std::get_if<image::Image>(&item))
+        inner_->push(*frame);
+      else
+        inner_->pushAudio(std::get<std::vector<float>>(item));
     } catch (...) {
       {
         std::lock_guard lock(mutex_);

@@ -29,7 +29,7 @@ class AsyncSink final : public FrameSink {
   ~AsyncSink() override;
 
   void push(const image::Image& frame) override;  // copies the frame
-  void push(image::Image&& frame);                 // takes the frame's pixels without copying
+  void push(image::Image&& frame);                // takes the frame's pixels without copying
   // Queued with the frames, so the inner sink sees pictures and sound in the order pushed.
   void pushAudio(std::span<const float> samples) override;
   // Waits for the queue to drain, then finishes the inner sink (on the caller's thread).
@@ -53,7 +53,7 @@ class AsyncSink final : public FrameSink {
   std::exception_ptr workerError_;
   bool closing_ = false;    // no more frames will come; the worker drains the queue and exits
   bool abandoned_ = false;  // destroyed unfinished; the worker exits at once
-  std::thread worker_;  // started by the constructor, joined by finish() or the destructor
+  std::thread worker_;      // started by the constructor, joined by finish() or the destructor
 };
 
 }  // namespace coinroll::video

@@ -92,7 +92,7 @@ void validate(const VideoOptions& options) {
 
 // One encoder and the muxer's stream it feeds: the pictures', and the sound's when there is one.
 struct EncodedStream {
-  std::string encoderName;     // in messages: "the libx264 encoder"
+  std::string encoderName;  // in messages: "the libx264 encoder"
   CodecContextPtr codec;
   AVStream* stream = nullptr;  // owned by the muxer
   FramePtr frame;              // the next input, refilled for each
@@ -301,9 +301,8 @@ void EncoderSink::push(const image::Image& frame) {
   if (frame.width != options_.width || frame.height != options_.height ||
       frame.rgba.size() != static_cast<std::size_t>(frame.width) * frame.height * 4) {
     throw std::invalid_argument(destination_.string() + ": frame " + std::to_string(framesPushed_) + " is " +
-                                std::to_string(frame.width) + "x" + std::to_string(frame.height) +
-                                ", the video is " + std::to_string(options_.width) + "x" +
-                                std::to_string(options_.height));
+                                std::to_string(frame.width) + "x" + std::to_string(frame.height) + ", the video is " +
+                                std::to_string(options_.width) + "x" + std::to_string(options_.height));
   }
   Encoder& encoder = *encoder_;
   AVFrame& picture = *encoder.video.frame;

@@ -24,8 +24,8 @@ namespace coinroll::video::detail {
 const int kRgbaToYuvScalerFlags = SWS_BICUBIC | SWS_ACCURATE_RND;
 
 ScalerPtr makeRgbaToYuvScaler(int width, int height, int flags, AVPixelFormat destination) {
-  ScalerPtr scaler(sws_getContext(width, height, AV_PIX_FMT_RGBA, width, height, destination, flags,
-                                  nullptr, nullptr, nullptr));
+  ScalerPtr scaler(
+      sws_getContext(width, height, AV_PIX_FMT_RGBA, width, height, destination, flags, nullptr, nullptr, nullptr));
   const std::string name = av_get_pix_fmt_name(destination);
   if (!scaler) {
     throw std::runtime_error("cannot create the RGBA to " + name + " converter for " + std::to_string(width) + "x" +

@@ -62,6 +62,8 @@ LibavOptions noOptions(const VideoOptions&) { return {}; }
 std::uint64_t sixteenFrames(const VideoOptions&) { return 16; }
 std::uint64_t fourFrames(const VideoOptions&) { return 4; }
 
+// A kind's fields are packed as a table reads, not laid out one a line.
+// clang-format off
 const auto kKinds = std::to_array<VideoKind>({
     {.format = VideoFormat::Mp4, .extension = ".mp4", .label = "MP4", .article = "an", .codec = "H.264",
      .muxer = "mp4", .encoder = "libx264", .pixelFormat = "yuv420p", .alphaPixelFormat = "",
@@ -82,6 +84,7 @@ const auto kKinds = std::to_array<VideoKind>({
      .audio = true, .indexFirst = true, .loops = false, .maxFps = 0, .maxFpsReason = "", .lastFrameOption = "",
      .encoderOptions = proResOptions, .framesInFlight = fourFrames, .addComment = nullptr},
 });
+// clang-format on
 
 // "a .webm, a .mov" for each kind `carries` accepts, then `also` when given.
 std::string kindsThat(bool (*carries)(const VideoKind&, const VideoOptions&), const VideoOptions& wanted,

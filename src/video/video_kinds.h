@@ -22,17 +22,17 @@ using LibavOptions = std::vector<std::pair<std::string, std::string>>;
 
 struct VideoKind {
   VideoFormat format;
-  std::string_view extension;  // ".mp4": a name ending so, in any case, is written as this kind
-  std::string_view label;      // "MP4": the kind in messages
-  std::string_view article;    // "an": as --help says "an MP4"
-  std::string_view codec;      // "H.264" in --help; empty where the kind is named after its codec (GIF)
-  std::string_view muxer;      // libavformat's name; the temporary name has no extension to guess by
-  std::string_view encoder;    // libavcodec's name
+  std::string_view extension;         // ".mp4": a name ending so, in any case, is written as this kind
+  std::string_view label;             // "MP4": the kind in messages
+  std::string_view article;           // "an": as --help says "an MP4"
+  std::string_view codec;             // "H.264" in --help; empty where the kind is named after its codec (GIF)
+  std::string_view muxer;             // libavformat's name; the temporary name has no extension to guess by
+  std::string_view encoder;           // libavcodec's name
   std::string_view pixelFormat;       // libav's name, for opaque frames
   std::string_view alphaPixelFormat;  // for frames that keep their alpha; empty where the kind has none
-  bool audio;       // holds a sound track (AAC)
-  bool indexFirst;  // the index before the media (+faststart): players start before the download ends
-  bool loops;       // plays for ever
+  bool audio;                         // holds a sound track (AAC)
+  bool indexFirst;                    // the index before the media (+faststart): players start before the download ends
+  bool loops;                         // plays for ever
   // The highest frame rate the kind shows as written, 0 for any, and why, for the refusal.
   int maxFps;
   std::string_view maxFpsReason;

@@ -54,10 +54,10 @@ struct Provenance {
 };
 
 struct VideoOptions {
-  VideoFormat format = VideoFormat::Mp4;  // also the kind of a name without an extension to go by (/dev/stdout)
+  VideoFormat format = VideoFormat::Mp4;      // also the kind of a name without an extension to go by (/dev/stdout)
   int width = image::kDefaultPictureWidth;    // pixels, even (4:2:0 chroma is subsampled by 2 each way)
   int height = image::kDefaultPictureHeight;  // pixels, even
-  int fps = 30;      // frames per second, > 0 and within the kind's maxFps; timestamps are frame index / fps
+  int fps = 30;  // frames per second, > 0 and within the kind's maxFps; timestamps are frame index / fps
   X264Options x264;
   // Adds a mono AAC track (FFmpeg's own encoder, 48 kHz, 128 kbit/s) fed by pushAudio(), in the
   // kinds that hold audio (validate() refuses it for the others).
@@ -66,6 +66,5 @@ struct VideoOptions {
   bool alpha = false;
   Provenance provenance;
 };
-
 
 }  // namespace coinroll::video

@@ -64,7 +64,9 @@ class BadRequest : public std::runtime_error {
 class Progress {
  public:
   Progress(val callback, long expectedRows, std::atomic<bool>& cancel)
-      : callback_(std::move(callback)), expected_(expectedRows), cancel_(cancel),
+      : callback_(std::move(callback)),
+        expected_(expectedRows),
+        cancel_(cancel),
         every_(std::max(1L, expectedRows / kCalls)) {}
 
   void row() {

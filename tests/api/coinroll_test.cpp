@@ -131,8 +131,8 @@ TEST(ApiMessages, NameTheCallersArgumentsAndNoCommandLineFlag) {
     coinroll::renderVideo(coinroll::Scene::fromJson(kScene, {"render.background=\"transparent\""}), "clip.mp4");
   });
   EXPECT_EQ(transparent.rfind("render.background: \"transparent\" needs an output with alpha", 0), 0) << transparent;
-  const std::string audio = refusal(
-      [] { coinroll::renderVideo(coinroll::Scene::fromJson(kScene, {"render.audio={}"}), "clip.webm"); });
+  const std::string audio =
+      refusal([] { coinroll::renderVideo(coinroll::Scene::fromJson(kScene, {"render.audio={}"}), "clip.webm"); });
   EXPECT_NE(audio.find("leave the sound out with \"audio\": false in the scene's render block"), std::string::npos)
       << audio;
   const std::string frames =

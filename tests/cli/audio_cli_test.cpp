@@ -159,8 +159,9 @@ TEST_F(AudioCliTest, EachImpactKnocksAtItsTimeAsLoudAsTheSquareRootOfItsLoss) {
 
 TEST_F(AudioCliTest, ARerunWritesTheSameBytes) {
   const std::string scene = std::string(COINROLL_SOURCE_DIR) + "/examples/euler_disk.json";
-  const std::string options = " -q --set render.width=64 --set render.height=36 --set render.fps=10 --set duration=3 "
-                              "--set 'render.audio=true'";
+  const std::string options =
+      " -q --set render.width=64 --set render.height=36 --set render.fps=10 --set duration=3 "
+      "--set 'render.audio=true'";
   const fs::path a = dir_ / "a.mp4", b = dir_ / "b.mp4";
   ASSERT_EQ(runCoinroll("render " + scene + options + " -o " + a.string()).exitCode, 0);
   ASSERT_EQ(runCoinroll("render " + scene + options + " -o " + b.string()).exitCode, 0);

@@ -62,9 +62,8 @@ TEST_F(CliTest, EveryBadSceneGetsExitTwoANamedKeyAndNoFile) {
       {"coin.mass", R"({"coin": {"radius": 0.03, "mass": 0}, "initial": {}, "duration": 1})"},
       {"theta", "{" + kCoin + R"(, "initial": {"theta": 95}, "duration": 1})"},
       {"I_X", R"({"coin": {"shape": "custom", "radius": 0.03, "mass": 0.4}, "initial": {}, "duration": 1})"},
-      {"I_Z",
-       R"({"coin": {"shape": "custom", "radius": 0.03, "mass": 0.4, "I_X": 1e-5, "I_Z": 3e-5}, )"
-       R"("initial": {}, "duration": 1})"},
+      {"I_Z", R"({"coin": {"shape": "custom", "radius": 0.03, "mass": 0.4, "I_X": 1e-5, "I_Z": 3e-5}, )"
+              R"("initial": {}, "duration": 1})"},
       {"duration", "{" + kCoin + R"(, "initial": {}, "duration": -3})"},
       {"solver.dt", "{" + kCoin + R"(, "initial": {}, "duration": 1, "solver": {"method": "rk4", "dt": -0.1}})"},
       {"method", "{" + kCoin + R"(, "initial": {}, "duration": 1, "solver": {"method": "magic"}})"},
@@ -196,7 +195,7 @@ TEST_F(CliTest, SimulateWritesTheContractHeaderAndRowsAtMultiplesOfTheSampleStep
             "t,theta,phi,psi,omega_X,omega_Y,omega_Z,x,y,z,contact_x,contact_z,energy,normal_force,friction_force");
   const std::vector<double> t = table.column("t");
   for (std::size_t k = 0; k < t.size(); ++k) EXPECT_NEAR(t[k], 0.05 * static_cast<double>(k), 1e-12);
-  EXPECT_EQ(t.size(), 11u);  // t = 0, 0.05, ..., 0.5
+  EXPECT_EQ(t.size(), 11u);                                                             // t = 0, 0.05, ..., 0.5
   EXPECT_EQ(std::distance(fs::directory_iterator(dir_), fs::directory_iterator{}), 2);  // scene + csv, no temp
 }
 
@@ -292,8 +291,8 @@ TEST_F(CliTest, SteadyOfAFullyRoundedThickCoinPrintsItsRimAndALowerCriticalSpin)
       << thick.output;
   // The thick coin's verdict switches at its own critical spin.
   for (const auto& [factor, verdict] : {std::pair{0.99, "verdict: UNSTABLE"}, std::pair{1.01, "verdict: STABLE"}}) {
-    const RunResult near = run("steady --kind straight --omega-Z " + std::to_string(factor * thickSpin) +
-                               " --set coin.thickness=0.013");
+    const RunResult near =
+        run("steady --kind straight --omega-Z " + std::to_string(factor * thickSpin) + " --set coin.thickness=0.013");
     EXPECT_NE(near.output.find(verdict), std::string::npos) << factor << ": " << near.output;
   }
 }
@@ -489,8 +488,8 @@ std::string smallScene(int theta) {
 fs::path fakePage(const fs::path& dir) {
   const fs::path page = dir / "template.html";
   std::ofstream(page) << R"(<html><script type="application/json" id="coinroll-scene">null</script>)"
-                          R"(<script type="application/json" id="coinroll-page-options">null</script>)"
-                          R"(<script type="application/json" id="coinroll-controls">[]</script></html>)";
+                         R"(<script type="application/json" id="coinroll-page-options">null</script>)"
+                         R"(<script type="application/json" id="coinroll-controls">[]</script></html>)";
   return page;
 }
 
@@ -507,8 +506,8 @@ TEST_F(CliTest, ADefaultOutputNameIsNeverTakenOverByAnotherScenesOutput) {
     const char* arguments;  // after the scene
     const char* output;     // its default output name
   };
-  for (const Command& command : {Command{"render -q", "a.mp4"}, Command{"still --time 0.1 -q", "a.png"},
-                                 Command{"export -q", "a.html"}}) {
+  for (const Command& command :
+       {Command{"render -q", "a.mp4"}, Command{"still --time 0.1 -q", "a.png"}, Command{"export -q", "a.html"}}) {
     const std::string verb = command.arguments;
     const std::string name = verb.substr(0, verb.find(' '));
     const std::string options = verb.substr(name.size());
@@ -547,10 +546,11 @@ TEST_F(CliTest, QuietSilencesNotesAndSummariesOnEveryCommand) {
       "effects": [{"type": "rolling_resistance", "length": 1e-4}], "duration": 0.2,
       "render": {"width": 64, "height": 48, "fps": 10, "msaa": 1}})";
   const std::string in = "cd " + dir_.string() + " && COINROLL_PAGE=" + fakePage(dir_).string();
-  for (const std::string& command : {std::string("simulate s.json --csv o.csv"), std::string("steady s.json"),
-                                     std::string("still s.json --time 0.1"), std::string("render s.json"),
-                                     std::string("export s.json --force"), std::string("sweep s.json --grid "
-                                                                                        "duration=0.1,0.2 -o w.csv")}) {
+  for (const std::string& command :
+       {std::string("simulate s.json --csv o.csv"), std::string("steady s.json"),
+        std::string("still s.json --time 0.1"), std::string("render s.json"), std::string("export s.json --force"),
+        std::string("sweep s.json --grid "
+                    "duration=0.1,0.2 -o w.csv")}) {
     // Standard output holds only steady's report, whose lines never start "coinroll:".
     const RunResult loud = run(command, in);
     ASSERT_EQ(loud.exitCode, 0) << command << ": " << loud.output;
@@ -599,8 +599,7 @@ TEST_F(CliTest, AStrobesPanelsAreTheStillsAtItsTimesSideBySide) {
   const RunResult told = run("still s.json --time 0.6 --strobe 6 --strobe-from 0.3 --panels -o told.png", in);
   ASSERT_EQ(told.exitCode, 0) << told.output;
   const std::string size = std::to_string(figure.width) + "x" + std::to_string(figure.height);
-  EXPECT_NE(told.output.find("wrote told.png (" + size + ", t = 0.6 s)"), std::string::npos)
-      << told.output;
+  EXPECT_NE(told.output.find("wrote told.png (" + size + ", t = 0.6 s)"), std::string::npos) << told.output;
   // Panels lay out the copies: without --strobe there are none.
   const RunResult alone = run("still s.json --time 0.6 --panels -q -o p.png", in);
   EXPECT_EQ(alone.exitCode, 2) << alone.output;

@@ -81,7 +81,7 @@ TEST_F(CompareCli, DiffImageIsWrittenWhenAsked) {
   EXPECT_EQ(picture.pixel(0, 0)[0], 128 + 4 * 29);  // 30 levels off: red
   EXPECT_EQ(picture.pixel(0, 0)[1], 0);
   EXPECT_EQ(picture.pixel(5, 5)[0], picture.pixel(5, 5)[1]);  // equal: grey
-  EXPECT_LT(picture.pixel(5, 5)[0], 100);                      // dimmed
+  EXPECT_LT(picture.pixel(5, 5)[0], 100);                     // dimmed
   EXPECT_EQ(scratch_->fileCount(), 3) << "a temporary file was left beside the diff";
 }
 

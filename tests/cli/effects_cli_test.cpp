@@ -25,8 +25,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-using coinroll::testing::RunResult;
 using coinroll::testing::runCoinroll;
+using coinroll::testing::RunResult;
 
 class EffectsCliTest : public coinroll::testing::ScratchDirTest {};
 
@@ -61,7 +61,7 @@ std::vector<std::vector<double>> expectClosedEnergyBudget(const fs::path& csv, d
   for (const std::vector<double>& row : rows) {
     EXPECT_EQ(row.size(), sliding ? 19u : 17u);
     if (row.size() < 17) break;
-    EXPECT_GE(row[15], 0);                                // power
+    EXPECT_GE(row[15], 0);                                   // power
     EXPECT_LE(std::abs(row[12] + row[16] - E0), 1e-9 * E0);  // energy + dissipated
   }
   EXPECT_GT(rows.back()[16], spentFraction * (E0 - restingEnergy));
@@ -100,7 +100,8 @@ TEST_F(EffectsCliTest, TheRollingOnlyToyWarnsWhereItLeavesItsFrictionCone) {
   EXPECT_NE(r.output.find("stopped early: face-down at t = "), std::string::npos) << r.output;
   // on_invalid "warn": the slip crossing is reported and the run goes on to flat.
   EXPECT_NE(r.output.find("warning: the ideal contact fails here (on_invalid: warn, going on): slip at t = "),
-            std::string::npos) << r.output;
+            std::string::npos)
+      << r.output;
 }
 
 TEST_F(EffectsCliTest, AThinCoinSpinsDownToCoinFlatAtHalfADegree) {
@@ -194,7 +195,8 @@ TEST_F(EffectsCliTest, ScenesWithoutEffectsGiveTheBytesTheyGaveBeforeEffectsExis
     ASSERT_EQ(runCoinroll("render " + scene + " -q -o " + mp4.string() +
                           " --set render.width=160 --set render.height=90 --set render.fps=10 --set render.hud=false" +
                           noProvenance)
-                  .exitCode, 0);
+                  .exitCode,
+              0);
     EXPECT_EQ(fnv1a(csv), r.csv) << r.example << " CSV";
     if (hashPictures) {
       EXPECT_EQ(fnv1a(png), r.png) << r.example << " PNG";

@@ -47,8 +47,8 @@ class ExportCli : public coinroll::testing::ScratchDirTest {
     const std::string html{std::istreambuf_iterator<char>(in), {}};
     const std::size_t from = html.find(kOptionsOpen);
     if (from == std::string::npos) return nullptr;
-    const std::string json = html.substr(from + sizeof kOptionsOpen - 1,
-                                         html.find("</script>", from) - from - (sizeof kOptionsOpen - 1));
+    const std::string json =
+        html.substr(from + sizeof kOptionsOpen - 1, html.find("</script>", from) - from - (sizeof kOptionsOpen - 1));
     rawLessThan = json.find('<') != std::string::npos;
     return nlohmann::json::parse(json);
   }
@@ -87,9 +87,11 @@ TEST_F(ExportCli, BadPageOptionsExitTwoNameTheOptionAndWriteNoPage) {
   };
   const std::vector<Bad> bads = {
       {"--controls initial.thet",
-       "--controls initial.thet: no such control on the page; give control keys as the page's tooltips name them "
-       "(initial.theta, initial.omega_Z, friction) or a group (all, initial, floor), separated by commas"},
-      {"--controls coin.radius", "--controls coin.radius: no such control on the page"},
+       "--controls initial.thet: no such control on the page; did you mean initial.theta? give control keys as the "
+       "page's tooltips name them (initial.theta, initial.omega_Z, friction) or a group (all, initial, floor), "
+       "separated by commas"},
+      {"--controls floo", "--controls floo: no such control on the page; did you mean floor? give"},
+      {"--controls coin.radius", "--controls coin.radius: no such control on the page; give"},
       {"--controls initial.theta,", "--controls initial.theta,: an empty name between commas"},
       {"--controls ''", "--controls: empty; give control keys"},
       {"--title ''", "--title: empty; give the page's heading as one line of text"},
@@ -110,9 +112,9 @@ TEST_F(ExportCli, BadPageOptionsExitTwoNameTheOptionAndWriteNoPage) {
 TEST_F(ExportCli, TheBuiltPagesControlListIsTheSchemas) {
   const fs::path built = fs::path(COINROLL_BINARY_DIR) / "web" / "coinroll.html";
   if (!fs::exists(built)) GTEST_SKIP() << built << " is not built (tools/build_page.sh)";
-  const RunResult result = coinroll::testing::runCoinroll(
-      "export scene.json -q -o o.html --controls coin,initial,floor,flight,effects,run",
-      "cd " + dir_.string() + " && COINROLL_PAGE=" + built.string());
+  const RunResult result =
+      coinroll::testing::runCoinroll("export scene.json -q -o o.html --controls coin,initial,floor,flight,effects,run",
+                                     "cd " + dir_.string() + " && COINROLL_PAGE=" + built.string());
   ASSERT_EQ(result.exitCode, 0) << result.output;
   bool rawLessThan = true;
   EXPECT_GT(optionsInPage(rawLessThan)["controls"].size(), 30U);

@@ -111,15 +111,21 @@ TEST_F(FrameTimesCliTest, AFailedRenderLeavesNeitherFile) {
   const fs::path video = dir_ / "clip.mp4", sidecar = dir_ / "clip.csv";
   // The video cannot be written: no sidecar either.
   EXPECT_EQ(run("render " + scene_.string() + " -q -o " + (dir_ / "no_dir" / "clip.mp4").string() + " --frame-times " +
-                sidecar.string()).exitCode, 1);
+                sidecar.string())
+                .exitCode,
+            1);
   EXPECT_FALSE(fs::exists(sidecar));
   // The sidecar cannot be written: no video either.
   EXPECT_EQ(run("render " + scene_.string() + " -q -o " + video.string() + " --frame-times " +
-                (dir_ / "no_dir" / "clip.csv").string()).exitCode, 1);
+                (dir_ / "no_dir" / "clip.csv").string())
+                .exitCode,
+            1);
   EXPECT_FALSE(fs::exists(video));
   // The window holds no frame: neither.
-  EXPECT_EQ(run("render " + scene_.string() + " -q -o " + video.string() + " --frame-times " + sidecar.string() +
-                " --from 5").exitCode, 2);
+  EXPECT_EQ(
+      run("render " + scene_.string() + " -q -o " + video.string() + " --frame-times " + sidecar.string() + " --from 5")
+          .exitCode,
+      2);
   EXPECT_FALSE(fs::exists(video));
   EXPECT_FALSE(fs::exists(sidecar));
 }
@@ -138,9 +144,8 @@ TEST_F(FrameTimesCliTest, TheSidecarIsRefusedAsAFrameOrTheVideoUnderAnySpelling)
   std::ofstream(dir_ / "v.mp4") << earlier;
   fs::create_symlink("v.mp4", dir_ / "link.csv");
   const std::string render = "render " + scene_.string() + " -q ";
-  for (const char* arguments :
-       {"-o f_%03d.png --frame-times f_002.png", "-o f_%03d.png --frame-times f_007.png",
-        "-o v.mp4 --frame-times ./v.mp4", "-o v.mp4 --frame-times link.csv"}) {
+  for (const char* arguments : {"-o f_%03d.png --frame-times f_002.png", "-o f_%03d.png --frame-times f_007.png",
+                                "-o v.mp4 --frame-times ./v.mp4", "-o v.mp4 --frame-times link.csv"}) {
     const RunResult r = run(render + arguments, "cd " + dir_.string() + " &&");
     EXPECT_EQ(r.exitCode, 2) << arguments << ": " << r.output;
     EXPECT_NE(r.output.find("coinroll: error: --frame-times "), std::string::npos) << r.output;

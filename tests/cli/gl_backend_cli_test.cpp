@@ -24,8 +24,8 @@ using coinroll::render::defaultGlBackend;
 using coinroll::render::GlBackend;
 using coinroll::render::glBackendName;
 using coinroll::render::isCompiledIn;
-using coinroll::testing::RunResult;
 using coinroll::testing::runCoinroll;
+using coinroll::testing::RunResult;
 
 class GlBackendCliTest : public coinroll::testing::ScratchDirTest {
  protected:

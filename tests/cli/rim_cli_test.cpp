@@ -153,7 +153,7 @@ TEST_F(RimCliTest, ASpinDownLandsOnItsFaceAndTheClipHoldsStillInSilence) {
     }
     return peak;
   };
-  EXPECT_GT(loudest(landing - 0.5, landing - 0.1), 0.2);         // the chirp up to the landing
+  EXPECT_GT(loudest(landing - 0.5, landing - 0.1), 0.2);              // the chirp up to the landing
   EXPECT_TRUE(isBelow(loudest(landing + 0.1, landing + 1.4), 1e-3));  // then silence
 }
 

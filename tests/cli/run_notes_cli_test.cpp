@@ -17,8 +17,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-using coinroll::testing::RunResult;
 using coinroll::testing::runCoinroll;
+using coinroll::testing::RunResult;
 
 class RunNotesCliTest : public coinroll::testing::ScratchDirTest {
  protected:
@@ -101,8 +101,8 @@ TEST_F(RunNotesCliTest, AnIdealSceneIsToldTheFrictionItsRollingNeeded) {
   EXPECT_EQ(above.output.find("slip at t = "), std::string::npos) << above.output;
   EXPECT_EQ(above.output.find("no friction cone"), std::string::npos) << above.output;
   // A coin spinning in place needs none.
-  const RunResult spin = runCoinroll("simulate " + std::string(COINROLL_SOURCE_DIR) +
-                                     "/examples/spin_in_place.json --csv /dev/null");
+  const RunResult spin =
+      runCoinroll("simulate " + std::string(COINROLL_SOURCE_DIR) + "/examples/spin_in_place.json --csv /dev/null");
   EXPECT_NE(spin.output.find("rolling needed no friction"), std::string::npos) << spin.output;
 }
 

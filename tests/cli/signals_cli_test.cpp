@@ -309,7 +309,9 @@ TEST_F(SignalsCliTest, AnOutputFolderRenamedDuringARenderIsAClearErrorAndLeavesN
   EXPECT_EQ(WEXITSTATUS(*status), 1) << run.errors();
   const std::string errors = run.errors();
   EXPECT_NE(errors.find("out/x.mp4: cannot move the finished MP4 into place: No such file or directory: its "
-                        "directory " + fs::canonical(dir_).string() + "/out was renamed or removed while it was "
+                        "directory " +
+                        fs::canonical(dir_).string() +
+                        "/out was renamed or removed while it was "
                         "written"),
             std::string::npos)
       << errors;

@@ -22,8 +22,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-using coinroll::testing::RunResult;
 using coinroll::testing::runCoinroll;
+using coinroll::testing::RunResult;
 
 class SweepCliTest : public coinroll::testing::ScratchDirTest {
  protected:
@@ -86,7 +86,9 @@ TEST_F(SweepCliTest, DashWritesTheSameBytesToStandardOutputAndNoFile) {
   EXPECT_EQ(slurp(piped), slurp(file));
   for (const char* shard : {"1", "2"}) {
     ASSERT_EQ(runCoinroll("sweep " + scene().string() + kGrid + " -q --shard " + shard + "/2 -o " +
-                          (dir_ / (std::string("part") + shard + ".csv")).string()).exitCode, 0);
+                          (dir_ / (std::string("part") + shard + ".csv")).string())
+                  .exitCode,
+              0);
   }
   ASSERT_EQ(runCoinroll("sweep-merge -q -o - " + (dir_ / "part1.csv").string() + " " + (dir_ / "part2.csv").string() +
                         " > " + merged.string())
@@ -103,8 +105,9 @@ TEST_F(SweepCliTest, RowsFollowTheGridLastAxisFastestAndMatchTheTrajectoryCsv) {
   std::ifstream in(sweep);
   std::string line;
   std::getline(in, line);
-  EXPECT_EQ(line, "point,initial.theta,initial.omega_Z,end,t_end,theta_min,theta_max,energy_start,energy_end,"
-                  "theta_end,grid_points,sweep");
+  EXPECT_EQ(line,
+            "point,initial.theta,initial.omega_Z,end,t_end,theta_min,theta_max,energy_start,energy_end,"
+            "theta_end,grid_points,sweep");
   std::vector<std::vector<std::string>> rows;
   while (std::getline(in, line)) rows.push_back(fields(line));
   ASSERT_EQ(rows.size(), 56u);
@@ -118,7 +121,9 @@ TEST_F(SweepCliTest, RowsFollowTheGridLastAxisFastestAndMatchTheTrajectoryCsv) {
   // The same point through simulate: its CSV's theta extremes, energies and last theta are the summary's.
   const fs::path csv = dir_ / "point13.csv";
   ASSERT_EQ(runCoinroll("simulate " + scene().string() + " --set initial.theta=10 --set initial.omega_Z=16 --csv " +
-                        csv.string()).exitCode, 0);
+                        csv.string())
+                .exitCode,
+            0);
   std::ifstream trajectory(csv);
   std::getline(trajectory, line);
   double thetaMin = 1e9, thetaMax = -1e9, energyStart = 0, energyEnd = 0, thetaEnd = 0;
@@ -143,8 +148,8 @@ TEST_F(SweepCliTest, RowsFollowTheGridLastAxisFastestAndMatchTheTrajectoryCsv) {
 TEST_F(SweepCliTest, ATossSweepsThetaEndIsTheFaceSimulateReports) {
   const std::string toss = std::string(COINROLL_SOURCE_DIR) + "/examples/coin_toss.json --set stop_when_decided=true";
   const fs::path sweep = dir_ / "tosses.csv";
-  const RunResult r = runCoinroll("sweep " + toss + " --grid initial.omega_X=30:45:4 --grid initial.v_y=1:3:3 -q -o " +
-                                  sweep.string());
+  const RunResult r =
+      runCoinroll("sweep " + toss + " --grid initial.omega_X=30:45:4 --grid initial.v_y=1:3:3 -q -o " + sweep.string());
   ASSERT_EQ(r.exitCode, 0) << r.output;
   std::stringstream rows(slurp(sweep));
   std::string line;
@@ -225,8 +230,12 @@ TEST_F(SweepCliTest, ShardsKnowTheirSweep) {
   // Another scene value gives another digest, another grid another size and digest.
   ASSERT_EQ(runCoinroll(sweep + " --set gravity=9.8 --shard 3/3 -o " + other.string()).exitCode, 0);
   EXPECT_NE(identities(slurp(other)), identity);
-  ASSERT_EQ(runCoinroll("sweep " + scene().string() + " --grid initial.theta=5:40:8 --grid initial.omega_Z=4:16:8 -q "
-                        "--set duration=0.5 --shard 3/3 -o " + (dir_ / "bigger.csv").string()).exitCode, 0);
+  ASSERT_EQ(runCoinroll("sweep " + scene().string() +
+                        " --grid initial.theta=5:40:8 --grid initial.omega_Z=4:16:8 -q "
+                        "--set duration=0.5 --shard 3/3 -o " +
+                        (dir_ / "bigger.csv").string())
+                .exitCode,
+            0);
   EXPECT_TRUE(identities(slurp(dir_ / "bigger.csv"))[0].starts_with("64,"));
 
   const std::string part1 = (dir_ / "part1.csv").string(), part2 = (dir_ / "part2.csv").string();

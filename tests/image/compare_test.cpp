@@ -18,10 +18,10 @@
 namespace {
 
 namespace fs = std::filesystem;
+using coinroll::image::compareImages;
 using coinroll::image::CompareThresholds;
 using coinroll::image::Image;
 using coinroll::image::ImageComparison;
-using coinroll::image::compareImages;
 using coinroll::image::withinThresholds;
 
 constexpr int kWidth = 10, kHeight = 8;  // 80 pixels

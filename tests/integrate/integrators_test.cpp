@@ -52,9 +52,7 @@ double globalError(Method method, int n) {
   return std::abs(y[0] - Riccati::exact(2.0));
 }
 
-double observedOrder(Method method, int n) {
-  return std::log2(globalError(method, n) / globalError(method, 2 * n));
-}
+double observedOrder(Method method, int n) { return std::log2(globalError(method, n) / globalError(method, 2 * n)); }
 
 constexpr double kOrderTolerance = 0.3;  // asymptotic slopes on a smooth problem
 
@@ -108,8 +106,10 @@ double midpointError(Method method, double h) {
   const V1 y0(Riccati::exact(t0));
   const V1 k1 = f(t0, y0);
   DenseInterval<1> d;
-  if (method == Method::Dopri5) d = dopri5Interval<1>(t0, h, y0, k1, dopri5Step<1>(f, t0, y0, k1, h));
-  else d = dop853Interval<1>(f, t0, h, y0, k1, dop853Step<1>(f, t0, y0, k1, h));
+  if (method == Method::Dopri5)
+    d = dopri5Interval<1>(t0, h, y0, k1, dopri5Step<1>(f, t0, y0, k1, h));
+  else
+    d = dop853Interval<1>(f, t0, h, y0, k1, dop853Step<1>(f, t0, y0, k1, h));
   return std::abs(d.at(t0 + 0.5 * h)[0] - Riccati::exact(t0 + 0.5 * h));
 }
 
@@ -389,7 +389,12 @@ TEST(EventRoot, IllinoisConvergesSuperlinearlyWhicheverEndRegulaFalsiWouldStickA
   };
   for (const Case& c : cases) {
     int evaluations = 0;
-    const double root = locateRoot([&](double t) { ++evaluations; return c.g(t); }, c.a, c.g(c.a), c.b, c.g(c.b));
+    const double root = locateRoot(
+        [&](double t) {
+          ++evaluations;
+          return c.g(t);
+        },
+        c.a, c.g(c.a), c.b, c.g(c.b));
     EXPECT_TRUE(isNear(root, c.root, 1e-13 * std::max(1.0, c.root))) << c.name;
     EXPECT_LE(evaluations, 30) << c.name;
   }

@@ -267,7 +267,8 @@ TEST(OutputFile, AFileTheUserCouldNotWriteIsRefusedAndKept) {
   if (::geteuid() != 0) {
     const std::string error = errorOf([&] { OutputFile file(target, "CSV"); });
     EXPECT_NE(error.find("locked.csv: cannot write: Permission denied: the file is not writable for you"),
-              std::string::npos) << error;
+              std::string::npos)
+        << error;
   } else {
     // Root may write anything, so the refusal is checked as nobody, in a directory nobody may
     // write (where the rename would have replaced root's read-only file).
@@ -371,9 +372,11 @@ TEST(OutputFile, ALinkLoopIsRefusedNamingTheOutput) {
 TEST(Destination, DescriptorNamesAreDescriptorsNotTheFilesBehindThem) {
   // As root, renaming onto /dev/stdout once replaced the system's link with a file.
   const Pipe pipe;
-  for (const auto& [name, descriptor] : std::vector<std::pair<std::string, int>>{
-           {"/dev/stdout", 1}, {"/dev/stderr", 2}, {"/dev/fd/" + std::to_string(pipe.write), pipe.write},
-           {"/proc/self/fd/" + std::to_string(pipe.write), pipe.write}}) {
+  for (const auto& [name, descriptor] :
+       std::vector<std::pair<std::string, int>>{{"/dev/stdout", 1},
+                                                {"/dev/stderr", 2},
+                                                {"/dev/fd/" + std::to_string(pipe.write), pipe.write},
+                                                {"/proc/self/fd/" + std::to_string(pipe.write), pipe.write}}) {
     const Destination destination = coinroll::io::resolveDestination(name);
     EXPECT_EQ(destination.kind, Destination::Kind::Descriptor) << name;
     EXPECT_EQ(destination.descriptor, descriptor) << name;
@@ -449,9 +452,9 @@ TEST(OutputFile, AReaderThatLeftIsABrokenPipe) {
 
 TEST(OutputFile, ADescriptorThatCannotBeWrittenIsRefused) {
   const Pipe pipe;
-  EXPECT_NE(errorOf([&] { OutputFile file("/dev/fd/" + std::to_string(pipe.read), "CSV"); })
-                .find("is open for reading only"),
-            std::string::npos);
+  EXPECT_NE(
+      errorOf([&] { OutputFile file("/dev/fd/" + std::to_string(pipe.read), "CSV"); }).find("is open for reading only"),
+      std::string::npos);
   EXPECT_NE(errorOf([&] { OutputFile file("/dev/fd/987654", "CSV"); }).find("descriptor 987654 is not open"),
             std::string::npos);
 }

@@ -132,7 +132,8 @@ TEST(UnfinishedFiles, ARemovalOnTheThreadThatRemovedDoesNotWaitForItself) {
 // A section holds signals off its thread, so a handler never runs with the list half changed on
 // the thread that changes it; they arrive when it ends.
 TEST(UnfinishedFiles, ASectionHoldsSignalsUntilItEnds) {
-  struct sigaction action {}, previous {};
+  struct sigaction action {
+  }, previous{};
   action.sa_handler = onSignal;
   ::sigemptyset(&action.sa_mask);
   ASSERT_EQ(::sigaction(SIGUSR1, &action, &previous), 0);

@@ -50,10 +50,10 @@ double neededFriction(const CoinModel& m, const Handover& h) {
 }
 
 constexpr Mode kModes[] = {Mode::Rolling, Mode::Sliding, Mode::Creeping, Mode::Flight, Mode::Impact};
-constexpr Transition kTransitions[] = {
-    Transition::SlideOnset, Transition::SlipStops,  Transition::SlipCreeps, Transition::SlipFrees,
-    Transition::LiftOff,    Transition::CornerLands, Transition::Touchdown, Transition::Bounces,
-    Transition::BouncesEnd, Transition::BandRests,  Transition::LandsFlat, Transition::Jams};
+constexpr Transition kTransitions[] = {Transition::SlideOnset, Transition::SlipStops, Transition::SlipCreeps,
+                                       Transition::SlipFrees,  Transition::LiftOff,   Transition::CornerLands,
+                                       Transition::Touchdown,  Transition::Bounces,   Transition::BouncesEnd,
+                                       Transition::BandRests,  Transition::LandsFlat, Transition::Jams};
 
 struct Row {
   Mode mode;
@@ -105,9 +105,8 @@ TEST(ContactModes, ATransitionAModeNeverMakesIsRefused) {
   int refused = 0;
   for (const Mode mode : kModes) {
     for (const Transition transition : kTransitions) {
-      const bool listed = std::any_of(kFixedRows.begin(), kFixedRows.end(), [&](const Row& row) {
-        return row.mode == mode && row.transition == transition;
-      });
+      const bool listed = std::any_of(kFixedRows.begin(), kFixedRows.end(),
+                                      [&](const Row& row) { return row.mode == mode && row.transition == transition; });
       if (listed || decidedByPhysics(mode, transition)) continue;
       EXPECT_THROW(next(disk(), mode, transition, tiltedAtRest()), std::logic_error)
           << modeName(mode) << " x " << transitionName(transition);

@@ -179,8 +179,8 @@ TEST(RollingResistance, QuasiSteadyPowerIsDeltaMgOmega) {
   const RollingResistance sublinear{.length = 3.75e-6, .loadExponent = 0.7};
   CoinModel light = toyWith({sublinear}), heavy = diskModel(0.8, 0.0375, 9.81);
   heavy.effects = {sublinear};
-  const double ratio = forward(heavy, spinInPlaceAt(heavy, kDeg)).loads.power /
-                       forward(light, spinInPlaceAt(light, kDeg)).loads.power;
+  const double ratio =
+      forward(heavy, spinInPlaceAt(heavy, kDeg)).loads.power / forward(light, spinInPlaceAt(light, kDeg)).loads.power;
   EXPECT_TRUE(isNear(ratio, std::pow(2, 0.7), 1e-12));
 }
 
@@ -241,8 +241,10 @@ std::vector<BudgetCase> budgetCases() {
 // budget closes to 1e-8; one more digit of rtol brings it to the same 1e-9 as the Euler angles.
 template <Formulation F>
 integrate::SolverConfig budgetSolver() {
-  if constexpr (F == Formulation::EulerAngles) return {};
-  else return {.rtol = 1e-11, .atol = 1e-13};
+  if constexpr (F == Formulation::EulerAngles)
+    return {};
+  else
+    return {.rtol = 1e-11, .atol = 1e-13};
 }
 
 template <Formulation F>
@@ -402,7 +404,7 @@ TEST(SpinDownCrossover, RollingResistanceEarlyAirDragLateAtThePredictedTime) {
   const double mu = air.viscosity, a = m.a, M = m.M, g = m.g, delta = rolling.length;
   // (3.11)-(3.13): the quasi-steady two-law solution in x = (alpha / alpha_x)^(3/2).
   const double scale = std::numbers::pi * mu * std::pow(a, 4) / (4 * delta * delta * M * g);  // s
-  const double predictedCrossover = scale * (1 - std::log(2.0));                               // t0 - t_x, s
+  const double predictedCrossover = scale * (1 - std::log(2.0));                              // t0 - t_x, s
 
   // Simulated crossover: the first sample at which the air's power exceeds the rolling's.
   double simulatedCrossover = 0;

@@ -71,7 +71,8 @@ TEST(CentreOfMassVelocity, IsTheTimeDerivativeOfThePosition) {
 }
 
 TEST(Energy, IsConstantAlongTheFlowForDiskRingAndCustom) {
-  const CoinModel models[] = {diskModel(0.4, 0.0375, 9.81), ringModel(0.4, 0.0375, 0.01, 9.81),
+  const CoinModel models[] = {diskModel(0.4, 0.0375, 9.81),
+                              ringModel(0.4, 0.0375, 0.01, 9.81),
                               {.M = 0.01, .a = 0.012, .g = 9.81, .I_X = 5e-7, .I_Z = 8e-7, .rim = {}, .effects = {}}};
   for (const CoinModel& m : models) {
     const CoinState s = generalState();

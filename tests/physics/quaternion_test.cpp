@@ -57,10 +57,8 @@ QuaternionStateVec seedRateInQuaternionVariables(const CoinModel& m, const CoinS
   const double c = std::cos(s.psi), sn = std::sin(s.psi);
   const Eigen::Vector3d omegaBody = fromEulerState(s).omegaBody;
   QuaternionStateVec rate;
-  rate << qDot.w(), qDot.x(), qDot.y(), qDot.z(),
-      c * dy[kOmega_X] + sn * dy[kOmega_Y] + dy[kPsi] * omegaBody.y(),
-      -sn * dy[kOmega_X] + c * dy[kOmega_Y] - dy[kPsi] * omegaBody.x(),
-      dy[kOmega_Z], dy[kX], dy[kZ];
+  rate << qDot.w(), qDot.x(), qDot.y(), qDot.z(), c * dy[kOmega_X] + sn * dy[kOmega_Y] + dy[kPsi] * omegaBody.y(),
+      -sn * dy[kOmega_X] + c * dy[kOmega_Y] - dy[kPsi] * omegaBody.x(), dy[kOmega_Z], dy[kX], dy[kZ];
   return rate;
 }
 
@@ -72,8 +70,8 @@ TEST(QuaternionRhs, EqualsTheSeedRhsAtRandomStatesAwayFromFlat) {
        {diskModel(0.4, 0.0375, 9.81), ringModel(0.4, 0.0375, 0.03, 9.81),
         CoinModel{.M = 2, .a = 0.1, .g = 3, .I_X = 0.004, .I_Z = 0.0065, .rim = {}, .effects = {}}}) {
     for (int i = 0; i < 1000; ++i) {
-      const CoinState s{tilt(random), angle(random), angle(random), rate(random), rate(random), rate(random),
-                        position(random), position(random)};
+      const CoinState s{tilt(random), angle(random), angle(random),    rate(random),
+                        rate(random), rate(random),  position(random), position(random)};
       const QuaternionStateVec expected = seedRateInQuaternionVariables(m, s);
       const QuaternionStateVec actual = quaternionRhs(m, 0.0, toVector(fromEulerState(s)));
       EXPECT_TRUE(isBelow((actual - expected).cwiseAbs().maxCoeff() / expected.cwiseAbs().maxCoeff(), kRhsTolerance))
@@ -97,8 +95,8 @@ TEST(QuaternionRhs, EqualsTheSeedRhsForCoinsWithARim) {
   };
   for (const CoinModel& m : {thick(0.013, 0.0065), thick(0.013, 0.0016), thick(0.013, 0.0), thick(0.002, 0.001)}) {
     for (int i = 0; i < 500; ++i) {
-      const CoinState s{tilt(random), angle(random), angle(random), rate(random), rate(random), rate(random),
-                        position(random), position(random)};
+      const CoinState s{tilt(random), angle(random), angle(random),    rate(random),
+                        rate(random), rate(random),  position(random), position(random)};
       const QuaternionStateVec expected = seedRateInQuaternionVariables(m, s);
       const QuaternionStateVec actual = quaternionRhs(m, 0.0, toVector(fromEulerState(s)));
       EXPECT_TRUE(isBelow((actual - expected).cwiseAbs().maxCoeff() / expected.cwiseAbs().maxCoeff(), kRhsTolerance))
@@ -162,9 +160,11 @@ TEST(QuaternionTrajectory, AgreesWithTheEulerAngleFormulationOnTheExamples) {
   EXPECT_TRUE(isBelow(formulationDisagreement(disk, {.theta = 3 * kDeg, .omega_Z = 14}, 4), kTrajectoryTolerance));
   EXPECT_TRUE(isBelow(formulationDisagreement(disk, {.theta = 3 * kDeg, .omega_Z = 6}, 4), kTrajectoryTolerance));
   EXPECT_TRUE(isBelow(formulationDisagreement(ring, steadyCircle(ring, 15 * kDeg, 12, +1), 4), kTrajectoryTolerance));
-  EXPECT_TRUE(isBelow(formulationDisagreement(ring, {.theta = 0.4, .phi = 1, .psi = -2, .omega_X = 0.7, .omega_Y = -1.9,
-                                                     .omega_Z = 9, .x = 0.1, .z = -0.2}, 4),
-                      kTrajectoryTolerance));
+  EXPECT_TRUE(isBelow(
+      formulationDisagreement(
+          ring, {.theta = 0.4, .phi = 1, .psi = -2, .omega_X = 0.7, .omega_Y = -1.9, .omega_Z = 9, .x = 0.1, .z = -0.2},
+          4),
+      kTrajectoryTolerance));
 }
 
 TEST(QuaternionTrajectory, ConservesEnergyAndHoldsTheQuaternionNorm) {
@@ -260,9 +260,9 @@ TEST(NearFlat, PlanarFallRunsToTheQuaternionFlatStopWithTheEnergyIntegralsRate) 
 // ill-conditioned one by one (an attitude error e moves them by e / cos(theta)), so there the
 // Euler-variable comparison would measure the chart, not the motion.
 struct Disagreement {
-  double attitude = 0;  // rad, angle of the rotation between the two attitudes
-  double omega = 0;     // |material-frame omega difference| / sqrt(g/a)
-  double position = 0;  // |centre-of-mass difference on the floor| / a
+  double attitude = 0;     // rad, angle of the rotation between the two attitudes
+  double omega = 0;        // |material-frame omega difference| / sqrt(g/a)
+  double position = 0;     // |centre-of-mass difference on the floor| / a
   double largestTilt = 0;  // rad, over the run
 };
 

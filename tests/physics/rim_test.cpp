@@ -80,8 +80,10 @@ TEST(Rim, ReactionIsMassTimesAccelerationPlusWeight) {
 template <Formulation F>
 double energyDrift(const CoinModel& m, const CoinState& start, double duration, double* thetaMin = nullptr) {
   Eigen::Matrix<double, kMotionSize<F>, 1> y0;
-  if constexpr (F == Formulation::EulerAngles) y0 = toVector(start);
-  else y0 = toVector(fromEulerState(start));
+  if constexpr (F == Formulation::EulerAngles)
+    y0 = toVector(start);
+  else
+    y0 = toVector(fromEulerState(start));
   integrate::Trajectory run(CoinRhs<F>{m}, 0.0, y0, kTight);
   const double E0 = energy(m, start);
   double worst = 0, lowest = start.theta;
@@ -89,8 +91,10 @@ double energyDrift(const CoinModel& m, const CoinState& start, double duration, 
     const auto y = run.stateAt(0.01 * k);
     if (!y) break;
     Forward f;
-    if constexpr (F == Formulation::EulerAngles) f = forward(m, toState(*y));
-    else f = forward(m, toQuaternionState(*y));
+    if constexpr (F == Formulation::EulerAngles)
+      f = forward(m, toState(*y));
+    else
+      f = forward(m, toQuaternionState(*y));
     worst = std::max(worst, std::abs(f.energy - E0) / E0);
     lowest = std::min(lowest, f.theta);
   }

@@ -81,8 +81,9 @@ TEST(ContactMode, AStartWithASlipSlidesAndOtherwiseRollsWhereTheRollingReactionF
   constexpr double kDefaultResolved = 10 * 1e-12;
   EXPECT_GT(slipStopMargin(0.5, Eigen::Vector2d(5e-10, 0), Eigen::Vector2d::Zero(), kDefaultResolved), 0);
   EXPECT_LT(slipStopMargin(0.5, Eigen::Vector2d(5e-10, 0), Eigen::Vector2d::Zero(), 10 * 1e-10), 0);
-  EXPECT_LT(creepStopMargin(0.5, Eigen::Vector2d(5e-10, 0), Eigen::Vector2d::Zero(), 10 * 1e-10,
-                            Eigen::Vector3d::UnitX()), 0);
+  EXPECT_LT(
+      creepStopMargin(0.5, Eigen::Vector2d(5e-10, 0), Eigen::Vector2d::Zero(), 10 * 1e-10, Eigen::Vector3d::UnitX()),
+      0);
   EXPECT_LT(slipStopMargin(0.5, Eigen::Vector2d(0.5e-11, 0), Eigen::Vector2d::Zero(), kDefaultResolved), 0);
   EXPECT_GT(slipStopMargin(0.5, Eigen::Vector2d(0, 2e-11), Eigen::Vector2d::Zero(), kDefaultResolved), 0);
   EXPECT_LT(slipStopMargin(10, Eigen::Vector2d(0, 2e-11), Eigen::Vector2d::Zero(), kDefaultResolved), 0);

@@ -189,9 +189,9 @@ TEST(SolidInertia, TinyFilletIsContinuousWithSquareEdge) {
 }
 
 TEST(SolidInertia, RejectsImpossibleShapes) {
-  EXPECT_THROW(filletedCylinderInertia(0.4, 0.0375, 0, 0.013, 0.0066), std::invalid_argument);  // rho > h/2
+  EXPECT_THROW(filletedCylinderInertia(0.4, 0.0375, 0, 0.013, 0.0066), std::invalid_argument);     // rho > h/2
   EXPECT_THROW(filletedCylinderInertia(0.4, 0.0375, 0.035, 0.013, 0.003), std::invalid_argument);  // rho > a - b
-  EXPECT_THROW(filletedCylinderInertia(0.4, 0.0375, 0.04, 0.013, 0), std::invalid_argument);  // b > a
+  EXPECT_THROW(filletedCylinderInertia(0.4, 0.0375, 0.04, 0.013, 0), std::invalid_argument);       // b > a
   EXPECT_THROW(filletedCylinderInertia(0.4, 0.0375, 0, -0.013, 0), std::invalid_argument);
   EXPECT_THROW(filletedCylinderInertia(0.4, 0.0375, 0, 0.013, -1e-4), std::invalid_argument);
   EXPECT_THROW(filletedCylinderInertia(0, 0.0375, 0, 0.013, 0), std::invalid_argument);

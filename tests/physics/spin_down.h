@@ -16,7 +16,7 @@
 namespace coinroll::physics {
 
 struct SpinDownSample {
-  double t = 0;           // s
+  double t = 0;  // s
   CoinState state;
   double dissipated = 0;  // J, integrated from the declared power
 };
@@ -36,18 +36,21 @@ SpinDown runSpinDown(const CoinModel& model, const CoinState& start, double endA
   constexpr int kMotion = kMotionSize<F>, N = kMotion + 1;
   using Y = integrate::Vec<N>;
   const auto seed = [](const Y& y, const CoinState& continuation) {
-    if constexpr (F == Formulation::EulerAngles) return toState(y.template head<kMotion>());
-    else return toEulerState(toQuaternionState(y.template head<kMotion>()), continuation);
+    if constexpr (F == Formulation::EulerAngles)
+      return toState(y.template head<kMotion>());
+    else
+      return toEulerState(toQuaternionState(y.template head<kMotion>()), continuation);
   };
   Y y0;
-  if constexpr (F == Formulation::EulerAngles) y0.template head<kMotion>() = toVector(start);
-  else y0.template head<kMotion>() = toVector(fromEulerState(start));
+  if constexpr (F == Formulation::EulerAngles)
+    y0.template head<kMotion>() = toVector(start);
+  else
+    y0.template head<kMotion>() = toVector(fromEulerState(start));
   y0[N - 1] = 0;
-  std::vector<integrate::Event<N>> flat{{.name = "coin-flat",
-                                         .g = [endAlpha, seed](double, const Y& y) {
-                                           return tiltAboveFloor(seed(y, CoinState{})) - endAlpha;
-                                         },
-                                         .direction = -1}};
+  std::vector<integrate::Event<N>> flat{
+      {.name = "coin-flat",
+       .g = [endAlpha, seed](double, const Y& y) { return tiltAboveFloor(seed(y, CoinState{})) - endAlpha; },
+       .direction = -1}};
   integrate::Trajectory run(CoinRhs<F>{model}, 0.0, y0, solver, flat);
   SpinDown result;
   CoinState continuation = start;

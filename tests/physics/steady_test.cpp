@@ -25,7 +25,9 @@ using coinroll::testing::isNear;
 using reference::kDeg;
 
 std::vector<CoinModel> coins() {
-  return {diskModel(0.4, 0.0375, 9.81), ringModel(0.4, 0.0375, 0.03, 9.81), ringModel(0.4, 0.0375, 0.0375, 9.81),
+  return {diskModel(0.4, 0.0375, 9.81),
+          ringModel(0.4, 0.0375, 0.03, 9.81),
+          ringModel(0.4, 0.0375, 0.0375, 9.81),
           {.M = 0.01, .a = 0.012, .g = 9.81, .I_X = 5e-7, .I_Z = 8e-7, .rim = {}, .effects = {}}};
 }
 
@@ -204,8 +206,13 @@ constexpr double kToyRadius = 0.0375, kToyThickness = 0.013;
 
 CoinModel thickDisk(double edgeRadius, double thickness = kToyThickness) {
   const double M = 0.4, a = kToyRadius;
-  return {.M = M, .a = a, .g = 9.81, .I_X = M * (a * a / 4 + thickness * thickness / 12), .I_Z = M * a * a / 2,
-          .rim = {.thickness = thickness, .edgeRadius = edgeRadius}, .effects = {}};
+  return {.M = M,
+          .a = a,
+          .g = 9.81,
+          .I_X = M * (a * a / 4 + thickness * thickness / 12),
+          .I_Z = M * a * a / 2,
+          .rim = {.thickness = thickness, .edgeRadius = edgeRadius},
+          .effects = {}};
 }
 
 std::vector<CoinModel> thickCoins() { return {thickDisk(kToyThickness / 2), thickDisk(0.0016)}; }
@@ -296,8 +303,9 @@ int forEachThickCircle(const Check& check) {
         for (int branch : {+1, -1}) {
           if (thetaDeg == 0 && branch == -1) continue;
           const CoinState s = steadyCircle(m, thetaDeg * kDeg, spin * naturalRate(m), branch);
-          check(m, s, ::testing::Message() << "rho " << m.rim.edgeRadius << " theta " << thetaDeg << " spin " << spin
-                                           << " branch " << branch);
+          check(m, s,
+                ::testing::Message() << "rho " << m.rim.edgeRadius << " theta " << thetaDeg << " spin " << spin
+                                     << " branch " << branch);
           ++count;
         }
       }

@@ -74,8 +74,8 @@ TEST(Flight, AnEdgeDownDropReboundsToESquaredOfEachHeight) {
   EXPECT_TRUE(last.bouncesEnd);
   EXPECT_LT(kRestitution * last.normalSpeed, std::sqrt(2 * kG * 1e-6 * kRadius));
   double bounceTimes = impacts[0].t;
-  for (std::size_t k = 0; k + 1 < impacts.size(); ++k) bounceTimes += 2 * impacts[0].normalSpeed *
-                                                                         std::pow(kRestitution, k + 1) / kG;
+  for (std::size_t k = 0; k + 1 < impacts.size(); ++k)
+    bounceTimes += 2 * impacts[0].normalSpeed * std::pow(kRestitution, k + 1) / kG;
   EXPECT_TRUE(isNear(last.t, bounceTimes, 1e-9));
 }
 
@@ -253,9 +253,21 @@ TEST(Flight, ASlipChatteringAtItsIntegratorsResolutionStops) {
   const nlohmann::json scene = {
       {"coin",
        {{"shape", "disk"}, {"radius", 0.01213}, {"mass", 0.00567}, {"thickness", 0.00175}, {"edge_radius", 0.000875}}},
-      {"initial", {{"theta", -46.733}, {"phi", -49.64}, {"omega_X", 8.682}, {"omega_Y", -12.522}, {"omega_Z", -10.895},
-                   {"y", 0.202}, {"v_y", 1.032}, {"v_x", 0.108}, {"v_z", 0.126}}},
-      {"friction", 0.13}, {"sliding", true}, {"flight", true}, {"restitution", 0.519}, {"duration", 1.5}};
+      {"initial",
+       {{"theta", -46.733},
+        {"phi", -49.64},
+        {"omega_X", 8.682},
+        {"omega_Y", -12.522},
+        {"omega_Z", -10.895},
+        {"y", 0.202},
+        {"v_y", 1.032},
+        {"v_x", 0.108},
+        {"v_z", 0.126}}},
+      {"friction", 0.13},
+      {"sliding", true},
+      {"flight", true},
+      {"restitution", 0.519},
+      {"duration", 1.5}};
   const pipeline::TrajectoryReport report = pipeline::sampleTrajectory(simulationOf(scene), 0.01, [](auto) {});
   EXPECT_FALSE(report.stoppedBy) << physics::eventName(report.stoppedBy->event);
   EXPECT_LT(report.stats.acceptedSteps, 10'000);
@@ -277,12 +289,21 @@ TEST(Flight, NoTossOntoATableEverGainsEnergy) {
         {"coin",
          {{"shape", "disk"}, {"radius", 0.01213}, {"mass", 0.00567}, {"thickness", 0.00175}, {"edge_radius", 0.0003}}},
         {"initial",
-         {{"theta", 80 * unit(random)}, {"phi", outOfPlane * 180 * unit(random)}, {"omega_X", 40 * unit(random)},
-          {"omega_Y", outOfPlane * 10 * unit(random)}, {"omega_Z", outOfPlane * 20 * unit(random)},
-          {"y", 0.02 + 0.05 * positive(random)}, {"v_y", -0.8 * positive(random)},
-          {"v_x", outOfPlane * 0.3 * unit(random)}, {"v_z", 0.5 * unit(random)}}},
-        {"friction", 0.1 + positive(random)}, {"impact_friction", 1.2 * positive(random)}, {"sliding", true},
-        {"flight", true}, {"restitution", e}, {"duration", 0.4}};
+         {{"theta", 80 * unit(random)},
+          {"phi", outOfPlane * 180 * unit(random)},
+          {"omega_X", 40 * unit(random)},
+          {"omega_Y", outOfPlane * 10 * unit(random)},
+          {"omega_Z", outOfPlane * 20 * unit(random)},
+          {"y", 0.02 + 0.05 * positive(random)},
+          {"v_y", -0.8 * positive(random)},
+          {"v_x", outOfPlane * 0.3 * unit(random)},
+          {"v_z", 0.5 * unit(random)}}},
+        {"friction", 0.1 + positive(random)},
+        {"impact_friction", 1.2 * positive(random)},
+        {"sliding", true},
+        {"flight", true},
+        {"restitution", e},
+        {"duration", 0.4}};
     // First the landing, which gained 1.8e-5 J (0.58 %) in its sticking impact.
     if (k < 0) {
       scene["initial"] = {{"theta", 30}, {"omega_X", -40}, {"y", 0.012833}, {"v_y", -0.8}, {"v_z", -0.4}};
@@ -345,8 +366,11 @@ TEST(Flight, TheHopThatEndsASlidingRunFliesWithFlight) {
   // taking energy, the budget closed through the impacts.
   const nlohmann::json doc = {
       {"coin", {{"radius", 0.0375}, {"mass", 0.4}, {"thickness", 0.013}, {"edge_radius", 0.0015}}},
-      {"initial", {{"theta", 18.19115672673155}, {"omega_X", 17.323401068130792}, {"omega_Y", -48.73684958709181},
-                   {"omega_Z", -56.59830281735924}}},
+      {"initial",
+       {{"theta", 18.19115672673155},
+        {"omega_X", 17.323401068130792},
+        {"omega_Y", -48.73684958709181},
+        {"omega_Z", -56.59830281735924}}},
       {"friction", 0.5178825519599348},
       {"friction_static", 0.6214590623519217},
       {"sliding", true},
@@ -497,7 +521,10 @@ TEST(Flight, ABandRockingWhileItSlidesEndsOnItsEdgeNotAtStickSlip) {
   const nlohmann::json scene = {
       {"coin", {{"radius", 0.01213}, {"mass", 0.00567}, {"thickness", 0.00175}, {"edge_radius", 0.0003}}},
       {"initial",
-       {{"theta", -89.999}, {"omega_X", 234.9681181757918}, {"omega_Z", 30.040915826905174}, {"y", 0.3},
+       {{"theta", -89.999},
+        {"omega_X", 234.9681181757918},
+        {"omega_Z", 30.040915826905174},
+        {"y", 0.3},
         {"v_y", 2.0606580649635244}}},
       {"friction", 0.3},
       {"sliding", true},

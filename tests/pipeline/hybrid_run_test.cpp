@@ -275,8 +275,11 @@ TEST(Sliding, LiftOffEndsASlidingRunEvenWhenTheSceneSaysWarn) {
   // comes from nowhere.
   const nlohmann::json doc = {
       {"coin", {{"radius", 0.0375}, {"mass", 0.4}, {"thickness", 0.013}, {"edge_radius", 0.0015}}},
-      {"initial", {{"theta", 18.19115672673155}, {"omega_X", 17.323401068130792}, {"omega_Y", -48.73684958709181},
-                   {"omega_Z", -56.59830281735924}}},
+      {"initial",
+       {{"theta", 18.19115672673155},
+        {"omega_X", 17.323401068130792},
+        {"omega_Y", -48.73684958709181},
+        {"omega_Z", -56.59830281735924}}},
       {"friction", 0.5178825519599348},
       {"friction_static", 0.6214590623519217},
       {"sliding", true},
@@ -307,13 +310,15 @@ TEST(Sliding, AWobbleThatGrazesTheConeBetweenTwoStepEndsSlides) {
   // for a few milliseconds at t = 2.167 s, inside one step whose ends are both in the cone: read at
   // the step ends only, the run rolled on through it (docs/sliding.md §4.5). Every rolling sample
   // must lie in the cone, as the switch rule says.
-  const nlohmann::json doc = {
-      {"coin", {{"radius", 0.0375}, {"mass", 0.4}, {"thickness", 0.002}}},
-      {"initial", {{"theta", 23.649907572148113}, {"omega_X", -9.36372926770362}, {"omega_Y", 15.814515079174889},
-                   {"omega_Z", 10.738334504205813}}},
-      {"friction", 0.27},
-      {"sliding", true},
-      {"duration", 3}};
+  const nlohmann::json doc = {{"coin", {{"radius", 0.0375}, {"mass", 0.4}, {"thickness", 0.002}}},
+                              {"initial",
+                               {{"theta", 23.649907572148113},
+                                {"omega_X", -9.36372926770362},
+                                {"omega_Y", 15.814515079174889},
+                                {"omega_Z", 10.738334504205813}}},
+                              {"friction", 0.27},
+                              {"sliding", true},
+                              {"duration", 3}};
   const pipeline::Simulation sim = simulationOf(doc);
   pipeline::CoinRun run(sim);
   double worst = 0, worstAt = 0;
@@ -339,7 +344,7 @@ TEST(Sliding, TheCsvCarriesTheSlipAndTheSwitches) {
             "t,theta,phi,psi,omega_X,omega_Y,omega_Z,x,y,z,contact_x,contact_z,energy,normal_force,friction_force,"
             "power,dissipated,slip_speed,sliding");
   EXPECT_EQ(first.substr(first.rfind(',') - 1), "1,1");  // slip speed 1 m/s, sliding
-  ASSERT_EQ(result.switches.size(), 2u);  // slides at t = 0, rolls at t*
+  ASSERT_EQ(result.switches.size(), 2u);                 // slides at t = 0, rolls at t*
 }
 
 }  // namespace
@@ -358,8 +363,7 @@ std::string hudLineStartingWith(const std::vector<std::string>& lines, std::stri
 TEST(Sliding, TheOverlayShowsTheSlipWhileSlidingAndOnlyThen) {
   // The upright skid's slip falls as v0 - mu g (1 + M a^2 / I_Z) t, 3 mu g t for a disk.
   const double v0 = 0.5, mu = 0.3, g = 9.81, t = 0.01;
-  const scene::SceneConfig scene =
-      scene::parseScene(skid({{"radius", 0.0375}, {"mass", 0.4}}, v0, mu), "test");
+  const scene::SceneConfig scene = scene::parseScene(skid({{"radius", 0.0375}, {"mass", 0.4}}, v0, mu), "test");
   const pipeline::Simulation sim = pipeline::buildSimulation(scene);
   pipeline::FixedFrameTimes at({t, 0.2});
   const pipeline::RunRecord record = pipeline::recordRun(sim, at);

@@ -57,8 +57,8 @@ std::string refusal(const scene::SceneConfig& scene, const pipeline::SceneRunReq
 }
 
 TEST(SimulateScene, RefusesABadSampleStepByTheDoorsNameBeforeAnyRow) {
-  for (const double sampleDt : {0.0, -0.01, std::numeric_limits<double>::quiet_NaN(),
-                                std::numeric_limits<double>::infinity()}) {
+  for (const double sampleDt :
+       {0.0, -0.01, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
     CountingSink counts;
     const std::string message = refusal(defaultScene(), requestFor(sampleDt, "sample_dt"), counts);
     EXPECT_TRUE(message.starts_with("sample_dt: must be a finite number > 0 s")) << message;
@@ -91,8 +91,7 @@ TEST(SimulateScene, RefusesTooManyRowsInTheDoorsWordsBeforeAnyRow) {
 TEST(SimulateScene, BeginsOnceBeforeTheRowsAndEndsAtTheDurationByName) {
   CountingSink counts;
   const scene::SceneConfig scene = defaultScene();
-  const pipeline::SceneTable table = pipeline::simulateScene(scene, requestFor(0.05, "S"),
-                                                             counts.sink());
+  const pipeline::SceneTable table = pipeline::simulateScene(scene, requestFor(0.05, "S"), counts.sink());
   ASSERT_FALSE(table.run.stoppedBy) << "the built-in scene rolls to its duration";
   EXPECT_EQ(counts.begins, 1);
   EXPECT_EQ(counts.rowsBeforeBegin, 0);

@@ -137,9 +137,12 @@ TEST(SlowMotion, ThePlanFollowsTheFlightAndImpactRuleComputedHere) {
       ASSERT_GT(t, lastImpact) << "on the floor before the bounces end, frame " << k;
     }
     EXPECT_NEAR(rate, expected, 1e-9) << "frame " << k << " at t = " << t << " s";
-    if (std::abs(rate - kFlightSlow) < 1e-9) ++inFlight;
-    else if (rate < 1 - 1e-9) ++eased;
-    else ++realTime;
+    if (std::abs(rate - kFlightSlow) < 1e-9)
+      ++inFlight;
+    else if (rate < 1 - 1e-9)
+      ++eased;
+    else
+      ++realTime;
   }
   // The flight from the hand, 0.395 s at a quarter of real time, its last 0.03 s slowed further for the
   // landing: about 88 frames 1/240 s apart.

@@ -136,9 +136,9 @@ TEST(Overlay, AStrobePanelOfACoinOnTheFloorShowsItsTiltAndContactRate) {
     const pipeline::RunRecord record = pipeline::recordRun(pipeline::buildSimulation(scene), at);
     const pipeline::FrameState& frame = record.frames.at(0);
     EXPECT_EQ(pipeline::panelLabel(pipeline::buildSimulation(scene).model, frame),
-              (std::vector<std::string>{"t = 0.250 s", "70.00° above the floor",
-                                        fmt::format("contact {:.1f} Hz",
-                                                    std::abs(frame.precessionRate) / (2 * std::numbers::pi))}))
+              (std::vector<std::string>{
+                  "t = 0.250 s", "70.00° above the floor",
+                  fmt::format("contact {:.1f} Hz", std::abs(frame.precessionRate) / (2 * std::numbers::pi))}))
         << "theta = " << theta;
   }
 }

@@ -17,8 +17,8 @@ TEST(SampleCount, MatchesExactRationalArithmeticWhereTheQuotientRoundsBelowAWhol
   };
   int roundedBelow = 0, failures = 0;
   for (long n = 1; n <= 3000; ++n) {
-    for (const Ratio S : {Ratio{1, 100}, Ratio{1, 1000}, Ratio{1, 10}, Ratio{2, 100}, Ratio{5, 100}, Ratio{25, 100},
-                          Ratio{4, 1000}}) {
+    for (const Ratio S :
+         {Ratio{1, 100}, Ratio{1, 1000}, Ratio{1, 10}, Ratio{2, 100}, Ratio{5, 100}, Ratio{25, 100}, Ratio{4, 1000}}) {
       const double d = static_cast<double>(n) / 100, dt = static_cast<double>(S.num) / static_cast<double>(S.den);
       const long expected = n * S.den / (100 * S.num) + 1;
       const long actual = pipeline::sampleCount(d, dt);

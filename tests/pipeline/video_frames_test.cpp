@@ -49,10 +49,10 @@ scene::SceneConfig toyScene(double duration, double timeScale) {
 }
 
 TEST(FrameCount, CoversTheClipIncludingBothEnds) {
-  EXPECT_EQ(pipeline::frameCount(2.0, 1.0, 30), 61);   // 2 s at 30 fps: t = 0, 1/30, ..., 2
+  EXPECT_EQ(pipeline::frameCount(2.0, 1.0, 30), 61);    // 2 s at 30 fps: t = 0, 1/30, ..., 2
   EXPECT_EQ(pipeline::frameCount(0.29, 1.0, 100), 30);  // 0.29 * 100 = 28.999999999999996 in binary
-  EXPECT_EQ(pipeline::frameCount(0.3, 0.1, 10), 31);   // 0.3 / 0.1 = 2.9999999999999996: 3 s of video
-  EXPECT_EQ(pipeline::frameCount(1.0, 0.5, 24), 49);   // slowed down twice: 2 s of video
+  EXPECT_EQ(pipeline::frameCount(0.3, 0.1, 10), 31);    // 0.3 / 0.1 = 2.9999999999999996: 3 s of video
+  EXPECT_EQ(pipeline::frameCount(1.0, 0.5, 24), 49);    // slowed down twice: 2 s of video
   EXPECT_EQ(pipeline::frameCount(0.01, 1.0, 30), 1);
 }
 
@@ -313,10 +313,10 @@ TEST(RenderVideo, AnInsetChangesOnlyTheLowerHalfAndFollowsTheFrame) {
   int moved = 0;
   for (int y = 90; y < 180; ++y) {
     for (int x = 0; x < 320; ++x) {
-      const bool same = std::equal(plain.frames[0].pixel(x, y), plain.frames[0].pixel(x, y) + 4,
-                                   plain.frames[last].pixel(x, y));
-      if (same && !std::equal(inset.frames[0].pixel(x, y), inset.frames[0].pixel(x, y) + 4,
-                              inset.frames[last].pixel(x, y)))
+      const bool same =
+          std::equal(plain.frames[0].pixel(x, y), plain.frames[0].pixel(x, y) + 4, plain.frames[last].pixel(x, y));
+      if (same &&
+          !std::equal(inset.frames[0].pixel(x, y), inset.frames[0].pixel(x, y) + 4, inset.frames[last].pixel(x, y)))
         ++moved;
     }
   }
@@ -432,9 +432,10 @@ TEST(RenderVideo, CancellationLeavesTheSinkUnfinished) {
   RecordingSink sink;
   std::atomic<bool> cancel{false};
   EXPECT_THROW(pipeline::renderVideo(scene, sink,
-                                     {.onFrame = [&](const pipeline::FrameProgress& p) {
-                                        if (p.frame == 3) cancel = true;
-                                      },
+                                     {.onFrame =
+                                          [&](const pipeline::FrameProgress& p) {
+                                            if (p.frame == 3) cancel = true;
+                                          },
                                       .cancel = &cancel}),
                pipeline::Cancelled);
   EXPECT_EQ(sink.frames.size(), 3u);

@@ -47,10 +47,11 @@ TrackedRun tracked(const scene::SceneConfig& scene) {
   pipeline::simulateScene(scene, request,
                           {.begin = [&](const pipeline::RunStart& start) { builder.emplace(scene, *start.model); },
                            .row = [](std::span<const double>) {},
-                           .sample = [&](double t, const pipeline::RunSample& sample, bool row) {
-                             builder->add(t, sample, row);
-                             if (row) run.times.push_back(t);
-                           }});
+                           .sample =
+                               [&](double t, const pipeline::RunSample& sample, bool row) {
+                                 builder->add(t, sample, row);
+                                 if (row) run.times.push_back(t);
+                               }});
   run.track = std::move(*builder).finish(nullptr);
   return run;
 }

@@ -165,9 +165,9 @@ TEST(GlBackends, OsmesaAndEglDrawTheSameBytesSideBySide) {
       for (const float time : {0.0f, 0.4f, 0.8f, 0.8f, 0.8f}) {
         const Image fromOsmesa = osmesa->draw(busySnapshot(time));
         const Image fromEgl = egl->draw(busySnapshot(time));
-        ASSERT_EQ(fromOsmesa.rgba, fromEgl.rgba) << "t = " << time << ": checksums "
-                                                 << coinroll::testing::pixelChecksum(fromOsmesa) << " (osmesa), "
-                                                 << coinroll::testing::pixelChecksum(fromEgl) << " (egl)";
+        ASSERT_EQ(fromOsmesa.rgba, fromEgl.rgba)
+            << "t = " << time << ": checksums " << coinroll::testing::pixelChecksum(fromOsmesa) << " (osmesa), "
+            << coinroll::testing::pixelChecksum(fromEgl) << " (egl)";
       }
       Renderer& kept = survivor == GlBackend::Egl ? *egl : *osmesa;
       const Image before = kept.draw(busySnapshot(1.2f));
@@ -218,8 +218,8 @@ TEST(GlBackends, AChildForkedAfterADrawIsRefusedNotLeftWaiting) {
       ::_exit(Drew);
     } catch (const GlAfterForkError& e) {
       const std::string message = e.what();
-      const bool namesTheFix = message.find("'spawn'") != std::string::npos &&
-                               message.find("LP_NUM_THREADS=0") != std::string::npos;
+      const bool namesTheFix =
+          message.find("'spawn'") != std::string::npos && message.find("LP_NUM_THREADS=0") != std::string::npos;
       ::_exit(namesTheFix ? Refused : RefusedWithoutNamingTheFix);
     } catch (...) {
       ::_exit(OtherError);

@@ -123,9 +123,9 @@ TEST_P(GoldenTest, MatchesGolden) {
   const bool passes = coinroll::image::withinThresholds(d, thresholds);
   EXPECT_TRUE(passes) << report
                       << (tolerant ? ""
-                                          : "; exact match required. On a CPU other than the goldens' (llvmpipe rounds "
-                                            "edge pixels per CPU), COINROLL_GOLDEN_TOLERANT=1 accepts rounding-level "
-                                            "differences (docs/snapshot_testing.md)");
+                                   : "; exact match required. On a CPU other than the goldens' (llvmpipe rounds "
+                                     "edge pixels per CPU), COINROLL_GOLDEN_TOLERANT=1 accepts rounding-level "
+                                     "differences (docs/snapshot_testing.md)");
   if (passes)
     std::cerr << "note: " << name
               << " is not bit-exact on this machine (passing: COINROLL_GOLDEN_TOLERANT=1): " << report << '\n';
@@ -487,9 +487,11 @@ TEST(RenderDeterminism, ReusedBackgroundGivesTheSameBytesAsShadingIt) {
   CameraView moved = still;
   moved.eye.x += 0.02f;
   const std::vector<CameraView> cameras = {still, still, still, still, moved, moved, still, still, still};
-  for (const auto& [antialiasing, msaa] :
-       {std::pair{Antialiasing::Msaa, 4}, {Antialiasing::Msaa, 1}, {Antialiasing::Fxaa, 1}, {Antialiasing::Ssaa, 1},
-        {Antialiasing::Ssaa, 4}}) {
+  for (const auto& [antialiasing, msaa] : {std::pair{Antialiasing::Msaa, 4},
+                                           {Antialiasing::Msaa, 1},
+                                           {Antialiasing::Fxaa, 1},
+                                           {Antialiasing::Ssaa, 1},
+                                           {Antialiasing::Ssaa, 4}}) {
     RenderSettings reusing = smallSettings();
     reusing.antialiasing = antialiasing;
     reusing.msaa = msaa;

@@ -13,7 +13,7 @@ TEST(Printable, ControlCharactersAreShownAsEscapesAndLineBreaksAsBackslashN) {
   EXPECT_EQ(printable("a\nb.json"), "a\\nb.json");
   EXPECT_EQ(printable("\x1b[31mred.png"), "\\x1b[31mred.png");
   EXPECT_EQ(printable(std::string("a\0b", 3)), "a\\x00b");
-  EXPECT_EQ(printable("tab\there\x7f"), "tab\there\\x7f");  // a tab is kept, DEL is not
+  EXPECT_EQ(printable("tab\there\x7f"), "tab\there\\x7f");                   // a tab is kept, DEL is not
   EXPECT_EQ(printable("caf\xc3\xa9 scene.json"), "caf\xc3\xa9 scene.json");  // UTF-8 passes as it is
 }
 

@@ -53,8 +53,8 @@ TEST(PictureAntialiasing, AutoChoosesPerOutputAndANamedMethodStays) {
   const render::RenderSettings widest =
       defaultSceneWith({"render.width=3840"}).render.pictureFor(RenderSpec::Output::Still);
   EXPECT_EQ(widest.antialiasing, Antialiasing::Ssaa);
-  for (const auto& [name, method] : {std::pair{"msaa", Antialiasing::Msaa}, {"fxaa", Antialiasing::Fxaa},
-                                     {"ssaa", Antialiasing::Ssaa}}) {
+  for (const auto& [name, method] :
+       {std::pair{"msaa", Antialiasing::Msaa}, {"fxaa", Antialiasing::Fxaa}, {"ssaa", Antialiasing::Ssaa}}) {
     const SceneConfig named = defaultSceneWith({std::string("render.antialiasing=") + name, "render.msaa=2"});
     for (const auto output : {RenderSpec::Output::Still, RenderSpec::Output::Video}) {
       EXPECT_EQ(named.render.pictureFor(output).antialiasing, method) << name;

@@ -127,7 +127,7 @@ bool holds(nlohmann::json& document, const schema::Condition& condition) {
     const schema::Key& other = schema::key(path);
     const nlohmann::json* value = valueAt(document, other);
     if (condition.values.empty()) return value != nullptr;
-    const nlohmann::json effective = value != nullptr             ? *value
+    const nlohmann::json effective = value != nullptr            ? *value
                                      : other.defaultText.empty() ? nlohmann::json()
                                                                  : nlohmann::json::parse(other.defaultText);
     return std::any_of(condition.values.begin(), condition.values.end(),
@@ -155,8 +155,10 @@ void satisfy(nlohmann::json& document, const schema::Key& key, const schema::Con
 void breakCondition(nlohmann::json& document, const schema::Condition& condition) {
   for (const std::string& path : condition.paths) {
     const schema::Key& other = schema::key(path);
-    if (other.type == schema::Type::Boolean) put(document, other, false);
-    else if (other.names.empty()) erase(document, other);
+    if (other.type == schema::Type::Boolean)
+      put(document, other, false);
+    else if (other.names.empty())
+      erase(document, other);
     for (const std::string_view name : other.names) {
       if (holds(document, condition)) put(document, other, std::string(name));
     }
@@ -244,11 +246,11 @@ TEST(SceneSchema, EveryBoundIsTheLoadersOwn) {
       if (!bound) continue;
       const bool integer = key.type == schema::Type::Integer;
       const double inside = bound->inclusive ? bound->value
-                            : integer       ? bound->value - outward
-                                            : std::nextafter(bound->value, -outward * INFINITY);
+                            : integer        ? bound->value - outward
+                                             : std::nextafter(bound->value, -outward * INFINITY);
       const double outside = !bound->inclusive ? bound->value
-                             : integer        ? bound->value + outward
-                                              : std::nextafter(bound->value, outward * INFINITY);
+                             : integer         ? bound->value + outward
+                                               : std::nextafter(bound->value, outward * INFINITY);
       SCOPED_TRACE(fmt::format("{}: inside {}, outside {}", key.path, inside, outside));
       EXPECT_EQ(refusal(key, {assignment(key, asValue(key, inside))}), "");
       const std::string refused = refusal(key, {assignment(key, asValue(key, outside))});
@@ -270,8 +272,8 @@ TEST(SceneSchema, EveryPresenceRuleIsEnforced) {
   };
   int rules = 0;
   for (const schema::Key& key : schema::keys()) {
-    const bool ruled = key.required || !key.onlyWith.empty() || !key.needs.empty() || !key.excludes.empty() ||
-                       !key.needsOneOf.empty();
+    const bool ruled =
+        key.required || !key.onlyWith.empty() || !key.needs.empty() || !key.excludes.empty() || !key.needsOneOf.empty();
     if (!ruled) continue;
     SCOPED_TRACE(key.path);
     nlohmann::json accepted = baseScene();

@@ -55,14 +55,12 @@ long threadCount() {
   return -1;
 }
 
-long openDescriptors() {
-  return std::distance(fs::directory_iterator("/proc/self/fd"), fs::directory_iterator{});
-}
+long openDescriptors() { return std::distance(fs::directory_iterator("/proc/self/fd"), fs::directory_iterator{}); }
 
 SceneConfig smallScene() {
   nlohmann::json document = coinroll::scene::builtInDefaultScene();
-  for (const char* assignment : {"duration=1", "render.width=160", "render.height=120", "render.fps=24",
-                                 "render.audio.timbre=clicks"}) {
+  for (const char* assignment :
+       {"duration=1", "render.width=160", "render.height=120", "render.fps=24", "render.audio.timbre=clicks"}) {
     coinroll::scene::applyOverride(document, assignment);
   }
   return coinroll::scene::parseScene(document, "soak");

@@ -10,9 +10,9 @@
 namespace coinroll::testing {
 
 struct CsvTable {
-  std::string headerLine;                  // the first line as written, for comparing the contract's header
-  std::vector<std::string> columns;        // the header's names, in order
-  std::vector<std::vector<double>> rows;   // every later line, one number per column
+  std::string headerLine;                 // the first line as written, for comparing the contract's header
+  std::vector<std::string> columns;       // the header's names, in order
+  std::vector<std::vector<double>> rows;  // every later line, one number per column
 
   // The values of the column named `name`, one per row. Throws std::out_of_range naming the column
   // and listing the header when there is no such column.

@@ -11,8 +11,10 @@ bool goldenTolerant() {
   const std::string value = setting == nullptr ? "" : setting;
   if (value.empty() || value == "0") return false;
   if (value == "1") return true;
-  throw std::invalid_argument("COINROLL_GOLDEN_TOLERANT must be 1 (rounding-level differences pass, for another CPU) "
-                              "or 0/unset (exact), got '" + value + "'");
+  throw std::invalid_argument(
+      "COINROLL_GOLDEN_TOLERANT must be 1 (rounding-level differences pass, for another CPU) "
+      "or 0/unset (exact), got '" +
+      value + "'");
 }
 
 }  // namespace coinroll::testing

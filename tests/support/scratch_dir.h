@@ -19,9 +19,8 @@ class ScratchDirectory {
  public:
   ScratchDirectory() {
     const ::testing::TestInfo& test = *::testing::UnitTest::GetInstance()->current_test_info();
-    path_ = std::filesystem::temp_directory_path() /
-            ("coinroll_" + std::string(test.test_suite_name()) + "_" + std::string(test.name()) + "_" +
-             std::to_string(::getpid()));
+    path_ = std::filesystem::temp_directory_path() / ("coinroll_" + std::string(test.test_suite_name()) + "_" +
+                                                      std::string(test.name()) + "_" + std::to_string(::getpid()));
     std::filesystem::remove_all(path_);
     std::filesystem::create_directories(path_);
   }

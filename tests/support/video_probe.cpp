@@ -94,8 +94,7 @@ std::vector<int> gifFrameDelays(const std::filesystem::path& path) {
         break;
       case 0x3B:  // the trailer
         return delays;
-      default:
-        throw fail("no GIF block at byte " + std::to_string(at));
+      default: throw fail("no GIF block at byte " + std::to_string(at));
     }
   }
 }
@@ -183,8 +182,7 @@ image::Image decodeFrame(const std::filesystem::path& path, std::int64_t index) 
 
       ScalerPtr scaler(sws_getContext(frame->width, frame->height, static_cast<AVPixelFormat>(frame->format),
                                       frame->width, frame->height, AV_PIX_FMT_RGBA,
-                                      SWS_BICUBIC | SWS_ACCURATE_RND | SWS_FULL_CHR_H_INT,
-                                      nullptr, nullptr, nullptr));
+                                      SWS_BICUBIC | SWS_ACCURATE_RND | SWS_FULL_CHR_H_INT, nullptr, nullptr, nullptr));
       if (!scaler) throw std::runtime_error(path.string() + ": cannot convert its pixel format to RGBA");
       const int* matrix = sws_getCoefficients(frame->colorspace);
       setScalerColorDetails(*scaler, matrix, frame->color_range == AVCOL_RANGE_JPEG, matrix, true,

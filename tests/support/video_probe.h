@@ -50,10 +50,10 @@ std::vector<int> gifFrameDelays(const std::filesystem::path& path);
 // The first audio stream: its codec, rate and duration, and every sample decoded to mono floats
 // (the encoder's priming samples, which the container marks to skip, already dropped).
 struct DecodedAudio {
-  std::string codecName;        // e.g. "aac"
-  int sampleRate = 0;           // Hz
-  double durationSeconds = 0;   // s, of the audio stream as the container states it
-  std::vector<float> samples;   // the first channel
+  std::string codecName;       // e.g. "aac"
+  int sampleRate = 0;          // Hz
+  double durationSeconds = 0;  // s, of the audio stream as the container states it
+  std::vector<float> samples;  // the first channel
 };
 
 // Throws std::runtime_error naming the path if it cannot be opened or has no audio stream.

@@ -148,7 +148,7 @@ TEST(AsyncSink, AtMostCapacityFramesWaitBesideTheOneBeingWritten) {
   ASSERT_TRUE(inner.waitUntilEntered(1));  // the worker holds frame 0
   for (int i = 0; i < 200 && returned < kCapacity + 1; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(5));
   std::this_thread::sleep_for(std::chrono::milliseconds(300));  // time for a push that should block to return
-  EXPECT_EQ(returned, kCapacity + 1);  // frame 0 in hand, frames 1..capacity queued
+  EXPECT_EQ(returned, kCapacity + 1);                           // frame 0 in hand, frames 1..capacity queued
   inner.open();
   producer.join();
   sink.finish();

@@ -217,8 +217,8 @@ TEST(GifComment, ALongCommentIsSplitIntoSubBlocksOfAtMost255BytesAndReadBackWhol
   const std::string comment(600, 'c');
   const std::string tagged = coinroll::video::withGifComment(gif, comment);
   EXPECT_EQ(coinroll::video::gifComment(tagged), comment);
-  EXPECT_EQ(tagged.substr(19, 2), "\x21\xfe");                       // after the 6-byte colour table
-  EXPECT_EQ(static_cast<unsigned char>(tagged[21]), 255);             // first sub-block full
+  EXPECT_EQ(tagged.substr(19, 2), "\x21\xfe");             // after the 6-byte colour table
+  EXPECT_EQ(static_cast<unsigned char>(tagged[21]), 255);  // first sub-block full
   EXPECT_EQ(tagged.size(), gif.size() + 2 + (1 + 255) * 2 + (1 + 90) + 1);
   EXPECT_THROW(coinroll::video::withGifComment("GIF87a", comment), std::invalid_argument);
 }

@@ -15,9 +15,9 @@ TEST(MakeSinkForPath, ChoosesBySuffixOrPattern) {
             nullptr);
   EXPECT_NE(dynamic_cast<coinroll::video::EncoderSink*>(makeSinkForPath(directory / "A.MP4", VideoOptions{}).get()),
             nullptr);
-  EXPECT_NE(dynamic_cast<coinroll::video::PngSequenceSink*>(
-                makeSinkForPath(directory / "f_%04d.png", VideoOptions{}).get()),
-            nullptr);
+  EXPECT_NE(
+      dynamic_cast<coinroll::video::PngSequenceSink*>(makeSinkForPath(directory / "f_%04d.png", VideoOptions{}).get()),
+      nullptr);
   EXPECT_EQ(directory.fileCount(), 0);
 }
 

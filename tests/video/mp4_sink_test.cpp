@@ -18,8 +18,8 @@
 
 namespace fs = std::filesystem;
 using coinroll::image::Image;
-using coinroll::video::VideoOptions;
 using coinroll::video::EncoderSink;
+using coinroll::video::VideoOptions;
 using namespace coinroll::video::testing;
 using coinroll::testing::isBelow;
 using coinroll::testing::isNear;
@@ -162,7 +162,9 @@ TEST(EncoderSink, DecodedFramesMatchTheSourceAtCrf18) {
 // where BT.709 is tagged, or full-range values tagged as limited range.
 TEST(EncoderSink, PrimaryColoursDecodeToThemselves) {
   constexpr int kTolerance = 2;  // 8-bit levels: rounding to YUV and back; BT.601 for BT.709 is off by ~25
-  struct Colour { std::uint8_t r, g, b; };
+  struct Colour {
+    std::uint8_t r, g, b;
+  };
   const Colour colours[] = {{255, 0, 0}, {0, 255, 0}, {0, 0, 255}, {255, 255, 255}, {0, 0, 0}, {128, 128, 128}};
   ScratchDirectory directory;
   const fs::path path = directory / "colours.mp4";

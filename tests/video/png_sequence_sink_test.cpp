@@ -125,7 +125,7 @@ TEST(SequencePattern, NamesFramesAndKnowsItsOwnNamesExactly) {
   EXPECT_EQ(padded.frameNumberOf("f_12345.PNG"), 12345);
   EXPECT_EQ(padded.frameNumberOf("f_0007.PNG"), std::nullopt);  // no number gives four digits with a leading 0
   EXPECT_EQ(padded.frameNumberOf("f_07.PNG"), std::nullopt);
-  EXPECT_EQ(padded.frameNumberOf("f_007.png"), std::nullopt);   // another suffix
+  EXPECT_EQ(padded.frameNumberOf("f_007.png"), std::nullopt);  // another suffix
   EXPECT_EQ(padded.frameNumberOf("f_.PNG"), std::nullopt);
   EXPECT_EQ(padded.frameNumberOf("f_99999999999.PNG"), std::nullopt);  // past any frame number
   const coinroll::video::SequencePattern plain = parseSequencePattern("100%%_%d.png");

@@ -217,7 +217,6 @@ SteadyState steady(const Scene& scene) {
   const physics::CoinModel& m = simulation.model;
   const physics::CoinState& s = simulation.initial;
   const physics::SteadyReport report = physics::steadyReport(m, s);
-  constexpr std::array<const char*, 3> kVerdicts = {"stable", "unstable", "marginal"};  // TiltStability::Kind's order
   SteadyState state{.mass = m.M,
                     .radius = m.a,
                     .gravity = m.g,
@@ -242,7 +241,7 @@ SteadyState steady(const Scene& scene) {
                     .normalForce = report.reaction.N,
                     .frictionForce = report.reaction.F,
                     .stiffness = report.stiffness,
-                    .stability = kVerdicts[static_cast<std::size_t>(report.stability.kind)]};
+                    .stability = std::string(physics::verdictName(report.stability.kind))};
   return state;
 }
 

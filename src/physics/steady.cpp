@@ -229,6 +229,15 @@ TiltStability tiltStability(double K) {
   return {};
 }
 
+std::string_view verdictName(TiltStability::Kind kind) {
+  switch (kind) {
+    case TiltStability::Kind::Stable: return "stable";
+    case TiltStability::Kind::Unstable: return "unstable";
+    case TiltStability::Kind::Marginal: break;
+  }
+  return "marginal";
+}
+
 SteadyReport steadyReport(const CoinModel& model, const CoinState& s) {
   const bool cornered = !model.rim.thin() && !model.rim.fullyRounded();
   const double K = wobbleStiffness(model, s.theta, s.omega_Y, s.omega_Z);

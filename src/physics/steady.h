@@ -7,6 +7,7 @@
 // contact would switch corners there, so what needs theta = 0 throws std::invalid_argument for it.
 
 #include <optional>
+#include <string_view>
 
 #include "physics/coin_model.h"
 #include "physics/coin_state.h"
@@ -62,6 +63,9 @@ struct TiltStability {
   double time = 0;  // s: the wobble's period 2 pi / rate, or the e-folding time 1 / rate; 0 when marginal
 };
 TiltStability tiltStability(double K);
+// The verdict's name as the library's SteadyState and the WebAssembly core's steady report give it:
+// "stable", "unstable" or "marginal".
+std::string_view verdictName(TiltStability::Kind kind);
 
 // Radii of the circles traced by the centre of mass and by the contact point in a steady motion
 // with omega_X = 0, m: each point's speed over |phi-dot|. Infinite for straight rolling (phi-dot = 0).

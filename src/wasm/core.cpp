@@ -439,10 +439,9 @@ val steady(const std::string& scene, bool hasScene, val overrides, const std::st
 
     // Small tilt perturbations obey d(theta)'' = -K d(theta): the two eigenvalues are the roots of
     // lambda^2 = -K, +-i sqrt(K) for a wobble, +-sqrt(-K) for a growth.
-    constexpr std::array<const char*, 3> kVerdicts = {"stable", "unstable", "marginal"};  // TiltStability::Kind's order
     const physics::TiltStability& stability = report.stability;
     val verdict = val::object();
-    verdict.set("verdict", std::string(kVerdicts[static_cast<std::size_t>(stability.kind)]));
+    verdict.set("verdict", std::string(physics::verdictName(stability.kind)));
     verdict.set("rate", stability.rate);
     verdict.set("time", stability.time);
     out.set("stability", verdict);

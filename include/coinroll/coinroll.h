@@ -147,15 +147,15 @@ void renderVideo(const Scene& scene, const std::filesystem::path& output, const 
 // the state is only where a slowing motion starts.
 struct SteadyState {
   double mass = 0, radius = 0, gravity = 0;  // kg, m, m/s^2
-  double inertiaX = 0, inertiaZ = 0;          // kg m^2
-  double thickness = 0, edgeRadius = 0;       // m; 0 for a thin coin
-  double naturalRate = 0;                     // rad/s, sqrt(g/a)
+  double inertiaX = 0, inertiaZ = 0;         // kg m^2
+  double thickness = 0, edgeRadius = 0;      // m; 0 for a thin coin
+  double naturalRate = 0;                    // rad/s, sqrt(g/a)
   // rad/s: below it straight rolling is unstable. None for a rim with corners, which cannot roll
   // upright (docs/rim.md eq. 5.4).
   std::optional<double> criticalSpin;
   // The state in the scene's units: angles in degrees, rates in rad/s, positions in m.
   double theta = 0, phi = 0, psi = 0, omega_X = 0, omega_Y = 0, omega_Z = 0, x = 0, z = 0;
-  double precessionRate = 0, spinRate = 0;          // rad/s, phi-dot and psi-dot
+  double precessionRate = 0, spinRate = 0;           // rad/s, phi-dot and psi-dot
   double centreOfMassRadius = 0, contactRadius = 0;  // m, of the circles traced; infinite rolling straight
   double normalForce = 0, frictionForce = 0;         // N, the floor's reaction
   double stiffness = 0;                              // K, 1/s^2

@@ -395,6 +395,22 @@ try {
   const moved = await hook('run');
   const movedTheta = JSON.parse(moved.text).initial.theta;
   check('the theta slider changed the scene that ran', movedTheta > 15, `initial.theta ${movedTheta}`);
+  // A burst whose presses come while earlier runs are still out (not awaited one by one): once the
+  // last is drawn and every press's busy delay has passed, no older run's sign may come up.
+  // Three bursts: the page before this check left the sign up after 3 of 5.
+  let busyShown = 0;
+  for (let trial = 0; trial < 3; ++trial) {
+    const burst = [];
+    for (let i = 0; i < 6; ++i) {
+      burst.push(page.keyboard.press(i % 2 ? 'ArrowLeft' : 'ArrowRight'));
+      await new Promise((r) => setTimeout(r, 15));
+    }
+    await Promise.all(burst);
+    await settled();
+    await new Promise((r) => setTimeout(r, 400));
+    if (await page.$eval('#busy', (e) => !e.hidden)) ++busyShown;
+  }
+  check('after a burst of presses the busy sign is down', busyShown === 0, `left up after ${busyShown} of 3 bursts`);
   const boxText = await page.$eval('.control[data-path="initial.theta"] input[type=number]', (e) => e.value);
   check('the theta box shows the slider\'s value', Number(boxText) === movedTheta, boxText);
   const hudAfter = await hook('seek', 1);

@@ -112,6 +112,7 @@ const timing = { firstFrameAt: undefined, last: undefined };
 // a longer run lets the old one play on, under the busy sign.
 const kHoldForRunMs = 250;
 let latestRequestAt = 0;
+let busyTimer;
 
 // The title and caption as text (never markup), and the details folded: the scene file's box, with the
 // run's log moved in beside it, one click away.
@@ -151,8 +152,12 @@ async function start(text, sourceName, origin) {
   pending = true;
   controls.clearErrors();
   $('scene-error').textContent = '';
-  const busy = setTimeout(() => { $('busy').hidden = false; }, 150);
+  // One busy sign for the page, the newest run's: an older run's timer would show it after the newest
+  // had ended, and its progress would move the newest run's bar.
+  clearTimeout(busyTimer);
+  busyTimer = setTimeout(() => { $('busy').hidden = false; }, 150);
   const progress = (rows, expected) => {
+    if (id !== request) return;
     $('progress').value = expected > 0 ? rows / expected : 0;
     $('progress-text').textContent = `${rows} of ${expected} rows`;
   };
@@ -184,7 +189,7 @@ async function start(text, sourceName, origin) {
     settle();
   } finally {
     if (id === request) {
-      clearTimeout(busy);
+      clearTimeout(busyTimer);
       $('busy').hidden = true;
     }
   }

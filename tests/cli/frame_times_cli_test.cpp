@@ -260,8 +260,8 @@ TEST_F(FrameTimesCliTest, ThePlanAsJsonHoldsTheRendersFramesAndTheirOverlay) {
   }
   const RunResult bare = run("render " + scene_.string() + " -q --plan --json --set render.hud=false");
   ASSERT_EQ(bare.exitCode, 0) << bare.output;
-  for (const nlohmann::json& frame : nlohmann::json::parse(bare.output)["frames"])
-    EXPECT_TRUE(frame["overlay_lines"].empty()) << frame.dump();
+  const nlohmann::json barePlan = nlohmann::json::parse(bare.output);
+  for (const nlohmann::json& frame : barePlan["frames"]) EXPECT_TRUE(frame["overlay_lines"].empty()) << frame.dump();
   // Without --plan there is no plan to print: refused naming both, nothing written.
   const RunResult alone = run("render " + scene_.string() + " -q --json -o " + (dir_ / "alone.mp4").string());
   EXPECT_EQ(alone.exitCode, 2) << alone.output;

@@ -125,11 +125,15 @@ class SignalsCliTest : public coinroll::testing::ScratchDirTest {
   }
 
   // Waits (at most 10 s) until `run` writes at least `count` temporaries in `directory` (unnamed
-  // ones are seen among its descriptors): its work is under way.
+  // ones are seen among its descriptors): its work is under way. The count seen is the answer:
+  // counted again, a descriptor closing between the listing of /proc/PID/fd and its readlink could
+  // make it one short (a sanitizer CI run failed so).
   static bool waitForTemporaries(const BackgroundRun& run, int count, const fs::path& directory) {
-    for (int i = 0; i < 1000 && coinroll::testing::temporariesBeingWritten(run.pid(), directory) < count; ++i)
+    for (int i = 0; i < 1000; ++i) {
+      if (coinroll::testing::temporariesBeingWritten(run.pid(), directory) >= count) return true;
       std::this_thread::sleep_for(10ms);
-    return coinroll::testing::temporariesBeingWritten(run.pid(), directory) >= count;
+    }
+    return false;
   }
   bool waitForTemporaries(const BackgroundRun& run, int count) const { return waitForTemporaries(run, count, dir_); }
 
